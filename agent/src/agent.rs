@@ -1,0 +1,478 @@
+//! One learning agent: its per-frame API (advisee side), its advisor side and
+//! its learned state.
+
+use proto::{Action, State};
+use rand::{Rng, SeedableRng};
+use serde::{Deserialize, Serialize};
+
+use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set, shared_prefix};
+use crate::config::{AgentConfig, ConfigError, Reachable, StrategyKind};
+use crate::exchange::{AdviceExchange, Transition};
+use crate::persist::{PersistError, Snapshot};
+use crate::policy::{AgentRng, RANDOM_DRAW, chance, epsilon_greedy, greedy_first, majority};
+use crate::qtable::{ACTIONS, EntryId, QTable};
+use crate::sarsa::Sarsa;
+use crate::tiles::{Tiling, TilingParams};
+
+/// What an agent sees in one simulator frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Observation {
+    /// The 6 features of algorithms.md section 1, each in [-1, 1].
+    pub state: State,
+    /// Whether the agent can kick the ball (it chooses a kick action only then).
+    pub can_kick: bool,
+    /// Field position, used only by [`Reachable::WithinDistance`].
+    pub position: [f64; 2],
+}
+
+/// Whether an episode trains or evaluates.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Mode {
+    /// Learning, exploring, visit counting and advising on.
+    #[default]
+    Training,
+    /// Frozen: greedy play only; nothing learned, counted, asked or given.
+    Evaluation,
+}
+
+/// Communication and budget counters of one agent.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Counters {
+    /// Advice requests sent (one per request, whatever the number of recipients).
+    pub requests_sent: u64,
+    /// Individual answers received.
+    pub advice_received: u64,
+    /// Steps acted on advice: the ad hoc ask budget spent.
+    pub advised_steps: u64,
+    /// Answers given: the give budget spent (ad hoc advisor or Torrey teacher).
+    pub advice_given: u64,
+    /// Transitions sent to receivers: the EpisodeSharing budget spent.
+    pub shared_sent: u64,
+    /// Transitions received and replayed.
+    pub shared_received: u64,
+}
+
+/// The previous step, closed by the next frame's reward and state.
+#[derive(Clone, Copy, Debug)]
+struct Pending {
+    entry: EntryId,
+    action: Action,
+    state: State,
+}
+
+/// A learning agent (or the random baseline) with its advising strategy.
+///
+/// Drive it per episode: [`begin_episode`](Self::begin_episode), one
+/// [`act`](Self::act) per simulator frame, [`end_episode`](Self::end_episode)
+/// at the terminal frame, then [`share_episode`](Self::share_episode).
+#[derive(Clone, Debug)]
+pub struct Agent {
+    id: usize,
+    team_size: usize,
+    config: AgentConfig,
+    tiling: Tiling,
+    table: QTable,
+    sarsa: Sarsa,
+    replay: Sarsa,
+    rng: AgentRng,
+    mode: Mode,
+    pending: Option<Pending>,
+    advised: Vec<u64>,
+    reach: Vec<usize>,
+    answers: Vec<Action>,
+    episode: Vec<Transition>,
+    share_ready: bool,
+    training_episodes: u64,
+    counters: Counters,
+}
+
+impl Agent {
+    /// Agent `id` of a team of `team_size`, its generator seeded with `seed`.
+    pub fn new(
+        id: usize,
+        team_size: usize,
+        config: AgentConfig,
+        seed: u64,
+    ) -> Result<Self, ConfigError> {
+        let tiling = Tiling::new(&config)?;
+        if id >= team_size {
+            return Err(ConfigError::new(
+                "team_size",
+                format!("agent id {id} is not below the team size {team_size}"),
+            ));
+        }
+        if let Reachable::Agents(ids) = &config.reachable {
+            for (k, &j) in ids.iter().enumerate() {
+                if j >= team_size || ids[..k].contains(&j) {
+                    return Err(ConfigError::new(
+                        "reachable",
+                        format!("agent {j} is out of range or repeated"),
+                    ));
+                }
+            }
+        }
+        Ok(Self {
+            id,
+            team_size,
+            sarsa: Sarsa::new(&config),
+            replay: Sarsa::new(&config),
+            config,
+            tiling,
+            table: QTable::new(),
+            rng: AgentRng::seed_from_u64(seed),
+            mode: Mode::Training,
+            pending: None,
+            advised: Vec::new(),
+            reach: Vec::with_capacity(team_size),
+            answers: Vec::with_capacity(team_size),
+            episode: Vec::new(),
+            share_ready: false,
+            training_episodes: 0,
+            counters: Counters::default(),
+        })
+    }
+
+    /// This agent's id (its index in the team).
+    pub fn id(&self) -> usize {
+        self.id
+    }
+
+    /// Number of agents in its team.
+    pub fn team_size(&self) -> usize {
+        self.team_size
+    }
+
+    /// The configuration it was built with.
+    pub fn config(&self) -> &AgentConfig {
+        &self.config
+    }
+
+    /// The mode of the current episode.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// Communication and budget counters.
+    pub fn counters(&self) -> &Counters {
+        &self.counters
+    }
+
+    /// Training episodes finished so far.
+    pub fn training_episodes(&self) -> u64 {
+        self.training_episodes
+    }
+
+    /// The learned Q-table.
+    pub fn table(&self) -> &QTable {
+        &self.table
+    }
+
+    /// The state key of `state` under this agent's tiling.
+    pub fn key(&self, state: &State) -> u64 {
+        self.tiling.key(state)
+    }
+
+    /// The budget the paper plots: advice given (ad hoc advisor, Torrey
+    /// teacher) or transitions shared (EpisodeSharing); 0 otherwise.
+    pub fn spent_budget(&self) -> u64 {
+        match self.config.strategy {
+            StrategyKind::AdHocVisit | StrategyKind::AdHocTd | StrategyKind::Torrey => {
+                self.counters.advice_given
+            }
+            StrategyKind::EpisodeSharing => self.counters.shared_sent,
+            StrategyKind::NoAdvice | StrategyKind::Random => 0,
+        }
+    }
+
+    /// Starts an episode in `mode`; forgets the previous episode's trace,
+    /// advised states and unshared transitions.
+    pub fn begin_episode(&mut self, mode: Mode) {
+        self.mode = mode;
+        self.reset_episode();
+        self.episode.clear();
+        self.share_ready = false;
+    }
+
+    fn reset_episode(&mut self) {
+        self.pending = None;
+        self.sarsa.clear();
+        self.advised.clear();
+    }
+
+    fn training(&self) -> bool {
+        self.mode == Mode::Training && self.config.strategy.learns()
+    }
+
+    /// One frame: closes the previous step with `reward` (ignored on the
+    /// episode's first frame) and the new state, and returns the action for
+    /// this frame (`Move` when the agent cannot kick).
+    ///
+    /// `positions` holds every agent's field position by id (only needed by
+    /// [`Reachable::WithinDistance`]); `exchange` reaches the advisors.
+    pub fn act(
+        &mut self,
+        obs: &Observation,
+        reward: f64,
+        positions: &[[f64; 2]],
+        exchange: &mut dyn AdviceExchange,
+    ) -> Action {
+        if !self.config.strategy.learns() {
+            return self.random_action(obs.can_kick);
+        }
+        let key = self.tiling.key(&obs.state);
+        if self.mode == Mode::Evaluation {
+            if !obs.can_kick {
+                return Action::Move;
+            }
+            return self
+                .table
+                .get(key)
+                .map_or(Action::Shoot, |e| greedy_first(&e.q));
+        }
+        let entry = self.table.id_or_insert(key);
+        let action = if obs.can_kick {
+            self.choose(key, entry, &obs.state, positions, exchange)
+        } else {
+            Action::Move
+        };
+        if let Some(prev) = self.pending.take() {
+            self.learn(prev, reward, Some((entry, action, obs.state)));
+        }
+        self.table.entry_mut(entry).visits += 1;
+        self.pending = Some(Pending {
+            entry,
+            action,
+            state: obs.state,
+        });
+        action
+    }
+
+    /// The terminal frame: a training episode learns its last step with
+    /// target `final_reward` alone and counts as finished.
+    pub fn end_episode(&mut self, final_reward: f64) {
+        if self.training() {
+            if let Some(prev) = self.pending.take() {
+                self.learn(prev, final_reward, None);
+            }
+            self.share_ready = self.config.strategy == StrategyKind::EpisodeSharing
+                && final_reward > 0.0
+                && !self.episode.is_empty();
+        }
+        if !self.share_ready {
+            self.episode.clear();
+        }
+        if self.mode == Mode::Training {
+            self.training_episodes += 1;
+        }
+        self.reset_episode();
+    }
+
+    /// EpisodeSharing, after [`end_episode`](Self::end_episode) of a goal
+    /// episode: sends its transitions to every other agent, one budget unit
+    /// per transition per receiver, until the budget is spent.
+    pub fn share_episode(&mut self, exchange: &mut dyn AdviceExchange) {
+        if !std::mem::take(&mut self.share_ready) {
+            return;
+        }
+        let budget = self
+            .config
+            .sharing_budget
+            .saturating_sub(self.counters.shared_sent);
+        let receivers = self.team_size - 1;
+        for (k, to) in (0..self.team_size).filter(|&j| j != self.id).enumerate() {
+            let n = shared_prefix(self.episode.len(), receivers, k, budget);
+            if n > 0 {
+                exchange.share(self.id, to, &self.episode[..n]);
+                self.counters.shared_sent += n as u64;
+            }
+        }
+        self.episode.clear();
+    }
+
+    /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
+    /// advisee's `state`, or `None`. With `intended` (Mistake Correcting) it
+    /// answers, and spends budget, only when its action differs.
+    pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
+        if !self.training() {
+            return None;
+        }
+        let entry = *self.table.get(self.tiling.key(state))?;
+        let c = &self.config;
+        let confident = match c.strategy {
+            StrategyKind::AdHocVisit | StrategyKind::AdHocTd => {
+                let psi = if c.strategy == StrategyKind::AdHocVisit {
+                    psi_visit(entry.visits)
+                } else {
+                    psi_td(entry.visits, entry.kick_spread())
+                };
+                let v_g = if c.strategy == StrategyKind::AdHocVisit {
+                    c.v_g_visit
+                } else {
+                    c.v_g_td
+                };
+                self.counters.advice_given < c.give_budget
+                    && entry.visits > 0
+                    && chance(&mut self.rng, p_give(psi, v_g))
+            }
+            StrategyKind::Torrey => {
+                self.counters.advice_given < c.torrey_budget
+                    && entry.kick_spread() > c.torrey_threshold
+            }
+            StrategyKind::NoAdvice | StrategyKind::EpisodeSharing | StrategyKind::Random => false,
+        };
+        let answer = greedy_first(&entry.q);
+        if !confident || intended == Some(answer) {
+            return None;
+        }
+        self.counters.advice_given += 1;
+        Some(answer)
+    }
+
+    /// Replays a received goal episode as SARSA(lambda) updates with a fresh
+    /// trace (separate from the agent's own), using the sharer's next actions.
+    pub fn receive_shared(&mut self, transitions: &[Transition]) {
+        if !self.training() {
+            return;
+        }
+        self.counters.shared_received += transitions.len() as u64;
+        self.replay.clear();
+        for t in transitions {
+            let from = self.table.id_or_insert(self.tiling.key(&t.state));
+            let next = t
+                .next
+                .map(|(s, a)| (self.table.id_or_insert(self.tiling.key(&s)), a));
+            self.replay
+                .update(&mut self.table, (from, t.action), t.reward, next);
+        }
+        self.replay.clear();
+    }
+
+    /// Training choice with the ball: the strategy may ask for advice
+    /// (Algorithm 1, or Torrey's student), else epsilon-greedy.
+    fn choose(
+        &mut self,
+        key: u64,
+        entry: EntryId,
+        state: &State,
+        positions: &[[f64; 2]],
+        exchange: &mut dyn AdviceExchange,
+    ) -> Action {
+        let e = *self.table.entry(entry);
+        let c = &self.config;
+        let fresh = !self.advised.contains(&key);
+        let asks = match c.strategy {
+            StrategyKind::AdHocVisit | StrategyKind::AdHocTd => {
+                fresh
+                    && self.counters.advised_steps < c.ask_budget
+                    && self.training_episodes >= 1
+                    && chance(&mut self.rng, p_ask(e.visits, c.v_a))
+            }
+            StrategyKind::Torrey => fresh,
+            StrategyKind::NoAdvice | StrategyKind::EpisodeSharing | StrategyKind::Random => false,
+        };
+        if !asks {
+            return self.explore(&e.q);
+        }
+        self.fill_reach(positions);
+        if self.reach.is_empty() {
+            return self.explore(&e.q);
+        }
+        let intended = self.config.mistake_correcting.then(|| self.explore(&e.q));
+        self.answers.clear();
+        exchange.ask(self.id, &self.reach, state, intended, &mut self.answers);
+        self.counters.requests_sent += 1;
+        match majority(&self.answers, &mut self.rng) {
+            Some(advice) => {
+                self.counters.advice_received += self.answers.len() as u64;
+                self.counters.advised_steps += 1;
+                self.advised.push(key);
+                advice
+            }
+            None => intended.unwrap_or_else(|| self.explore(&e.q)),
+        }
+    }
+
+    /// Whom to ask: Torrey's fixed teacher `(i + 1) mod n`, else G(s).
+    fn fill_reach(&mut self, positions: &[[f64; 2]]) {
+        self.reach.clear();
+        if self.config.strategy == StrategyKind::Torrey {
+            let teacher = (self.id + 1) % self.team_size;
+            self.reach.extend((teacher != self.id).then_some(teacher));
+        } else {
+            reachable_set(
+                &self.config.reachable,
+                self.id,
+                self.team_size,
+                positions,
+                &mut self.reach,
+            );
+        }
+    }
+
+    fn explore(&mut self, q: &[f64; ACTIONS]) -> Action {
+        epsilon_greedy(q, self.config.epsilon, &mut self.rng)
+    }
+
+    fn random_action(&mut self, can_kick: bool) -> Action {
+        if can_kick {
+            RANDOM_DRAW[self.rng.random_range(0..RANDOM_DRAW.len())]
+        } else {
+            Action::Move
+        }
+    }
+
+    /// Learns one step and records it for EpisodeSharing while its budget lasts.
+    fn learn(&mut self, prev: Pending, reward: f64, next: Option<(EntryId, Action, State)>) {
+        let target = next.map(|(entry, action, _)| (entry, action));
+        self.sarsa
+            .update(&mut self.table, (prev.entry, prev.action), reward, target);
+        if self.config.strategy == StrategyKind::EpisodeSharing
+            && self.counters.shared_sent < self.config.sharing_budget
+        {
+            self.episode.push(Transition {
+                state: prev.state,
+                action: prev.action,
+                reward,
+                next: next.map(|(_, action, state)| (state, action)),
+            });
+        }
+    }
+
+    /// The learned state: Q-table with visit counts, counters and finished
+    /// training episodes.
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            tiling: self.tiling.params(),
+            entries: self.table.sorted_entries(),
+            counters: self.counters,
+            training_episodes: self.training_episodes,
+        }
+    }
+
+    /// Replaces the learned state with a snapshot made under the same tiling;
+    /// the current episode is forgotten.
+    pub fn restore(&mut self, snapshot: Snapshot) -> Result<(), PersistError> {
+        let current: TilingParams = self.tiling.params();
+        if snapshot.tiling != current {
+            return Err(PersistError::Incompatible {
+                saved: snapshot.tiling,
+                current,
+            });
+        }
+        snapshot.check()?;
+        self.table = QTable::from_entries(snapshot.entries)
+            .map_err(|e| PersistError::Invalid(e.to_string()))?;
+        self.counters = snapshot.counters;
+        self.training_episodes = snapshot.training_episodes;
+        self.begin_episode(self.mode);
+        Ok(())
+    }
+
+    /// A stable digest of the learned state (see [`Snapshot::digest`]).
+    pub fn digest(&self) -> u64 {
+        self.snapshot().digest()
+    }
+}
+
+#[cfg(test)]
+mod tests;

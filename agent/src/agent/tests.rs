@@ -1,0 +1,703 @@
+use super::*;
+use crate::exchange::Isolated;
+use crate::qtable::Entry;
+use crate::team::{Team, TeamError};
+use Action::{Dribble, Move, PassFar, PassNear, Shoot};
+
+/// Kick state number `k` (0..5): distinct keys through feature 2.
+fn kick_state(k: usize) -> State {
+    [1.0, [-1.0, -0.5, 0.0, 0.5, 1.0][k], 0.0, 0.0, 0.0, 0.0]
+}
+
+fn move_state(k: usize) -> State {
+    let mut s = kick_state(k);
+    s[0] = -1.0;
+    s
+}
+
+fn obs(state: State) -> Observation {
+    Observation {
+        state,
+        can_kick: state[0] > 0.0,
+        position: [0.0, 0.0],
+    }
+}
+
+fn config(strategy: StrategyKind) -> AgentConfig {
+    AgentConfig {
+        strategy,
+        ..AgentConfig::default()
+    }
+}
+
+fn agent(id: usize, team_size: usize, config: AgentConfig) -> Agent {
+    Agent::new(id, team_size, config, 42 + id as u64).unwrap()
+}
+
+/// Entry with the given Q values, all kick actions tried, `visits` visits.
+fn known(q: [f64; ACTIONS], visits: u64) -> Entry {
+    Entry {
+        q,
+        tried: 0b11110,
+        visits,
+    }
+}
+
+/// Replaces an agent's table with `entries` (keyed by state), one finished
+/// training episode, and starts a training episode.
+fn teach(a: &mut Agent, entries: &[(State, Entry)]) {
+    let mut entries: Vec<(u64, Entry)> = entries.iter().map(|(s, e)| (a.key(s), *e)).collect();
+    entries.sort_unstable_by_key(|&(k, _)| k);
+    let snapshot = Snapshot {
+        entries,
+        training_episodes: 1,
+        ..a.snapshot()
+    };
+    a.restore(snapshot).unwrap();
+    a.begin_episode(Mode::Training);
+}
+
+/// An exchange that records every call and answers each request with `answers`.
+#[derive(Default)]
+struct Script {
+    answers: Vec<Action>,
+    asked: Vec<(usize, Vec<usize>, Option<Action>)>,
+    shared: Vec<(usize, usize, Vec<Transition>)>,
+}
+
+impl AdviceExchange for Script {
+    fn ask(
+        &mut self,
+        from: usize,
+        to: &[usize],
+        _: &State,
+        intended: Option<Action>,
+        answers: &mut Vec<Action>,
+    ) {
+        self.asked.push((from, to.to_vec(), intended));
+        answers.extend_from_slice(&self.answers);
+    }
+
+    fn share(&mut self, from: usize, to: usize, transitions: &[Transition]) {
+        self.shared.push((from, to, transitions.to_vec()));
+    }
+}
+
+fn script(answers: &[Action]) -> Script {
+    Script {
+        answers: answers.to_vec(),
+        ..Script::default()
+    }
+}
+
+fn finish_one_episode(a: &mut Agent) {
+    a.begin_episode(Mode::Training);
+    a.end_episode(0.0);
+    a.begin_episode(Mode::Training);
+}
+
+#[test]
+fn advisee_spends_its_ask_budget_only_when_advised() {
+    let mut a = agent(
+        0,
+        3,
+        AgentConfig {
+            ask_budget: 2,
+            ..config(StrategyKind::AdHocVisit)
+        },
+    );
+    finish_one_episode(&mut a);
+    // No answer: a request is sent, nothing is spent, the state is not marked.
+    let mut silent = script(&[]);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
+    assert_eq!(silent.asked, vec![(0, vec![1, 2], None)]);
+    assert_eq!(
+        (a.counters().requests_sent, a.counters().advised_steps),
+        (1, 0)
+    );
+    // Unvisited states ask with P_ask = 1.5^0 = 1. Two advised states spend the budget of 2.
+    let mut ex = script(&[PassNear, PassNear]);
+    assert_eq!(a.act(&obs(kick_state(1)), 0.0, &[], &mut ex), PassNear);
+    assert_eq!(a.act(&obs(kick_state(2)), 0.0, &[], &mut ex), PassNear);
+    a.act(&obs(kick_state(3)), 0.0, &[], &mut ex);
+    assert_eq!(ex.asked.len(), 2, "the third state finds the budget spent");
+    let c = a.counters();
+    assert_eq!(
+        (c.requests_sent, c.advised_steps, c.advice_received),
+        (3, 2, 4)
+    );
+}
+
+#[test]
+fn asks_at_most_once_per_state_per_episode() {
+    // v_a = 0: P_ask = 1 whatever n(s), so only the advised-state rule stops asking.
+    let mut a = agent(
+        1,
+        3,
+        AgentConfig {
+            v_a: 0.0,
+            ..config(StrategyKind::AdHocTd)
+        },
+    );
+    finish_one_episode(&mut a);
+    let mut ex = script(&[Dribble]);
+    assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut ex), Dribble);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    assert_eq!(ex.asked.len(), 1);
+    a.end_episode(0.0);
+    a.begin_episode(Mode::Training);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    assert_eq!(ex.asked.len(), 2, "a new episode may ask again");
+}
+
+#[test]
+fn no_asking_before_a_finished_episode_without_the_ball_or_when_evaluating() {
+    let mut a = agent(0, 3, config(StrategyKind::AdHocTd));
+    let mut ex = script(&[Dribble]);
+    a.begin_episode(Mode::Training);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    assert!(ex.asked.is_empty(), "no training episode finished yet");
+    a.end_episode(0.0);
+    a.begin_episode(Mode::Training);
+    assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut ex), Move);
+    assert!(ex.asked.is_empty(), "cannot kick");
+    a.begin_episode(Mode::Evaluation);
+    a.act(&obs(kick_state(2)), 0.0, &[], &mut ex);
+    assert!(ex.asked.is_empty(), "evaluation");
+}
+
+#[test]
+fn advisor_needs_visits_and_budget() {
+    let mut a = agent(
+        0,
+        3,
+        AgentConfig {
+            give_budget: 2,
+            ..config(StrategyKind::AdHocTd)
+        },
+    );
+    // Greedy PassFar; spread over tried kicks = 1 - 0 = 1; Psi = sqrt(10000) * 1 = 100;
+    // P_give = 1 - 2.5^-100 = 1.0 in f64.
+    let q = [0.0, 0.0, 0.5, 0.2, 1.0];
+    teach(
+        &mut a,
+        &[
+            (kick_state(0), known(q, 10_000)),
+            (kick_state(1), known(q, 0)),
+        ],
+    );
+    assert_eq!(a.advise(&kick_state(1), None), None, "n(s) = 0");
+    assert_eq!(a.advise(&kick_state(2), None), None, "unknown state");
+    assert_eq!(a.advise(&kick_state(0), None), Some(PassFar));
+    assert_eq!(a.advise(&kick_state(0), None), Some(PassFar));
+    assert_eq!(
+        a.advise(&kick_state(0), None),
+        None,
+        "give budget of 2 spent"
+    );
+    assert_eq!(a.counters().advice_given, 2);
+    assert_eq!(a.spent_budget(), 2);
+}
+
+#[test]
+fn visit_based_advisor_uses_log2_visits() {
+    // n = 1: Psi = log2 1 = 0, P_give = 0.
+    let mut a = agent(0, 3, config(StrategyKind::AdHocVisit));
+    teach(
+        &mut a,
+        &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
+    );
+    assert_eq!(a.advise(&kick_state(0), None), None);
+    // n = 2: Psi = 1; v_g = 1e9: P_give = 1 - 1e-9 (a draw above it is vanishingly rare).
+    let mut b = agent(
+        0,
+        3,
+        AgentConfig {
+            v_g_visit: 1e9,
+            ..config(StrategyKind::AdHocVisit)
+        },
+    );
+    teach(
+        &mut b,
+        &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 2))],
+    );
+    assert_eq!(b.advise(&kick_state(0), None), Some(Dribble));
+}
+
+#[test]
+fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
+    // Advisor side: greedy Shoot, P_give = 1 (see advisor_needs_visits_and_budget).
+    let mc = |s| AgentConfig {
+        mistake_correcting: true,
+        ..config(s)
+    };
+    let mut advisor = agent(1, 3, mc(StrategyKind::AdHocTd));
+    teach(
+        &mut advisor,
+        &[(kick_state(0), known([0.0, 1.0, 0.0, 0.0, 0.0], 10_000))],
+    );
+    assert_eq!(advisor.advise(&kick_state(0), Some(Shoot)), None);
+    assert_eq!(advisor.counters().advice_given, 0);
+    assert_eq!(advisor.advise(&kick_state(0), Some(Dribble)), Some(Shoot));
+    assert_eq!(advisor.counters().advice_given, 1);
+
+    // Advisee side: it sends its own epsilon-greedy choice (epsilon 0: greedy
+    // Dribble) and, without an answer, plays it.
+    let mut advisee = agent(
+        0,
+        3,
+        AgentConfig {
+            epsilon: 0.0,
+            ..mc(StrategyKind::AdHocTd)
+        },
+    );
+    teach(
+        &mut advisee,
+        &[(kick_state(0), known([0.0, 0.0, 0.7, 0.0, 0.0], 0))],
+    );
+    let mut silent = script(&[]);
+    assert_eq!(
+        advisee.act(&obs(kick_state(0)), 0.0, &[], &mut silent),
+        Dribble
+    );
+    assert_eq!(silent.asked, vec![(0, vec![1, 2], Some(Dribble))]);
+    assert_eq!(advisee.counters().advised_steps, 0);
+}
+
+#[test]
+fn torrey_students_ask_their_fixed_teacher_at_every_fresh_kick_state() {
+    for i in 0..3 {
+        let mut a = agent(i, 3, config(StrategyKind::Torrey));
+        // No finished episode needed, no ask budget.
+        a.begin_episode(Mode::Training);
+        let mut ex = script(&[]);
+        a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+        a.act(&obs(move_state(0)), 0.0, &[], &mut ex);
+        a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+        assert_eq!(ex.asked, vec![(i, vec![(i + 1) % 3], None); 2], "agent {i}");
+        // Once advised, a state is not shown again in this episode.
+        let mut ex = script(&[Dribble]);
+        a.act(&obs(kick_state(1)), 0.0, &[], &mut ex);
+        a.act(&obs(kick_state(1)), 0.0, &[], &mut ex);
+        assert_eq!(ex.asked.len(), 1);
+    }
+}
+
+#[test]
+fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
+    let mut t = agent(
+        1,
+        3,
+        AgentConfig {
+            torrey_budget: 1,
+            ..config(StrategyKind::Torrey)
+        },
+    );
+    // Spreads: 0.01 (not above t = 0.01) and 0.02; visits play no role.
+    teach(
+        &mut t,
+        &[
+            (kick_state(0), known([0.0, 0.0, 0.01, 0.0, 0.0], 0)),
+            (kick_state(1), known([0.0, 0.0, 0.0, 0.02, 0.0], 0)),
+        ],
+    );
+    assert_eq!(t.advise(&kick_state(0), None), None);
+    assert_eq!(t.advise(&kick_state(1), None), Some(PassNear));
+    assert_eq!(t.advise(&kick_state(1), None), None, "budget of 1 spent");
+
+    // In a team, agent 0's teacher is agent 1 (agent 2 knows too, but is not asked).
+    let mut agents: Vec<Agent> = (0..3)
+        .map(|i| agent(i, 3, config(StrategyKind::Torrey)))
+        .collect();
+    let q = [0.0, 0.0, 0.0, 0.0, 0.5];
+    teach(&mut agents[1], &[(kick_state(0), known(q, 0))]);
+    teach(
+        &mut agents[2],
+        &[(kick_state(0), known([0.0, 0.5, 0.0, 0.0, 0.0], 0))],
+    );
+    let mut team = Team::new(agents).unwrap();
+    team.begin_episode(Mode::Training);
+    let frame = [obs(kick_state(0)), obs(move_state(0)), obs(move_state(0))];
+    assert_eq!(team.act(&frame, 0.0).unwrap()[0], PassFar);
+    let given: Vec<u64> = team
+        .agents()
+        .iter()
+        .map(|a| a.counters().advice_given)
+        .collect();
+    assert_eq!(given, vec![0, 1, 0]);
+}
+
+#[test]
+fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
+    let mut a = agent(
+        0,
+        3,
+        AgentConfig {
+            sharing_budget: 5,
+            ..config(StrategyKind::EpisodeSharing)
+        },
+    );
+    let mut ex = script(&[]);
+    a.begin_episode(Mode::Training);
+    // Frames s0..s3 then the terminal step: transitions t0..t3.
+    let states = [move_state(0), move_state(1), kick_state(2), move_state(3)];
+    let mut actions = Vec::new();
+    for s in states {
+        actions.push(a.act(&obs(s), 0.0, &[], &mut ex));
+    }
+    a.end_episode(1.0);
+    a.share_episode(&mut ex);
+    // Budget 5 over 2 receivers: t0->1, t0->2, t1->1, t1->2, t2->1.
+    let lens: Vec<(usize, usize, usize)> = ex
+        .shared
+        .iter()
+        .map(|(f, t, v)| (*f, *t, v.len()))
+        .collect();
+    assert_eq!(lens, vec![(0, 1, 3), (0, 2, 2)]);
+    assert_eq!(a.counters().shared_sent, 5);
+    assert_eq!(a.spent_budget(), 5);
+    let first = ex.shared[0].2[0];
+    assert_eq!(
+        first,
+        Transition {
+            state: states[0],
+            action: Move,
+            reward: 0.0,
+            next: Some((states[1], Move))
+        }
+    );
+    assert_eq!(ex.shared[0].2[2].next, Some((states[3], actions[3])));
+
+    // Budget spent: the next goal episode shares nothing.
+    a.begin_episode(Mode::Training);
+    a.act(&obs(move_state(0)), 0.0, &[], &mut ex);
+    a.end_episode(1.0);
+    a.share_episode(&mut ex);
+    assert_eq!(ex.shared.len(), 2);
+}
+
+#[test]
+fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
+    let mut a = agent(2, 3, config(StrategyKind::EpisodeSharing));
+    let mut ex = script(&[]);
+    for reward in [-1.0, 0.0, 1.0] {
+        a.begin_episode(Mode::Training);
+        a.act(&obs(move_state(0)), 0.0, &[], &mut ex);
+        a.act(&obs(move_state(1)), 0.0, &[], &mut ex);
+        a.end_episode(reward);
+        a.share_episode(&mut ex);
+    }
+    // Only the goal episode, to agents 0 and 1, two transitions each.
+    assert_eq!(
+        ex.shared
+            .iter()
+            .map(|(_, t, v)| (*t, v.len()))
+            .collect::<Vec<_>>(),
+        vec![(0, 2), (1, 2)]
+    );
+    let last = ex.shared[0].2[1];
+    assert_eq!((last.reward, last.next), (1.0, None));
+}
+
+#[test]
+fn received_episode_is_replayed_with_a_fresh_trace() {
+    let mut a = agent(1, 3, config(StrategyKind::EpisodeSharing));
+    a.begin_episode(Mode::Training);
+    // Own pending step in another state, untouched by the replay.
+    a.act(&obs(move_state(4)), 0.0, &[], &mut Isolated);
+    let (s0, s1) = (kick_state(0), move_state(1));
+    a.receive_shared(&[
+        Transition {
+            state: s0,
+            action: Shoot,
+            reward: 0.0,
+            next: Some((s1, Move)),
+        },
+        Transition {
+            state: s1,
+            action: Move,
+            reward: 1.0,
+            next: None,
+        },
+    ]);
+    // t0: delta = 0 + 0.9 * 0 - 0 = 0, e(s0,S) -> 0.81.
+    // t1: delta = 1 - 0 = 1: Q(s1,M) = 0.1 * 1 * 1 = 0.1, Q(s0,S) = 0.1 * 1 * 0.81 = 0.081.
+    let q = |a: &Agent, s: &State, x: Action| a.table().get(a.key(s)).unwrap().q[x.index()];
+    assert!((q(&a, &s1, Move) - 0.1).abs() < 1e-12);
+    assert!((q(&a, &s0, Shoot) - 0.081).abs() < 1e-12);
+    assert_eq!(
+        a.table().get(a.key(&s0)).unwrap().visits,
+        0,
+        "replay is not a visit"
+    );
+    assert_eq!(a.counters().shared_received, 2);
+    // The own trace only holds the own step: a terminal -1 moves only Q(s4, Move).
+    a.end_episode(-1.0);
+    assert!((q(&a, &move_state(4), Move) + 0.1).abs() < 1e-12);
+    assert!((q(&a, &s0, Shoot) - 0.081).abs() < 1e-12);
+}
+
+#[test]
+fn learns_move_steps_and_counts_visits() {
+    let mut a = agent(0, 1, config(StrategyKind::NoAdvice));
+    a.begin_episode(Mode::Training);
+    assert_eq!(a.act(&obs(move_state(0)), 0.0, &[], &mut Isolated), Move);
+    assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
+    a.end_episode(-1.0);
+    // Terminal delta = -1: Q(s1,M) = -0.1, Q(s0,M) = -0.1 * 0.81 = -0.081.
+    let e0 = *a.table().get(a.key(&move_state(0))).unwrap();
+    let e1 = *a.table().get(a.key(&move_state(1))).unwrap();
+    assert!((e0.q[Move.index()] + 0.081).abs() < 1e-12);
+    assert!((e1.q[Move.index()] + 0.1).abs() < 1e-12);
+    assert_eq!((e0.visits, e1.visits), (1, 1));
+    assert_eq!(a.training_episodes(), 1);
+}
+
+#[test]
+fn evaluation_plays_greedy_in_tie_order() {
+    let mut a = agent(0, 1, config(StrategyKind::NoAdvice));
+    teach(
+        &mut a,
+        &[(kick_state(0), known([0.0, 0.0, 0.0, 0.3, 0.3], 0))],
+    );
+    a.begin_episode(Mode::Evaluation);
+    // PassNear and PassFar tie at 0.3: PassFar comes first in the tie order.
+    assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut Isolated), PassFar);
+    // Unknown state: all zero, Shoot first.
+    assert_eq!(a.act(&obs(kick_state(1)), 0.0, &[], &mut Isolated), Shoot);
+    assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
+}
+
+#[test]
+fn random_baseline_never_learns_nor_advises() {
+    let mut a = agent(0, 3, config(StrategyKind::Random));
+    let mut seen = [false; ACTIONS];
+    for mode in [Mode::Training, Mode::Evaluation] {
+        a.begin_episode(mode);
+        for k in 0..200 {
+            seen[a
+                .act(&obs(kick_state(k % 5)), 0.0, &[], &mut Isolated)
+                .index()] = true;
+            assert_eq!(
+                a.act(&obs(move_state(k % 5)), 0.0, &[], &mut Isolated),
+                Move
+            );
+        }
+        a.end_episode(1.0);
+    }
+    assert_eq!(seen, [false, true, true, true, true]);
+    assert!(a.table().is_empty());
+    assert_eq!(a.advise(&kick_state(0), None), None);
+}
+
+/// Plays `episodes` episodes of random frames over 9 kick and 9 move states.
+fn play(team: &mut Team, rng: &mut AgentRng, episodes: usize, mode: Mode) -> Vec<Action> {
+    let values = [-0.5, 0.0, 0.5];
+    let mut log = Vec::new();
+    for _ in 0..episodes {
+        team.begin_episode(mode);
+        let mut reward = 0.0;
+        for _ in 0..rng.random_range(1..25) {
+            let kicker = rng.random_range(0..4); // 3: nobody has the ball
+            let frame: Vec<Observation> = (0..3)
+                .map(|i| {
+                    let mut s = [0.0; 6];
+                    s[1] = values[rng.random_range(0..values.len())];
+                    s[2] = values[rng.random_range(0..values.len())];
+                    s[0] = if i == kicker { 1.0 } else { -1.0 };
+                    let position = [rng.random_range(0.0..10.0), 0.0];
+                    Observation {
+                        state: s,
+                        can_kick: i == kicker,
+                        position,
+                    }
+                })
+                .collect();
+            log.extend_from_slice(team.act(&frame, reward).unwrap());
+            reward = 0.0;
+        }
+        team.end_episode([-1.0, 0.0, 1.0][rng.random_range(0..3)]);
+    }
+    log
+}
+
+fn team(strategy: StrategyKind, seed: u64) -> Team {
+    let c = config(strategy);
+    Team::new(
+        (0..3)
+            .map(|i| Agent::new(i, 3, c.clone(), seed + i as u64).unwrap())
+            .collect(),
+    )
+    .unwrap()
+}
+
+fn digests(team: &Team) -> Vec<u64> {
+    team.agents().iter().map(Agent::digest).collect()
+}
+
+#[test]
+fn evaluation_changes_no_learned_state() {
+    for strategy in [
+        StrategyKind::AdHocTd,
+        StrategyKind::Torrey,
+        StrategyKind::EpisodeSharing,
+    ] {
+        let mut t = team(strategy, 7);
+        let mut rng = AgentRng::seed_from_u64(1);
+        play(&mut t, &mut rng, 40, Mode::Training);
+        let before = digests(&t);
+        let sizes: Vec<usize> = t.agents().iter().map(|a| a.table().len()).collect();
+        // New states included: they must not even get an entry.
+        play(&mut t, &mut rng, 20, Mode::Evaluation);
+        assert_eq!(digests(&t), before, "{strategy:?}");
+        assert_eq!(
+            t.agents()
+                .iter()
+                .map(|a| a.table().len())
+                .collect::<Vec<_>>(),
+            sizes
+        );
+    }
+}
+
+#[test]
+fn same_seed_same_run_bit_for_bit() {
+    for strategy in [
+        StrategyKind::AdHocVisit,
+        StrategyKind::AdHocTd,
+        StrategyKind::Torrey,
+        StrategyKind::EpisodeSharing,
+    ] {
+        let run = |seed| {
+            let mut t = team(strategy, seed);
+            let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
+            (log, digests(&t))
+        };
+        let (a, b) = (run(11), run(11));
+        assert_eq!(a, b, "{strategy:?}");
+        assert_ne!(a.1, run(12).1, "{strategy:?}: the seed matters");
+        // Advice actually flowed in these runs.
+        let t = {
+            let mut t = team(strategy, 11);
+            play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
+            t
+        };
+        assert!(
+            t.agents().iter().any(|a| a.spent_budget() > 0),
+            "{strategy:?}"
+        );
+    }
+}
+
+#[test]
+fn reachable_within_distance_filters_advisors() {
+    // v_a = 0: P_ask = 1 on every visit.
+    let c = AgentConfig {
+        v_a: 0.0,
+        reachable: Reachable::WithinDistance(5.0),
+        ..config(StrategyKind::AdHocTd)
+    };
+    let mut agents: Vec<Agent> = (0..3).map(|i| agent(i, 3, c.clone())).collect();
+    finish_one_episode(&mut agents[0]);
+    // Only agent 2 could answer (greedy Dribble, P_give = 1).
+    teach(
+        &mut agents[2],
+        &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 10_000))],
+    );
+    let mut team = Team::new(agents).unwrap();
+    let at = |x: f64, s: State| Observation {
+        position: [x, 0.0],
+        ..obs(s)
+    };
+    team.begin_episode(Mode::Training);
+    // Agent 2 at distance 8: out of reach, no advice.
+    team.act(
+        &[
+            at(0.0, kick_state(0)),
+            at(4.0, move_state(0)),
+            at(8.0, move_state(0)),
+        ],
+        0.0,
+    )
+    .unwrap();
+    assert_eq!(team.agents()[0].counters().advised_steps, 0);
+    // A new episode with agent 2 at distance 3.
+    team.end_episode(0.0);
+    team.begin_episode(Mode::Training);
+    let actions = team
+        .act(
+            &[
+                at(0.0, kick_state(0)),
+                at(9.0, move_state(0)),
+                at(3.0, move_state(0)),
+            ],
+            0.0,
+        )
+        .unwrap();
+    assert_eq!(actions[0], Dribble);
+    assert_eq!(team.agents()[0].counters().advised_steps, 1);
+}
+
+#[test]
+fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
+    let mut t = team(StrategyKind::AdHocTd, 5);
+    play(&mut t, &mut AgentRng::seed_from_u64(9), 30, Mode::Training);
+    let trained = &t.agents()[2];
+    let dir = std::env::temp_dir().join(format!("agent-restore-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("expert.qtable");
+    trained.snapshot().save(&path).unwrap();
+    let mut fresh = agent(2, 3, config(StrategyKind::AdHocTd));
+    fresh.restore(Snapshot::load(&path).unwrap()).unwrap();
+    assert_eq!(fresh.digest(), trained.digest());
+    assert_eq!(
+        fresh.table().sorted_entries(),
+        trained.table().sorted_entries()
+    );
+    let five = AgentConfig {
+        tiles_per_feature: 5,
+        tile_step: 0.4,
+        ..AgentConfig::default()
+    };
+    let err = agent(0, 1, five)
+        .restore(Snapshot::load(&path).unwrap())
+        .unwrap_err();
+    assert!(matches!(err, PersistError::Incompatible { .. }), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bad_construction_and_frames_are_errors() {
+    assert_eq!(
+        Agent::new(3, 3, AgentConfig::default(), 0).unwrap_err().key,
+        "team_size"
+    );
+    let dup = AgentConfig {
+        reachable: Reachable::Agents(vec![1, 1]),
+        ..AgentConfig::default()
+    };
+    assert_eq!(Agent::new(0, 3, dup, 0).unwrap_err().key, "reachable");
+    let c = AgentConfig::default();
+    let swapped = vec![agent(1, 2, c.clone()), agent(0, 2, c.clone())];
+    assert_eq!(
+        Team::new(swapped).unwrap_err(),
+        TeamError::Id { index: 0, id: 1 }
+    );
+    let sizes = vec![agent(0, 2, c.clone()), agent(1, 3, c.clone())];
+    assert_eq!(
+        Team::new(sizes).unwrap_err(),
+        TeamError::Size {
+            id: 1,
+            built_for: 3,
+            size: 2
+        }
+    );
+    let mut t = Team::new(vec![agent(0, 1, c)]).unwrap();
+    assert_eq!(
+        t.act(&[], 0.0).unwrap_err(),
+        TeamError::Observations {
+            expected: 1,
+            got: 0
+        }
+    );
+}

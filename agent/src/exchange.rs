@@ -1,0 +1,48 @@
+//! The advising seam: how an agent reaches the others, whatever the transport.
+//!
+//! Budgets, probabilities and votes live in the agent ([`crate::Agent::advise`],
+//! [`crate::Agent::receive_shared`]); an exchange only carries messages.
+
+use proto::{Action, State};
+use serde::{Deserialize, Serialize};
+
+/// One step of a shared episode, `(s, a, r, s', a')`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Transition {
+    /// The state s the action was taken in.
+    pub state: State,
+    /// The action a.
+    pub action: Action,
+    /// The reward r that followed.
+    pub reward: f64,
+    /// `(s', a')`, the sharer's next state and action; `None` at the terminal step.
+    pub next: Option<(State, Action)>,
+}
+
+/// Carries advice requests and shared episodes between agents.
+pub trait AdviceExchange {
+    /// Asks every agent of `to`, in order, for advice on `state` (with the
+    /// asker's `intended` action in Mistake Correcting mode) and appends each
+    /// answer to `answers`. Agents that do not answer add nothing.
+    fn ask(
+        &mut self,
+        from: usize,
+        to: &[usize],
+        state: &State,
+        intended: Option<Action>,
+        answers: &mut Vec<Action>,
+    );
+
+    /// Delivers transitions of `from`'s goal episode to agent `to`, in order.
+    fn share(&mut self, from: usize, to: usize, transitions: &[Transition]);
+}
+
+/// An exchange that reaches nobody: no advice arrives and shares are dropped.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Isolated;
+
+impl AdviceExchange for Isolated {
+    fn ask(&mut self, _: usize, _: &[usize], _: &State, _: Option<Action>, _: &mut Vec<Action>) {}
+
+    fn share(&mut self, _: usize, _: usize, _: &[Transition]) {}
+}

@@ -1,0 +1,57 @@
+//! Learning agents for "ad hoc advising among simultaneously learning agents"
+//! (da Silva, Glatt & Costa, AAMAS 2017): tile coding, a Q-table, SARSA(lambda)
+//! and the advising strategies, exactly as in `docs/algorithms.md`.
+//!
+//! The library does no I/O besides saving and loading snapshots and knows no
+//! transport: agents reach each other through [`AdviceExchange`], which
+//! [`Team`] implements in process with direct calls.
+//!
+//! Driving a [`Team`]: one training episode, then one evaluation episode
+//! (frozen: greedy play, nothing learned, asked or given).
+//! ```
+//! use agent::{Agent, AgentConfig, Mode, Observation, StrategyKind, Team};
+//! use proto::Action;
+//!
+//! let config = AgentConfig { strategy: StrategyKind::AdHocTd, ..AgentConfig::default() };
+//! let agents = (0..3).map(|i| Agent::new(i, 3, config.clone(), 100 + i as u64)).collect::<Result<_, _>>()?;
+//! let mut team = Team::new(agents)?;
+//! let obs = |kicker: bool| Observation { state: [0.0; 6], can_kick: kicker, position: [0.0, 0.0] };
+//! for mode in [Mode::Training, Mode::Evaluation] {
+//!     team.begin_episode(mode);
+//!     let mut frame = [obs(true), obs(false), obs(false)]; // the simulator's reset
+//!     let mut reward = 0.0; // ignored on the first frame
+//!     for _ in 0..3 {
+//!         let actions = team.act(&frame, reward)?; // closes the last step, picks actions
+//!         assert_eq!(actions[2], Action::Move); // only a kicker chooses
+//!         // Step the simulator with `actions`; it returns the next frame and
+//!         // the shared reward (0 until the terminal step).
+//!         (frame, reward) = ([obs(false), obs(true), obs(false)], 0.0);
+//!     }
+//!     team.end_episode(1.0); // terminal reward: +1 goal, -1 captured or out, 0 time-out
+//! }
+//! let spent: Vec<u64> = team.agents().iter().map(Agent::spent_budget).collect();
+//! # assert_eq!(spent.len(), 3);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+#![warn(missing_docs)]
+
+mod advice;
+mod agent;
+mod config;
+mod exchange;
+mod persist;
+mod policy;
+mod qtable;
+mod sarsa;
+mod team;
+mod tiles;
+
+pub use advice::{p_ask, p_give, psi_td, psi_visit};
+pub use agent::{Agent, Counters, Mode, Observation};
+pub use config::{AgentConfig, ConfigError, Reachable, StrategyKind};
+pub use exchange::{AdviceExchange, Isolated, Transition};
+pub use persist::{FORMAT_VERSION, PersistError, Snapshot};
+pub use qtable::{Entry, QTable};
+pub use team::{Team, TeamError};
+pub use tiles::TilingParams;

@@ -1,0 +1,394 @@
+//! Saving and loading an agent's learned state: a versioned binary file,
+//! written atomically, and a stable digest.
+//!
+//! Layout: magic `ADVQTAB\0` | format version (u16 LE) | body length (u64 LE)
+//! | postcard body | FNV-1a 64 of the body (u64 LE).
+
+use std::fs::{self, File};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use serde::{Deserialize, Serialize};
+
+use crate::agent::Counters;
+use crate::qtable::{ACTIONS, Entry};
+use crate::tiles::TilingParams;
+
+const MAGIC: [u8; 8] = *b"ADVQTAB\0";
+
+/// Version of the file format; files of another version are refused.
+pub const FORMAT_VERSION: u16 = 1;
+
+const HEADER: usize = MAGIC.len() + 2 + 8;
+const CHECKSUM: usize = 8;
+
+/// Why a snapshot could not be saved, loaded or restored.
+#[derive(Debug, thiserror::Error)]
+pub enum PersistError {
+    /// Reading or writing the file failed.
+    #[error("cannot access {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: io::Error,
+    },
+    /// The file does not start with the snapshot magic.
+    #[error("not an agent snapshot (bad magic header)")]
+    NotASnapshot,
+    /// The file was written in another format version.
+    #[error("snapshot format version {found}, this build reads version {expected}")]
+    UnsupportedVersion {
+        /// Version in the file.
+        found: u16,
+        /// Version this build reads.
+        expected: u16,
+    },
+    /// The file is shorter or longer than its header says.
+    #[error("snapshot is {found} bytes, its header says {expected}: truncated or padded")]
+    Length {
+        /// Size announced by the header.
+        expected: u64,
+        /// Actual size.
+        found: u64,
+    },
+    /// The body does not match its checksum.
+    #[error("snapshot checksum mismatch: the file is corrupt")]
+    Checksum,
+    /// The body could not be encoded or decoded.
+    #[error("snapshot body: {0}")]
+    Codec(#[from] postcard::Error),
+    /// The body decoded but holds impossible values.
+    #[error("invalid snapshot: {0}")]
+    Invalid(String),
+    /// The snapshot was made under another tiling; its keys mean nothing here.
+    #[error("snapshot tiling {saved:?} differs from the agent's {current:?}")]
+    Incompatible {
+        /// Tiling of the snapshot.
+        saved: TilingParams,
+        /// Tiling of the agent.
+        current: TilingParams,
+    },
+}
+
+/// An agent's learned state (see [`crate::Agent::snapshot`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Snapshot {
+    /// The tiling that gives the keys their meaning.
+    pub tiling: TilingParams,
+    /// Q-table entries with visit counts, sorted by key.
+    pub entries: Vec<(u64, Entry)>,
+    /// Counters, including the spent budgets.
+    pub counters: Counters,
+    /// Training episodes finished.
+    pub training_episodes: u64,
+}
+
+/// FNV-1a, 64 bits.
+#[derive(Clone, Copy, Debug)]
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
+    }
+
+    fn bytes(mut self, bytes: &[u8]) -> Self {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
+        }
+        self
+    }
+
+    fn u64(self, x: u64) -> Self {
+        self.bytes(&x.to_le_bytes())
+    }
+}
+
+impl Snapshot {
+    /// FNV-1a over every learned value in key order (Q values by their bits):
+    /// equal digests mean equal learned state, across runs and platforms.
+    pub fn digest(&self) -> u64 {
+        let t = self.tiling;
+        let mut h = Fnv::new()
+            .u64(u64::from(t.tiles_per_feature))
+            .u64(t.tile_width.to_bits())
+            .u64(t.tile_step.to_bits());
+        for (key, e) in &self.entries {
+            h = h.u64(*key);
+            for q in e.q {
+                h = h.u64(q.to_bits());
+            }
+            h = h.bytes(&[e.tried]).u64(e.visits);
+        }
+        let c = self.counters;
+        for x in [
+            c.requests_sent,
+            c.advice_received,
+            c.advised_steps,
+            c.advice_given,
+            c.shared_sent,
+            c.shared_received,
+            self.training_episodes,
+        ] {
+            h = h.u64(x);
+        }
+        h.0
+    }
+
+    /// Rejects impossible values (tried bits beyond the five actions,
+    /// non-finite Q values).
+    pub fn check(&self) -> Result<(), PersistError> {
+        for (key, e) in &self.entries {
+            if e.tried >> ACTIONS != 0 || e.q.iter().any(|q| !q.is_finite()) {
+                return Err(PersistError::Invalid(format!(
+                    "entry {key:#x} holds impossible values"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The file image: header, body and checksum.
+    pub fn encode(&self) -> Result<Vec<u8>, PersistError> {
+        let body = postcard::to_allocvec(self)?;
+        let mut out = Vec::with_capacity(HEADER + body.len() + CHECKSUM);
+        out.extend_from_slice(&MAGIC);
+        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        out.extend_from_slice(&(body.len() as u64).to_le_bytes());
+        out.extend_from_slice(&body);
+        out.extend_from_slice(&Fnv::new().bytes(&body).0.to_le_bytes());
+        Ok(out)
+    }
+
+    /// Parses a file image, checking magic, version, length and checksum.
+    pub fn decode(bytes: &[u8]) -> Result<Self, PersistError> {
+        let magic_len = bytes.len().min(MAGIC.len());
+        if bytes[..magic_len] != MAGIC[..magic_len] {
+            return Err(PersistError::NotASnapshot);
+        }
+        let too_short = || PersistError::Length {
+            expected: HEADER as u64,
+            found: bytes.len() as u64,
+        };
+        let version = u16::from_le_bytes(read_array(bytes, MAGIC.len()).ok_or_else(too_short)?);
+        if version != FORMAT_VERSION {
+            return Err(PersistError::UnsupportedVersion {
+                found: version,
+                expected: FORMAT_VERSION,
+            });
+        }
+        let body_len =
+            u64::from_le_bytes(read_array(bytes, MAGIC.len() + 2).ok_or_else(too_short)?);
+        let expected = body_len.saturating_add((HEADER + CHECKSUM) as u64);
+        if expected != bytes.len() as u64 {
+            return Err(PersistError::Length {
+                expected,
+                found: bytes.len() as u64,
+            });
+        }
+        let body = &bytes[HEADER..bytes.len() - CHECKSUM];
+        let sum =
+            u64::from_le_bytes(read_array(bytes, bytes.len() - CHECKSUM).ok_or_else(too_short)?);
+        if Fnv::new().bytes(body).0 != sum {
+            return Err(PersistError::Checksum);
+        }
+        let (snapshot, rest): (Self, _) = postcard::take_from_bytes(body)?;
+        if !rest.is_empty() {
+            return Err(PersistError::Invalid(format!(
+                "{} bytes after the body",
+                rest.len()
+            )));
+        }
+        snapshot.check()?;
+        Ok(snapshot)
+    }
+
+    /// Writes the file atomically: a temporary file in the same directory,
+    /// fsynced, then renamed over `path`.
+    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
+        let bytes = self.encode()?;
+        let io_err = |source| PersistError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let name = path
+            .file_name()
+            .ok_or_else(|| io_err(io::Error::from(io::ErrorKind::InvalidInput)))?;
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        static UNIQUE: AtomicU64 = AtomicU64::new(0);
+        let tmp = dir.join(format!(
+            ".{}.tmp-{}-{}",
+            name.to_string_lossy(),
+            std::process::id(),
+            UNIQUE.fetch_add(1, Ordering::Relaxed)
+        ));
+        let written = File::create(&tmp)
+            .and_then(|mut f| f.write_all(&bytes).and_then(|()| f.sync_all()))
+            .and_then(|()| fs::rename(&tmp, path));
+        if let Err(e) = written {
+            // Best effort: the temporary file may not exist.
+            let _ = fs::remove_file(&tmp);
+            return Err(io_err(e));
+        }
+        sync_dir(dir).map_err(io_err)
+    }
+
+    /// Reads and decodes a file written by [`save`](Self::save).
+    pub fn load(path: &Path) -> Result<Self, PersistError> {
+        let bytes = fs::read(path).map_err(|source| PersistError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::decode(&bytes)
+    }
+}
+
+/// `N` bytes at `at`, if present.
+fn read_array<const N: usize>(bytes: &[u8], at: usize) -> Option<[u8; N]> {
+    bytes.get(at..at.checked_add(N)?)?.try_into().ok()
+}
+
+/// Makes the rename durable.
+#[cfg(unix)]
+fn sync_dir(dir: &Path) -> io::Result<()> {
+    File::open(dir)?.sync_all()
+}
+
+#[cfg(not(unix))]
+fn sync_dir(_: &Path) -> io::Result<()> {
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::AgentConfig;
+
+    fn sample() -> Snapshot {
+        let entry = |q0: f64, visits| Entry {
+            q: [q0, 0.5, -0.25, 0.0, 1e-3],
+            tried: 0b00111,
+            visits,
+        };
+        Snapshot {
+            tiling: TilingParams::of(&AgentConfig::default()),
+            entries: vec![(3, entry(0.1, 4)), (1 << 40, entry(-0.7, 1))],
+            counters: Counters {
+                requests_sent: 5,
+                advice_given: 2,
+                ..Counters::default()
+            },
+            training_episodes: 12,
+        }
+    }
+
+    fn temp_dir(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("agent-persist-{}-{name}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn save_load_round_trip_leaves_no_temporary_file() {
+        let dir = temp_dir("round-trip");
+        let path = dir.join("agent.qtable");
+        let s = sample();
+        s.save(&path).unwrap();
+        // Overwriting goes through the same atomic rename.
+        s.save(&path).unwrap();
+        let loaded = Snapshot::load(&path).unwrap();
+        assert_eq!(loaded, s);
+        assert_eq!(loaded.digest(), s.digest());
+        let names: Vec<_> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("agent.qtable")]);
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn bad_files_give_clear_errors() {
+        let good = sample().encode().unwrap();
+
+        let mut version = good.clone();
+        version[8..10].copy_from_slice(&2u16.to_le_bytes());
+        let err = Snapshot::decode(&version).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                PersistError::UnsupportedVersion {
+                    found: 2,
+                    expected: 1
+                }
+            ),
+            "{err}"
+        );
+
+        let truncated = &good[..good.len() - 3];
+        assert!(matches!(
+            Snapshot::decode(truncated),
+            Err(PersistError::Length { .. })
+        ));
+        assert!(matches!(
+            Snapshot::decode(&good[..12]),
+            Err(PersistError::Length { .. })
+        ));
+        assert!(matches!(
+            Snapshot::decode(&good[..5]),
+            Err(PersistError::Length { .. })
+        ));
+
+        let mut flipped = good.clone();
+        flipped[HEADER + 4] ^= 0x40;
+        assert!(matches!(
+            Snapshot::decode(&flipped),
+            Err(PersistError::Checksum)
+        ));
+
+        assert!(matches!(
+            Snapshot::decode(b"PK\x03\x04 zip"),
+            Err(PersistError::NotASnapshot)
+        ));
+        assert!(matches!(
+            Snapshot::decode(&[]),
+            Err(PersistError::Length { .. })
+        ));
+
+        let missing = Snapshot::load(Path::new("/nonexistent/dir/agent.qtable")).unwrap_err();
+        assert!(
+            missing
+                .to_string()
+                .contains("/nonexistent/dir/agent.qtable"),
+            "{missing}"
+        );
+    }
+
+    #[test]
+    fn well_formed_body_with_impossible_values_is_refused() {
+        let mut s = sample();
+        s.entries[0].1.tried = 0b1000_0000;
+        let err = Snapshot::decode(&s.encode().unwrap()).unwrap_err();
+        assert!(matches!(err, PersistError::Invalid(_)), "{err}");
+    }
+
+    #[test]
+    fn digest_sees_every_value() {
+        let s = sample();
+        let mut t = sample();
+        t.entries[1].1.visits += 1;
+        assert_ne!(s.digest(), t.digest());
+        let mut u = sample();
+        u.entries[0].1.q[4] = f64::from_bits(u.entries[0].1.q[4].to_bits() + 1);
+        assert_ne!(s.digest(), u.digest());
+        let mut v = sample();
+        v.counters.shared_received = 1;
+        assert_ne!(s.digest(), v.digest());
+    }
+}

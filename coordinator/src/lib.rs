@@ -1,0 +1,1 @@
+//! Experiment protocol, statistics and reports (filled by the agents issue).

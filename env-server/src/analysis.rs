@@ -1,0 +1,211 @@
+//! What every behaviour reads each cycle, computed once per cycle from the
+//! exact state: the ball's future path, every player's reach cycle (spec
+//! 6.1.2) and the attackers' formation targets (spec 6.1.1).
+
+use crate::formation::home_positions;
+use crate::params::*;
+use crate::world::{Player, World};
+use glam::DVec2;
+
+/// Most offense agents the simulator supports.
+pub const MAX_OFFENSE: usize = 4;
+/// Longest ball path considered by the intercept table.
+const CACHE_LEN: usize = 31;
+/// Reach cycles beyond which a player is considered unable to get the ball.
+pub const NO_REACH: usize = 1000;
+
+/// Uniform numbers of the offense players for each team size (HFO's order [11, 7, 8, 9, ...], sorted).
+pub fn offense_unums(offense: usize) -> &'static [u8] {
+    const UNUMS: [&[u8]; MAX_OFFENSE + 1] = [&[], &[11], &[7, 11], &[7, 8, 11], &[7, 8, 9, 11]];
+    UNUMS[offense]
+}
+
+/// The per-cycle analysis of a world.
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    /// Ball positions b_0, b_1, ... without kicks (spec 6.1.2).
+    pub ball_path: [DVec2; CACHE_LEN],
+    /// Number of valid entries of `ball_path`.
+    pub path_len: usize,
+    /// Reach cycle of each offense agent.
+    pub reach: [usize; MAX_OFFENSE],
+    /// Reach cycle of the goalkeeper.
+    pub keeper_reach: usize,
+    /// Formation target of each offense agent after the offside clip.
+    pub home: [DVec2; MAX_OFFENSE],
+}
+
+impl Analysis {
+    /// Analyses `world` (whose offside line must be up to date).
+    pub fn new(world: &World) -> Self {
+        let (ball_path, path_len) = ball_path(world);
+        let path = &ball_path[..path_len];
+        let n = world.offense.len();
+        let mut reach = [NO_REACH; MAX_OFFENSE];
+        for (r, p) in reach.iter_mut().zip(&world.offense) {
+            *r = reach_cycle(p, path, None);
+        }
+        let keeper_reach = reach_cycle(&world.keeper, path, Some(KEEPER_CONTROL_AREA));
+        let mut analysis = Analysis {
+            ball_path,
+            path_len,
+            reach,
+            keeper_reach,
+            home: [DVec2::ZERO; MAX_OFFENSE],
+        };
+        let ball_step = reach[..n].iter().copied().chain([keeper_reach]).min().unwrap_or(NO_REACH);
+        let focus = world.ball_inertia(ball_step.min(NO_REACH) as u32);
+        let homes = home_positions(focus);
+        // Player 9 (only in 4v1) mirrors the centre forward 11.
+        let mirrored = (n == MAX_OFFENSE).then(|| home_positions(DVec2::new(focus.x, -focus.y))[2]);
+        for (i, &unum) in offense_unums(n).iter().enumerate() {
+            let home = match unum {
+                7 => homes[0],
+                8 => homes[1],
+                9 => mirrored.map_or(homes[2], |m| DVec2::new(m.x, -m.y)),
+                _ => homes[2],
+            };
+            let mut max_x = world.offside_line;
+            let mate = analysis.mate_reach(i);
+            if mate < 50 {
+                max_x = max_x.max(analysis.ball_at(mate).x);
+            }
+            max_x -= 1.0;
+            analysis.home[i] = DVec2::new(home.x.min(max_x), home.y);
+        }
+        analysis
+    }
+
+    /// The ball's predicted path.
+    pub fn path(&self) -> &[DVec2] {
+        &self.ball_path[..self.path_len]
+    }
+
+    /// Ball position after `t` cycles (the last known point beyond the path).
+    pub fn ball_at(&self, t: usize) -> DVec2 {
+        self.ball_path[t.min(self.path_len - 1)]
+    }
+
+    /// Fastest reach cycle among agent `i`'s teammates.
+    pub fn mate_reach(&self, i: usize) -> usize {
+        self.reach
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .map(|(_, &r)| r)
+            .min()
+            .unwrap_or(NO_REACH)
+    }
+
+    /// Fastest reach cycle of any attacker (the keeper's `opp_min`).
+    pub fn attacker_reach(&self) -> usize {
+        self.reach.iter().copied().min().unwrap_or(NO_REACH)
+    }
+
+    /// The attacker that reaches the ball first.
+    pub fn fastest_attacker(&self, offense: usize) -> usize {
+        (0..offense).min_by_key(|&i| self.reach[i]).unwrap_or(0)
+    }
+}
+
+/// Updates agent2d's offside line as the attackers see it (spec 6.1.1 step 3).
+pub fn update_offside_line(world: &mut World) {
+    let prev = world.offside_line;
+    let fallback = if prev > 5.0 && prev <= 13.0 { prev - 1.0 } else { 0.0 };
+    world.offside_line = fallback.max(world.ball.pos.x + world.ball.vel.x);
+}
+
+fn ball_path(world: &World) -> ([DVec2; CACHE_LEN], usize) {
+    let mut path = [DVec2::ZERO; CACHE_LEN];
+    let (mut pos, mut vel) = (world.ball.pos, world.ball.vel);
+    let mut len = 0;
+    while len < CACHE_LEN {
+        path[len] = pos;
+        len += 1;
+        let outside = pos.x.abs() > PITCH_HALF_LENGTH + 5.0 || pos.y.abs() > PITCH_HALF_WIDTH + 5.0;
+        if (len > 5 && vel.length_squared() < 1e-4) || outside {
+            break;
+        }
+        pos += vel;
+        vel *= BALL_DECAY;
+    }
+    (path, len)
+}
+
+/// Precomputed `(1 - 0.4^t) / 0.6`: a player's drift per unit velocity after t cycles.
+const DRIFT: [f64; CACHE_LEN] = {
+    let mut d = [0.0; CACHE_LEN];
+    let mut pow = 1.0;
+    let mut t = 0;
+    while t < CACHE_LEN {
+        d[t] = (1.0 - pow) / (1.0 - PLAYER_DECAY);
+        pow *= PLAYER_DECAY;
+        t += 1;
+    }
+    d
+};
+
+/// cos(12°): the smallest turn threshold of the reach estimate.
+const COS_12_DEG: f64 = 0.978_147_600_733_805_6;
+
+/// Reach cycle of player `p` for the ball path `path` (spec 6.1.2);
+/// `keeper_control` is the keeper's control area inside its penalty area.
+pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
+    let facing = DVec2::from_angle(p.body);
+    let turns_and_gap = |t: usize, b: DVec2| {
+        let control = match keeper_control {
+            Some(c) if in_penalty_area(b) => c,
+            _ => KICKABLE_AREA,
+        };
+        let rel = b - (p.pos + p.vel * DRIFT[t.min(CACHE_LEN - 1)]);
+        let d = rel.length();
+        let gap = d - control;
+        if gap <= 0.0 {
+            return (0, gap);
+        }
+        let mut cos = rel.dot(facing) / d;
+        if d < 5.0 {
+            cos = cos.abs();
+        }
+        let ratio = control / d;
+        let cos_thr = COS_12_DEG.min((1.0 - ratio * ratio).sqrt());
+        (usize::from(cos < cos_thr), gap)
+    };
+    for (t, &b) in path.iter().enumerate() {
+        let (n_turn, gap) = turns_and_gap(t, b);
+        if gap <= 0.0 || (t >= n_turn && gap <= dash_distance(t - n_turn)) {
+            return t;
+        }
+    }
+    let last = path.len() - 1;
+    let (n_turn, gap) = turns_and_gap(last, path[last]);
+    path.len().max(n_turn + dash_cycles(gap))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reach_of_a_resting_ball_follows_the_dash_table() {
+        let mut w = World::new(1);
+        w.ball.pos = DVec2::new(10.0, 0.0);
+        w.offense[0] = Player::new(DVec2::ZERO, 0.0);
+        let a = Analysis::new(&w);
+        // Gap 10 - 1.085 = 8.915 m needs 10 dashes (9.333 m), facing the ball.
+        assert_eq!(a.reach[0], 10);
+        // Facing away adds one turn.
+        w.offense[0].body = std::f64::consts::PI;
+        assert_eq!(Analysis::new(&w).reach[0], 11);
+    }
+
+    #[test]
+    fn kickable_player_reaches_at_once() {
+        let mut w = World::new(3);
+        w.ball.pos = DVec2::new(20.0, 0.0);
+        w.offense[1].pos = DVec2::new(19.2, 0.0);
+        let a = Analysis::new(&w);
+        assert_eq!(a.reach[1], 0);
+        assert_eq!(a.mate_reach(0), 0);
+    }
+}

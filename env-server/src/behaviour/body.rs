@@ -1,0 +1,232 @@
+//! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5, 6.2.3 and 6.3.4 allow.
+
+use crate::analysis::Analysis;
+use crate::geom::{angle_diff, direction, normalize_angle, polar};
+use crate::params::*;
+use crate::physics::{Command, kick_for_accel, kick_rate, max_kick_accel};
+use crate::world::{Ball, Player, World};
+use glam::DVec2;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Turn the body to global direction `dir`, compensating for inertia.
+pub fn turn_to_direction(p: &Player, dir: f64) -> Command {
+    let e = normalize_angle(dir - p.body);
+    Command::Turn {
+        moment: (e * (1.0 + INERTIA_MOMENT * p.vel.length())).clamp(-PI, PI),
+    }
+}
+
+/// Turn the body towards `target`, as seen from the player's next position.
+pub fn turn_to_point(p: &Player, target: DVec2) -> Command {
+    turn_to_direction(p, direction(target - (p.pos + p.vel)))
+}
+
+/// Dash that cancels the player's velocity as far as one dash can.
+pub fn stop_dash(p: &Player) -> Command {
+    let along = p.vel.dot(DVec2::from_angle(p.body));
+    Command::Dash {
+        power: (-along / (DASH_POWER_RATE * p.effort)).clamp(-MAX_DASH_POWER, MAX_DASH_POWER),
+        dir: 0.0,
+    }
+}
+
+/// Body_GoToPoint (spec 6.1.5): a turn or dash towards `target`, or `None`
+/// when the player's drift point is already within `tolerance`.
+pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) -> Option<Command> {
+    let q = p.final_drift();
+    let rel = target - q;
+    let dist = rel.length();
+    if dist < tolerance {
+        return None;
+    }
+    let mut e = normalize_angle(direction(rel) - p.body);
+    let back = e.abs() > FRAC_PI_2 && dist < 2.0 && p.stamina > 0.5 * STAMINA_MAX;
+    if back {
+        e = normalize_angle(e + PI);
+    }
+    let threshold = 15f64.to_radians().max((tolerance / dist).min(1.0).asin());
+    if e.abs() > threshold {
+        return Some(turn_to_direction(p, p.body + e));
+    }
+    // A dash adds accel/(1 - decay) to the drift distance.
+    let accel = (dist * (1.0 - PLAYER_DECAY)).min(PLAYER_ACCEL_MAX);
+    if accel < 0.05 {
+        return None;
+    }
+    let power = (accel / (DASH_POWER_RATE * p.effort)).min(max_power);
+    Some(Command::Dash {
+        power: if back { -power } else { power },
+        dir: 0.0,
+    })
+}
+
+/// How far behind its back a player still intercepts by dashing backwards.
+#[derive(Clone, Copy, Debug)]
+pub enum BackDash {
+    /// Field players: only for a point less than 5 m away.
+    Short,
+    /// The keeper, body parallel to its line, back-pedals wherever the point is.
+    Any,
+}
+
+/// Body_Intercept (spec 6.1.3) for a player with reach cycle `reach`;
+/// `no_dash_turn` is where to face when the ball comes to the player.
+pub fn intercept(
+    p: &Player,
+    world: &World,
+    analysis: &Analysis,
+    reach: usize,
+    (control, back_dash): (f64, BackDash),
+    no_dash_turn: DVec2,
+) -> Command {
+    if reach > 100 {
+        let rest = world.ball_final();
+        return go_to_point(p, rest, 2.0, MAX_DASH_POWER).unwrap_or_else(|| turn_to_point(p, rest));
+    }
+    let target = analysis.ball_at(reach);
+    let q = p.drift(reach as u32);
+    let rel = target - q;
+    let d = rel.length();
+    if d <= control {
+        return turn_to_point(p, no_dash_turn);
+    }
+    let mut e = angle_diff(direction(rel), p.body);
+    let back = e > FRAC_PI_2 && (d < 5.0 || matches!(back_dash, BackDash::Any));
+    if back {
+        e = PI - e;
+    }
+    let threshold = 12f64.to_radians().max((control / d).min(1.0).asin());
+    if e > threshold {
+        let face = if back { direction(rel) + PI } else { direction(rel) };
+        return turn_to_direction(p, face);
+    }
+    if p.stamina - MAX_DASH_POWER < 0.3 * STAMINA_MAX + 1.0 {
+        return Command::Turn { moment: 0.0 };
+    }
+    Command::Dash {
+        power: if back { -MAX_DASH_POWER } else { MAX_DASH_POWER },
+        dir: 0.0,
+    }
+}
+
+/// Largest speed along `dir` that one kick can give a ball moving at
+/// `ball_vel` with at most `max_accel` (librcsc `calc_max_velocity`).
+pub fn max_one_kick_speed(dir: f64, ball_vel: DVec2, max_accel: f64) -> f64 {
+    let u = DVec2::from_angle(dir);
+    let uc = u.dot(ball_vel);
+    let disc = uc * uc - ball_vel.length_squared() + max_accel * max_accel;
+    if disc < 0.0 {
+        return 0.0;
+    }
+    (uc + disc.sqrt()).clamp(0.0, BALL_SPEED_MAX)
+}
+
+/// Kick the ball so that its new velocity is `vel`, if one kick can.
+pub fn kick_to_velocity(p: &Player, ball: &Ball, vel: DVec2) -> Option<Command> {
+    kick_for_accel(p, ball, vel - ball.vel)
+}
+
+/// Body_SmartKick (spec 6.2.3): first kick of a one- or two-kick plan that
+/// sends the ball towards `target` at `speed` (at least `min_speed`), else
+/// hold the ball.
+pub fn smart_kick(p: &Player, world: &World, target: DVec2, speed: f64, min_speed: f64) -> Command {
+    let ball = &world.ball;
+    let dir = direction(target - ball.pos);
+    let one = max_one_kick_speed(dir, ball.vel, max_kick_accel(p, ball.pos));
+    if one >= min_speed {
+        let vel = polar(speed.min(one), dir);
+        if let Some(cmd) = kick_to_velocity(p, ball, vel) {
+            return cmd;
+        }
+    }
+    match prepare_kick(p, world, target, min_speed) {
+        Some(cmd) => cmd,
+        None => hold_ball(p, world),
+    }
+}
+
+/// First kick of a two-kick plan: moves the ball to the spot around the
+/// kicker's next position from which one more kick reaches the highest speed
+/// towards `target`, if that speed reaches `min_speed`.
+fn prepare_kick(p: &Player, world: &World, target: DVec2, min_speed: f64) -> Option<Command> {
+    let ball = &world.ball;
+    let next_self = Player {
+        pos: p.pos + p.vel,
+        vel: p.vel * PLAYER_DECAY,
+        ..*p
+    };
+    let keeper_next = world.keeper.pos + world.keeper.vel;
+    let max_accel = max_kick_accel(p, ball.pos);
+    let mut best: Option<(f64, DVec2)> = None;
+    for radius in [0.6, 0.75, 0.9] {
+        for k in 0..16 {
+            let spot = next_self.pos + polar(radius, p.body + k as f64 * PI / 8.0);
+            let vel = spot - ball.pos;
+            if (vel - ball.vel).length() > max_accel || vel.length() > BALL_SPEED_MAX {
+                continue;
+            }
+            if spot.distance(keeper_next) < KICKABLE_AREA {
+                continue;
+            }
+            let dir = direction(target - spot);
+            let rate_accel = (MAX_KICK_POWER * kick_rate(&next_self, spot)).min(BALL_ACCEL_MAX);
+            let speed = max_one_kick_speed(dir, vel * BALL_DECAY, rate_accel);
+            if best.is_none_or(|(s, _)| speed > s) {
+                best = Some((speed, vel));
+            }
+        }
+    }
+    let (speed, vel) = best?;
+    if speed < min_speed {
+        return None;
+    }
+    kick_to_velocity(p, ball, vel)
+}
+
+/// Body_HoldBall (spec 6.3.4), simplified: keep the ball 0.6 m from the
+/// player's next position on the side away from the keeper, or, when that
+/// is already the case, turn towards the goal.
+pub fn hold_ball(p: &Player, world: &World) -> Command {
+    let ball = &world.ball;
+    let next_self = p.pos + p.vel;
+    let away = direction(next_self - world.keeper.pos);
+    let spot = next_self + polar(0.6, away);
+    let ball_next = ball.pos + ball.vel;
+    let safe = ball_next.distance(next_self) < AGENT_KICKABLE_AREA - 0.2
+        && ball_next.distance(world.keeper.pos) > KICKABLE_AREA + 2.0;
+    if safe {
+        return turn_to_point(p, GOAL_CENTER);
+    }
+    kick_to_velocity(p, ball, spot - ball.pos).unwrap_or(Command::Kick {
+        power: MAX_KICK_POWER,
+        dir: normalize_angle(direction(-ball.vel) - p.body),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_kick_speed_from_rest_is_the_accel_limit() {
+        assert!((max_one_kick_speed(0.3, DVec2::ZERO, 2.7) - 2.7).abs() < 1e-12);
+        // A ball already moving along the direction can reach the 3.0 cap.
+        assert_eq!(max_one_kick_speed(0.0, DVec2::new(1.0, 0.0), 2.7), 3.0);
+        // Against the motion only accel - speed remains.
+        assert!((max_one_kick_speed(0.0, DVec2::new(-1.0, 0.0), 2.7) - 1.7).abs() < 1e-12);
+    }
+
+    #[test]
+    fn go_to_point_arrives_within_tolerance() {
+        let p = Player::new(DVec2::ZERO, 0.0);
+        assert_eq!(go_to_point(&p, DVec2::new(0.5, 0.0), 1.0, 100.0), None);
+        assert!(matches!(
+            go_to_point(&p, DVec2::new(10.0, 0.0), 1.0, 100.0),
+            Some(Command::Dash { power, .. }) if power == 100.0
+        ));
+        assert!(matches!(
+            go_to_point(&p, DVec2::new(0.0, 10.0), 1.0, 100.0),
+            Some(Command::Turn { .. })
+        ));
+    }
+}

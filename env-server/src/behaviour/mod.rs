@@ -1,0 +1,70 @@
+//! The behaviours that turn high-level actions into one body command per
+//! cycle (spec sections 6 and 7). Every behaviour re-plans from scratch on
+//! the current state; nothing is carried between cycles.
+
+mod body;
+mod dribble;
+pub mod keeper;
+mod movement;
+mod pass;
+mod shoot;
+
+pub use shoot::LongShot;
+
+use crate::analysis::Analysis;
+use crate::env::EnvConfig;
+use crate::physics::Command;
+use crate::world::{Player, World};
+use proto::Action;
+
+/// What an offense behaviour sees: the state, its analysis and who is acting.
+pub struct Situation<'a> {
+    /// The exact state (everyone has full state).
+    pub world: &'a World,
+    /// This cycle's shared analysis.
+    pub analysis: &'a Analysis,
+    /// Simulator settings.
+    pub config: &'a EnvConfig,
+    /// Index of the acting offense agent.
+    pub agent: usize,
+}
+
+impl Situation<'_> {
+    /// The acting agent's body.
+    pub fn me(&self) -> &Player {
+        &self.world.offense[self.agent]
+    }
+
+    /// The teammate nearest to (`farthest == false`) or farthest from the acting agent.
+    fn teammate_by_distance(&self, farthest: bool) -> Option<usize> {
+        let me = self.me().pos;
+        let others = (0..self.world.offense.len()).filter(|&j| j != self.agent);
+        let dist = |j: &usize| self.world.offense[*j].pos.distance(me);
+        if farthest {
+            others.max_by(|a, b| dist(a).total_cmp(&dist(b)))
+        } else {
+            others.min_by(|a, b| dist(a).total_cmp(&dist(b)))
+        }
+    }
+}
+
+/// The body command that `action` produces for the acting agent this cycle.
+/// Kick actions issue nothing when the agent cannot kick (spec 6.0).
+pub fn offense_command(s: &Situation, action: Action) -> Command {
+    if action != Action::Move && !s.world.agent_kickable(s.agent) {
+        return Command::None;
+    }
+    match action {
+        Action::Move => movement::command(s),
+        Action::Shoot => shoot::command(s),
+        Action::Dribble => dribble::command(s),
+        Action::PassNear | Action::PassFar => {
+            let receiver = s
+                .config
+                .pass_to_named_receiver
+                .then(|| s.teammate_by_distance(action == Action::PassFar))
+                .flatten();
+            pass::command(s, receiver)
+        }
+    }
+}

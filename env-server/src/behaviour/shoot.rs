@@ -1,0 +1,238 @@
+//! SHOOT (spec 6.2): the best goal-mouth course the keeper cannot reach, or
+//! the calibrated long-range stand-in when there is none.
+
+use super::Situation;
+use super::body::{max_one_kick_speed, smart_kick};
+use crate::geom::{angle_diff, direction};
+use crate::params::*;
+use crate::physics::{Command, max_kick_accel};
+use crate::world::Player;
+use glam::DVec2;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Number of targets along the goal mouth.
+const TARGETS: usize = 25;
+
+/// How SHOOT kicks when no course is feasible (spec 6.2.2, calibrated in docs/calibration.md).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LongShot {
+    /// Desired first speed of the fallback shot (m/cycle).
+    pub speed: f64,
+    /// Slowest first speed worth kicking; below it the agent holds the ball.
+    pub min_speed: f64,
+    /// Width (degrees) of the keeper-avoidance term used to pick the target.
+    pub sigma_deg: f64,
+}
+
+impl Default for LongShot {
+    fn default() -> Self {
+        LongShot {
+            speed: 2.2,
+            min_speed: 1.5,
+            sigma_deg: 10.0,
+        }
+    }
+}
+
+/// One candidate shot.
+#[derive(Clone, Copy, Debug)]
+struct Course {
+    target: DVec2,
+    speed: f64,
+    one_kick: bool,
+    keeper_never_reaches: bool,
+}
+
+/// The SHOOT command of a kickable agent.
+pub fn command(s: &Situation) -> Command {
+    let me = s.me();
+    let ball = s.world.ball.pos;
+    let keeper_dir = direction(s.world.keeper.pos - ball);
+    let mut best: Option<(f64, Course)> = None;
+    for target in targets(me, ball) {
+        let dir = direction(target - ball);
+        let s1 = max_one_kick_speed(dir, s.world.ball.vel, max_kick_accel(me, ball));
+        let mut speed = (0.06 * (target.distance(ball) + 5.0)).max(s1).max(1.5);
+        loop {
+            let last = speed > 2.999;
+            if last {
+                speed = BALL_SPEED_MAX;
+            }
+            if let Some(never) = keeper_verdict(s, target, speed) {
+                let course = Course {
+                    target,
+                    speed,
+                    one_kick: speed <= s1 + 0.001,
+                    keeper_never_reaches: never,
+                };
+                let score = score(&course, ball, keeper_dir, if never { 1.0 } else { 10.0 });
+                if best.is_none_or(|(b, _)| score > b) {
+                    best = Some((score, course));
+                }
+                if never {
+                    break;
+                }
+            }
+            if last {
+                break;
+            }
+            speed += 0.3;
+        }
+    }
+    match best {
+        Some((_, c)) => smart_kick(me, s.world, c.target, c.speed, 0.99 * c.speed),
+        None => long_shot(s, keeper_dir),
+    }
+}
+
+/// The calibrated stand-in for HFO's undefined empty-course case (spec 6.2.2):
+/// the goal-mouth target farthest in angle from the keeper, at a fixed speed.
+fn long_shot(s: &Situation, keeper_dir: f64) -> Command {
+    let me = s.me();
+    let ball = s.world.ball.pos;
+    let cfg = &s.config.long_shot;
+    let target = targets(me, ball)
+        .max_by(|a, b| {
+            let course = |t: DVec2| Course {
+                target: t,
+                speed: cfg.speed,
+                one_kick: false,
+                keeper_never_reaches: false,
+            };
+            score(&course(*a), ball, keeper_dir, cfg.sigma_deg)
+                .total_cmp(&score(&course(*b), ball, keeper_dir, cfg.sigma_deg))
+        })
+        .unwrap_or(GOAL_CENTER);
+    smart_kick(me, s.world, target, cfg.speed, cfg.min_speed)
+}
+
+/// The 25 aim points along the goal mouth (spec 6.2.1 step 2-3).
+fn targets(me: &Player, ball: DVec2) -> impl Iterator<Item = DVec2> {
+    let margin = |post_y: f64| {
+        let d = ball.distance(DVec2::new(PITCH_HALF_LENGTH, post_y));
+        (0.6 + 0.042 * d).min(1.5)
+    };
+    let x = if me.pos.x > 51.5 && me.pos.y.abs() < GOAL_HALF_WIDTH {
+        me.pos.x + 1.5
+    } else {
+        PITCH_HALF_LENGTH
+    };
+    let left = -GOAL_HALF_WIDTH + margin(-GOAL_HALF_WIDTH);
+    let right = GOAL_HALF_WIDTH - margin(GOAL_HALF_WIDTH);
+    (0..TARGETS).map(move |i| {
+        let f = i as f64 / (TARGETS - 1) as f64;
+        DVec2::new(x, left + (right - left) * f)
+    })
+}
+
+/// `evaluateCourses` (spec 6.2.1 step 4).
+fn score(c: &Course, ball: DVec2, keeper_dir: f64, sigma_deg: f64) -> f64 {
+    let mut score = 1.0;
+    if c.one_kick {
+        score += 50.0;
+    }
+    if c.keeper_never_reaches {
+        score += 100.0;
+    }
+    score += 100.0; // no field opponent can reach
+    let dir = direction(c.target - ball);
+    let delta = angle_diff(dir, keeper_dir).to_degrees();
+    score *= 1.0 - (-delta * delta / (2.0 * sigma_deg * sigma_deg)).exp();
+    if c.target.distance(ball) > 8.0 {
+        let off = (c.target.y.abs() - 4.0).max(0.0);
+        let w = GOAL_HALF_WIDTH - 1.5;
+        score *= (-off * off / (2.0 * w * w)).exp();
+    }
+    score
+}
+
+/// The keeper test of a course (spec 6.2.1 step 3): `None` if the keeper
+/// catches the ball, else whether it never even gets close.
+fn keeper_verdict(s: &Situation, target: DVec2, speed: f64) -> Option<bool> {
+    let ball = s.world.ball.pos;
+    let rel = target - ball;
+    let length = rel.length();
+    let ratio = 0.06 * length / speed;
+    if ratio >= 1.0 {
+        return None;
+    }
+    let steps = ((1.0 - ratio).ln() / BALL_DECAY.ln()).ceil() as usize;
+    if steps <= 1 {
+        return Some(true);
+    }
+    let keeper = &s.world.keeper;
+    let me = s.me();
+    let u = rel / length;
+    let dir = direction(u);
+    if angle_diff(dir, direction(keeper.pos - me.pos)) > FRAC_PI_2
+        || keeper.pos.x < 6.0
+        || keeper.pos.y.abs() > PENALTY_AREA_HALF_WIDTH
+    {
+        return Some(true);
+    }
+    let k_rel = keeper.pos - ball;
+    if k_rel.dot(u) < -1.0 {
+        return Some(true);
+    }
+    let first = ((k_rel.perp_dot(u).abs()).floor() as usize).max(1);
+    let keeper_shooter = keeper.pos.distance(me.pos);
+    let mut never = true;
+    let (mut ball_travel, mut decay_pow) = (0.0, 1.0);
+    for c in 1..steps {
+        ball_travel += speed * decay_pow;
+        decay_pow *= BALL_DECAY;
+        if c < first {
+            continue;
+        }
+        let b = ball + u * ball_travel;
+        if b.x > PITCH_HALF_LENGTH {
+            break;
+        }
+        let in_area = b.x >= PENALTY_AREA_X && b.y.abs() <= PENALTY_AREA_HALF_WIDTH;
+        let control = if in_area { KEEPER_CONTROL_AREA } else { KICKABLE_AREA };
+        let k = keeper.drift(c as u32);
+        let mut dist = b.distance(k);
+        if in_area {
+            dist -= 0.02 * keeper_shooter;
+        }
+        if dist - control - 0.15 < 0.001 {
+            return None;
+        }
+        let mut dash_dist = dist - 0.9 * control;
+        if c > 1 {
+            dash_dist *= 0.999;
+        }
+        let n_dash = dash_cycles(dash_dist);
+        if n_dash > c + 1 {
+            continue; // too far even without turning: neither caught nor close
+        }
+        let n_turn = turn_cycles(keeper, b - k, dist, control);
+        let n = n_turn + n_dash + usize::from(n_turn > 0);
+        let bonus: isize = if in_area { 0 } else { -1 };
+        if n as isize <= c as isize + bonus {
+            return None;
+        }
+        if in_area && n <= c + 1 {
+            never = false;
+        }
+    }
+    Some(never)
+}
+
+/// agent2d's `predict_player_turn_cycle` for the keeper facing `rel`.
+fn turn_cycles(keeper: &Player, rel: DVec2, dist: f64, control: f64) -> usize {
+    let mut angle = angle_diff(direction(rel), keeper.body);
+    if dist < 5.0 && angle > FRAC_PI_2 {
+        angle = PI - angle;
+    }
+    let threshold = 15f64.to_radians().max(((control + 0.1) / dist).min(1.0).asin());
+    let mut speed = keeper.vel.length();
+    let mut n = 0;
+    while angle > threshold && n < 10 {
+        angle -= max_turn(speed);
+        speed *= PLAYER_DECAY;
+        n += 1;
+    }
+    n
+}

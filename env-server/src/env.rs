@@ -1,0 +1,307 @@
+//! The HFO environment: episode start, the per-cycle loop and the agents' view
+//! of it (spec 2.1, 4.2, 4.4, Appendix D).
+
+use crate::analysis::{Analysis, MAX_OFFENSE, update_offside_line};
+use crate::behaviour::keeper::{self, KeeperMemory};
+use crate::behaviour::{LongShot, Situation, offense_command};
+use crate::features;
+use crate::geom::uniform;
+use crate::params::*;
+use crate::physics::{self, BALL_BODY, Command, PLAYER_BODY};
+use crate::referee::{Outcome, Referee};
+use crate::world::World;
+use glam::DVec2;
+use proto::{Action, State};
+use rand::SeedableRng;
+use rand::seq::SliceRandom;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::{Deserialize, Serialize};
+
+/// Settings of the simulated task; the defaults are the paper's setup.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EnvConfig {
+    /// Number of offense agents (1 to 4).
+    pub offense: usize,
+    /// Cycles after which a trial ends out of time (`--frames-per-trial`).
+    pub frames_per_trial: u32,
+    /// Cycles without a touch after which a trial ends out of time.
+    pub untouched_time: u32,
+    /// Pass to the teammate the action names instead of HFO's best pass to anyone.
+    pub pass_to_named_receiver: bool,
+    /// SHOOT's stand-in when no course is feasible.
+    pub long_shot: LongShot,
+}
+
+impl Default for EnvConfig {
+    fn default() -> Self {
+        EnvConfig {
+            offense: 3,
+            frames_per_trial: 200,
+            untouched_time: 100,
+            pass_to_named_receiver: false,
+            long_shot: LongShot::default(),
+        }
+    }
+}
+
+/// A rejected simulator setting.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ConfigError {
+    /// The offense count is outside the supported range.
+    #[error("offense must be between 1 and {MAX_OFFENSE}, got {0}")]
+    Offense(usize),
+    /// A time limit is zero.
+    #[error("{0} must be at least 1")]
+    ZeroLimit(&'static str),
+    /// The long-shot speed cannot be kicked.
+    #[error("long_shot.speed must be in (0, 3], got {0}")]
+    LongShotSpeed(f64),
+    /// The long-shot minimum speed is not in (0, speed].
+    #[error("long_shot.min_speed must be in (0, long_shot.speed], got {0}")]
+    LongShotMinSpeed(f64),
+    /// The long-shot width is not positive.
+    #[error("long_shot.sigma_deg must be positive, got {0}")]
+    LongShotSigma(f64),
+}
+
+impl EnvConfig {
+    /// Checks every setting, naming the first bad one.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if !(1..=MAX_OFFENSE).contains(&self.offense) {
+            return Err(ConfigError::Offense(self.offense));
+        }
+        if self.frames_per_trial == 0 {
+            return Err(ConfigError::ZeroLimit("frames_per_trial"));
+        }
+        if self.untouched_time == 0 {
+            return Err(ConfigError::ZeroLimit("untouched_time"));
+        }
+        let speed = self.long_shot.speed;
+        if !(speed > 0.0 && speed <= BALL_SPEED_MAX) {
+            return Err(ConfigError::LongShotSpeed(speed));
+        }
+        let min_speed = self.long_shot.min_speed;
+        if !(min_speed > 0.0 && min_speed <= speed) {
+            return Err(ConfigError::LongShotMinSpeed(min_speed));
+        }
+        if !(self.long_shot.sigma_deg > 0.0) {
+            return Err(ConfigError::LongShotSigma(self.long_shot.sigma_deg));
+        }
+        Ok(())
+    }
+}
+
+/// The attackers' start offsets around the ball, in units of 10.5 m (spec 4.2).
+const START_OFFSETS: [(f64, f64); 10] = [
+    (-1.0, -1.0),
+    (-1.0, 1.0),
+    (1.0, 1.0),
+    (1.0, -1.0),
+    (0.0, 2.0),
+    (0.0, -2.0),
+    (-2.0, -2.0),
+    (-2.0, 2.0),
+    (2.0, 2.0),
+    (2.0, -2.0),
+];
+
+/// Cycles the attackers stay idle at the start of every episode (spec 4.4).
+const IDLE_CYCLES: u32 = 2;
+
+/// The simulator: one world, its referee and its random stream.
+#[derive(Clone, Debug)]
+pub struct Env {
+    config: EnvConfig,
+    world: World,
+    referee: Referee,
+    keeper_memory: KeeperMemory,
+    offsets: [(f64, f64); 10],
+    rng: Xoshiro256PlusPlus,
+    /// Commands of the last cycle: offense agents, then the keeper.
+    commands: [Command; MAX_OFFENSE + 1],
+    outcome: Outcome,
+}
+
+impl Env {
+    /// A simulator with `config`, drawing every random choice from `seed`.
+    /// Call [`Env::reset`] to start the first episode.
+    pub fn new(config: EnvConfig, seed: u64) -> Result<Self, ConfigError> {
+        config.validate()?;
+        let world = World::new(config.offense);
+        let referee = Referee::new(config.frames_per_trial, config.untouched_time);
+        Ok(Env {
+            world,
+            referee,
+            keeper_memory: KeeperMemory { since_catch: u32::MAX },
+            offsets: START_OFFSETS,
+            rng: Xoshiro256PlusPlus::seed_from_u64(seed),
+            commands: [Command::None; MAX_OFFENSE + 1],
+            outcome: Outcome::InGame,
+            config,
+        })
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &EnvConfig {
+        &self.config
+    }
+
+    /// The current state.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Number of offense agents.
+    pub fn offense(&self) -> usize {
+        self.config.offense
+    }
+
+    /// Agent decisions taken so far in this episode (the authors' "frames").
+    pub fn frame(&self) -> u32 {
+        self.referee.cycle.saturating_sub(IDLE_CYCLES)
+    }
+
+    /// Outcome of the last step (`InGame` while the episode goes on).
+    pub fn outcome(&self) -> Outcome {
+        self.outcome
+    }
+
+    /// Body commands of the last cycle: offense agents in order, then the keeper.
+    pub fn last_commands(&self) -> &[Command] {
+        &self.commands[..=self.config.offense]
+    }
+
+    /// Starts a new episode (spec 4.2) and runs the two idle cycles; the
+    /// first decision follows.
+    pub fn reset(&mut self) {
+        let rng = &mut self.rng;
+        let ball = DVec2::new(
+            uniform(rng, 0.0, 0.2 * PITCH_HALF_LENGTH),
+            uniform(rng, -0.4 * 2.0 * PITCH_HALF_WIDTH, 0.4 * 2.0 * PITCH_HALF_WIDTH),
+        );
+        self.offsets.shuffle(rng);
+        let unit = 0.1 * 2.0 * PITCH_HALF_LENGTH;
+        for (player, (ox, oy)) in self.world.offense.iter_mut().zip(self.offsets) {
+            let x = ball.x + unit * (uniform(rng, 0.0, 1.0) + ox);
+            let y = ball.y + unit * (uniform(rng, 0.0, 1.0) + oy);
+            player.place(DVec2::new(
+                x.clamp(-0.1, PITCH_HALF_LENGTH),
+                y.clamp(-0.4 * 2.0 * PITCH_HALF_WIDTH, 0.4 * 2.0 * PITCH_HALF_WIDTH),
+            ));
+        }
+        self.world.keeper.place(GOAL_CENTER);
+        self.world.ball.pos = ball;
+        self.world.ball.vel = DVec2::ZERO;
+        self.world.catch_ban = 0;
+        self.world.offside_line = 0.0;
+        self.keeper_memory = KeeperMemory { since_catch: u32::MAX };
+        self.referee.reset(ball);
+        self.outcome = Outcome::InGame;
+        for _ in 0..IDLE_CYCLES {
+            self.cycle(None);
+        }
+    }
+
+    /// Runs one cycle with every agent's chosen action (an agent that cannot
+    /// kick should choose `Move`) and returns the outcome.
+    ///
+    /// # Panics
+    /// If `actions` does not hold one action per offense agent.
+    pub fn step(&mut self, actions: &[Action]) -> Outcome {
+        assert_eq!(actions.len(), self.config.offense, "one action per offense agent");
+        self.cycle(Some(actions));
+        self.outcome
+    }
+
+    /// Whether agent `agent` can kick (its own 1.03 m test).
+    pub fn can_kick(&self, agent: usize) -> bool {
+        self.world.agent_kickable(agent)
+    }
+
+    /// The paper's 6-feature state of agent `agent`.
+    pub fn state(&self, agent: usize) -> State {
+        features::paper_state(&self.world, agent)
+    }
+
+    /// The full high-level feature vector of agent `agent`.
+    pub fn features(&self, agent: usize) -> Vec<f64> {
+        features::high_level(&self.world, agent)
+    }
+
+    /// One server cycle (spec 2.1); `None` means the attackers are idle.
+    fn cycle(&mut self, actions: Option<&[Action]>) {
+        let n = self.config.offense;
+        update_offside_line(&mut self.world);
+        for p in &mut self.world.offense {
+            if p.stamina < 4000.0 {
+                p.recover_mode = true;
+            } else if p.stamina > 5600.0 {
+                p.recover_mode = false;
+            }
+        }
+        let analysis = Analysis::new(&self.world);
+        for agent in 0..n {
+            self.commands[agent] = match actions {
+                None => Command::None,
+                Some(a) => offense_command(
+                    &Situation {
+                        world: &self.world,
+                        analysis: &analysis,
+                        config: &self.config,
+                        agent,
+                    },
+                    a[agent],
+                ),
+            };
+        }
+        self.commands[n] = keeper::command(&self.world, &analysis, &self.keeper_memory);
+        let accels = self.apply_commands();
+        self.move_objects(&accels);
+        physics::resolve_collisions(&mut self.world, &mut self.rng);
+        self.outcome = self.referee.judge(&self.world);
+        for p in self.world.offense.iter_mut().chain([&mut self.world.keeper]) {
+            physics::update_stamina(p);
+        }
+        self.world.catch_ban = self.world.catch_ban.saturating_sub(1);
+    }
+
+    /// Executes the commands (spec 2.1 step 2): kicks and the catch act on the
+    /// current positions first, then dashes and turns. Returns the pending
+    /// accelerations: the ball's, then every player's (offense, keeper).
+    fn apply_commands(&mut self) -> [DVec2; MAX_OFFENSE + 2] {
+        let n = self.config.offense;
+        let mut accels = [DVec2::ZERO; MAX_OFFENSE + 2];
+        for (i, command) in self.commands[..=n].iter().enumerate() {
+            if let Command::Kick { power, dir } = *command {
+                let p = self.world.players().nth(i).expect("player index");
+                physics::kick(p, &self.world.ball, &mut accels[0], power, dir, &mut self.rng);
+            }
+        }
+        self.keeper_memory.since_catch = self.keeper_memory.since_catch.saturating_add(1);
+        if self.commands[n] == Command::Catch {
+            self.keeper_memory.since_catch = 0;
+            physics::catch(&mut self.world);
+        }
+        let players = self.world.offense.iter_mut().chain([&mut self.world.keeper]);
+        for ((p, command), accel) in players.zip(&self.commands).zip(&mut accels[1..]) {
+            match *command {
+                Command::Dash { power, dir } => physics::dash(p, accel, power, dir),
+                Command::Turn { moment } => physics::turn(p, moment, &mut self.rng),
+                _ => {}
+            }
+        }
+        accels
+    }
+
+    /// Moves the ball and every player (spec 2.1 step 3), in a fixed order.
+    fn move_objects(&mut self, accels: &[DVec2; MAX_OFFENSE + 2]) {
+        let rng = &mut self.rng;
+        let ball = &mut self.world.ball;
+        physics::move_object(&mut ball.pos, &mut ball.vel, accels[0], BALL_BODY, rng);
+        let players = self.world.offense.iter_mut().chain([&mut self.world.keeper]);
+        for (p, accel) in players.zip(&accels[1..]) {
+            physics::move_object(&mut p.pos, &mut p.vel, *accel, PLAYER_BODY, rng);
+        }
+    }
+}

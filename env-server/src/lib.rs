@@ -1,0 +1,28 @@
+//! A Rust simulator of RoboCup 2D Half Field Offense: K offense agents
+//! choosing HFO's high-level actions against agent2d's goalkeeper.
+//!
+//! The specification is `shared/docs/hfo-sim-spec.md`. Modules follow one
+//! cycle's data flow: [`world`] holds the state, [`analysis`] derives what
+//! every behaviour reads (reach cycles, formation), [`behaviour`] turns
+//! actions into body commands, [`physics`] executes them, [`referee`] ends
+//! episodes and [`features`] describes the state to the agents; [`env`] ties
+//! them together.
+
+pub mod analysis;
+pub mod behaviour;
+pub mod env;
+pub mod features;
+pub mod formation;
+pub mod geom;
+pub mod params;
+pub mod physics;
+pub mod policy;
+pub mod referee;
+pub mod render;
+pub mod rollout;
+pub mod world;
+
+pub use env::{ConfigError, Env, EnvConfig};
+pub use referee::Outcome;
+pub use policy::BaselinePolicy;
+pub use rollout::{RolloutSummary, rollout};

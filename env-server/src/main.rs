@@ -1,0 +1,118 @@
+//! `env-server`: run the HFO simulator from the command line.
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use env_server::{BaselinePolicy, EnvConfig, render, rollout};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(version, about = "Half Field Offense simulator (3 offense agents vs a goalkeeper)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Play episodes under a baseline policy and summarise them.
+    Rollout {
+        /// Policy: random, shoot, dribble or pass.
+        #[arg(long, default_value = "random")]
+        policy: BaselinePolicy,
+        /// Number of episodes (at least 1).
+        #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..))]
+        episodes: u64,
+        /// Seed of every random choice.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Number of offense agents (1 to 4).
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=4))]
+        offense: u8,
+        /// Print one JSON object instead of a readable summary.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Play one episode of a rollout and draw it as an SVG or PNG picture.
+    Render {
+        /// Policy: random, shoot, dribble or pass.
+        #[arg(long, default_value = "random")]
+        policy: BaselinePolicy,
+        /// Seed of the rollout the episode belongs to.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Which episode of that rollout to draw (1 is the first).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        episode: u64,
+        /// Output file, ending in .svg or .png.
+        #[arg(long)]
+        out: PathBuf,
+        /// Number of offense agents (1 to 4).
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=4))]
+        offense: u8,
+    },
+}
+
+fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
+        .with_writer(std::io::stderr)
+        .init();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            eprintln!("{}", one_line(&e.to_string()));
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Folds clap's multi-line message into one line, without the usage hints.
+fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Rollout { policy, episodes, seed, offense, json } => {
+            let config = EnvConfig { offense: offense.into(), ..EnvConfig::default() };
+            let s = rollout(config, policy, episodes, seed)?;
+            if json {
+                println!("{}", serde_json::to_string(&s)?);
+            } else {
+                let pct = |n: u64| 100.0 * n as f64 / s.episodes as f64;
+                println!("policy {} · {} offense · seed {} · {} episodes", s.policy, s.offense, s.seed, s.episodes);
+                println!("  goals          {:6.2} %   mean frames to goal {:.1}", s.goal_pct, s.mean_frames_to_goal);
+                println!("  captured       {:6.2} %", pct(s.outcomes.captured));
+                println!("  out of bounds  {:6.2} %", pct(s.outcomes.out_of_bounds));
+                println!("  out of time    {:6.2} %", pct(s.outcomes.out_of_time));
+                println!("  mean frames    {:6.1}", s.mean_frames);
+                println!("  speed          {:.0} frames/s", s.frames_per_sec);
+            }
+        }
+        Command::Render { policy, seed, episode, out, offense } => {
+            render::Format::of(&out)?;
+            let config = EnvConfig { offense: offense.into(), ..EnvConfig::default() };
+            let trace = render::record_episode(config, policy, seed, episode)?;
+            render::write_picture(&trace, &out)?;
+            println!("wrote {}: {}", out.display(), trace.summary());
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,344 @@
+//! The server's command models and movement step (spec sections 2 and 3).
+
+use crate::geom::{angle_diff, direction, normalize_angle, polar, polar_noise, uniform};
+use crate::params::*;
+use crate::world::{Ball, Player, World};
+use glam::DVec2;
+use rand::Rng;
+use std::f64::consts::PI;
+
+/// One player's body command for a cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Command {
+    /// No body command.
+    #[default]
+    None,
+    /// Dash with `power` in `[-100, 100]` towards `dir` (radians, relative to the body).
+    Dash { power: f64, dir: f64 },
+    /// Turn by the moment `moment` (radians).
+    Turn { moment: f64 },
+    /// Kick with `power` in `[0, 100]` towards `dir` (radians, relative to the body).
+    Kick { power: f64, dir: f64 },
+    /// Goalkeeper catch aimed at the ball.
+    Catch,
+}
+
+/// Effective kick power per unit of power for `player` and the ball at `ball` (spec 3.1).
+pub fn kick_rate(player: &Player, ball: DVec2) -> f64 {
+    let rel = ball - player.pos;
+    let dir_diff = angle_diff(direction(rel), player.body);
+    let dist_ball = (rel.length() - PLAYER_SIZE - BALL_SIZE).max(0.0);
+    KICK_POWER_RATE * (1.0 - 0.25 * dir_diff / PI - 0.25 * dist_ball / KICKABLE_MARGIN)
+}
+
+/// Largest change of ball velocity one kick can make (`min(100·rate, 2.7)`).
+pub fn max_kick_accel(player: &Player, ball: DVec2) -> f64 {
+    (MAX_KICK_POWER * kick_rate(player, ball)).min(BALL_ACCEL_MAX)
+}
+
+/// The kick command that changes the ball velocity by `accel`, if one kick can.
+pub fn kick_for_accel(player: &Player, ball: &Ball, accel: DVec2) -> Option<Command> {
+    let rate = kick_rate(player, ball.pos);
+    let power = accel.length() / rate;
+    if power > MAX_KICK_POWER + 1e-9 || accel.length() > BALL_ACCEL_MAX + 1e-9 {
+        return None;
+    }
+    Some(Command::Kick {
+        power: power.min(MAX_KICK_POWER),
+        dir: normalize_angle(direction(accel) - player.body),
+    })
+}
+
+/// Applies a kick to the ball's pending acceleration; nothing if the ball is out of reach.
+pub fn kick(player: &Player, ball: &Ball, accel: &mut DVec2, power: f64, dir: f64, rng: &mut impl Rng) {
+    let rel = ball.pos - player.pos;
+    if rel.length() > KICKABLE_AREA {
+        return;
+    }
+    let power = power.clamp(-MAX_KICK_POWER, MAX_KICK_POWER);
+    let dir = dir.clamp(-PI, PI);
+    let dir_diff = angle_diff(direction(rel), player.body);
+    let dist_ball = (rel.length() - PLAYER_SIZE - BALL_SIZE).max(0.0);
+    let eff = power * kick_rate(player, ball.pos);
+    let pos_rate = 0.5 + 0.25 * (dir_diff / PI + dist_ball / KICKABLE_MARGIN);
+    let speed_rate = 0.5 + 0.5 * ball.vel.length() / (BALL_SPEED_MAX * BALL_DECAY);
+    let max_rand = KICK_RAND * (power.abs() / MAX_KICK_POWER) * (pos_rate + speed_rate);
+    *accel += polar(eff, player.body + dir) + polar_noise(rng, max_rand);
+}
+
+/// Applies a dash: spends stamina and adds to the player's pending acceleration (spec 3.2).
+pub fn dash(player: &mut Player, accel: &mut DVec2, power: f64, dir: f64) {
+    let mut power = power.clamp(-MAX_DASH_POWER, MAX_DASH_POWER);
+    let available = player.stamina + EXTRA_STAMINA;
+    if power < 0.0 {
+        power = power.max(-available / 2.0);
+        player.stamina = (player.stamina + 2.0 * power).max(0.0);
+    } else {
+        power = power.min(available);
+        player.stamina = (player.stamina - power).max(0.0);
+    }
+    let dir = (dir.clamp(-PI, PI) / DASH_ANGLE_STEP).round() * DASH_ANGLE_STEP;
+    // The rate depends on the requested direction; a negative power then pushes backwards.
+    let a = dir.abs().to_degrees();
+    let dir_rate = if a <= 90.0 {
+        SIDE_DASH_RATE + (1.0 - SIDE_DASH_RATE) * (1.0 - a / 90.0)
+    } else {
+        BACK_DASH_RATE - (BACK_DASH_RATE - SIDE_DASH_RATE) * (1.0 - (a - 90.0) / 90.0)
+    }
+    .clamp(0.0, 1.0);
+    let eff = player.effort * power * dir_rate * DASH_POWER_RATE;
+    *accel += polar(eff, player.body + dir);
+}
+
+/// Applies a turn with the server's ±10% noise and speed-dependent inertia (spec 3.3).
+pub fn turn(player: &mut Player, moment: f64, rng: &mut impl Rng) {
+    let moment = moment.clamp(-PI, PI) * (1.0 + uniform(rng, -0.1, 0.1));
+    player.body =
+        normalize_angle(player.body + moment / (1.0 + INERTIA_MOMENT * player.vel.length()));
+}
+
+/// Goalkeeper catch aimed at the ball (spec 3.4): on success the keeper steps
+/// next to the ball, faces it and stops. Returns whether it succeeded.
+pub fn catch(world: &mut World) -> bool {
+    if world.catch_ban > 0 {
+        return false;
+    }
+    world.catch_ban = CATCH_BAN_CYCLES;
+    let rel = world.ball.pos - world.keeper.pos;
+    let dist = rel.length();
+    if dist > CATCH_AREA_LENGTH {
+        return false;
+    }
+    let gap = PLAYER_SIZE + BALL_SIZE;
+    if dist > gap {
+        world.keeper.pos += rel * ((dist - gap) / dist);
+    }
+    world.keeper.body = direction(rel);
+    world.keeper.vel = DVec2::ZERO;
+    true
+}
+
+/// Kinematic constants of one kind of moving object.
+#[derive(Clone, Copy, Debug)]
+pub struct Body {
+    /// Radius.
+    pub size: f64,
+    /// Acceleration limit.
+    pub accel_max: f64,
+    /// Speed limit.
+    pub speed_max: f64,
+    /// Movement noise rate.
+    pub rand: f64,
+    /// Velocity decay.
+    pub decay: f64,
+}
+
+/// The ball's constants.
+pub const BALL_BODY: Body = Body {
+    size: BALL_SIZE,
+    accel_max: BALL_ACCEL_MAX,
+    speed_max: BALL_SPEED_MAX,
+    rand: BALL_RAND,
+    decay: BALL_DECAY,
+};
+
+/// A player's constants.
+pub const PLAYER_BODY: Body = Body {
+    size: PLAYER_SIZE,
+    accel_max: PLAYER_ACCEL_MAX,
+    speed_max: PLAYER_SPEED_MAX,
+    rand: PLAYER_RAND,
+    decay: PLAYER_DECAY,
+};
+
+/// Moves one object by one cycle (spec 2.1 step 3): clipped acceleration, speed
+/// limit, noise, goal posts, position, decay.
+pub fn move_object(pos: &mut DVec2, vel: &mut DVec2, accel: DVec2, body: Body, rng: &mut impl Rng) {
+    if accel != DVec2::ZERO {
+        *vel += accel.clamp_length_max(body.accel_max);
+        *vel = vel.clamp_length_max(body.speed_max);
+    }
+    *vel += polar_noise(rng, body.rand * vel.length());
+    let step = bounce_off_posts(pos, vel, body.size);
+    *pos += step;
+    *vel *= body.decay;
+}
+
+/// Goal-post handling (spec 2.3): returns this cycle's displacement after an
+/// elastic bounce off the nearest post, updating `pos`/`vel` as needed.
+fn bounce_off_posts(pos: &mut DVec2, vel: &mut DVec2, size: f64) -> DVec2 {
+    if (pos.x - GOAL_POSTS[0].x).abs() > 5.0 {
+        return *vel;
+    }
+    let post = if pos.y < 0.0 { GOAL_POSTS[0] } else { GOAL_POSTS[1] };
+    let r = GOAL_POST_RADIUS + size;
+    let rel = *pos - post;
+    let dist = rel.length();
+    if dist < r {
+        let normal = if dist > 0.0 { rel / dist } else { DVec2::X };
+        *pos = post + normal * r;
+        let towards = vel.dot(normal);
+        if towards < 0.0 {
+            *vel -= normal * (2.0 * towards);
+        }
+        return *vel;
+    }
+    // First intersection of the segment pos -> pos + vel with the circle.
+    let a = vel.length_squared();
+    if a == 0.0 {
+        return *vel;
+    }
+    let b = 2.0 * rel.dot(*vel);
+    let c = rel.length_squared() - r * r;
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return *vel;
+    }
+    let t = (-b - disc.sqrt()) / (2.0 * a);
+    if !(0.0..=1.0).contains(&t) {
+        return *vel;
+    }
+    let hit = *pos + *vel * t;
+    let normal = (hit - post) / r;
+    let mirror = |v: DVec2| v - normal * (2.0 * v.dot(normal));
+    let rest = mirror(*vel * (1.0 - t));
+    *vel = mirror(*vel);
+    hit + rest - *pos
+}
+
+/// Separates overlapping ball-player and player-player pairs and damps every
+/// object that collided (`v <- -0.1·v`) (spec 2.3).
+pub fn resolve_collisions(world: &mut World, rng: &mut impl Rng) {
+    let n = world.offense.len() + 1;
+    // Object 0 is the ball, 1..n the offense, n the keeper.
+    let mut collided = [false; 16];
+    for _ in 0..10 {
+        let mut any = false;
+        for a in 0..=n {
+            for b in (a + 1)..=n {
+                let (ra, rb) = (object_size(a), object_size(b));
+                let (pa, pb) = (object_pos(world, a), object_pos(world, b));
+                let d = pa.distance(pb);
+                if d >= ra + rb {
+                    continue;
+                }
+                any = true;
+                collided[a] = true;
+                collided[b] = true;
+                let mid = (pa + pb) * 0.5;
+                let dir = if d > 1e-9 {
+                    (pa - pb) / d
+                } else {
+                    polar(1.0, uniform(rng, -PI, PI))
+                };
+                let half = (ra + rb) * 0.5;
+                *object_pos_mut(world, a) = mid + dir * half;
+                *object_pos_mut(world, b) = mid - dir * half;
+            }
+        }
+        if !any {
+            break;
+        }
+    }
+    for (i, hit) in collided.iter().enumerate().take(n + 1) {
+        if *hit {
+            *object_vel_mut(world, i) *= -0.1;
+        }
+    }
+}
+
+fn object_size(i: usize) -> f64 {
+    if i == 0 { BALL_SIZE } else { PLAYER_SIZE }
+}
+
+fn object_pos(world: &World, i: usize) -> DVec2 {
+    match i {
+        0 => world.ball.pos,
+        i if i <= world.offense.len() => world.offense[i - 1].pos,
+        _ => world.keeper.pos,
+    }
+}
+
+fn object_pos_mut(world: &mut World, i: usize) -> &mut DVec2 {
+    match i {
+        0 => &mut world.ball.pos,
+        i if i <= world.offense.len() => &mut world.offense[i - 1].pos,
+        _ => &mut world.keeper.pos,
+    }
+}
+
+fn object_vel_mut(world: &mut World, i: usize) -> &mut DVec2 {
+    match i {
+        0 => &mut world.ball.vel,
+        i if i <= world.offense.len() => &mut world.offense[i - 1].vel,
+        _ => &mut world.keeper.vel,
+    }
+}
+
+/// End-of-cycle stamina, effort and recovery update (spec 2.4).
+pub fn update_stamina(p: &mut Player) {
+    if p.stamina <= 0.3 * STAMINA_MAX {
+        p.recovery = (p.recovery - 0.002).max(RECOVER_MIN);
+        p.effort = (p.effort - 0.005).max(EFFORT_MIN);
+    }
+    if p.stamina >= 0.6 * STAMINA_MAX {
+        p.effort = (p.effort + 0.01).min(1.0);
+    }
+    p.stamina += (p.recovery * STAMINA_INC_MAX).min(STAMINA_MAX - p.stamina);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn kick_rate_spans_spec_range() {
+        let p = Player::new(DVec2::ZERO, 0.0);
+        // Ball touching the front of the body: full rate 0.027 -> 2.7 at power 100.
+        let front = DVec2::new(PLAYER_SIZE + BALL_SIZE, 0.0);
+        assert!((kick_rate(&p, front) - 0.027).abs() < 1e-12);
+        // Ball at the edge of the kickable area behind: rate halves -> 1.35.
+        let back = DVec2::new(-KICKABLE_AREA, 0.0);
+        assert!((100.0 * kick_rate(&p, back) - 1.35).abs() < 1e-9);
+    }
+
+    #[test]
+    fn full_dashes_reach_one_metre_per_cycle() {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let mut p = Player::new(DVec2::ZERO, 0.0);
+        let body = Body { rand: 0.0, ..PLAYER_BODY };
+        for _ in 0..10 {
+            let mut a = DVec2::ZERO;
+            dash(&mut p, &mut a, 100.0, 0.0);
+            move_object(&mut p.pos, &mut p.vel, a, body, &mut rng);
+        }
+        assert!((p.pos.x - 9.333).abs() < 0.01, "{}", p.pos.x);
+    }
+
+    #[test]
+    fn backward_dash_is_as_strong_as_forward_and_costs_double() {
+        let mut p = Player::new(DVec2::ZERO, 0.0);
+        let mut a = DVec2::ZERO;
+        dash(&mut p, &mut a, -100.0, 0.0);
+        assert!((a.x + 0.6).abs() < 1e-12 && a.y.abs() < 1e-12);
+        assert_eq!(p.stamina, STAMINA_MAX - 200.0);
+        let mut side = DVec2::ZERO;
+        dash(&mut p, &mut side, 100.0, FRAC_PI_2);
+        assert!((side.y - 0.6 * SIDE_DASH_RATE).abs() < 1e-12);
+    }
+
+    #[test]
+    fn ball_bounces_off_post() {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let post = GOAL_POSTS[1];
+        let mut pos = post - DVec2::new(1.0, 0.0);
+        let mut vel = DVec2::new(2.0, 0.0);
+        let body = Body { rand: 0.0, ..BALL_BODY };
+        move_object(&mut pos, &mut vel, DVec2::ZERO, body, &mut rng);
+        assert!(vel.x < 0.0);
+        assert!(pos.distance(post) >= GOAL_POST_RADIUS + BALL_SIZE - 1e-9);
+    }
+}

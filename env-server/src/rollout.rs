@@ -1,0 +1,127 @@
+//! Running episodes under a baseline policy and summarising them.
+
+use crate::env::{ConfigError, Env, EnvConfig};
+use crate::policy::BaselinePolicy;
+use crate::referee::Outcome;
+use proto::Action;
+use rand::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Counts of each terminal outcome.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct OutcomeCounts {
+    /// Goals.
+    pub goal: u64,
+    /// Balls captured by the keeper.
+    pub captured: u64,
+    /// Balls out of bounds.
+    pub out_of_bounds: u64,
+    /// Time-outs.
+    pub out_of_time: u64,
+}
+
+impl OutcomeCounts {
+    /// Counts one more episode ending in `outcome`.
+    pub fn add(&mut self, outcome: Outcome) {
+        match outcome {
+            Outcome::Goal => self.goal += 1,
+            Outcome::Captured => self.captured += 1,
+            Outcome::OutOfBounds => self.out_of_bounds += 1,
+            Outcome::OutOfTime => self.out_of_time += 1,
+            Outcome::InGame => {}
+        }
+    }
+}
+
+/// Summary of a rollout.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RolloutSummary {
+    /// Policy name.
+    pub policy: String,
+    /// Offense agents.
+    pub offense: usize,
+    /// Seed of the run.
+    pub seed: u64,
+    /// Episodes played.
+    pub episodes: u64,
+    /// Percentage of episodes ending in a goal.
+    pub goal_pct: f64,
+    /// Mean agent decisions ("frames") per episode.
+    pub mean_frames: f64,
+    /// Mean frames of the goal episodes (0 when there was none).
+    pub mean_frames_to_goal: f64,
+    /// Outcome counts.
+    pub outcomes: OutcomeCounts,
+    /// Total agent decisions.
+    pub frames: u64,
+    /// Decisions per second of wall time (simulator and policy).
+    pub frames_per_sec: f64,
+}
+
+/// The random stream of a policy, derived from the rollout seed.
+pub fn policy_rng(seed: u64) -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(seed ^ 0x5851_f42d_4c95_7f2d)
+}
+
+/// Plays one episode of `env` under `policy`; `observe` sees the env after
+/// the reset and after every step. Returns the outcome and frame count.
+pub fn play_episode(
+    env: &mut Env,
+    policy: BaselinePolicy,
+    rng: &mut Xoshiro256PlusPlus,
+    mut observe: impl FnMut(&Env),
+) -> (Outcome, u32) {
+    env.reset();
+    observe(env);
+    let mut actions = [Action::Move; crate::analysis::MAX_OFFENSE];
+    let n = env.offense();
+    loop {
+        for (i, a) in actions[..n].iter_mut().enumerate() {
+            *a = policy.choose(env.can_kick(i), rng);
+        }
+        let outcome = env.step(&actions[..n]);
+        observe(env);
+        if outcome.is_terminal() {
+            return (outcome, env.frame());
+        }
+    }
+}
+
+/// Plays `episodes` episodes under `policy` with `seed`.
+pub fn rollout(
+    config: EnvConfig,
+    policy: BaselinePolicy,
+    episodes: u64,
+    seed: u64,
+) -> Result<RolloutSummary, ConfigError> {
+    let offense = config.offense;
+    let mut env = Env::new(config, seed)?;
+    let mut rng = policy_rng(seed);
+    let mut outcomes = OutcomeCounts::default();
+    let (mut frames, mut goal_frames) = (0u64, 0u64);
+    let start = Instant::now();
+    for _ in 0..episodes {
+        let (outcome, n) = play_episode(&mut env, policy, &mut rng, |_| {});
+        outcomes.add(outcome);
+        frames += u64::from(n);
+        if outcome == Outcome::Goal {
+            goal_frames += u64::from(n);
+        }
+    }
+    let secs = start.elapsed().as_secs_f64();
+    let ratio = |a: u64, b: u64| if b == 0 { 0.0 } else { a as f64 / b as f64 };
+    Ok(RolloutSummary {
+        policy: policy.name().to_owned(),
+        offense,
+        seed,
+        episodes,
+        goal_pct: 100.0 * ratio(outcomes.goal, episodes),
+        mean_frames: ratio(frames, episodes),
+        mean_frames_to_goal: ratio(goal_frames, outcomes.goal),
+        outcomes,
+        frames,
+        frames_per_sec: if secs > 0.0 { frames as f64 / secs } else { 0.0 },
+    })
+}

@@ -1,0 +1,128 @@
+//! The world state: ball, offense players and goalkeeper (plain data, no behaviour).
+
+use crate::params::*;
+use glam::DVec2;
+
+/// The ball.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ball {
+    /// Centre position.
+    pub pos: DVec2,
+    /// Velocity as observed (already decayed).
+    pub vel: DVec2,
+}
+
+/// One player's body and stamina.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Player {
+    /// Centre position.
+    pub pos: DVec2,
+    /// Velocity as observed (already decayed).
+    pub vel: DVec2,
+    /// Body direction (radians, global).
+    pub body: f64,
+    /// Stamina, `0..=8000`.
+    pub stamina: f64,
+    /// Dash effort, `0.6..=1`.
+    pub effort: f64,
+    /// Stamina recovery, `0.5..=1`.
+    pub recovery: f64,
+    /// agent2d's positioning "recover mode" flag (spec 6.1.4).
+    pub recover_mode: bool,
+}
+
+impl Player {
+    /// A rested player at `pos` facing `body`.
+    pub fn new(pos: DVec2, body: f64) -> Self {
+        Player {
+            pos,
+            vel: DVec2::ZERO,
+            body,
+            stamina: STAMINA_MAX,
+            effort: 1.0,
+            recovery: 1.0,
+            recover_mode: false,
+        }
+    }
+
+    /// Places the player at `pos` at rest with full stamina, keeping its body angle.
+    pub fn place(&mut self, pos: DVec2) {
+        *self = Player::new(pos, self.body);
+    }
+
+    /// Where the player drifts to after `n` cycles without commands.
+    pub fn drift(&self, n: u32) -> DVec2 {
+        self.pos + self.vel * crate::geom::decay_sum(PLAYER_DECAY, n)
+    }
+
+    /// Where the player comes to rest without commands.
+    pub fn final_drift(&self) -> DVec2 {
+        self.pos + self.vel / (1.0 - PLAYER_DECAY)
+    }
+}
+
+/// Everything that moves on the field.
+#[derive(Clone, Debug, PartialEq)]
+pub struct World {
+    /// The ball.
+    pub ball: Ball,
+    /// The offense players, indexed by agent.
+    pub offense: Vec<Player>,
+    /// The goalkeeper.
+    pub keeper: Player,
+    /// Cycles left before the keeper may catch again.
+    pub catch_ban: u32,
+    /// agent2d's offside line as the attackers see it (spec 6.1.1).
+    pub offside_line: f64,
+}
+
+impl World {
+    /// A world with `offense` players at the origin facing the goal and the keeper on its line.
+    pub fn new(offense: usize) -> Self {
+        World {
+            ball: Ball {
+                pos: DVec2::ZERO,
+                vel: DVec2::ZERO,
+            },
+            offense: vec![Player::new(DVec2::ZERO, 0.0); offense],
+            keeper: Player::new(GOAL_CENTER, std::f64::consts::PI),
+            catch_ban: 0,
+            offside_line: 0.0,
+        }
+    }
+
+    /// Every player: the offense in order, then the keeper.
+    pub fn players(&self) -> impl Iterator<Item = &Player> {
+        self.offense.iter().chain([&self.keeper])
+    }
+
+    /// Whether offense agent `i` can kick by its own (1.03 m) test.
+    pub fn agent_kickable(&self, i: usize) -> bool {
+        self.offense[i].pos.distance(self.ball.pos) <= AGENT_KICKABLE_AREA
+    }
+
+    /// Whether some offense player other than `except` has the ball in its server kickable area.
+    pub fn teammate_kickable(&self, except: usize) -> bool {
+        self.offense
+            .iter()
+            .enumerate()
+            .any(|(j, p)| j != except && p.pos.distance(self.ball.pos) <= KICKABLE_AREA)
+    }
+
+    /// Whether any offense player has the ball in its server kickable area.
+    pub fn any_attacker_kickable(&self) -> bool {
+        self.offense
+            .iter()
+            .any(|p| p.pos.distance(self.ball.pos) <= KICKABLE_AREA)
+    }
+
+    /// Ball position after `n` cycles without kicks.
+    pub fn ball_inertia(&self, n: u32) -> DVec2 {
+        self.ball.pos + self.ball.vel * crate::geom::decay_sum(BALL_DECAY, n)
+    }
+
+    /// Where the ball comes to rest without kicks.
+    pub fn ball_final(&self) -> DVec2 {
+        self.ball.pos + self.ball.vel / (1.0 - BALL_DECAY)
+    }
+}
