@@ -53,7 +53,12 @@ impl Analysis {
             keeper_reach,
             home: [DVec2::ZERO; MAX_OFFENSE],
         };
-        let ball_step = reach[..n].iter().copied().chain([keeper_reach]).min().unwrap_or(NO_REACH);
+        let ball_step = reach[..n]
+            .iter()
+            .copied()
+            .chain([keeper_reach])
+            .min()
+            .unwrap_or(NO_REACH);
         let focus = world.ball_inertia(ball_step.min(NO_REACH) as u32);
         let homes = home_positions(focus);
         // Player 9 (only in 4v1) mirrors the centre forward 11.
@@ -111,7 +116,11 @@ impl Analysis {
 /// Updates agent2d's offside line as the attackers see it (spec 6.1.1 step 3).
 pub fn update_offside_line(world: &mut World) {
     let prev = world.offside_line;
-    let fallback = if prev > 5.0 && prev <= 13.0 { prev - 1.0 } else { 0.0 };
+    let fallback = if prev > 5.0 && prev <= 13.0 {
+        prev - 1.0
+    } else {
+        0.0
+    };
     world.offside_line = fallback.max(world.ball.pos.x + world.ball.vel.x);
 }
 
@@ -133,7 +142,7 @@ fn ball_path(world: &World) -> ([DVec2; CACHE_LEN], usize) {
 }
 
 /// Precomputed `(1 - 0.4^t) / 0.6`: a player's drift per unit velocity after t cycles.
-const DRIFT: [f64; CACHE_LEN] = {
+pub(crate) const DRIFT: [f64; CACHE_LEN] = {
     let mut d = [0.0; CACHE_LEN];
     let mut pow = 1.0;
     let mut t = 0;
@@ -152,34 +161,46 @@ const COS_12_DEG: f64 = 0.978_147_600_733_805_6;
 /// `keeper_control` is the keeper's control area inside its penalty area.
 pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
     let facing = DVec2::from_angle(p.body);
-    let turns_and_gap = |t: usize, b: DVec2| {
+    // Vector from where the player drifts to after t cycles to the ball, and the control area.
+    let reach_vector = |t: usize, b: DVec2| {
         let control = match keeper_control {
             Some(c) if in_penalty_area(b) => c,
             _ => KICKABLE_AREA,
         };
-        let rel = b - (p.pos + p.vel * DRIFT[t.min(CACHE_LEN - 1)]);
+        (b - (p.pos + p.vel * DRIFT[t.min(CACHE_LEN - 1)]), control)
+    };
+    // One turn is needed unless the body points at the ball within max(12°, asin(c/d)).
+    let turns = |rel: DVec2, d: f64, control: f64| {
+        let mut cos = rel.dot(facing) / d;
+        if d < 5.0 {
+            cos = cos.abs(); // a short backward dash needs no turn
+        }
+        let ratio = control / d;
+        usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
+    };
+    for (t, &b) in path.iter().enumerate() {
+        let (rel, control) = reach_vector(t, b);
         let d = rel.length();
         let gap = d - control;
         if gap <= 0.0 {
-            return (0, gap);
+            return t;
         }
-        let mut cos = rel.dot(facing) / d;
-        if d < 5.0 {
-            cos = cos.abs();
+        if gap > dash_distance(t) {
+            continue; // out of reach even without turning
         }
-        let ratio = control / d;
-        let cos_thr = COS_12_DEG.min((1.0 - ratio * ratio).sqrt());
-        (usize::from(cos < cos_thr), gap)
-    };
-    for (t, &b) in path.iter().enumerate() {
-        let (n_turn, gap) = turns_and_gap(t, b);
-        if gap <= 0.0 || (t >= n_turn && gap <= dash_distance(t - n_turn)) {
+        let n_turn = turns(rel, d, control);
+        if t >= n_turn && gap <= dash_distance(t - n_turn) {
             return t;
         }
     }
     let last = path.len() - 1;
-    let (n_turn, gap) = turns_and_gap(last, path[last]);
-    path.len().max(n_turn + dash_cycles(gap))
+    let (rel, control) = reach_vector(last, path[last]);
+    let d = rel.length();
+    let gap = d - control;
+    if gap <= 0.0 {
+        return path.len();
+    }
+    path.len().max(turns(rel, d, control) + dash_cycles(gap))
 }
 
 #[cfg(test)]

@@ -133,7 +133,9 @@ impl Env {
         Ok(Env {
             world,
             referee,
-            keeper_memory: KeeperMemory { since_catch: u32::MAX },
+            keeper_memory: KeeperMemory {
+                since_catch: u32::MAX,
+            },
             offsets: START_OFFSETS,
             rng: Xoshiro256PlusPlus::seed_from_u64(seed),
             commands: [Command::None; MAX_OFFENSE + 1],
@@ -178,7 +180,11 @@ impl Env {
         let rng = &mut self.rng;
         let ball = DVec2::new(
             uniform(rng, 0.0, 0.2 * PITCH_HALF_LENGTH),
-            uniform(rng, -0.4 * 2.0 * PITCH_HALF_WIDTH, 0.4 * 2.0 * PITCH_HALF_WIDTH),
+            uniform(
+                rng,
+                -0.4 * 2.0 * PITCH_HALF_WIDTH,
+                0.4 * 2.0 * PITCH_HALF_WIDTH,
+            ),
         );
         self.offsets.shuffle(rng);
         let unit = 0.1 * 2.0 * PITCH_HALF_LENGTH;
@@ -195,7 +201,9 @@ impl Env {
         self.world.ball.vel = DVec2::ZERO;
         self.world.catch_ban = 0;
         self.world.offside_line = 0.0;
-        self.keeper_memory = KeeperMemory { since_catch: u32::MAX };
+        self.keeper_memory = KeeperMemory {
+            since_catch: u32::MAX,
+        };
         self.referee.reset(ball);
         self.outcome = Outcome::InGame;
         for _ in 0..IDLE_CYCLES {
@@ -209,7 +217,11 @@ impl Env {
     /// # Panics
     /// If `actions` does not hold one action per offense agent.
     pub fn step(&mut self, actions: &[Action]) -> Outcome {
-        assert_eq!(actions.len(), self.config.offense, "one action per offense agent");
+        assert_eq!(
+            actions.len(),
+            self.config.offense,
+            "one action per offense agent"
+        );
         self.cycle(Some(actions));
         self.outcome
     }
@@ -260,7 +272,12 @@ impl Env {
         self.move_objects(&accels);
         physics::resolve_collisions(&mut self.world, &mut self.rng);
         self.outcome = self.referee.judge(&self.world);
-        for p in self.world.offense.iter_mut().chain([&mut self.world.keeper]) {
+        for p in self
+            .world
+            .offense
+            .iter_mut()
+            .chain([&mut self.world.keeper])
+        {
             physics::update_stamina(p);
         }
         self.world.catch_ban = self.world.catch_ban.saturating_sub(1);
@@ -275,7 +292,14 @@ impl Env {
         for (i, command) in self.commands[..=n].iter().enumerate() {
             if let Command::Kick { power, dir } = *command {
                 let p = self.world.players().nth(i).expect("player index");
-                physics::kick(p, &self.world.ball, &mut accels[0], power, dir, &mut self.rng);
+                physics::kick(
+                    p,
+                    &self.world.ball,
+                    &mut accels[0],
+                    power,
+                    dir,
+                    &mut self.rng,
+                );
             }
         }
         self.keeper_memory.since_catch = self.keeper_memory.since_catch.saturating_add(1);
@@ -283,7 +307,11 @@ impl Env {
             self.keeper_memory.since_catch = 0;
             physics::catch(&mut self.world);
         }
-        let players = self.world.offense.iter_mut().chain([&mut self.world.keeper]);
+        let players = self
+            .world
+            .offense
+            .iter_mut()
+            .chain([&mut self.world.keeper]);
         for ((p, command), accel) in players.zip(&self.commands).zip(&mut accels[1..]) {
             match *command {
                 Command::Dash { power, dir } => physics::dash(p, accel, power, dir),
@@ -299,7 +327,11 @@ impl Env {
         let rng = &mut self.rng;
         let ball = &mut self.world.ball;
         physics::move_object(&mut ball.pos, &mut ball.vel, accels[0], BALL_BODY, rng);
-        let players = self.world.offense.iter_mut().chain([&mut self.world.keeper]);
+        let players = self
+            .world
+            .offense
+            .iter_mut()
+            .chain([&mut self.world.keeper]);
         for (p, accel) in players.zip(&accels[1..]) {
             physics::move_object(&mut p.pos, &mut p.vel, *accel, PLAYER_BODY, rng);
         }

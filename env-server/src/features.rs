@@ -50,7 +50,13 @@ pub fn goal_opening(p: DVec2, keeper: DVec2) -> f64 {
 /// Largest open pass angle from `from` to `to` (±45° around the line).
 fn pass_opening(from: DVec2, to: DVec2, keeper: DVec2) -> f64 {
     let dir = direction(to - from);
-    largest_open_angle(from, dir - FRAC_PI_4, dir + FRAC_PI_4, keeper, from.distance(to))
+    largest_open_angle(
+        from,
+        dir - FRAC_PI_4,
+        dir + FRAC_PI_4,
+        keeper,
+        from.distance(to),
+    )
 }
 
 /// Number of high-level features for a team of `offense` players against one keeper.
@@ -61,7 +67,9 @@ pub fn feature_count(offense: usize) -> usize {
 /// Indices of the raw uniform-number features (not normalised, spec 5.1).
 pub fn unum_feature_indices(offense: usize) -> impl Iterator<Item = usize> {
     let t = offense - 1;
-    (0..t).map(move |j| 10 + 3 * t + 3 * j + 2).chain([10 + 6 * t + 2])
+    (0..t)
+        .map(move |j| 10 + 3 * t + 3 * j + 2)
+        .chain([10 + 6 * t + 2])
 }
 
 /// The full high-level feature vector of offense agent `agent` (spec 5.3);
@@ -80,19 +88,35 @@ pub fn high_level(world: &World, agent: usize) -> Vec<f64> {
         norm_angle(me.body),
         norm_dist(s.distance(b)),
         norm_angle(direction(b - s)),
-        if world.agent_kickable(agent) { 1.0 } else { -1.0 },
+        if world.agent_kickable(agent) {
+            1.0
+        } else {
+            -1.0
+        },
         norm_dist(s.distance(GOAL_CENTER)),
         norm_angle(direction(GOAL_CENTER - s)),
         norm_open_angle(goal_opening(s, k)),
         norm_dist(s.distance(k)),
     ]);
     let mate_pos = |j: &usize| world.offense[*j].pos;
-    f.extend(mates.iter().map(|j| norm_open_angle(goal_opening(mate_pos(j), k))));
+    f.extend(
+        mates
+            .iter()
+            .map(|j| norm_open_angle(goal_opening(mate_pos(j), k))),
+    );
     f.extend(mates.iter().map(|j| norm_dist(mate_pos(j).distance(k))));
-    f.extend(mates.iter().map(|j| norm_open_angle(pass_opening(s, mate_pos(j), k))));
+    f.extend(
+        mates
+            .iter()
+            .map(|j| norm_open_angle(pass_opening(s, mate_pos(j), k))),
+    );
     for j in &mates {
         let m = mate_pos(j);
-        f.extend([norm_dist(s.distance(m)), norm_angle(direction(m - s)), f64::from(unums[*j])]);
+        f.extend([
+            norm_dist(s.distance(m)),
+            norm_angle(direction(m - s)),
+            f64::from(unums[*j]),
+        ]);
     }
     f.extend([norm_dist(s.distance(k)), norm_angle(direction(k - s)), 1.0]);
     f
@@ -118,9 +142,14 @@ pub fn paper_state(world: &World, agent: usize) -> State {
             farthest = Some((d, p.pos));
         }
     }
-    let opening = |m: Option<(f64, DVec2)>| m.map_or(-1.0, |(_, pos)| norm_open_angle(goal_opening(pos, k)));
+    let opening =
+        |m: Option<(f64, DVec2)>| m.map_or(-1.0, |(_, pos)| norm_open_angle(goal_opening(pos, k)));
     [
-        if world.agent_kickable(agent) { 1.0 } else { -1.0 },
+        if world.agent_kickable(agent) {
+            1.0
+        } else {
+            -1.0
+        },
         norm_dist(me.distance(GOAL_CENTER)),
         norm_angle(direction(GOAL_CENTER - me)),
         norm_open_angle(goal_opening(me, k)),
@@ -158,7 +187,10 @@ mod tests {
         }
         let f = high_level(&w, 0);
         assert_eq!(f.len(), 25);
-        assert_eq!(unum_feature_indices(3).collect::<Vec<_>>(), vec![18, 21, 24]);
+        assert_eq!(
+            unum_feature_indices(3).collect::<Vec<_>>(),
+            vec![18, 21, 24]
+        );
         assert_eq!((f[18], f[21], f[24]), (8.0, 11.0, 1.0));
         let g = high_level(&w, 2);
         assert_eq!((g[18], g[21]), (7.0, 8.0));

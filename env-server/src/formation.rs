@@ -145,7 +145,11 @@ fn formation() -> &'static Formation {
     FORMATION.get_or_init(|| {
         let points: Vec<Point> = SAMPLES.iter().map(|s| Point { x: s[0], y: s[1] }).collect();
         let tri = triangulate(&points);
-        let triangles: Vec<[usize; 3]> = tri.triangles.chunks(3).map(|t| [t[0], t[1], t[2]]).collect();
+        let triangles: Vec<[usize; 3]> = tri
+            .triangles
+            .chunks(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect();
         let mut cells = vec![Vec::new(); GRID_W * GRID_H];
         for (k, t) in triangles.iter().enumerate() {
             let xs = t.map(|i| SAMPLES[i][0]);
@@ -206,7 +210,10 @@ pub fn home_positions(focus: DVec2) -> [DVec2; 3] {
     }
     let nearest = (0..SAMPLES.len())
         .min_by(|&i, &j| {
-            let (di, dj) = (sample_ball(i).distance_squared(focus), sample_ball(j).distance_squared(focus));
+            let (di, dj) = (
+                sample_ball(i).distance_squared(focus),
+                sample_ball(j).distance_squared(focus),
+            );
             di.total_cmp(&dj)
         })
         .unwrap_or(0);
@@ -240,16 +247,28 @@ mod tests {
         let cases = [
             ((0.0, 0.0), [(2.83, -10.81), (2.83, 10.81), (9.41, -3.12)]),
             ((5.0, 0.0), [(4.10, -11.48), (4.10, 11.48), (13.79, -2.03)]),
-            ((5.0, -20.0), [(-2.21, -19.69), (10.83, 2.05), (16.45, -14.06)]),
+            (
+                (5.0, -20.0),
+                [(-2.21, -19.69), (10.83, 2.05), (16.45, -14.06)],
+            ),
             ((10.0, 10.0), [(11.00, -6.75), (2.49, 16.42), (19.31, 8.68)]),
-            ((20.0, 0.0), [(13.53, -11.30), (13.53, 11.30), (26.27, -0.44)]),
-            ((30.0, -10.0), [(21.94, -14.66), (26.19, 4.23), (33.99, -7.90)]),
+            (
+                (20.0, 0.0),
+                [(13.53, -11.30), (13.53, 11.30), (26.27, -0.44)],
+            ),
+            (
+                (30.0, -10.0),
+                [(21.94, -14.66), (26.19, 4.23), (33.99, -7.90)],
+            ),
             ((40.0, 0.0), [(33.67, -6.51), (33.67, 6.51), (39.31, -2.50)]),
         ];
         for ((bx, by), want) in cases {
             let got = home_positions(DVec2::new(bx, by));
             for (g, (x, y)) in got.iter().zip(want) {
-                assert!(close(*g, x, y), "ball ({bx}, {by}): got {g}, want ({x}, {y})");
+                assert!(
+                    close(*g, x, y),
+                    "ball ({bx}, {by}): got {g}, want ({x}, {y})"
+                );
             }
         }
     }

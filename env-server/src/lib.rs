@@ -23,6 +23,6 @@ pub mod rollout;
 pub mod world;
 
 pub use env::{ConfigError, Env, EnvConfig};
-pub use referee::Outcome;
 pub use policy::BaselinePolicy;
+pub use referee::Outcome;
 pub use rollout::{RolloutSummary, rollout};

@@ -7,7 +7,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(version, about = "Half Field Offense simulator (3 offense agents vs a goalkeeper)")]
+#[command(
+    version,
+    about = "Half Field Offense simulator (3 offense agents vs a goalkeeper)"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -83,22 +86,39 @@ fn one_line(message: &str) -> String {
     message
         .lines()
         .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:"))
+        .filter(|l| {
+            !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:")
+        })
         .collect::<Vec<_>>()
         .join(" ")
 }
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Rollout { policy, episodes, seed, offense, json } => {
-            let config = EnvConfig { offense: offense.into(), ..EnvConfig::default() };
+        Command::Rollout {
+            policy,
+            episodes,
+            seed,
+            offense,
+            json,
+        } => {
+            let config = EnvConfig {
+                offense: offense.into(),
+                ..EnvConfig::default()
+            };
             let s = rollout(config, policy, episodes, seed)?;
             if json {
                 println!("{}", serde_json::to_string(&s)?);
             } else {
                 let pct = |n: u64| 100.0 * n as f64 / s.episodes as f64;
-                println!("policy {} · {} offense · seed {} · {} episodes", s.policy, s.offense, s.seed, s.episodes);
-                println!("  goals          {:6.2} %   mean frames to goal {:.1}", s.goal_pct, s.mean_frames_to_goal);
+                println!(
+                    "policy {} · {} offense · seed {} · {} episodes",
+                    s.policy, s.offense, s.seed, s.episodes
+                );
+                println!(
+                    "  goals          {:6.2} %   mean frames to goal {:.1}",
+                    s.goal_pct, s.mean_frames_to_goal
+                );
                 println!("  captured       {:6.2} %", pct(s.outcomes.captured));
                 println!("  out of bounds  {:6.2} %", pct(s.outcomes.out_of_bounds));
                 println!("  out of time    {:6.2} %", pct(s.outcomes.out_of_time));
@@ -106,9 +126,18 @@ fn run(cli: Cli) -> Result<()> {
                 println!("  speed          {:.0} frames/s", s.frames_per_sec);
             }
         }
-        Command::Render { policy, seed, episode, out, offense } => {
+        Command::Render {
+            policy,
+            seed,
+            episode,
+            out,
+            offense,
+        } => {
             render::Format::of(&out)?;
-            let config = EnvConfig { offense: offense.into(), ..EnvConfig::default() };
+            let config = EnvConfig {
+                offense: offense.into(),
+                ..EnvConfig::default()
+            };
             let trace = render::record_episode(config, policy, seed, episode)?;
             render::write_picture(&trace, &out)?;
             println!("wrote {}: {}", out.display(), trace.summary());

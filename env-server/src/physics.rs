@@ -50,7 +50,14 @@ pub fn kick_for_accel(player: &Player, ball: &Ball, accel: DVec2) -> Option<Comm
 }
 
 /// Applies a kick to the ball's pending acceleration; nothing if the ball is out of reach.
-pub fn kick(player: &Player, ball: &Ball, accel: &mut DVec2, power: f64, dir: f64, rng: &mut impl Rng) {
+pub fn kick(
+    player: &Player,
+    ball: &Ball,
+    accel: &mut DVec2,
+    power: f64,
+    dir: f64,
+    rng: &mut impl Rng,
+) {
     let rel = ball.pos - player.pos;
     if rel.length() > KICKABLE_AREA {
         return;
@@ -170,7 +177,11 @@ fn bounce_off_posts(pos: &mut DVec2, vel: &mut DVec2, size: f64) -> DVec2 {
     if (pos.x - GOAL_POSTS[0].x).abs() > 5.0 {
         return *vel;
     }
-    let post = if pos.y < 0.0 { GOAL_POSTS[0] } else { GOAL_POSTS[1] };
+    let post = if pos.y < 0.0 {
+        GOAL_POSTS[0]
+    } else {
+        GOAL_POSTS[1]
+    };
     let r = GOAL_POST_RADIUS + size;
     let rel = *pos - post;
     let dist = rel.length();
@@ -309,7 +320,10 @@ mod tests {
     fn full_dashes_reach_one_metre_per_cycle() {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
         let mut p = Player::new(DVec2::ZERO, 0.0);
-        let body = Body { rand: 0.0, ..PLAYER_BODY };
+        let body = Body {
+            rand: 0.0,
+            ..PLAYER_BODY
+        };
         for _ in 0..10 {
             let mut a = DVec2::ZERO;
             dash(&mut p, &mut a, 100.0, 0.0);
@@ -336,7 +350,10 @@ mod tests {
         let post = GOAL_POSTS[1];
         let mut pos = post - DVec2::new(1.0, 0.0);
         let mut vel = DVec2::new(2.0, 0.0);
-        let body = Body { rand: 0.0, ..BALL_BODY };
+        let body = Body {
+            rand: 0.0,
+            ..BALL_BODY
+        };
         move_object(&mut pos, &mut vel, DVec2::ZERO, body, &mut rng);
         assert!(vel.x < 0.0);
         assert!(pos.distance(post) >= GOAL_POST_RADIUS + BALL_SIZE - 1e-9);

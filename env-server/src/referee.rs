@@ -107,7 +107,11 @@ impl Referee {
             return Outcome::OutOfTime;
         }
         self.untouched += 1;
-        if world.offense.iter().any(|p| p.pos.distance(ball) < KICKABLE_AREA) {
+        if world
+            .offense
+            .iter()
+            .any(|p| p.pos.distance(ball) < KICKABLE_AREA)
+        {
             self.untouched = 0;
         }
         if world.keeper.pos.distance(ball) < KICKABLE_AREA {
@@ -144,9 +148,18 @@ mod tests {
 
     #[test]
     fn goal_only_through_the_mouth() {
-        assert!(crossed_goal_line(DVec2::new(52.0, 0.0), DVec2::new(53.0, 1.0)));
-        assert!(!crossed_goal_line(DVec2::new(52.0, 8.0), DVec2::new(53.0, 8.0)));
-        assert!(!crossed_goal_line(DVec2::new(52.0, 0.0), DVec2::new(52.5, 0.0)));
+        assert!(crossed_goal_line(
+            DVec2::new(52.0, 0.0),
+            DVec2::new(53.0, 1.0)
+        ));
+        assert!(!crossed_goal_line(
+            DVec2::new(52.0, 8.0),
+            DVec2::new(53.0, 8.0)
+        ));
+        assert!(!crossed_goal_line(
+            DVec2::new(52.0, 0.0),
+            DVec2::new(52.5, 0.0)
+        ));
     }
 
     #[test]

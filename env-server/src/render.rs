@@ -4,7 +4,7 @@
 //! The picture keeps the server's orientation (as rcssmonitor draws it): the
 //! attacked goal is on the right, +y points down.
 
-use crate::analysis::offense_unums;
+use crate::analysis::{MAX_OFFENSE, offense_unums};
 use crate::env::{ConfigError, Env, EnvConfig};
 use crate::params::*;
 use crate::physics::Command;
@@ -104,7 +104,11 @@ impl Trace {
             let n = world.offense.len();
             for (i, command) in env.last_commands().iter().enumerate() {
                 if matches!(command, Command::Kick { .. }) {
-                    let by = if i < n { Kicker::Offense(i) } else { Kicker::Keeper };
+                    let by = if i < n {
+                        Kicker::Offense(i)
+                    } else {
+                        Kicker::Keeper
+                    };
                     self.kicks.push(Kick { state, by });
                 }
             }
@@ -132,7 +136,8 @@ impl Trace {
     /// The picture as an SVG document.
     pub fn to_svg(&self) -> String {
         let mut out = String::new();
-        self.write_svg(&mut out).expect("writing to a String cannot fail");
+        self.write_svg(&mut out)
+            .expect("writing to a String cannot fail");
         out
     }
 
@@ -147,7 +152,7 @@ impl Trace {
         // Paths: keeper first, then the offense, the ball on top.
         write_path(s, &self.keeper, KEEPER_COLOUR, 2.4, 1.0)?;
         for (i, path) in self.offense.iter().enumerate() {
-            write_path(s, path, OFFENSE_COLOURS[i], 2.4, 1.0)?;
+            write_path(s, path, self.colour(Kicker::Offense(i)), 2.4, 1.0)?;
         }
         write_path(s, &self.ball, "#111", 4.6, 0.45)?;
         write_path(s, &self.ball, BALL_COLOUR, 2.0, 1.0)?;
@@ -155,16 +160,20 @@ impl Trace {
             write_ticks(s, path)?;
         }
         for kick in &self.kicks {
-            let colour = match kick.by {
-                Kicker::Offense(i) => OFFENSE_COLOURS[i],
-                Kicker::Keeper => KEEPER_COLOUR,
-            };
-            write_star(s, self.ball[kick.state], colour)?;
+            if let Some(&p) = self.ball.get(kick.state) {
+                write_star(s, p, self.colour(kick.by))?;
+            }
         }
         // Start markers under the end markers.
-        let unums = offense_unums(self.offense.len());
-        let players = self.offense.iter().enumerate().map(|(i, p)| (p, OFFENSE_COLOURS[i], unums[i].to_string()));
-        let players: Vec<_> = players.chain([(&self.keeper, KEEPER_COLOUR, "GK".to_owned())]).collect();
+        let players = self
+            .offense
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (p, Kicker::Offense(i)));
+        let players: Vec<_> = players
+            .chain([(&self.keeper, Kicker::Keeper)])
+            .map(|(path, who)| (path, self.colour(who), self.label(who)))
+            .collect();
         for (path, colour, label) in &players {
             if let Some(&p) = path.first() {
                 write_start(s, p, colour, label)?;
@@ -172,7 +181,10 @@ impl Trace {
         }
         if let Some(&p) = self.ball.first() {
             let (x, y) = px(p);
-            writeln!(s, r#"<circle cx="{x:.1}" cy="{y:.1}" r="4.5" fill="none" stroke="{BALL_COLOUR}" stroke-width="2"/>"#)?;
+            writeln!(
+                s,
+                r#"<circle cx="{x:.1}" cy="{y:.1}" r="8.5" fill="none" stroke="{BALL_COLOUR}" stroke-width="2"/>"#
+            )?;
         }
         for (path, colour, label) in &players {
             if let Some(&p) = path.last() {
@@ -181,14 +193,41 @@ impl Trace {
         }
         if let Some(&p) = self.ball.last() {
             let (x, y) = px(p);
-            writeln!(s, r##"<circle cx="{x:.1}" cy="{y:.1}" r="5" fill="{BALL_COLOUR}" stroke="#111" stroke-width="1.5"/>"##)?;
+            writeln!(
+                s,
+                r##"<circle cx="{x:.1}" cy="{y:.1}" r="5" fill="{BALL_COLOUR}" stroke="#111" stroke-width="1.5"/>"##
+            )?;
         }
         writeln!(s, "</svg>")
     }
 
+    /// The colour of a player.
+    fn colour(&self, who: Kicker) -> &'static str {
+        match who {
+            Kicker::Offense(i) => OFFENSE_COLOURS[i % OFFENSE_COLOURS.len()],
+            Kicker::Keeper => KEEPER_COLOUR,
+        }
+    }
+
+    /// The label of a player: its uniform number, "GK" for the keeper.
+    fn label(&self, who: Kicker) -> String {
+        match who {
+            Kicker::Offense(i) => {
+                let unums = offense_unums(self.offense.len().min(MAX_OFFENSE));
+                unums
+                    .get(i)
+                    .map_or_else(|| (i + 1).to_string(), u8::to_string)
+            }
+            Kicker::Keeper => "GK".to_owned(),
+        }
+    }
+
     /// The title band: outcome, run, legend.
     fn write_header(&self, s: &mut String, w: f64) -> std::fmt::Result {
-        writeln!(s, r#"<rect width="{w}" height="{HEADER}" fill="{HEADER_COLOUR}"/>"#)?;
+        writeln!(
+            s,
+            r#"<rect width="{w}" height="{HEADER}" fill="{HEADER_COLOUR}"/>"#
+        )?;
         let colour = match self.outcome {
             Outcome::Goal => "#8ef58e",
             Outcome::Captured => "#ff8080",
@@ -197,25 +236,50 @@ impl Trace {
         };
         let mut title = self.summary();
         title[..1].make_ascii_uppercase();
-        writeln!(s, r#"<text x="18" y="34" font-size="23" font-weight="bold" fill="{colour}">{title}</text>"#)?;
+        writeln!(
+            s,
+            r#"<text x="18" y="34" font-size="23" font-weight="bold" fill="{colour}">{title}</text>"#
+        )?;
         let n = self.offense.len();
         writeln!(
             s,
-            r##"<text x="18" y="58" font-size="14" fill="#e8efe8">policy {} · {n} offense vs keeper · seed {} · episode {}</text>"##,
-            self.policy, self.seed, self.episode
+            r##"<text x="18" y="58" font-size="14" fill="#e8efe8">policy {} · {n} offense vs keeper · seed {} · episode {} · {} kick{}</text>"##,
+            self.policy,
+            self.seed,
+            self.episode,
+            self.kicks.len(),
+            if self.kicks.len() == 1 { "" } else { "s" }
         )?;
         // Legend, one row.
         let y = 86.0;
         let mut x = 18.0;
-        let unums = offense_unums(n);
-        let mut items: Vec<(&str, String)> = (0..n).map(|i| (OFFENSE_COLOURS[i], format!("#{}", unums[i]))).collect();
+        let mut items: Vec<_> = (0..n)
+            .map(|i| {
+                (
+                    self.colour(Kicker::Offense(i)),
+                    format!("#{}", self.label(Kicker::Offense(i))),
+                )
+            })
+            .collect();
         items.push((KEEPER_COLOUR, "keeper".to_owned()));
         for (colour, label) in &items {
-            writeln!(s, r#"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="{colour}" stroke-width="3" stroke-linecap="round"/>"#, x + 18.0)?;
+            writeln!(
+                s,
+                r#"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="{colour}" stroke-width="3" stroke-linecap="round"/>"#,
+                x + 18.0
+            )?;
             x = legend_text(s, x + 24.0, y, label)?;
         }
-        writeln!(s, r##"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="#111" stroke-opacity="0.6" stroke-width="4.6" stroke-linecap="round"/>"##, x + 18.0)?;
-        writeln!(s, r#"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="{BALL_COLOUR}" stroke-width="2" stroke-linecap="round"/>"#, x + 18.0)?;
+        writeln!(
+            s,
+            r##"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="#111" stroke-opacity="0.6" stroke-width="4.6" stroke-linecap="round"/>"##,
+            x + 18.0
+        )?;
+        writeln!(
+            s,
+            r#"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="{BALL_COLOUR}" stroke-width="2" stroke-linecap="round"/>"#,
+            x + 18.0
+        )?;
         x = legend_text(s, x + 24.0, y, "ball")?;
         x += 14.0;
         write_start_at(s, x + 7.0, y, "#e8efe8", "")?;
@@ -266,7 +330,10 @@ pub enum Format {
 impl Format {
     /// The format of `path`, from its extension (either case).
     pub fn of(path: &Path) -> Result<Format, RenderError> {
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
         match ext.as_deref() {
             Some("svg") => Ok(Format::Svg),
             Some("png") => Ok(Format::Png),
@@ -292,12 +359,16 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, RenderError> {
     use resvg::{tiny_skia, usvg};
     let mut options = usvg::Options::default();
     options.fontdb_mut().load_system_fonts();
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| RenderError::Raster(e.to_string()))?;
+    let tree =
+        usvg::Tree::from_str(svg, &options).map_err(|e| RenderError::Raster(e.to_string()))?;
     let size = tree.size().to_int_size();
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| RenderError::Raster(format!("bad size {}x{}", size.width(), size.height())))?;
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| {
+        RenderError::Raster(format!("bad size {}x{}", size.width(), size.height()))
+    })?;
     resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
-    pixmap.encode_png().map_err(|e| RenderError::Raster(e.to_string()))
+    pixmap
+        .encode_png()
+        .map_err(|e| RenderError::Raster(e.to_string()))
 }
 
 /// Writes `<path>.tmp` beside `path`, then renames it over `path`.
@@ -308,7 +379,10 @@ fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
     let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
     result.map_err(|error| {
         let _ = std::fs::remove_file(&tmp);
-        RenderError::Io { path: path.to_owned(), error }
+        RenderError::Io {
+            path: path.to_owned(),
+            error,
+        }
     })
 }
 
@@ -329,7 +403,7 @@ const GRASS: [&str; 2] = ["#3d8b3d", "#37823a"];
 const LINE_COLOUR: &str = "#f4f8f4";
 const BALL_COLOUR: &str = "#ffffff";
 const KEEPER_COLOUR: &str = "#ff4b4b";
-const OFFENSE_COLOURS: [&str; crate::analysis::MAX_OFFENSE] = ["#ffd23f", "#45c4f5", "#c39bff", "#ff9f1c"];
+const OFFENSE_COLOURS: [&str; MAX_OFFENSE] = ["#ffd23f", "#45c4f5", "#c39bff", "#ff9f1c"];
 /// Radius of the start and end markers (pixels).
 const MARKER: f64 = 9.0;
 
@@ -349,7 +423,13 @@ fn px(p: DVec2) -> (f64, f64) {
 fn write_field(s: &mut String) -> std::fmt::Result {
     let (top, bottom) = (px_y(VIEW_Y.0), px_y(VIEW_Y.1));
     let (left, right) = (px_x(VIEW_X.0), px_x(VIEW_X.1));
-    writeln!(s, r#"<rect x="{left}" y="{top}" width="{}" height="{}" fill="{}"/>"#, right - left, bottom - top, GRASS[0])?;
+    writeln!(
+        s,
+        r#"<rect x="{left}" y="{top}" width="{}" height="{}" fill="{}"/>"#,
+        right - left,
+        bottom - top,
+        GRASS[0]
+    )?;
     // Mowing stripes every 5.25 m from the half-way line.
     let stripe = PITCH_HALF_LENGTH / 10.0;
     let mut k = (VIEW_X.0 / stripe).floor() as i32;
@@ -357,7 +437,13 @@ fn write_field(s: &mut String) -> std::fmt::Result {
         if k.rem_euclid(2) == 1 {
             let x0 = px_x(f64::from(k) * stripe).max(left);
             let x1 = px_x(f64::from(k + 1) * stripe).min(right);
-            writeln!(s, r#"<rect x="{x0:.1}" y="{top}" width="{:.1}" height="{}" fill="{}"/>"#, x1 - x0, bottom - top, GRASS[1])?;
+            writeln!(
+                s,
+                r#"<rect x="{x0:.1}" y="{top}" width="{:.1}" height="{}" fill="{}"/>"#,
+                x1 - x0,
+                bottom - top,
+                GRASS[1]
+            )?;
         }
         k += 1;
     }
@@ -371,17 +457,31 @@ fn write_field(s: &mut String) -> std::fmt::Result {
     // The goal: net behind the line, posts on it.
     let (gx0, gy0) = px(DVec2::new(PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH));
     let (gx1, gy1) = px(DVec2::new(PITCH_HALF_LENGTH + GOAL_DEPTH, GOAL_HALF_WIDTH));
-    writeln!(s, r#"<rect x="{gx0:.1}" y="{gy0:.1}" width="{:.1}" height="{:.1}" fill="white" fill-opacity="0.18"/>"#, gx1 - gx0, gy1 - gy0)?;
-    writeln!(s, r#"<g stroke="white" stroke-opacity="0.45" stroke-width="0.8">"#)?;
+    writeln!(
+        s,
+        r#"<rect x="{gx0:.1}" y="{gy0:.1}" width="{:.1}" height="{:.1}" fill="white" fill-opacity="0.18"/>"#,
+        gx1 - gx0,
+        gy1 - gy0
+    )?;
+    writeln!(
+        s,
+        r#"<g stroke="white" stroke-opacity="0.45" stroke-width="0.8">"#
+    )?;
     let mesh = 0.5 * SCALE;
     let mut x = gx0 + mesh;
     while x < gx1 - 1.0 {
-        writeln!(s, r#"<line x1="{x:.1}" y1="{gy0:.1}" x2="{x:.1}" y2="{gy1:.1}"/>"#)?;
+        writeln!(
+            s,
+            r#"<line x1="{x:.1}" y1="{gy0:.1}" x2="{x:.1}" y2="{gy1:.1}"/>"#
+        )?;
         x += mesh;
     }
     let mut y = gy0 + mesh;
     while y < gy1 - 1.0 {
-        writeln!(s, r#"<line x1="{gx0:.1}" y1="{y:.1}" x2="{gx1:.1}" y2="{y:.1}"/>"#)?;
+        writeln!(
+            s,
+            r#"<line x1="{gx0:.1}" y1="{y:.1}" x2="{gx1:.1}" y2="{y:.1}"/>"#
+        )?;
         y += mesh;
     }
     writeln!(s, "</g>")?;
@@ -390,31 +490,94 @@ fn write_field(s: &mut String) -> std::fmt::Result {
         r#"<path d="M{gx0:.1},{gy0:.1}H{gx1:.1}V{gy1:.1}H{gx0:.1}" fill="none" stroke="{LINE_COLOUR}" stroke-width="2.5"/>"#
     )?;
     // Pitch lines.
-    writeln!(s, r#"<g fill="none" stroke="{LINE_COLOUR}" stroke-width="2" stroke-opacity="0.92">"#)?;
+    writeln!(
+        s,
+        r#"<g fill="none" stroke="{LINE_COLOUR}" stroke-width="2" stroke-opacity="0.92">"#
+    )?;
     let rect = |s: &mut String, x0: f64, half: f64| {
         let (a, b) = px(DVec2::new(x0, -half));
         let (c, d) = px(DVec2::new(PITCH_HALF_LENGTH, half));
-        writeln!(s, r#"<rect x="{a:.1}" y="{b:.1}" width="{:.1}" height="{:.1}"/>"#, c - a, d - b)
+        writeln!(
+            s,
+            r#"<rect x="{a:.1}" y="{b:.1}" width="{:.1}" height="{:.1}"/>"#,
+            c - a,
+            d - b
+        )
     };
     rect(s, 0.0, PITCH_HALF_WIDTH)?;
     rect(s, PENALTY_AREA_X, PENALTY_AREA_HALF_WIDTH)?;
-    rect(s, PITCH_HALF_LENGTH - GOAL_AREA_LENGTH, GOAL_AREA_HALF_WIDTH)?;
+    rect(
+        s,
+        PITCH_HALF_LENGTH - GOAL_AREA_LENGTH,
+        GOAL_AREA_HALF_WIDTH,
+    )?;
     // Centre circle (its attacking half) and the penalty arc outside the box.
     let r = CIRCLE_RADIUS * SCALE;
     let (cx, cy) = px(DVec2::ZERO);
-    writeln!(s, r#"<path d="M{cx:.1},{:.1}A{r:.1},{r:.1} 0 0 1 {cx:.1},{:.1}"/>"#, cy - r, cy + r)?;
+    writeln!(
+        s,
+        r#"<path d="M{cx:.1},{:.1}A{r:.1},{r:.1} 0 0 1 {cx:.1},{:.1}"/>"#,
+        cy - r,
+        cy + r
+    )?;
     let spot = PITCH_HALF_LENGTH - PENALTY_SPOT_DISTANCE;
     let half_chord = (CIRCLE_RADIUS.powi(2) - (spot - PENALTY_AREA_X).powi(2)).sqrt();
     let (ax, ay0) = px(DVec2::new(PENALTY_AREA_X, -half_chord));
     let ay1 = px_y(half_chord);
-    writeln!(s, r#"<path d="M{ax:.1},{ay0:.1}A{r:.1},{r:.1} 0 0 0 {ax:.1},{ay1:.1}"/>"#)?;
+    writeln!(
+        s,
+        r#"<path d="M{ax:.1},{ay0:.1}A{r:.1},{r:.1} 0 0 0 {ax:.1},{ay1:.1}"/>"#
+    )?;
     writeln!(s, "</g>")?;
     let (sx, sy) = px(DVec2::new(spot, 0.0));
-    writeln!(s, r#"<circle cx="{cx:.1}" cy="{cy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#)?;
-    writeln!(s, r#"<circle cx="{sx:.1}" cy="{sy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#)?;
+    writeln!(
+        s,
+        r#"<circle cx="{cx:.1}" cy="{cy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#
+    )?;
+    writeln!(
+        s,
+        r#"<circle cx="{sx:.1}" cy="{sy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#
+    )?;
+    // Coordinates in the margin: x below the field, y left of it.
+    writeln!(
+        s,
+        r#"<g font-size="11" fill="white" fill-opacity="0.65" text-anchor="middle">"#
+    )?;
+    let below = px_y(PITCH_HALF_WIDTH) + 18.0;
+    for x in [
+        0.0,
+        10.0,
+        20.0,
+        30.0,
+        PENALTY_AREA_X,
+        40.0,
+        PITCH_HALF_LENGTH,
+    ] {
+        writeln!(s, r#"<text x="{:.1}" y="{below:.1}">{x}</text>"#, px_x(x))?;
+    }
+    let left = px_x(0.0) - 20.0;
+    for y in [
+        -PITCH_HALF_WIDTH,
+        -20.0,
+        -10.0,
+        0.0,
+        10.0,
+        20.0,
+        PITCH_HALF_WIDTH,
+    ] {
+        writeln!(
+            s,
+            r#"<text x="{left:.1}" y="{:.1}">{y}</text>"#,
+            px_y(y) + 4.0
+        )?;
+    }
+    writeln!(s, "</g>")?;
     for post in GOAL_POSTS {
         let (x, y) = px(post);
-        writeln!(s, r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="white" stroke="#333" stroke-width="0.8"/>"##)?;
+        writeln!(
+            s,
+            r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="white" stroke="#333" stroke-width="0.8"/>"##
+        )?;
     }
     Ok(())
 }
@@ -425,11 +588,20 @@ const CIRCLE_RADIUS: f64 = 9.15;
 const PENALTY_SPOT_DISTANCE: f64 = 11.0;
 
 /// A polyline through `points`.
-fn write_path(s: &mut String, points: &[DVec2], colour: &str, width: f64, opacity: f64) -> std::fmt::Result {
+fn write_path(
+    s: &mut String,
+    points: &[DVec2],
+    colour: &str,
+    width: f64,
+    opacity: f64,
+) -> std::fmt::Result {
     if points.len() < 2 {
         return Ok(());
     }
-    write!(s, r#"<polyline class="path" fill="none" stroke="{colour}" stroke-width="{width}" stroke-opacity="{opacity}" stroke-linejoin="round" stroke-linecap="round" points=""#)?;
+    write!(
+        s,
+        r#"<polyline class="path" fill="none" stroke="{colour}" stroke-width="{width}" stroke-opacity="{opacity}" stroke-linejoin="round" stroke-linecap="round" points=""#
+    )?;
     for (i, &p) in points.iter().enumerate() {
         let (x, y) = px(p);
         write!(s, "{}{x:.1},{y:.1}", if i == 0 { "" } else { " " })?;
@@ -447,7 +619,10 @@ fn write_ticks(s: &mut String, points: &[DVec2]) -> std::fmt::Result {
 }
 
 fn write_tick_at(s: &mut String, x: f64, y: f64) -> std::fmt::Result {
-    writeln!(s, r##"<circle cx="{x:.1}" cy="{y:.1}" r="2.2" fill="#f4f8f4" stroke="#111" stroke-width="0.8"/>"##)
+    writeln!(
+        s,
+        r##"<circle cx="{x:.1}" cy="{y:.1}" r="2.2" fill="#f4f8f4" stroke="#111" stroke-width="0.8"/>"##
+    )
 }
 
 /// A hollow ring at a player's start, its label inside.
@@ -457,12 +632,16 @@ fn write_start(s: &mut String, p: DVec2, colour: &str, label: &str) -> std::fmt:
 }
 
 fn write_start_at(s: &mut String, x: f64, y: f64, colour: &str, label: &str) -> std::fmt::Result {
-    let r = if label.is_empty() { MARKER - 2.0 } else { MARKER };
+    let r = if label.is_empty() {
+        MARKER - 2.0
+    } else {
+        MARKER
+    };
     writeln!(
         s,
         r#"<circle class="start" cx="{x:.1}" cy="{y:.1}" r="{r}" fill="black" fill-opacity="0.3" stroke="{colour}" stroke-width="2.5"/>"#
     )?;
-    write_label(s, x, y, label, colour)
+    write_label(s, x, y, label, "#ffffff")
 }
 
 /// A filled disc at a player's end, its label inside.
@@ -472,8 +651,15 @@ fn write_end(s: &mut String, p: DVec2, colour: &str, label: &str) -> std::fmt::R
 }
 
 fn write_end_at(s: &mut String, x: f64, y: f64, colour: &str, label: &str) -> std::fmt::Result {
-    let r = if label.is_empty() { MARKER - 2.0 } else { MARKER };
-    writeln!(s, r##"<circle class="end" cx="{x:.1}" cy="{y:.1}" r="{r}" fill="{colour}" stroke="#111" stroke-width="1.5"/>"##)?;
+    let r = if label.is_empty() {
+        MARKER - 2.0
+    } else {
+        MARKER
+    };
+    writeln!(
+        s,
+        r##"<circle class="end" cx="{x:.1}" cy="{y:.1}" r="{r}" fill="{colour}" stroke="#111" stroke-width="1.5"/>"##
+    )?;
     write_label(s, x, y, label, "#111")
 }
 
@@ -496,18 +682,31 @@ fn write_star(s: &mut String, p: DVec2, colour: &str) -> std::fmt::Result {
 }
 
 fn write_star_at(s: &mut String, x: f64, y: f64, colour: &str) -> std::fmt::Result {
-    write!(s, r##"<path class="kick" fill="{colour}" stroke="#111" stroke-width="1" stroke-linejoin="round" d=""##)?;
+    write!(
+        s,
+        r##"<path class="kick" fill="{colour}" stroke="#111" stroke-width="1" stroke-linejoin="round" d=""##
+    )?;
     for k in 0..10 {
-        let r = if k % 2 == 0 { 7.5 } else { 3.2 };
+        let r = if k % 2 == 0 { 6.5 } else { 2.8 };
         let a = -std::f64::consts::FRAC_PI_2 + f64::from(k) * std::f64::consts::PI / 5.0;
-        write!(s, "{}{:.1},{:.1}", if k == 0 { "M" } else { "L" }, x + r * a.cos(), y + r * a.sin())?;
+        write!(
+            s,
+            "{}{:.1},{:.1}",
+            if k == 0 { "M" } else { "L" },
+            x + r * a.cos(),
+            y + r * a.sin()
+        )?;
     }
     writeln!(s, r#"Z"/>"#)
 }
 
 /// Legend text at `x`; returns where the next item starts.
 fn legend_text(s: &mut String, x: f64, y: f64, text: &str) -> Result<f64, std::fmt::Error> {
-    writeln!(s, r##"<text x="{x:.1}" y="{:.1}" font-size="13" fill="#e8efe8">{text}</text>"##, y + 4.5)?;
+    writeln!(
+        s,
+        r##"<text x="{x:.1}" y="{:.1}" font-size="13" fill="#e8efe8">{text}</text>"##,
+        y + 4.5
+    )?;
     // DejaVu Sans at 13 px averages about 7.6 px per character.
     Ok(x + 7.6 * text.chars().count() as f64 + 16.0)
 }
@@ -524,7 +723,12 @@ mod tests {
     fn records_every_state_and_draws_every_path() {
         let t = trace(1, 2);
         assert_eq!(t.ball.len(), t.frames as usize + 1);
-        assert!(t.offense.iter().chain([&t.keeper]).all(|p| p.len() == t.ball.len()));
+        assert!(
+            t.offense
+                .iter()
+                .chain([&t.keeper])
+                .all(|p| p.len() == t.ball.len())
+        );
         assert!(t.outcome.is_terminal());
         let svg = t.to_svg();
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
@@ -536,7 +740,10 @@ mod tests {
         for label in [">7<", ">8<", ">11<", ">GK<"] {
             assert!(svg.contains(label), "{label}");
         }
-        assert!(!t.kicks.is_empty(), "a random episode has at least the first kick");
+        assert!(
+            !t.kicks.is_empty(),
+            "a random episode has at least the first kick"
+        );
     }
 
     #[test]

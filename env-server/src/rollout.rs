@@ -122,6 +122,10 @@ pub fn rollout(
         mean_frames_to_goal: ratio(goal_frames, outcomes.goal),
         outcomes,
         frames,
-        frames_per_sec: if secs > 0.0 { frames as f64 / secs } else { 0.0 },
+        frames_per_sec: if secs > 0.0 {
+            frames as f64 / secs
+        } else {
+            0.0
+        },
     })
 }

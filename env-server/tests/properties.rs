@@ -8,7 +8,14 @@ use glam::DVec2;
 use proptest::prelude::*;
 
 fn env(seed: u64, offense: usize) -> Env {
-    Env::new(EnvConfig { offense, ..EnvConfig::default() }, seed).expect("valid config")
+    Env::new(
+        EnvConfig {
+            offense,
+            ..EnvConfig::default()
+        },
+        seed,
+    )
+    .expect("valid config")
 }
 
 proptest! {
@@ -89,11 +96,18 @@ fn episode_start_follows_hfo() {
         env.reset();
         let w = env.world();
         assert_eq!(env.frame(), 0);
-        assert!((0.0..=10.5 + 1.0).contains(&w.ball.pos.x), "ball x {}", w.ball.pos.x);
+        assert!(
+            (0.0..=10.5 + 1.0).contains(&w.ball.pos.x),
+            "ball x {}",
+            w.ball.pos.x
+        );
         assert!(w.ball.pos.y.abs() <= 27.2 + 1.0);
         assert!(w.keeper.pos.distance(GOAL_CENTER) < 3.0);
         for p in &w.offense {
-            assert!(p.pos.distance(w.ball.pos) > AGENT_KICKABLE_AREA, "nobody starts in possession");
+            assert!(
+                p.pos.distance(w.ball.pos) > AGENT_KICKABLE_AREA,
+                "nobody starts in possession"
+            );
         }
     }
 }

@@ -97,14 +97,22 @@ pub fn intercept(
     }
     let threshold = 12f64.to_radians().max((control / d).min(1.0).asin());
     if e > threshold {
-        let face = if back { direction(rel) + PI } else { direction(rel) };
+        let face = if back {
+            direction(rel) + PI
+        } else {
+            direction(rel)
+        };
         return turn_to_direction(p, face);
     }
     if p.stamina - MAX_DASH_POWER < 0.3 * STAMINA_MAX + 1.0 {
         return Command::Turn { moment: 0.0 };
     }
     Command::Dash {
-        power: if back { -MAX_DASH_POWER } else { MAX_DASH_POWER },
+        power: if back {
+            -MAX_DASH_POWER
+        } else {
+            MAX_DASH_POWER
+        },
         dir: 0.0,
     }
 }

@@ -105,7 +105,11 @@ fn kick_candidates<'a>(
     a: usize,
 ) -> impl Iterator<Item = Candidate> + 'a {
     let rel_angle = a as f64 * PI / 8.0;
-    let folded = if rel_angle > PI { 2.0 * PI - rel_angle } else { rel_angle };
+    let folded = if rel_angle > PI {
+        2.0 * PI - rel_angle
+    } else {
+        rel_angle
+    };
     let sign = if rel_angle > PI { -1.0 } else { 1.0 };
     let (n_turn, left) = turns_for(folded, me.vel.length());
     let dir = me.body + sign * (folded - left);
@@ -117,7 +121,13 @@ fn kick_candidates<'a>(
         .filter_map(move |n_dash| kick_candidate(s, me, dir, n_turn, n_dash))
 }
 
-fn kick_candidate(s: &Situation, me: &Player, dir: f64, n_turn: usize, n_dash: usize) -> Option<Candidate> {
+fn kick_candidate(
+    s: &Situation,
+    me: &Player,
+    dir: f64,
+    n_turn: usize,
+    n_dash: usize,
+) -> Option<Candidate> {
     let ball = &s.world.ball;
     // Kicker after the kick cycle, the turns and the dashes.
     let mut pos = me.pos + me.vel;
@@ -139,7 +149,8 @@ fn kick_candidate(s: &Situation, me: &Player, dir: f64, n_turn: usize, n_dash: u
     }
     let cycles = 1 + n_turn + n_dash;
     let first = (trap - ball.pos) / decay_sum(BALL_DECAY, cycles as u32);
-    if first.length() > BALL_SPEED_MAX || (first - ball.vel).length() > max_kick_accel(me, ball.pos) {
+    if first.length() > BALL_SPEED_MAX || (first - ball.vel).length() > max_kick_accel(me, ball.pos)
+    {
         return None;
     }
     if (ball.pos + first).distance(self_next) < PLAYER_SIZE + BALL_SIZE + 0.1 {
@@ -155,14 +166,24 @@ fn kick_candidate(s: &Situation, me: &Player, dir: f64, n_turn: usize, n_dash: u
 }
 
 /// Whether the keeper reaches the dribble's end point in time (spec 6.3.1).
-fn keeper_gets_there_first(s: &Situation, me: &Player, trap: DVec2, dir: f64, cycles: usize) -> bool {
+fn keeper_gets_there_first(
+    s: &Situation,
+    me: &Player,
+    trap: DVec2,
+    dir: f64,
+    cycles: usize,
+) -> bool {
     let keeper = &s.world.keeper;
     let ball = s.world.ball.pos;
     let behind = (keeper.pos - ball).dot(DVec2::from_angle(dir)) < -4.0;
     if keeper.pos.distance(me.pos) > 20.0 || behind {
         return false;
     }
-    let control = if in_penalty_area(trap) { KEEPER_CONTROL_AREA } else { KICKABLE_AREA };
+    let control = if in_penalty_area(trap) {
+        KEEPER_CONTROL_AREA
+    } else {
+        KICKABLE_AREA
+    };
     let drift = keeper.drift(cycles as u32);
     let dist = drift.distance(trap);
     if dist < control {
@@ -192,11 +213,15 @@ fn dash_candidates(s: &Situation) -> impl Iterator<Item = Candidate> + use<> {
             let far = KICKABLE_AREA - 0.15;
             // The largest dash (in 0.05 accel steps) that keeps the ball in the band.
             let max_accel = MAX_DASH_POWER * DASH_POWER_RATE * me.effort;
-            let fits = (0..=12).rev().map(|k| k as f64 * 0.05).filter(|&a| a <= max_accel).find_map(|acc| {
-                let v = (vel + facing * acc).clamp_length_max(PLAYER_SPEED_MAX);
-                let d = (pos + v).distance(bpos);
-                (d >= near && d <= far).then_some((acc, v))
-            });
+            let fits = (0..=12)
+                .rev()
+                .map(|k| k as f64 * 0.05)
+                .filter(|&a| a <= max_accel)
+                .find_map(|acc| {
+                    let v = (vel + facing * acc).clamp_length_max(PLAYER_SPEED_MAX);
+                    let d = (pos + v).distance(bpos);
+                    (d >= near && d <= far).then_some((acc, v))
+                });
             let Some((acc, v)) = fits else { break };
             if bpos.x.abs() > 52.0 || bpos.y.abs() > 33.5 {
                 break;

@@ -17,7 +17,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// 1.3 m catchable area because a fast ball passes a keeper who catches at
 /// arm's length (the catch does not stop the ball in HFO). Calibrated, see
 /// docs/calibration.md.
-const INTERCEPT_AIM: f64 = 1.0;
+const INTERCEPT_AIM: f64 = 0.6;
 
 /// What the keeper remembers between cycles.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -92,7 +92,8 @@ impl<'a> View<'a> {
             return true;
         }
         let i = self.intercept_point;
-        if i.y.abs() > PENALTY_AREA_HALF_WIDTH - self.pen_thr || i.x < PENALTY_AREA_X + self.pen_thr {
+        if i.y.abs() > PENALTY_AREA_HALF_WIDTH - self.pen_thr || i.x < PENALTY_AREA_X + self.pen_thr
+        {
             return false;
         }
         if opp_min + 2 <= self_min {
@@ -106,6 +107,16 @@ impl<'a> View<'a> {
             .any(|a| a.pos.distance(i) < keeper_to_i - 2.0)
     }
 
+    /// Whether the ball, left alone, crosses the goal line near the goal.
+    fn ball_heads_for_goal(&self) -> bool {
+        let ball = &self.world.ball;
+        if ball.vel.x <= 0.0 || self.world.ball_final().x <= 50.5 {
+            return false;
+        }
+        let y_at_line = ball.pos.y + ball.vel.y * (PITCH_HALF_LENGTH - ball.pos.x) / ball.vel.x;
+        y_at_line.abs() < 9.01
+    }
+
     /// `is_ball_shoot_moving` (spec 7.2 step 2).
     fn is_shot_on_goal(&self) -> bool {
         let ball = &self.world.ball;
@@ -115,7 +126,11 @@ impl<'a> View<'a> {
         if ball.vel.x.abs() < 0.1 && ball.pos.x > 46.0 && ball.pos.y.abs() < 9.01 {
             return true;
         }
-        if ball.vel.x <= 0.0 || ball.pos.x <= 40.0 || ball.pos.y.abs() >= 15.0 || ball.vel.length() <= 0.5 {
+        if ball.vel.x <= 0.0
+            || ball.pos.x <= 40.0
+            || ball.pos.y.abs() >= 15.0
+            || ball.vel.length() <= 0.5
+        {
             return false;
         }
         let y_at_line = ball.pos.y + ball.vel.y * (PITCH_HALF_LENGTH - ball.pos.x) / ball.vel.x;
@@ -125,9 +140,13 @@ impl<'a> View<'a> {
     fn intercept(&self) -> Command {
         let path = self.analysis.path();
         let mut reach = reach_cycle(self.keeper, path, Some(INTERCEPT_AIM));
-        if self.is_shot_on_goal() && reach < path.len() {
-            // Against a shot, wait on the ball's path as close to the goal line as possible.
-            let last_in_front = path.iter().rposition(|b| b.x < PITCH_HALF_LENGTH - 1.0).unwrap_or(reach);
+        if self.ball_heads_for_goal() && reach < path.len() {
+            // Against a ball heading for goal, wait on its path as close to the
+            // goal line as possible instead of running out to meet it.
+            let last_in_front = path
+                .iter()
+                .rposition(|b| b.x < PITCH_HALF_LENGTH - 1.0)
+                .unwrap_or(reach);
             reach = reach.max(last_in_front);
         }
         intercept(
@@ -182,14 +201,22 @@ impl<'a> View<'a> {
         }
         let mut target = crossing;
         if ball.pos.x < 35.0 {
-            target.y = if ball.pos.y * target.y < 0.0 { 0.0 } else { target.y / 2.0 };
+            target.y = if ball.pos.y * target.y < 0.0 {
+                0.0
+            } else {
+                target.y / 2.0
+            };
         }
         go_to_catch_point(self.keeper, target)
     }
 
     /// `getTargetPoint` (spec 7.4).
     fn target_point(&self) -> DVec2 {
-        let n = if self.attacker_kickable { 0 } else { self.opp_min };
+        let n = if self.attacker_kickable {
+            0
+        } else {
+            self.opp_min
+        };
         let b = self.world.ball_inertia(n.min(1000) as u32);
         let near_post = |post_y: f64| direction(DVec2::new(PITCH_HALF_LENGTH, post_y) - b);
         let (lo, hi) = (40f64.to_radians(), FRAC_PI_2);
@@ -255,7 +282,14 @@ impl<'a> View<'a> {
         // Deep cross: hold the near-post spot facing the field.
         if target.y.abs() >= 6.21 && ball_off_axis {
             return go_to_point(k, target, tolerance, power).unwrap_or_else(|| {
-                turn_to_direction(k, if ball.y > 0.0 { -170f64.to_radians() } else { 170f64.to_radians() })
+                turn_to_direction(
+                    k,
+                    if ball.y > 0.0 {
+                        -170f64.to_radians()
+                    } else {
+                        170f64.to_radians()
+                    },
+                )
             });
         }
         let to_target = target - k.pos;
@@ -279,12 +313,18 @@ impl<'a> View<'a> {
                 .or_else(|| go_to_point(k, target, tolerance, MAX_DASH_POWER))
                 .unwrap_or_else(|| turn_to_point(k, ball));
         }
-        if (target.x - k.pos.x).abs() >= 0.5 && ((!self.attacker_kickable && self.opp_min >= 4) || self.ball_dist > 18.0) {
+        if (target.x - k.pos.x).abs() >= 0.5
+            && ((!self.attacker_kickable && self.opp_min >= 4) || self.ball_dist > 18.0)
+        {
             if let Some(cmd) = go_to_point(k, target, 0.5, power) {
                 return cmd;
             }
         }
-        let side = if self.ball_next.y > k.pos.y { FRAC_PI_2 } else { -FRAC_PI_2 };
+        let side = if self.ball_next.y > k.pos.y {
+            FRAC_PI_2
+        } else {
+            -FRAC_PI_2
+        };
         let body_off = angle_diff(k.body, side) > 5f64.to_radians();
         if body_off && !ball_off_axis && (self.opp_min > 7 || self.ball_dist > 20.0) {
             return turn_to_direction(k, side);
@@ -305,7 +345,8 @@ fn go_to_y(k: &Player, target: DVec2, ball_dist: f64, power: f64) -> Option<Comm
     if dy.abs() < (0.08 * ball_dist).max(0.5) {
         return None;
     }
-    let parallel = angle_diff(k.body, FRAC_PI_2).min(angle_diff(k.body, -FRAC_PI_2)) < 7f64.to_radians();
+    let parallel =
+        angle_diff(k.body, FRAC_PI_2).min(angle_diff(k.body, -FRAC_PI_2)) < 7f64.to_radians();
     if !parallel {
         return go_to_point(k, target, 0.5, power);
     }
@@ -325,9 +366,15 @@ fn go_to_catch_point(k: &Player, target: DVec2) -> Command {
     let e = normalize_angle(direction(rel) - k.body);
     let buf = (1.17 / rel.length().max(1e-6)).atan();
     if e.abs() < buf {
-        Command::Dash { power: MAX_DASH_POWER, dir: 0.0 }
+        Command::Dash {
+            power: MAX_DASH_POWER,
+            dir: 0.0,
+        }
     } else if e.abs() > PI - buf {
-        Command::Dash { power: -MAX_DASH_POWER, dir: 0.0 }
+        Command::Dash {
+            power: -MAX_DASH_POWER,
+            dir: 0.0,
+        }
     } else if e.abs() < FRAC_PI_2 {
         turn_to_direction(k, k.body + e)
     } else {

@@ -84,7 +84,12 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
         return;
     }
     if r.x < me.pos.x + 5.0 {
-        let defense_line = s.world.offense.iter().map(|p| p.pos.x).fold(ball.x.min(0.0), f64::min);
+        let defense_line = s
+            .world
+            .offense
+            .iter()
+            .map(|p| p.pos.x)
+            .fold(ball.x.min(0.0), f64::min);
         let forward = direction(r - me.pos).abs() < 40f64.to_radians();
         if !forward && !(r.x > defense_line + 10.0 && r.x > 0.0) {
             return;
@@ -105,7 +110,11 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
     }
     let spread = KICKABLE_AREA / dist;
     let base = direction(receive - ball);
-    let aims = [(0.0, speed), (spread, 0.94 * speed), (-spread, 0.94 * speed)];
+    let aims = [
+        (0.0, speed),
+        (spread, 0.94 * speed),
+        (-spread, 0.94 * speed),
+    ];
     for (offset, v0) in aims {
         let target = ball + polar(dist, base + offset);
         if !keeper_near_path(s, target, v0) {
@@ -141,7 +150,10 @@ fn lead_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)) {
         for sign in [-1.0, 1.0] {
             let target = ball + polar(dist, base + sign * k as f64 * step);
             let behind_self_or_mate = target.x < me.pos.x.min(r.x);
-            if !inside_shrunk_pitch(target) || target.x < r.x - 6.0 || (target.x < 0.0 && behind_self_or_mate) {
+            if !inside_shrunk_pitch(target)
+                || target.x < r.x - 6.0
+                || (target.x < 0.0 && behind_self_or_mate)
+            {
                 continue;
             }
             if through_pass_safe(s, mate, target, speed) {
@@ -169,7 +181,8 @@ fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)
         for l in [5.0, 9.0, 13.0, 17.0, 21.0, 25.0] {
             let target = r + polar(l, theta.to_radians());
             let dist = target.distance(ball);
-            if !inside_shrunk_pitch(target) || target.x < me.pos.x + 3.0 || dist > 45.0 || dist < l {
+            if !inside_shrunk_pitch(target) || target.x < me.pos.x + 3.0 || dist > 45.0 || dist < l
+            {
                 continue;
             }
             let receiver_cycles = target.distance(r);
@@ -201,8 +214,13 @@ fn through_pass_safe(s: &Situation, mate: &Player, target: DVec2, speed: f64) ->
     let very_aggressive = (target.x > 28.0 && target.x > ball.x + 20.0)
         || (target.x > line + 15.0 && target.x > ball.x + 15.0)
         || (target.x > 38.0 && target.x > line && target.y.abs() < 14.0);
-    let (rate, buf) = if very_aggressive { (0.8, 0.5) } else { (1.0, 2.0) };
-    keeper.distance(target) >= rate * mate.pos.distance(target) + buf && !keeper_near_path(s, target, speed)
+    let (rate, buf) = if very_aggressive {
+        (0.8, 0.5)
+    } else {
+        (1.0, 2.0)
+    };
+    keeper.distance(target) >= rate * mate.pos.distance(target) + buf
+        && !keeper_near_path(s, target, speed)
 }
 
 /// `evaluate_routes` (spec 6.4 step 6), with every direction counted as just seen.

@@ -3,6 +3,7 @@
 
 use super::Situation;
 use super::body::{max_one_kick_speed, smart_kick};
+use crate::analysis::DRIFT;
 use crate::geom::{angle_diff, direction};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel};
@@ -28,8 +29,8 @@ pub struct LongShot {
 impl Default for LongShot {
     fn default() -> Self {
         LongShot {
-            speed: 2.2,
-            min_speed: 1.5,
+            speed: 2.0,
+            min_speed: 1.2,
             sigma_deg: 10.0,
         }
     }
@@ -100,8 +101,12 @@ fn long_shot(s: &Situation, keeper_dir: f64) -> Command {
                 one_kick: false,
                 keeper_never_reaches: false,
             };
-            score(&course(*a), ball, keeper_dir, cfg.sigma_deg)
-                .total_cmp(&score(&course(*b), ball, keeper_dir, cfg.sigma_deg))
+            score(&course(*a), ball, keeper_dir, cfg.sigma_deg).total_cmp(&score(
+                &course(*b),
+                ball,
+                keeper_dir,
+                cfg.sigma_deg,
+            ))
         })
         .unwrap_or(GOAL_CENTER);
     smart_kick(me, s.world, target, cfg.speed, cfg.min_speed)
@@ -190,8 +195,12 @@ fn keeper_verdict(s: &Situation, target: DVec2, speed: f64) -> Option<bool> {
             break;
         }
         let in_area = b.x >= PENALTY_AREA_X && b.y.abs() <= PENALTY_AREA_HALF_WIDTH;
-        let control = if in_area { KEEPER_CONTROL_AREA } else { KICKABLE_AREA };
-        let k = keeper.drift(c as u32);
+        let control = if in_area {
+            KEEPER_CONTROL_AREA
+        } else {
+            KICKABLE_AREA
+        };
+        let k = keeper.pos + keeper.vel * DRIFT[c.min(DRIFT.len() - 1)];
         let mut dist = b.distance(k);
         if in_area {
             dist -= 0.02 * keeper_shooter;
@@ -226,7 +235,9 @@ fn turn_cycles(keeper: &Player, rel: DVec2, dist: f64, control: f64) -> usize {
     if dist < 5.0 && angle > FRAC_PI_2 {
         angle = PI - angle;
     }
-    let threshold = 15f64.to_radians().max(((control + 0.1) / dist).min(1.0).asin());
+    let threshold = 15f64
+        .to_radians()
+        .max(((control + 0.1) / dist).min(1.0).asin());
     let mut speed = keeper.vel.length();
     let mut n = 0;
     while angle > threshold && n < 10 {
