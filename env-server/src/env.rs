@@ -85,7 +85,7 @@ impl EnvConfig {
         if !(min_speed > 0.0 && min_speed <= speed) {
             return Err(ConfigError::LongShotMinSpeed(min_speed));
         }
-        if !(self.long_shot.sigma_deg > 0.0) {
+        if self.long_shot.sigma_deg.is_nan() || self.long_shot.sigma_deg <= 0.0 {
             return Err(ConfigError::LongShotSigma(self.long_shot.sigma_deg));
         }
         Ok(())

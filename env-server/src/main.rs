@@ -1,6 +1,6 @@
 //! `env-server`: run the HFO simulator from the command line.
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use env_server::{BaselinePolicy, EnvConfig, render, rollout};
 use std::path::PathBuf;
@@ -32,6 +32,9 @@ enum Command {
         /// Number of offense agents (1 to 4).
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=4))]
         offense: u8,
+        /// Simulator settings as JSON (`EnvConfig` fields; missing ones keep their defaults).
+        #[arg(long, value_name = "FILE")]
+        env_config: Option<PathBuf>,
         /// Print one JSON object instead of a readable summary.
         #[arg(long)]
         json: bool,
@@ -53,6 +56,9 @@ enum Command {
         /// Number of offense agents (1 to 4).
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=4))]
         offense: u8,
+        /// Simulator settings as JSON (`EnvConfig` fields; missing ones keep their defaults).
+        #[arg(long, value_name = "FILE")]
+        env_config: Option<PathBuf>,
     },
 }
 
@@ -101,10 +107,11 @@ fn run(cli: Cli) -> Result<()> {
             seed,
             offense,
             json,
+            env_config,
         } => {
             let config = EnvConfig {
                 offense: offense.into(),
-                ..EnvConfig::default()
+                ..load_env_config(env_config.as_deref())?
             };
             let s = rollout(config, policy, episodes, seed)?;
             if json {
@@ -132,11 +139,12 @@ fn run(cli: Cli) -> Result<()> {
             episode,
             out,
             offense,
+            env_config,
         } => {
             render::Format::of(&out)?;
             let config = EnvConfig {
                 offense: offense.into(),
-                ..EnvConfig::default()
+                ..load_env_config(env_config.as_deref())?
             };
             let trace = render::record_episode(config, policy, seed, episode)?;
             render::write_picture(&trace, &out)?;
@@ -144,4 +152,17 @@ fn run(cli: Cli) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Reads simulator settings from a JSON file, or the defaults without one.
+fn load_env_config(path: Option<&std::path::Path>) -> Result<EnvConfig> {
+    let Some(path) = path else {
+        return Ok(EnvConfig::default());
+    };
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read env config {}", path.display()))?;
+    let config: EnvConfig = serde_json::from_str(&text)
+        .with_context(|| format!("invalid env config {}", path.display()))?;
+    config.validate()?;
+    Ok(config)
 }

@@ -191,19 +191,27 @@ fn prepare_kick(p: &Player, world: &World, target: DVec2, min_speed: f64) -> Opt
     kick_to_velocity(p, ball, vel)
 }
 
-/// Body_HoldBall (spec 6.3.4), simplified: keep the ball 0.6 m from the
-/// player's next position on the side away from the keeper, or, when that
-/// is already the case, turn towards the goal.
+/// Body_HoldBall (spec 6.3.4), simplified: with the keeper near, keep the
+/// ball 0.6 m from the player's next position on the side away from it;
+/// otherwise turn towards the goal, then keep the ball in front of the body
+/// where the next kick is strongest.
 pub fn hold_ball(p: &Player, world: &World) -> Command {
     let ball = &world.ball;
     let next_self = p.pos + p.vel;
-    let away = direction(next_self - world.keeper.pos);
-    let spot = next_self + polar(0.6, away);
     let ball_next = ball.pos + ball.vel;
     let safe = ball_next.distance(next_self) < AGENT_KICKABLE_AREA - 0.2
         && ball_next.distance(world.keeper.pos) > KICKABLE_AREA + 2.0;
-    if safe {
-        return turn_to_point(p, GOAL_CENTER);
+    let spot = if safe {
+        let to_goal = direction(GOAL_CENTER - next_self);
+        if angle_diff(to_goal, p.body) > 10f64.to_radians() {
+            return turn_to_point(p, GOAL_CENTER);
+        }
+        next_self + polar(PLAYER_SIZE + BALL_SIZE + 0.15, p.body)
+    } else {
+        next_self + polar(0.6, direction(next_self - world.keeper.pos))
+    };
+    if safe && ball_next.distance(spot) < 0.1 {
+        return Command::Turn { moment: 0.0 };
     }
     kick_to_velocity(p, ball, spot - ball.pos).unwrap_or(Command::Kick {
         power: MAX_KICK_POWER,

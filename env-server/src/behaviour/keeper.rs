@@ -313,12 +313,10 @@ impl<'a> View<'a> {
                 .or_else(|| go_to_point(k, target, tolerance, MAX_DASH_POWER))
                 .unwrap_or_else(|| turn_to_point(k, ball));
         }
-        if (target.x - k.pos.x).abs() >= 0.5
-            && ((!self.attacker_kickable && self.opp_min >= 4) || self.ball_dist > 18.0)
-        {
-            if let Some(cmd) = go_to_point(k, target, 0.5, power) {
-                return cmd;
-            }
+        let correct_x = (target.x - k.pos.x).abs() >= 0.5
+            && ((!self.attacker_kickable && self.opp_min >= 4) || self.ball_dist > 18.0);
+        if correct_x && let Some(cmd) = go_to_point(k, target, 0.5, power) {
+            return cmd;
         }
         let side = if self.ball_next.y > k.pos.y {
             FRAC_PI_2

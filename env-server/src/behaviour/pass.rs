@@ -91,7 +91,8 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
             .map(|p| p.pos.x)
             .fold(ball.x.min(0.0), f64::min);
         let forward = direction(r - me.pos).abs() < 40f64.to_radians();
-        if !forward && !(r.x > defense_line + 10.0 && r.x > 0.0) {
+        let behind_defence = r.x > defense_line + 10.0 && r.x > 0.0;
+        if !(forward || behind_defence) {
             return;
         }
     }

@@ -29,7 +29,7 @@ pub struct LongShot {
 impl Default for LongShot {
     fn default() -> Self {
         LongShot {
-            speed: 2.0,
+            speed: 1.9,
             min_speed: 1.2,
             sigma_deg: 10.0,
         }
