@@ -3,6 +3,7 @@
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
 use crate::formation::home_positions;
+use crate::geom::unit;
 use crate::params::*;
 use crate::world::{Player, World};
 use glam::DVec2;
@@ -160,7 +161,7 @@ const COS_12_DEG: f64 = 0.978_147_600_733_805_6;
 /// Reach cycle of player `p` for the ball path `path` (spec 6.1.2);
 /// `keeper_control` is the keeper's control area inside its penalty area.
 pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
-    let facing = DVec2::from_angle(p.body);
+    let facing = unit(p.body);
     // Vector from where the player drifts to after t cycles to the ball, and the control area.
     let reach_vector = |t: usize, b: DVec2| {
         let control = match keeper_control {

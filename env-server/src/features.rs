@@ -33,7 +33,7 @@ fn largest_open_angle(from: DVec2, bottom: f64, top: f64, keeper: DVec2, max_dis
         return (top - bottom).max(0.0);
     }
     let phi = direction(keeper - from);
-    let h = (KICKABLE_AREA / 2.0).atan2(d);
+    let h = libm::atan2(KICKABLE_AREA / 2.0, d);
     if phi + h < bottom || phi - h > top {
         return (top - bottom).max(0.0);
     }

@@ -15,15 +15,28 @@ pub fn normalize_angle(a: f64) -> f64 {
     a
 }
 
+// Trigonometry goes through the pure-Rust `libm` crate: faster than the
+// system library here and bit-identical on every platform.
+
 /// The vector of length `r` in direction `angle`.
 pub fn polar(r: f64, angle: f64) -> DVec2 {
-    let (s, c) = angle.sin_cos();
+    let (s, c) = libm::sincos(angle);
     DVec2::new(r * c, r * s)
+}
+
+/// The unit vector in direction `angle`.
+pub fn unit(angle: f64) -> DVec2 {
+    polar(1.0, angle)
 }
 
 /// Global direction of `v` (radians).
 pub fn direction(v: DVec2) -> f64 {
-    v.y.atan2(v.x)
+    libm::atan2(v.y, v.x)
+}
+
+/// `asin(x)` for `x` clamped to at most 1.
+pub fn asin_clamped(x: f64) -> f64 {
+    libm::asin(x.min(1.0))
 }
 
 /// Absolute angle between two directions, in `[0, π]`.

@@ -1,5 +1,6 @@
 //! The world state: ball, offense players and goalkeeper (plain data, no behaviour).
 
+use crate::geom::decay_sum;
 use crate::params::*;
 use glam::DVec2;
 
@@ -52,7 +53,7 @@ impl Player {
 
     /// Where the player drifts to after `n` cycles without commands.
     pub fn drift(&self, n: u32) -> DVec2 {
-        self.pos + self.vel * crate::geom::decay_sum(PLAYER_DECAY, n)
+        self.pos + self.vel * decay_sum(PLAYER_DECAY, n)
     }
 
     /// Where the player comes to rest without commands.
@@ -118,7 +119,7 @@ impl World {
 
     /// Ball position after `n` cycles without kicks.
     pub fn ball_inertia(&self, n: u32) -> DVec2 {
-        self.ball.pos + self.ball.vel * crate::geom::decay_sum(BALL_DECAY, n)
+        self.ball.pos + self.ball.vel * decay_sum(BALL_DECAY, n)
     }
 
     /// Where the ball comes to rest without kicks.

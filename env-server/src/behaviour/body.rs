@@ -1,7 +1,7 @@
 //! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5, 6.2.3 and 6.3.4 allow.
 
 use crate::analysis::Analysis;
-use crate::geom::{angle_diff, direction, normalize_angle, polar};
+use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_for_accel, kick_rate, max_kick_accel};
 use crate::world::{Ball, Player, World};
@@ -23,7 +23,7 @@ pub fn turn_to_point(p: &Player, target: DVec2) -> Command {
 
 /// Dash that cancels the player's velocity as far as one dash can.
 pub fn stop_dash(p: &Player) -> Command {
-    let along = p.vel.dot(DVec2::from_angle(p.body));
+    let along = p.vel.dot(unit(p.body));
     Command::Dash {
         power: (-along / (DASH_POWER_RATE * p.effort)).clamp(-MAX_DASH_POWER, MAX_DASH_POWER),
         dir: 0.0,
@@ -44,7 +44,7 @@ pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) ->
     if back {
         e = normalize_angle(e + PI);
     }
-    let threshold = 15f64.to_radians().max((tolerance / dist).min(1.0).asin());
+    let threshold = 15f64.to_radians().max(asin_clamped(tolerance / dist));
     if e.abs() > threshold {
         return Some(turn_to_direction(p, p.body + e));
     }
@@ -95,7 +95,7 @@ pub fn intercept(
     if back {
         e = PI - e;
     }
-    let threshold = 12f64.to_radians().max((control / d).min(1.0).asin());
+    let threshold = 12f64.to_radians().max(asin_clamped(control / d));
     if e > threshold {
         let face = if back {
             direction(rel) + PI
@@ -120,7 +120,7 @@ pub fn intercept(
 /// Largest speed along `dir` that one kick can give a ball moving at
 /// `ball_vel` with at most `max_accel` (librcsc `calc_max_velocity`).
 pub fn max_one_kick_speed(dir: f64, ball_vel: DVec2, max_accel: f64) -> f64 {
-    let u = DVec2::from_angle(dir);
+    let u = unit(dir);
     let uc = u.dot(ball_vel);
     let disc = uc * uc - ball_vel.length_squared() + max_accel * max_accel;
     if disc < 0.0 {

@@ -3,7 +3,7 @@
 
 use super::Situation;
 use super::body::{hold_ball, kick_to_velocity, turn_to_point};
-use crate::geom::{angle_diff, decay_sum, direction, polar};
+use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel};
 use crate::world::Player;
@@ -71,7 +71,7 @@ pub fn can_shoot_from(from: DVec2, keeper: DVec2) -> bool {
     let step = (width / 10.0).max(2f64.to_radians());
     let keeper_dist = keeper.distance(from);
     let keeper_dir = direction(keeper - from);
-    let hide = (1.2 / keeper_dist.max(1e-6)).min(1.0).asin();
+    let hide = asin_clamped(1.2 / keeper_dist.max(1e-6));
     let threshold = 20f64.to_radians();
     let mut a = left.min(right);
     while a <= left.max(right) + 1e-9 {
@@ -113,7 +113,7 @@ fn kick_candidates<'a>(
     let sign = if rel_angle > PI { -1.0 } else { 1.0 };
     let (n_turn, left) = turns_for(folded, me.vel.length());
     let dir = me.body + sign * (folded - left);
-    let backward = me.pos.x < 16.0 && crate::geom::normalize_angle(dir).abs() > 100f64.to_radians();
+    let backward = me.pos.x < 16.0 && normalize_angle(dir).abs() > 100f64.to_radians();
     let ok = n_turn < 3 && !backward;
     [4usize, 3, 2]
         .into_iter()
@@ -175,7 +175,7 @@ fn keeper_gets_there_first(
 ) -> bool {
     let keeper = &s.world.keeper;
     let ball = s.world.ball.pos;
-    let behind = (keeper.pos - ball).dot(DVec2::from_angle(dir)) < -4.0;
+    let behind = (keeper.pos - ball).dot(unit(dir)) < -4.0;
     if keeper.pos.distance(me.pos) > 20.0 || behind {
         return false;
     }
@@ -205,7 +205,7 @@ fn dash_candidates(s: &Situation) -> impl Iterator<Item = Candidate> + use<> {
         let mut pos = me.pos;
         let mut vel = me.vel;
         let (mut bpos, mut bvel) = (ball.pos, ball.vel);
-        let facing = DVec2::from_angle(me.body);
+        let facing = unit(me.body);
         for n in 1..=20usize.min(keeper_reach) {
             bpos += bvel;
             bvel *= BALL_DECAY;

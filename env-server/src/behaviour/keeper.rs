@@ -3,7 +3,7 @@
 
 use super::body::{BackDash, go_to_point, intercept, stop_dash, turn_to_direction, turn_to_point};
 use crate::analysis::{Analysis, reach_cycle};
-use crate::geom::{angle_diff, direction, normalize_angle};
+use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
 use crate::world::{Player, World};
@@ -233,7 +233,7 @@ impl<'a> View<'a> {
             b
         } else {
             let m = self.opp_min.min(5) as u32;
-            b + self.world.ball.vel * crate::geom::decay_sum(BALL_DECAY, m)
+            b + self.world.ball.vel * decay_sum(BALL_DECAY, m)
         };
         p.x = p.x.min(59.4);
         let behind = DVec2::new(59.5, 0.0);
@@ -348,7 +348,7 @@ fn go_to_y(k: &Player, target: DVec2, ball_dist: f64, power: f64) -> Option<Comm
     if !parallel {
         return go_to_point(k, target, 0.5, power);
     }
-    let forward = DVec2::from_angle(k.body);
+    let forward = unit(k.body);
     let needed = (target - k.final_drift()).dot(forward);
     let dash = (needed.abs() * (1.0 - PLAYER_DECAY) / (DASH_POWER_RATE * k.effort)).min(power);
     Some(Command::Dash {

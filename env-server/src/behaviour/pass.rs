@@ -3,7 +3,7 @@
 
 use super::Situation;
 use super::body::smart_kick;
-use crate::geom::{angle_diff, direction, polar};
+use crate::geom::{angle_diff, direction, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_rate};
 use crate::world::Player;
@@ -63,7 +63,7 @@ fn keeper_near_path(s: &Situation, target: DVec2, speed: f64) -> bool {
         return false;
     }
     let origin = ball + polar(speed, dir);
-    let u = DVec2::from_angle(dir);
+    let u = unit(dir);
     let rel = keeper - origin;
     let along = rel.dot(u);
     let length = target.distance(origin);

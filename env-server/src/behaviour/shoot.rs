@@ -4,7 +4,7 @@
 use super::Situation;
 use super::body::{max_one_kick_speed, smart_kick};
 use crate::analysis::DRIFT;
-use crate::geom::{angle_diff, direction};
+use crate::geom::{angle_diff, asin_clamped, direction};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel};
 use crate::world::Player;
@@ -29,7 +29,7 @@ pub struct LongShot {
 impl Default for LongShot {
     fn default() -> Self {
         LongShot {
-            speed: 1.9,
+            speed: 1.85,
             min_speed: 1.2,
             sigma_deg: 10.0,
         }
@@ -235,9 +235,7 @@ fn turn_cycles(keeper: &Player, rel: DVec2, dist: f64, control: f64) -> usize {
     if dist < 5.0 && angle > FRAC_PI_2 {
         angle = PI - angle;
     }
-    let threshold = 15f64
-        .to_radians()
-        .max(((control + 0.1) / dist).min(1.0).asin());
+    let threshold = 15f64.to_radians().max(asin_clamped((control + 0.1) / dist));
     let mut speed = keeper.vel.length();
     let mut n = 0;
     while angle > threshold && n < 10 {
