@@ -24,7 +24,7 @@ enum Command {
         #[arg(long, default_value = "random")]
         policy: BaselinePolicy,
         /// Number of episodes (at least 1).
-        #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..))]
+        #[arg(long, default_value_t = 1000, value_parser = at_least_one)]
         episodes: u64,
         /// Seed of every random choice.
         #[arg(long, default_value_t = 1)]
@@ -48,7 +48,7 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Which episode of that rollout to draw (1 is the first).
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        #[arg(long, default_value_t = 1, value_parser = at_least_one)]
         episode: u64,
         /// Output file, ending in .svg or .png.
         #[arg(long)]
@@ -165,4 +165,13 @@ fn load_env_config(path: Option<&std::path::Path>) -> Result<EnvConfig> {
         .with_context(|| format!("invalid env config {}", path.display()))?;
     config.validate()?;
     Ok(config)
+}
+
+/// Parses a count that must be at least 1.
+fn at_least_one(s: &str) -> Result<u64, String> {
+    match s.parse::<u64>() {
+        Ok(0) => Err("must be at least 1".to_owned()),
+        Ok(n) => Ok(n),
+        Err(_) => Err("expected a whole number of at least 1".to_owned()),
+    }
 }
