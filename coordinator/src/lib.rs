@@ -1,1 +1,49 @@
-//! Experiment protocol, statistics and reports (filled by the agents issue).
+//! Experiments of "ad hoc advising among simultaneously learning agents"
+//! (da Silva, Glatt & Costa, AAMAS 2017): the protocol of algorithms.md
+//! section 4 for one configuration, its runs in parallel, statistics and
+//! output files.
+//!
+//! - [`config`]: what an experiment is ([`ExperimentConfig`], one
+//!   [`AgentSpec`] per agent), validated with errors naming the key.
+//! - [`seeds`]: every run's and role's seed from `(seed, run, role)`.
+//! - [`experiment`]: a validated configuration with its snapshots loaded.
+//! - [`backend`]: the [`Backend`] the protocol drives; [`InProcess`] calls
+//!   the simulator and an `agent::Team` directly.
+//! - [`protocol`]: one run: evaluate, train K, evaluate, ..., through N.
+//! - [`stats`] and [`summary`]: mean and Student's t interval over runs.
+//! - [`output`]: `config.json`, `run-<k>.csv`, `summary.json`.
+//! - [`runner`]: R runs over T threads, then the summary.
+//!
+//! ```no_run
+//! use coordinator::{Experiment, ExperimentConfig, OutputDir, RunOptions, run_experiment};
+//!
+//! let config = ExperimentConfig { runs: 2, episodes: 100, ..ExperimentConfig::default() };
+//! let experiment = Experiment::prepare(config)?;
+//! let out = OutputDir::check("results/no-advice".as_ref(), &experiment.record())?;
+//! let report = run_experiment(&experiment, &out, &RunOptions::default())?;
+//! println!("{:?}", report.last.goal_pct);
+//! # Ok::<(), coordinator::Error>(())
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod backend;
+pub mod config;
+pub mod error;
+pub mod experiment;
+pub mod output;
+pub mod protocol;
+pub mod runner;
+pub mod seeds;
+pub mod stats;
+pub mod summary;
+
+pub use backend::{AgentStats, Backend, Episode, InProcess, Transport};
+pub use config::{AgentSpec, Algorithm, ConfigError, ExperimentConfig, load_team_file};
+pub use error::Error;
+pub use experiment::{Experiment, RunSeeds};
+pub use output::OutputDir;
+pub use protocol::{EvalPoint, RunResult, Timing};
+pub use runner::{Report, RunOptions, run_experiment};
+pub use stats::{Estimate, estimate};
+pub use summary::{Summary, SummaryPoint, summarize};

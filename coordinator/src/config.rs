@@ -1,0 +1,460 @@
+//! What one experiment is: the protocol's numbers, the simulator's settings
+//! and one [`AgentSpec`] per agent, with validation that names the bad key.
+
+use std::path::{Path, PathBuf};
+
+use agent::{AgentConfig, StrategyKind};
+use env_server::EnvConfig;
+use serde::{Deserialize, Serialize};
+
+/// A configuration value out of its allowed range, or a file that cannot be
+/// read as a configuration.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("invalid config `{key}`: {reason}")]
+pub struct ConfigError {
+    /// The offending key, as spelled in the configuration (`team[2].alpha`).
+    pub key: String,
+    /// What is wrong with its value, and what is accepted.
+    pub reason: String,
+}
+
+impl ConfigError {
+    /// An error about `key`.
+    pub fn new(key: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self {
+            key: key.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// The algorithms a homogeneous team can run, by their command-line names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Algorithm {
+    /// SARSA(lambda) alone.
+    NoAdvice,
+    /// Ad hoc advising, visit-based confidence.
+    #[value(alias = "ad-hoc-visit")]
+    AdhocVisit,
+    /// Ad hoc advising, TD-based confidence.
+    #[value(alias = "ad-hoc-td")]
+    AdhocTd,
+    /// Importance advising from a fixed teacher.
+    Torrey,
+    /// Episode sharing after goal episodes.
+    EpisodeSharing,
+    /// The random-policy baseline.
+    Random,
+}
+
+impl Algorithm {
+    /// The agents' strategy.
+    pub fn strategy(self) -> StrategyKind {
+        match self {
+            Algorithm::NoAdvice => StrategyKind::NoAdvice,
+            Algorithm::AdhocVisit => StrategyKind::AdHocVisit,
+            Algorithm::AdhocTd => StrategyKind::AdHocTd,
+            Algorithm::Torrey => StrategyKind::Torrey,
+            Algorithm::EpisodeSharing => StrategyKind::EpisodeSharing,
+            Algorithm::Random => StrategyKind::Random,
+        }
+    }
+}
+
+/// One agent of the team: its configuration (with its strategy) and,
+/// optionally, a saved snapshot it starts from.
+///
+/// In a file it is one flat table: every [`AgentConfig`] key, plus `load`
+/// (path of a snapshot) and `keep_counters`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "serde_json::Map<String, serde_json::Value>")]
+#[serde(into = "serde_json::Map<String, serde_json::Value>")]
+pub struct AgentSpec {
+    /// The learner's constants and strategy.
+    pub config: AgentConfig,
+    /// A snapshot (see `agent::Snapshot`) the agent starts every run from.
+    pub load: Option<PathBuf>,
+    /// Keep the snapshot's communication counters (spent budgets). By default
+    /// they start at zero: the loaded agent brings its Q-table, visit counts
+    /// and finished-episode count, with fresh budgets.
+    pub keep_counters: bool,
+}
+
+impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
+    type Error = String;
+
+    fn try_from(mut map: serde_json::Map<String, serde_json::Value>) -> Result<Self, String> {
+        let load = match map.remove("load") {
+            None | Some(serde_json::Value::Null) => None,
+            Some(serde_json::Value::String(s)) => Some(PathBuf::from(s)),
+            Some(other) => return Err(format!("`load` must be a path string, got {other}")),
+        };
+        let keep_counters = match map.remove("keep_counters") {
+            None => false,
+            Some(serde_json::Value::Bool(b)) => b,
+            Some(other) => return Err(format!("`keep_counters` must be a boolean, got {other}")),
+        };
+        let config = serde_json::from_value(serde_json::Value::Object(map))
+            .map_err(|e| format!("agent config: {e}"))?;
+        Ok(Self {
+            config,
+            load,
+            keep_counters,
+        })
+    }
+}
+
+impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
+    fn from(spec: AgentSpec) -> Self {
+        let mut map = match serde_json::to_value(&spec.config) {
+            Ok(serde_json::Value::Object(map)) => map,
+            _ => unreachable!("an agent config serialises to a JSON object"),
+        };
+        if let Some(path) = spec.load {
+            map.insert(
+                "load".into(),
+                serde_json::Value::String(path.to_string_lossy().into_owned()),
+            );
+        }
+        if spec.keep_counters {
+            map.insert("keep_counters".into(), serde_json::Value::Bool(true));
+        }
+        map
+    }
+}
+
+impl AgentSpec {
+    /// An agent running `strategy` from scratch with the paper's constants.
+    pub fn of(strategy: StrategyKind) -> Self {
+        Self {
+            config: AgentConfig {
+                strategy,
+                ..AgentConfig::default()
+            },
+            ..Self::default()
+        }
+    }
+}
+
+/// Default confidence level of the reported intervals (the paper's captions).
+pub const DEFAULT_CI_LEVEL: f64 = 0.95;
+
+fn default_ci_level() -> f64 {
+    DEFAULT_CI_LEVEL
+}
+
+/// One experiment: algorithms.md section 4 for one configuration.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExperimentConfig {
+    /// Independent runs R, each with its own derived seeds.
+    pub runs: u64,
+    /// Training episodes N per run.
+    pub episodes: u64,
+    /// An evaluation every K training episodes (and before the first).
+    pub eval_every: u64,
+    /// Episodes M of one evaluation.
+    pub eval_episodes: u64,
+    /// The experiment seed every run's seeds derive from.
+    pub seed: u64,
+    /// Level of the confidence intervals of the summary, in (0, 1).
+    #[serde(default = "default_ci_level")]
+    pub ci_level: f64,
+    /// The simulator's settings.
+    #[serde(default)]
+    pub env: EnvConfig,
+    /// One agent per offense player, by id.
+    pub team: Vec<AgentSpec>,
+}
+
+impl Default for ExperimentConfig {
+    /// The paper's protocol: 50 runs of 5000 episodes, an evaluation of 100
+    /// episodes every 20, three NoAdvice agents.
+    fn default() -> Self {
+        let env = EnvConfig::default();
+        Self {
+            runs: 50,
+            episodes: 5000,
+            eval_every: 20,
+            eval_episodes: 100,
+            seed: 1,
+            ci_level: DEFAULT_CI_LEVEL,
+            team: vec![AgentSpec::of(StrategyKind::NoAdvice); env.offense],
+            env,
+        }
+    }
+}
+
+impl ExperimentConfig {
+    /// Returns the first invalid value, naming its key and what is accepted.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let at_least_one = |key: &str, value: u64| {
+            if value == 0 {
+                Err(ConfigError::new(key, "must be at least 1, got 0"))
+            } else {
+                Ok(())
+            }
+        };
+        at_least_one("runs", self.runs)?;
+        at_least_one("eval_every", self.eval_every)?;
+        at_least_one("eval_episodes", self.eval_episodes)?;
+        if !(self.ci_level > 0.0 && self.ci_level < 1.0) {
+            return Err(ConfigError::new(
+                "ci_level",
+                format!("must be in (0, 1), e.g. 0.95, got {}", self.ci_level),
+            ));
+        }
+        self.env.validate().map_err(env_error)?;
+        if self.team.len() != self.env.offense {
+            return Err(ConfigError::new(
+                "team",
+                format!(
+                    "has {} agents, env.offense is {}: one agent per offense player",
+                    self.team.len(),
+                    self.env.offense
+                ),
+            ));
+        }
+        for (i, spec) in self.team.iter().enumerate() {
+            spec.config
+                .validate()
+                .map_err(|e| ConfigError::new(format!("team[{i}].{}", e.key), e.reason))?;
+        }
+        Ok(())
+    }
+
+    /// The training episodes after which an evaluation takes place: 0, K,
+    /// 2K, ... and N itself (when N is not a multiple of K, the last
+    /// interval is shorter).
+    pub fn eval_points(&self) -> Vec<u64> {
+        let step = self.eval_every.max(1);
+        let mut points: Vec<u64> = (0..=self.episodes / step).map(|p| p * step).collect();
+        if self.episodes % step != 0 {
+            points.push(self.episodes);
+        }
+        points
+    }
+
+    /// Episodes played by one run: training plus every evaluation.
+    pub fn episodes_per_run(&self) -> u64 {
+        self.episodes + self.eval_points().len() as u64 * self.eval_episodes
+    }
+}
+
+/// Names the key of a rejected simulator setting.
+fn env_error(e: env_server::ConfigError) -> ConfigError {
+    use env_server::ConfigError as E;
+    let key = match &e {
+        E::Offense(_) => "env.offense".to_owned(),
+        E::ZeroLimit(k) => format!("env.{k}"),
+        E::LongShotSpeed(_) => "env.long_shot.speed".to_owned(),
+        E::LongShotMinSpeed(_) => "env.long_shot.min_speed".to_owned(),
+        E::LongShotSigma(_) => "env.long_shot.sigma_deg".to_owned(),
+    };
+    ConfigError::new(key, e.to_string())
+}
+
+/// A team file: `[[agent]]` tables in TOML, or `{"agent": [...]}` in JSON.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TeamFile {
+    agent: Vec<serde_json::Map<String, serde_json::Value>>,
+}
+
+/// Reads a team file (TOML, or JSON when the name ends in `.json`): one
+/// `agent` entry per agent, by id. Relative `load` paths are taken from the
+/// file's directory.
+pub fn load_team_file(path: &Path) -> Result<Vec<AgentSpec>, ConfigError> {
+    let key = "team";
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| ConfigError::new(key, format!("cannot read {}: {e}", path.display())))?;
+    let is_json = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    let parsed: Result<TeamFile, String> = if is_json {
+        serde_json::from_str(&text).map_err(|e| e.to_string())
+    } else {
+        toml::from_str(&text).map_err(|e: toml::de::Error| match e.span() {
+            Some(span) => {
+                let line = 1 + text[..span.start.min(text.len())].matches('\n').count();
+                format!("line {line}: {}", e.message())
+            }
+            None => e.message().to_owned(),
+        })
+    };
+    let file = parsed.map_err(|e| {
+        let e = e.split_whitespace().collect::<Vec<_>>().join(" ");
+        ConfigError::new(key, format!("{}: {e}", path.display()))
+    })?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    let mut team = Vec::with_capacity(file.agent.len());
+    for (i, table) in file.agent.into_iter().enumerate() {
+        let mut spec = AgentSpec::try_from(table).map_err(|reason| {
+            ConfigError::new(
+                format!("team[{i}]"),
+                format!("{}: {reason}", path.display()),
+            )
+        })?;
+        if let Some(load) = &spec.load {
+            if load.is_relative() {
+                spec.load = Some(base.join(load));
+            }
+        }
+        team.push(spec);
+    }
+    Ok(team)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key_of(config: ExperimentConfig) -> String {
+        config.validate().unwrap_err().key
+    }
+
+    #[test]
+    fn defaults_are_the_papers() {
+        let c = ExperimentConfig::default();
+        c.validate().unwrap();
+        assert_eq!(
+            (c.runs, c.episodes, c.eval_every, c.eval_episodes),
+            (50, 5000, 20, 100)
+        );
+        assert_eq!(c.ci_level, 0.95);
+        assert_eq!(c.team.len(), 3);
+        let points = c.eval_points();
+        assert_eq!(points.len(), 251);
+        assert_eq!((points[0], points[1], points[250]), (0, 20, 5000));
+        assert_eq!(c.episodes_per_run(), 5000 + 251 * 100);
+    }
+
+    #[test]
+    fn eval_points_end_at_n() {
+        let c = ExperimentConfig {
+            episodes: 50,
+            eval_every: 20,
+            ..ExperimentConfig::default()
+        };
+        assert_eq!(c.eval_points(), vec![0, 20, 40, 50]);
+        let c = ExperimentConfig {
+            episodes: 0,
+            ..ExperimentConfig::default()
+        };
+        assert_eq!(c.eval_points(), vec![0]);
+    }
+
+    #[test]
+    fn bad_values_name_their_key() {
+        let base = ExperimentConfig::default;
+        assert_eq!(key_of(ExperimentConfig { runs: 0, ..base() }), "runs");
+        assert_eq!(
+            key_of(ExperimentConfig {
+                eval_every: 0,
+                ..base()
+            }),
+            "eval_every"
+        );
+        assert_eq!(
+            key_of(ExperimentConfig {
+                eval_episodes: 0,
+                ..base()
+            }),
+            "eval_episodes"
+        );
+        for level in [0.0, 1.0, f64::NAN, 95.0] {
+            assert_eq!(
+                key_of(ExperimentConfig {
+                    ci_level: level,
+                    ..base()
+                }),
+                "ci_level"
+            );
+        }
+        let mut c = base();
+        c.env.offense = 7;
+        assert_eq!(key_of(c), "env.offense");
+        let mut c = base();
+        c.env.frames_per_trial = 0;
+        assert_eq!(key_of(c), "env.frames_per_trial");
+        let mut c = base();
+        c.team.pop();
+        assert_eq!(key_of(c), "team");
+        let mut c = base();
+        c.team[2].config.epsilon = 2.0;
+        assert_eq!(key_of(c), "team[2].epsilon");
+        let mut c = base();
+        c.team[1].config.mistake_correcting = true;
+        let e = c.validate().unwrap_err();
+        assert_eq!(e.key, "team[1].mistake_correcting");
+        assert!(e.to_string().contains("ad-hoc-visit"), "{e}");
+    }
+
+    #[test]
+    fn agent_specs_are_flat_tables() {
+        let spec: AgentSpec = toml::from_str(
+            "strategy = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.qtable\"\n",
+        )
+        .unwrap();
+        assert_eq!(spec.config.strategy, StrategyKind::AdHocTd);
+        assert_eq!(spec.config.ask_budget, 0);
+        assert_eq!(spec.config.epsilon, 0.0);
+        assert_eq!(spec.load, Some(PathBuf::from("expert.qtable")));
+        assert!(!spec.keep_counters);
+        // Round trip through JSON, as config.json stores it.
+        let json = serde_json::to_string(&spec).unwrap();
+        assert_eq!(serde_json::from_str::<AgentSpec>(&json).unwrap(), spec);
+        // A typo is an error naming the key.
+        let err = toml::from_str::<AgentSpec>("alhpa = 0.2\n").unwrap_err();
+        assert!(err.to_string().contains("alhpa"), "{err}");
+        let err = serde_json::from_str::<AgentSpec>(r#"{"load": 3}"#).unwrap_err();
+        assert!(err.to_string().contains("load"), "{err}");
+    }
+
+    #[test]
+    fn experiment_config_round_trips_through_json() {
+        let mut c = ExperimentConfig::default();
+        c.team[2] = AgentSpec {
+            load: Some("a/b.qtable".into()),
+            keep_counters: true,
+            ..AgentSpec::of(StrategyKind::Torrey)
+        };
+        let json = serde_json::to_string(&c).unwrap();
+        assert_eq!(serde_json::from_str::<ExperimentConfig>(&json).unwrap(), c);
+    }
+
+    #[test]
+    fn team_files_in_toml_and_json() {
+        let dir = tempfile::tempdir().unwrap();
+        let toml_path = dir.path().join("team.toml");
+        std::fs::write(
+            &toml_path,
+            "[[agent]]\nstrategy = \"ad-hoc-td\"\n\n[[agent]]\nstrategy = \"ad-hoc-td\"\n\n\
+             [[agent]]\nask_budget = 0\nload = \"expert.qtable\"\n",
+        )
+        .unwrap();
+        let team = load_team_file(&toml_path).unwrap();
+        assert_eq!(team.len(), 3);
+        assert_eq!(team[0].config.strategy, StrategyKind::AdHocTd);
+        assert_eq!(team[2].config.strategy, StrategyKind::NoAdvice);
+        assert_eq!(team[2].load, Some(dir.path().join("expert.qtable")));
+
+        let json_path = dir.path().join("team.json");
+        std::fs::write(
+            &json_path,
+            r#"{"agent": [{"strategy": "torrey"}, {"load": "/abs.qtable"}]}"#,
+        )
+        .unwrap();
+        let team = load_team_file(&json_path).unwrap();
+        assert_eq!(team[0].config.strategy, StrategyKind::Torrey);
+        assert_eq!(team[1].load, Some(PathBuf::from("/abs.qtable")));
+
+        std::fs::write(&toml_path, "[[agent]]\nstrategy = \"best\"\n").unwrap();
+        let e = load_team_file(&toml_path).unwrap_err();
+        assert_eq!(e.key, "team[0]");
+        assert!(e.reason.contains("best"), "{e}");
+        assert!(!e.to_string().contains('\n'), "{e}");
+        let e = load_team_file(&dir.path().join("missing.toml")).unwrap_err();
+        assert!(e.reason.contains("missing.toml"), "{e}");
+    }
+}

@@ -1,0 +1,72 @@
+//! Why an experiment could not start or finish.
+
+use std::path::PathBuf;
+
+use agent::PersistError;
+
+/// Every failure of the coordinator library; each displays as one line.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A configuration value or file was rejected.
+    #[error(transparent)]
+    Config(#[from] crate::config::ConfigError),
+    /// An agent's snapshot could not be loaded or does not fit the agent.
+    #[error("cannot load agent {agent} from {}: {}", path.display(), persist_reason(source))]
+    Snapshot {
+        /// The agent's id.
+        agent: usize,
+        /// The snapshot file.
+        path: PathBuf,
+        /// What went wrong.
+        source: PersistError,
+    },
+    /// The output directory holds the results of another configuration.
+    #[error(
+        "output directory {} holds the results of another configuration ({reason}); \
+         choose another --out or remove it",
+        dir.display()
+    )]
+    OtherResults {
+        /// The output directory.
+        dir: PathBuf,
+        /// What differs.
+        reason: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("cannot {action} {}: {source}", path.display())]
+    Io {
+        /// What was being done ("write", "create", ...).
+        action: &'static str,
+        /// The file or directory.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// A backend failed while playing (a bug or a lost peer).
+    #[error("run {run}: {message}")]
+    Backend {
+        /// The run.
+        run: u64,
+        /// What happened.
+        message: String,
+    },
+}
+
+impl Error {
+    /// An I/O error on `path`.
+    pub fn io(action: &'static str, path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Self::Io {
+            action,
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+/// A snapshot error without the path repeated.
+fn persist_reason(e: &PersistError) -> String {
+    match e {
+        PersistError::Io { source, .. } => source.to_string(),
+        other => other.to_string(),
+    }
+}

@@ -1,0 +1,196 @@
+//! `coordinator`: run advising experiments from the command line.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::{Args, Parser, Subcommand};
+use coordinator::{
+    AgentSpec, Algorithm, Estimate, Experiment, ExperimentConfig, OutputDir, RunOptions, Transport,
+    load_team_file, run_experiment,
+};
+
+#[derive(Parser)]
+#[command(
+    version,
+    about = "Ad hoc advising experiments: training, frozen evaluations, many runs, statistics"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one configuration: R runs of N training episodes, an evaluation of
+    /// M episodes before training and every K episodes.
+    Run(RunArgs),
+}
+
+#[derive(Args)]
+#[command(group = clap::ArgGroup::new("agents").required(true).args(["algorithm", "team"]))]
+#[command(args_override_self = true)]
+struct RunArgs {
+    /// Algorithm of every agent (a homogeneous team).
+    #[arg(long, value_enum)]
+    algorithm: Option<Algorithm>,
+    /// Team file (TOML, or JSON by extension): one `[[agent]]` table per agent
+    /// with its strategy, constants and an optional `load` snapshot path.
+    #[arg(long, value_name = "FILE")]
+    team: Option<PathBuf>,
+    /// Mistake Correcting: advisees send their intended action along
+    /// (adhoc-visit, adhoc-td and torrey only).
+    #[arg(long, conflicts_with = "team")]
+    mistake_correcting: bool,
+    /// Independent runs R.
+    #[arg(long, value_name = "R", default_value_t = 50)]
+    runs: u64,
+    /// Training episodes N per run.
+    #[arg(long, value_name = "N", default_value_t = 5000)]
+    episodes: u64,
+    /// Evaluate every K training episodes (and before the first).
+    #[arg(long, value_name = "K", default_value_t = 20)]
+    eval_every: u64,
+    /// Episodes M of one evaluation.
+    #[arg(long, value_name = "M", default_value_t = 100)]
+    eval_episodes: u64,
+    /// Experiment seed; every run's seeds derive from it.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+    /// Confidence level of the summary's intervals.
+    #[arg(long, value_name = "LEVEL", default_value_t = coordinator::config::DEFAULT_CI_LEVEL)]
+    ci_level: f64,
+    /// Offense agents (the paper: 3); with --team, the team's size.
+    #[arg(long)]
+    offense: Option<usize>,
+    /// Worker threads, one run each at a time (default: one per core).
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
+    threads: Option<u64>,
+    /// Where agents and simulator live.
+    #[arg(long, value_enum, default_value = "in-process")]
+    transport: Transport,
+    /// Output directory: config.json, run-<k>.csv, summary.json.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Also save every agent at the end of each run, as run-<k>-agent-<i>.qtable.
+    #[arg(long, value_name = "DIR")]
+    save_agents: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
+        .with_writer(std::io::stderr)
+        .init();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            eprintln!("{}", one_line(&e.to_string()));
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{}", one_line(&format!("error: {e}")));
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Folds a multi-line message into one line, without clap's usage hints.
+fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn run(cli: Cli) -> Result<()> {
+    let Command::Run(args) = cli.command;
+    let (team, label) = match (&args.team, args.algorithm) {
+        (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
+        (None, Some(algorithm)) => {
+            let offense = args.offense.unwrap_or(3);
+            let mut spec = AgentSpec::of(algorithm.strategy());
+            spec.config.mistake_correcting = args.mistake_correcting;
+            let name = clap::ValueEnum::to_possible_value(&algorithm)
+                .map_or_else(String::new, |v| v.get_name().to_owned());
+            let mc = if args.mistake_correcting {
+                " (mistake correcting)"
+            } else {
+                ""
+            };
+            (vec![spec; offense], format!("{name}{mc}"))
+        }
+        (None, None) => unreachable!("clap requires --algorithm or --team"),
+    };
+    let mut config = ExperimentConfig {
+        runs: args.runs,
+        episodes: args.episodes,
+        eval_every: args.eval_every,
+        eval_episodes: args.eval_episodes,
+        seed: args.seed,
+        ci_level: args.ci_level,
+        team,
+        ..ExperimentConfig::default()
+    };
+    config.env.offense = args.offense.unwrap_or(config.team.len());
+    let experiment = Experiment::prepare(config)?;
+    let out = OutputDir::check(&args.out, &experiment.record())?;
+    let options = RunOptions {
+        threads: args
+            .threads
+            .map_or_else(coordinator::runner::default_threads, |t| t as usize),
+        transport: args.transport,
+        save_agents: args.save_agents,
+        progress: !args.quiet && std::io::stderr().is_terminal(),
+    };
+    let report = run_experiment(&experiment, &out, &options)?;
+    let c = experiment.config();
+    let level = 100.0 * c.ci_level;
+    println!(
+        "{label}: {} runs x {} episodes -> {}",
+        report.runs,
+        c.episodes,
+        report.summary.display()
+    );
+    for p in [&report.first, &report.last] {
+        println!(
+            "  episode {:>5}: goal_pct {}  time_to_goal {}  spent_budget {}",
+            p.episode,
+            show(&p.goal_pct, level),
+            show(&p.time_to_goal, level),
+            show(&p.spent_budget, level),
+        );
+    }
+    let t = &report.timing;
+    println!(
+        "  frames_per_sec: training {:.0}, evaluation {:.0} (per thread); wall {:.2} s",
+        t.training_frames_per_sec(),
+        t.evaluation_frames_per_sec(),
+        report.wall.as_secs_f64()
+    );
+    Ok(())
+}
+
+/// `mean [low, high]`, or what is known of it.
+fn show(e: &Estimate, level: f64) -> String {
+    match (e.mean, e.ci_low, e.ci_high) {
+        (Some(m), Some(lo), Some(hi)) => format!("{m:.2} [{lo:.2}, {hi:.2}] ({level}% CI)"),
+        (Some(m), _, _) => format!("{m:.2}"),
+        _ => "-".into(),
+    }
+}

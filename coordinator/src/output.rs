@@ -1,0 +1,309 @@
+//! The output directory: `config.json` first, one `run-<k>.csv` per run
+//! written as it goes, `summary.json` at the end (atomically).
+//!
+//! A directory whose `config.json` describes another configuration (or that
+//! holds results without one) is refused before anything is written; the
+//! same configuration is run again from scratch over its own files.
+
+use std::fs::{self, File};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+use serde_json::Value;
+
+use crate::error::Error;
+use crate::protocol::EvalPoint;
+
+/// Name of the configuration record in the output directory.
+pub const CONFIG_FILE: &str = "config.json";
+/// Name of the summary in the output directory.
+pub const SUMMARY_FILE: &str = "summary.json";
+
+/// The file name of run `run`'s CSV.
+pub fn run_file_name(run: u64) -> String {
+    format!("run-{run}.csv")
+}
+
+/// Whether `name` is a file this crate writes as a result.
+fn is_result_file(name: &str) -> bool {
+    name == SUMMARY_FILE
+        || name
+            .strip_prefix("run-")
+            .and_then(|r| r.strip_suffix(".csv"))
+            .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// An output directory checked to accept an experiment's results.
+#[derive(Clone, Debug)]
+pub struct OutputDir {
+    dir: PathBuf,
+    record: Value,
+}
+
+impl OutputDir {
+    /// Checks that `dir` is absent, holds no results, or holds the results of
+    /// this same `record` (the content of `config.json`). Writes nothing.
+    pub fn check(dir: &Path, record: &impl Serialize) -> Result<Self, Error> {
+        let record = serde_json::to_value(record).expect("a record serialises");
+        let other = |reason: String| Error::OtherResults {
+            dir: dir.to_path_buf(),
+            reason,
+        };
+        if dir.exists() && !dir.is_dir() {
+            return Err(other("it is not a directory".into()));
+        }
+        let config_path = dir.join(CONFIG_FILE);
+        match fs::read(&config_path) {
+            Ok(bytes) => {
+                let theirs: Value = serde_json::from_slice(&bytes)
+                    .map_err(|e| other(format!("its {CONFIG_FILE} is unreadable: {e}")))?;
+                if let Some(diff) = first_difference(&record, &theirs, "") {
+                    return Err(other(format!("{CONFIG_FILE} differs at {diff}")));
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                if dir.is_dir() {
+                    let entries = fs::read_dir(dir).map_err(|e| Error::io("read", dir, e))?;
+                    for entry in entries {
+                        let entry = entry.map_err(|e| Error::io("read", dir, e))?;
+                        let name = entry.file_name();
+                        if is_result_file(&name.to_string_lossy()) {
+                            return Err(other(format!(
+                                "it has {} but no {CONFIG_FILE}",
+                                name.to_string_lossy()
+                            )));
+                        }
+                    }
+                }
+            }
+            Err(e) => return Err(Error::io("read", config_path, e)),
+        }
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            record,
+        })
+    }
+
+    /// The directory.
+    pub fn path(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Creates the directory and writes `config.json`.
+    pub fn create(&self) -> Result<(), Error> {
+        fs::create_dir_all(&self.dir).map_err(|e| Error::io("create", &self.dir, e))?;
+        let mut bytes = serde_json::to_vec_pretty(&self.record).expect("a record serialises");
+        bytes.push(b'\n');
+        write_atomically(&self.dir.join(CONFIG_FILE), &bytes)
+    }
+
+    /// Starts run `run`'s CSV for a team of `agents`, replacing any old one.
+    pub fn run_writer(&self, run: u64, agents: usize) -> Result<RunWriter, Error> {
+        RunWriter::create(&self.dir.join(run_file_name(run)), agents)
+    }
+
+    /// Writes `summary.json` atomically (a temporary file, then a rename).
+    pub fn write_summary(&self, summary: &impl Serialize) -> Result<(), Error> {
+        let mut bytes = serde_json::to_vec_pretty(summary).expect("a summary serialises");
+        bytes.push(b'\n');
+        write_atomically(&self.dir.join(SUMMARY_FILE), &bytes)
+    }
+}
+
+/// The path of the first value that differs between two JSON documents.
+fn first_difference(ours: &Value, theirs: &Value, at: &str) -> Option<String> {
+    match (ours, theirs) {
+        (Value::Object(a), Value::Object(b)) => {
+            let keys: std::collections::BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+            keys.into_iter().find_map(|k| {
+                let path = if at.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{at}.{k}")
+                };
+                match (a.get(k), b.get(k)) {
+                    (Some(x), Some(y)) => first_difference(x, y, &path),
+                    _ => Some(path),
+                }
+            })
+        }
+        (Value::Array(a), Value::Array(b)) if a.len() == b.len() => a
+            .iter()
+            .zip(b)
+            .enumerate()
+            .find_map(|(i, (x, y))| first_difference(x, y, &format!("{at}[{i}]"))),
+        _ if ours == theirs => None,
+        _ => Some(format!("`{at}` (this run: {ours}, on disk: {theirs})")),
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it over.
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
+    let written = File::create(&tmp)
+        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
+        .and_then(|()| fs::rename(&tmp, path));
+    written.map_err(|e| {
+        let _ = fs::remove_file(&tmp);
+        Error::io("write", path, e)
+    })
+}
+
+/// One run's CSV: a header, then one row per evaluation point, flushed as
+/// soon as it is written.
+///
+/// Columns: `episode, goal_pct, time_to_goal` (empty without a goal),
+/// `give_spent_<i>` and `ask_spent_<i>` for every agent `i`,
+/// `advice_requests` and `advice_given` (team totals), `spent_budget` (the
+/// give budget spent, averaged over agents).
+#[derive(Debug)]
+pub struct RunWriter {
+    path: PathBuf,
+    csv: csv::Writer<File>,
+    agents: usize,
+}
+
+impl RunWriter {
+    fn create(path: &Path, agents: usize) -> Result<Self, Error> {
+        let file = File::create(path).map_err(|e| Error::io("create", path, e))?;
+        let mut w = Self {
+            path: path.to_path_buf(),
+            csv: csv::Writer::from_writer(file),
+            agents,
+        };
+        let mut header: Vec<String> = ["episode", "goal_pct", "time_to_goal"]
+            .map(String::from)
+            .to_vec();
+        header.extend((0..agents).map(|i| format!("give_spent_{i}")));
+        header.extend((0..agents).map(|i| format!("ask_spent_{i}")));
+        header.extend(["advice_requests", "advice_given", "spent_budget"].map(String::from));
+        w.write_row(&header)?;
+        Ok(w)
+    }
+
+    /// Appends one evaluation point and flushes it to the file.
+    pub fn write_point(&mut self, p: &EvalPoint) -> Result<(), Error> {
+        debug_assert_eq!(p.agents.len(), self.agents);
+        let mut row = vec![
+            p.episode.to_string(),
+            p.goal_pct.to_string(),
+            p.time_to_goal.map(|t| t.to_string()).unwrap_or_default(),
+        ];
+        row.extend(p.agents.iter().map(|a| a.spent_give.to_string()));
+        row.extend(p.agents.iter().map(|a| a.spent_ask.to_string()));
+        row.push(p.agents.iter().map(|a| a.requests).sum::<u64>().to_string());
+        row.push(
+            p.agents
+                .iter()
+                .map(|a| a.advice_given)
+                .sum::<u64>()
+                .to_string(),
+        );
+        row.push(p.spent_budget.to_string());
+        self.write_row(&row)
+    }
+
+    fn write_row(&mut self, row: &[String]) -> Result<(), Error> {
+        let to_io = |e: csv::Error| match e.into_kind() {
+            csv::ErrorKind::Io(e) => e,
+            other => std::io::Error::other(format!("{other:?}")),
+        };
+        self.csv
+            .write_record(row)
+            .map_err(to_io)
+            .and_then(|()| self.csv.flush())
+            .map_err(|e| Error::io("write", &self.path, e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::backend::AgentStats;
+    use serde_json::json;
+
+    #[test]
+    fn result_files_are_recognised() {
+        for name in ["summary.json", "run-0.csv", "run-49.csv"] {
+            assert!(is_result_file(name), "{name}");
+        }
+        for name in [
+            "config.json",
+            "run-.csv",
+            "run-a.csv",
+            "notes.txt",
+            "run-1.csv~",
+        ] {
+            assert!(!is_result_file(name), "{name}");
+        }
+    }
+
+    #[test]
+    fn differences_are_located() {
+        let a = json!({"config": {"runs": 5, "team": [{"strategy": "torrey"}]}});
+        let b = json!({"config": {"runs": 5, "team": [{"strategy": "random"}]}});
+        let d = first_difference(&a, &b, "").unwrap();
+        assert!(d.contains("config.team[0].strategy"), "{d}");
+        assert_eq!(first_difference(&a, &a, ""), None);
+        let c = json!({"config": {"runs": 5}});
+        assert_eq!(first_difference(&a, &c, "").as_deref(), Some("config.team"));
+    }
+
+    #[test]
+    fn same_config_is_accepted_other_is_refused_and_untouched() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("out");
+        let ours = json!({"format": 1, "config": {"runs": 2}});
+        let out = OutputDir::check(&dir, &ours).unwrap();
+        assert!(!dir.exists(), "check writes nothing");
+        out.create().unwrap();
+        let mut w = out.run_writer(0, 2).unwrap();
+        w.write_point(&EvalPoint {
+            episode: 20,
+            episodes: 10,
+            goals: 0,
+            goal_pct: 0.0,
+            time_to_goal: None,
+            agents: vec![AgentStats::default(); 2],
+            spent_budget: 0.0,
+        })
+        .unwrap();
+        let csv = fs::read_to_string(dir.join("run-0.csv")).unwrap();
+        assert_eq!(
+            csv,
+            "episode,goal_pct,time_to_goal,give_spent_0,give_spent_1,ask_spent_0,ask_spent_1,\
+             advice_requests,advice_given,spent_budget\n20,0,,0,0,0,0,0,0,0\n"
+        );
+        OutputDir::check(&dir, &ours).unwrap();
+        let theirs = json!({"format": 1, "config": {"runs": 3}});
+        let err = OutputDir::check(&dir, &theirs).unwrap_err().to_string();
+        assert!(err.contains("config.runs") && err.contains("out"), "{err}");
+        assert_eq!(fs::read_to_string(dir.join("run-0.csv")).unwrap(), csv);
+
+        // Results without a config.json are someone else's too.
+        fs::remove_file(dir.join(CONFIG_FILE)).unwrap();
+        let err = OutputDir::check(&dir, &ours).unwrap_err().to_string();
+        assert!(err.contains("run-0.csv"), "{err}");
+    }
+
+    #[test]
+    fn summary_is_written_atomically() {
+        let tmp = tempfile::tempdir().unwrap();
+        let out = OutputDir::check(tmp.path(), &json!({})).unwrap();
+        out.create().unwrap();
+        out.write_summary(&json!({"a": 1})).unwrap();
+        out.write_summary(&json!({"a": 2})).unwrap();
+        let mut names: Vec<_> = fs::read_dir(tmp.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        assert_eq!(names, ["config.json", "summary.json"]);
+        let text = fs::read_to_string(tmp.path().join(SUMMARY_FILE)).unwrap();
+        assert_eq!(text, "{\n  \"a\": 2\n}\n");
+    }
+}

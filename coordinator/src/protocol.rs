@@ -1,0 +1,146 @@
+//! One run of the protocol (algorithms.md section 4): an evaluation before
+//! training, then K training episodes and an evaluation, ..., through N.
+
+use std::time::{Duration, Instant};
+
+use agent::Mode;
+use env_server::Outcome;
+
+use crate::backend::{AgentStats, Backend};
+use crate::error::Error;
+use crate::experiment::Experiment;
+
+/// The measurements of one evaluation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EvalPoint {
+    /// Training episodes played before it.
+    pub episode: u64,
+    /// Evaluation episodes played (M).
+    pub episodes: u64,
+    /// Evaluation episodes ending in a goal.
+    pub goals: u64,
+    /// Goal percentage, `100 * goals / episodes`.
+    pub goal_pct: f64,
+    /// Mean frames of the goal episodes; `None` without a goal.
+    pub time_to_goal: Option<f64>,
+    /// Every agent's budgets and communication so far, by id.
+    pub agents: Vec<AgentStats>,
+    /// The paper's spent budget: give budget spent, averaged over agents.
+    pub spent_budget: f64,
+}
+
+/// Where the time of a run went (not part of any result: it varies).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timing {
+    /// Training episodes played.
+    pub training_episodes: u64,
+    /// Agent decisions in training episodes.
+    pub training_frames: u64,
+    /// Wall time of the training episodes.
+    pub training: Duration,
+    /// Agent decisions in evaluation episodes.
+    pub evaluation_frames: u64,
+    /// Wall time of the evaluations.
+    pub evaluation: Duration,
+}
+
+impl Timing {
+    /// Adds another run's timing.
+    pub fn add(&mut self, other: &Timing) {
+        self.training_episodes += other.training_episodes;
+        self.training_frames += other.training_frames;
+        self.training += other.training;
+        self.evaluation_frames += other.evaluation_frames;
+        self.evaluation += other.evaluation;
+    }
+
+    /// Training decisions per second of one thread's time.
+    pub fn training_frames_per_sec(&self) -> f64 {
+        rate(self.training_frames, self.training)
+    }
+
+    /// Evaluation decisions per second of one thread's time.
+    pub fn evaluation_frames_per_sec(&self) -> f64 {
+        rate(self.evaluation_frames, self.evaluation)
+    }
+}
+
+fn rate(frames: u64, time: Duration) -> f64 {
+    let secs = time.as_secs_f64();
+    if secs > 0.0 {
+        frames as f64 / secs
+    } else {
+        0.0
+    }
+}
+
+/// The results of one run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunResult {
+    /// The run's index.
+    pub run: u64,
+    /// Its evaluations, in order.
+    pub points: Vec<EvalPoint>,
+    /// Where its time went.
+    pub timing: Timing,
+}
+
+/// Plays run `run` of `experiment` on `backend`: `on_point` receives every
+/// evaluation as soon as it is measured, `progress` the number of episodes
+/// just played.
+pub fn run(
+    experiment: &Experiment,
+    backend: &mut dyn Backend,
+    run: u64,
+    mut on_point: impl FnMut(&EvalPoint) -> Result<(), Error>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RunResult, Error> {
+    let config = experiment.config();
+    let mut timing = Timing::default();
+    let mut points = Vec::new();
+    let mut trained = 0u64;
+    for (index, at) in config.eval_points().into_iter().enumerate() {
+        let start = Instant::now();
+        while trained < at {
+            let episode = backend.play_episode(Mode::Training)?;
+            timing.training_frames += u64::from(episode.frames);
+            trained += 1;
+            progress(1);
+        }
+        timing.training += start.elapsed();
+
+        let start = Instant::now();
+        backend.begin_evaluation(experiment.evaluation_seed(run, index as u64))?;
+        let (mut goals, mut goal_frames) = (0u64, 0u64);
+        for _ in 0..config.eval_episodes {
+            let episode = backend.play_episode(Mode::Evaluation)?;
+            timing.evaluation_frames += u64::from(episode.frames);
+            if episode.outcome == Outcome::Goal {
+                goals += 1;
+                goal_frames += u64::from(episode.frames);
+            }
+            progress(1);
+        }
+        timing.evaluation += start.elapsed();
+
+        let agents = backend.agent_stats()?;
+        let spent: u64 = agents.iter().map(|a| a.spent_give).sum();
+        let point = EvalPoint {
+            episode: at,
+            episodes: config.eval_episodes,
+            goals,
+            goal_pct: 100.0 * goals as f64 / config.eval_episodes as f64,
+            time_to_goal: (goals > 0).then(|| goal_frames as f64 / goals as f64),
+            spent_budget: spent as f64 / agents.len().max(1) as f64,
+            agents,
+        };
+        on_point(&point)?;
+        points.push(point);
+    }
+    timing.training_episodes = trained;
+    Ok(RunResult {
+        run,
+        points,
+        timing,
+    })
+}

@@ -1,0 +1,193 @@
+//! An experiment's R runs over T worker threads, then its summary.
+//!
+//! Every run is independent and deterministic from its own seeds; results
+//! are sorted by run index before the summary is computed, so the summary
+//! is byte-identical whatever the number of threads.
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::backend::{self, Transport};
+use crate::error::Error;
+use crate::experiment::Experiment;
+use crate::output::{OutputDir, SUMMARY_FILE};
+use crate::protocol::{self, RunResult, Timing};
+use crate::summary::{SummaryPoint, summarize};
+
+/// How to run an experiment (none of it changes the results).
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Worker threads (at least 1; more than the runs is pointless).
+    pub threads: usize,
+    /// Where agents and simulator live.
+    pub transport: Transport,
+    /// Save every agent's snapshot at the end of each run into this
+    /// directory, as `run-<k>-agent-<i>.qtable`.
+    pub save_agents: Option<PathBuf>,
+    /// Show a progress bar on stderr.
+    pub progress: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        Self {
+            threads: default_threads(),
+            transport: Transport::InProcess,
+            save_agents: None,
+            progress: false,
+        }
+    }
+}
+
+/// One worker per core.
+pub fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// What a finished experiment reports besides its files.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// Runs played.
+    pub runs: u64,
+    /// Summed over runs.
+    pub timing: Timing,
+    /// Wall time of the whole experiment.
+    pub wall: Duration,
+    /// The summary's path.
+    pub summary: PathBuf,
+    /// The first evaluation point of the summary.
+    pub first: SummaryPoint,
+    /// The last evaluation point of the summary.
+    pub last: SummaryPoint,
+}
+
+/// The snapshot file of agent `agent` at the end of run `run`.
+pub fn agent_file_name(run: u64, agent: usize) -> String {
+    format!("run-{run}-agent-{agent}.qtable")
+}
+
+/// Plays every run of `experiment` into `out` and writes the summary.
+pub fn run_experiment(
+    experiment: &Experiment,
+    out: &OutputDir,
+    options: &RunOptions,
+) -> Result<Report, Error> {
+    let config = experiment.config();
+    out.create()?;
+    if let Some(dir) = &options.save_agents {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))?;
+    }
+    let total = config.runs * config.episodes_per_run();
+    let bar = if options.progress {
+        let bar = ProgressBar::new(total);
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{elapsed_precise} [{wide_bar}] {percent:>3}% {msg} eta {eta}",
+            )
+            .expect("a valid template")
+            .progress_chars("=> "),
+        );
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let done = AtomicU64::new(0);
+    bar.set_message(format!("0/{} runs", config.runs));
+
+    let start = Instant::now();
+    let next = AtomicU64::new(0);
+    let failed = AtomicBool::new(false);
+    let results = Mutex::new(Vec::with_capacity(config.runs as usize));
+    let errors = Mutex::new(Vec::new());
+    let threads = options.threads.clamp(1, config.runs.max(1) as usize);
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| {
+                while !failed.load(Ordering::Relaxed) {
+                    let run = next.fetch_add(1, Ordering::Relaxed);
+                    if run >= config.runs {
+                        break;
+                    }
+                    let progress = |n| bar.inc(n);
+                    match one_run(experiment, out, options, run, &progress) {
+                        Ok(result) => {
+                            let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                            bar.set_message(format!("{k}/{} runs", config.runs));
+                            tracing::info!(
+                                run,
+                                training_frames_per_sec = result.timing.training_frames_per_sec(),
+                                "run finished"
+                            );
+                            results.lock().expect("no panic").push(result);
+                        }
+                        Err(e) => {
+                            failed.store(true, Ordering::Relaxed);
+                            errors.lock().expect("no panic").push((run, e));
+                        }
+                    }
+                }
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let mut errors = errors.into_inner().expect("no panic");
+    if !errors.is_empty() {
+        errors.sort_by_key(|(run, _)| *run);
+        return Err(errors.swap_remove(0).1);
+    }
+    let mut results: Vec<RunResult> = results.into_inner().expect("no panic");
+    results.sort_by_key(|r| r.run);
+    let summary = summarize(experiment, &results);
+    out.write_summary(&summary)?;
+    let mut timing = Timing::default();
+    for r in &results {
+        timing.add(&r.timing);
+    }
+    let points = &summary.eval_points;
+    Ok(Report {
+        runs: results.len() as u64,
+        timing,
+        wall: start.elapsed(),
+        summary: out.path().join(SUMMARY_FILE),
+        first: points[0].clone(),
+        last: points[points.len() - 1].clone(),
+    })
+}
+
+/// One run: its backend, its CSV and, if asked, its agents saved.
+fn one_run(
+    experiment: &Experiment,
+    out: &OutputDir,
+    options: &RunOptions,
+    run: u64,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RunResult, Error> {
+    let mut backend = backend::open(options.transport, experiment, run)?;
+    let mut writer = out.run_writer(run, experiment.config().team.len())?;
+    let result = protocol::run(
+        experiment,
+        backend.as_mut(),
+        run,
+        |p| writer.write_point(p),
+        progress,
+    )?;
+    if let Some(dir) = &options.save_agents {
+        save_agents(dir, run, &backend.snapshots()?)?;
+    }
+    Ok(result)
+}
+
+fn save_agents(dir: &Path, run: u64, snapshots: &[agent::Snapshot]) -> Result<(), Error> {
+    for (i, s) in snapshots.iter().enumerate() {
+        let path = dir.join(agent_file_name(run, i));
+        s.save(&path).map_err(|e| match e {
+            agent::PersistError::Io { source, .. } => Error::io("write", &path, source),
+            other => Error::io("write", &path, std::io::Error::other(other.to_string())),
+        })?;
+    }
+    Ok(())
+}

@@ -1,0 +1,135 @@
+//! Mean and Student's t confidence interval over runs.
+
+use serde::{Deserialize, Serialize};
+use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// The mean of some samples and a two-sided confidence interval around it.
+///
+/// With no sample every value is `None`; with one sample the interval is
+/// undefined (no spread can be estimated) and its bounds are `None`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// Number of samples (runs) behind the estimate.
+    pub n: usize,
+    /// Arithmetic mean.
+    pub mean: Option<f64>,
+    /// Lower bound of the confidence interval.
+    pub ci_low: Option<f64>,
+    /// Upper bound of the confidence interval.
+    pub ci_high: Option<f64>,
+}
+
+/// The two-sided Student's t quantile `t_{(1 + level) / 2, df}`, e.g.
+/// 2.262 for `level` 0.95 and 9 degrees of freedom.
+///
+/// # Panics
+/// If `df` is zero or `level` is not in (0, 1).
+pub fn t_quantile(level: f64, df: usize) -> f64 {
+    assert!(df > 0, "at least one degree of freedom");
+    assert!(level > 0.0 && level < 1.0, "level in (0, 1)");
+    let t = StudentsT::new(0.0, 1.0, df as f64).expect("valid t distribution");
+    t.inverse_cdf(0.5 + level / 2.0)
+}
+
+/// Mean and `level` confidence interval of `samples` (mean ± t · s / √n with
+/// the sample standard deviation s).
+pub fn estimate(samples: &[f64], level: f64) -> Estimate {
+    let n = samples.len();
+    if n == 0 {
+        return Estimate {
+            n,
+            mean: None,
+            ci_low: None,
+            ci_high: None,
+        };
+    }
+    let mean = samples.iter().sum::<f64>() / n as f64;
+    if n == 1 {
+        return Estimate {
+            n,
+            mean: Some(mean),
+            ci_low: None,
+            ci_high: None,
+        };
+    }
+    let var = samples.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    let half = t_quantile(level, n - 1) * (var / n as f64).sqrt();
+    Estimate {
+        n,
+        mean: Some(mean),
+        ci_low: Some(mean - half),
+        ci_high: Some(mean + half),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64, tol: f64) -> bool {
+        (a - b).abs() <= tol
+    }
+
+    #[test]
+    fn t_quantiles_match_the_table() {
+        // Two-sided critical values from a printed t table.
+        for (level, df, table) in [
+            (0.95, 1, 12.706),
+            (0.95, 4, 2.776),
+            (0.95, 9, 2.262),
+            (0.95, 49, 2.010),
+            (0.90, 9, 1.833),
+            (0.90, 49, 1.677),
+            (0.99, 9, 3.250),
+        ] {
+            let t = t_quantile(level, df);
+            assert!(close(t, table, 5e-4), "level {level} df {df}: {t}");
+        }
+    }
+
+    #[test]
+    fn mean_and_ci_by_hand() {
+        // 2, 4, 4, 4, 5, 5, 7, 9: mean 5, sum of squares 32, s^2 = 32/7,
+        // s/sqrt(8) = 0.755929; t_{0.975, 7} = 2.364624; half 1.787485.
+        let e = estimate(&[2.0, 4.0, 4.0, 4.0, 5.0, 5.0, 7.0, 9.0], 0.95);
+        assert_eq!(e.n, 8);
+        assert_eq!(e.mean, Some(5.0));
+        assert!(close(e.ci_low.unwrap(), 5.0 - 1.787485, 1e-5), "{e:?}");
+        assert!(close(e.ci_high.unwrap(), 5.0 + 1.787485, 1e-5), "{e:?}");
+        // 10, 20 at 90%: mean 15, s = 7.0711, s/sqrt 2 = 5, t_{0.95, 1} = 6.313752.
+        let e = estimate(&[10.0, 20.0], 0.90);
+        assert!(
+            close(e.ci_high.unwrap(), 15.0 + 5.0 * 6.313752, 1e-4),
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn identical_samples_have_a_point_interval() {
+        let e = estimate(&[40.0; 5], 0.95);
+        assert_eq!(
+            (e.mean, e.ci_low, e.ci_high),
+            (Some(40.0), Some(40.0), Some(40.0))
+        );
+    }
+
+    #[test]
+    fn one_sample_has_a_mean_but_no_interval() {
+        let e = estimate(&[3.5], 0.95);
+        assert_eq!(
+            e,
+            Estimate {
+                n: 1,
+                mean: Some(3.5),
+                ci_low: None,
+                ci_high: None
+            }
+        );
+    }
+
+    #[test]
+    fn no_sample_has_nothing() {
+        let e = estimate(&[], 0.95);
+        assert_eq!((e.n, e.mean, e.ci_low, e.ci_high), (0, None, None, None));
+    }
+}

@@ -1,0 +1,336 @@
+//! The `coordinator` binary end to end: output shape, determinism across
+//! thread counts, saved agents, bad input, and a learning sanity check.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn coordinator<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_coordinator"))
+        .args(args)
+        .env_remove("RUST_LOG")
+        .output()
+        .expect("the binary runs")
+}
+
+/// A tiny experiment: 2 runs x 40 episodes, evaluations of 10 every 20.
+const TINY: [&str; 10] = [
+    "--runs",
+    "2",
+    "--episodes",
+    "40",
+    "--eval-every",
+    "20",
+    "--eval-episodes",
+    "10",
+    "--seed",
+    "7",
+];
+
+fn run_tiny(algorithm: &str, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec!["run", "--algorithm", algorithm];
+    args.extend(TINY);
+    args.extend(["--transport", "in-process", "--quiet", "--out"]);
+    args.push(out.to_str().unwrap());
+    args.extend(extra);
+    coordinator(&args)
+}
+
+fn ok(output: &Output) {
+    assert!(
+        output.status.success(),
+        "exit {:?}, stderr: {}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// Asserts exit code 2 with one `error:` line naming `needle`.
+fn refused(output: &Output, needle: &str) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "stderr: {stderr}");
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "one line: {stderr}");
+    assert!(lines[0].starts_with("error:"), "{stderr}");
+    assert!(lines[0].contains(needle), "{needle:?} not in {stderr}");
+}
+
+fn summary(dir: &Path) -> Value {
+    serde_json::from_slice(&fs::read(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+/// Every file of a directory with its bytes.
+fn contents(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            let bytes = fs::read(&p).unwrap();
+            (p, bytes)
+        })
+        .collect()
+}
+
+#[test]
+fn writes_run_csvs_and_a_summary_of_the_right_shape() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let output = run_tiny("adhoc-td", &out, &[]);
+    ok(&output);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("frames_per_sec"), "{stdout}");
+
+    let mut names: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["config.json", "run-0.csv", "run-1.csv", "summary.json"]
+    );
+
+    for run in 0..2 {
+        let text = fs::read_to_string(out.join(format!("run-{run}.csv"))).unwrap();
+        let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+        assert_eq!(
+            rows[0],
+            [
+                "episode",
+                "goal_pct",
+                "time_to_goal",
+                "give_spent_0",
+                "give_spent_1",
+                "give_spent_2",
+                "ask_spent_0",
+                "ask_spent_1",
+                "ask_spent_2",
+                "advice_requests",
+                "advice_given",
+                "spent_budget"
+            ]
+        );
+        assert_eq!(rows.len(), 4, "header + evaluations at 0, 20, 40");
+        for (row, episode) in rows[1..].iter().zip(["0", "20", "40"]) {
+            assert_eq!(row.len(), 12);
+            assert_eq!(row[0], episode);
+            let gp: f64 = row[1].parse().unwrap();
+            assert!((0.0..=100.0).contains(&gp) && gp % 10.0 == 0.0, "{gp}");
+            // Empty without a goal, else a mean of 1 to 200 frames.
+            assert!(
+                (gp == 0.0) == row[2].is_empty(),
+                "goal_pct {gp}, time_to_goal {:?}",
+                row[2]
+            );
+            if !row[2].is_empty() {
+                let tg: f64 = row[2].parse().unwrap();
+                assert!((1.0..=200.0).contains(&tg), "{tg}");
+            }
+        }
+        // Nothing is spent before training; AdHocTD never gives more than its budget.
+        assert!(rows[1][3..].iter().all(|c| *c == "0"), "{:?}", rows[1]);
+    }
+
+    let s = summary(&out);
+    assert_eq!(s["seed"], 7);
+    assert_eq!(s["runs"], 2);
+    assert_eq!(s["config"]["eval_every"], 20);
+    assert_eq!(s["config"]["team"][0]["strategy"], "ad-hoc-td");
+    let points = s["eval_points"].as_array().unwrap();
+    assert_eq!(points.len(), 3);
+    for (p, episode) in points.iter().zip([0, 20, 40]) {
+        assert_eq!(p["episode"], episode);
+        for metric in ["goal_pct", "spent_budget"] {
+            let m = &p[metric];
+            let (mean, lo, hi) = (
+                m["mean"].as_f64().unwrap(),
+                m["ci_low"].as_f64().unwrap(),
+                m["ci_high"].as_f64().unwrap(),
+            );
+            assert!(lo <= mean && mean <= hi, "{metric} {m}");
+        }
+        assert!(p["time_to_goal"].is_object());
+    }
+    let config: Value =
+        serde_json::from_slice(&fs::read(out.join("config.json")).unwrap()).unwrap();
+    assert_eq!(config["config"], s["config"]);
+}
+
+#[test]
+fn the_summary_is_byte_identical_whatever_the_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    ok(&run_tiny("adhoc-visit", &one, &["--threads", "1"]));
+    ok(&run_tiny("adhoc-visit", &two, &["--threads", "2"]));
+    let a = fs::read(one.join("summary.json")).unwrap();
+    let b = fs::read(two.join("summary.json")).unwrap();
+    assert_eq!(a, b);
+    for run in ["run-0.csv", "run-1.csv"] {
+        assert_eq!(
+            fs::read(one.join(run)).unwrap(),
+            fs::read(two.join(run)).unwrap()
+        );
+    }
+    // Running the same configuration again in the same directory is allowed
+    // and gives the same bytes.
+    ok(&run_tiny("adhoc-visit", &one, &["--threads", "2"]));
+    assert_eq!(fs::read(one.join("summary.json")).unwrap(), a);
+    // Another seed gives other results.
+    let three = tmp.path().join("three");
+    ok(&run_tiny("adhoc-visit", &three, &["--seed", "8"]));
+    assert_ne!(
+        fs::read(three.join("run-0.csv")).unwrap(),
+        fs::read(one.join("run-0.csv")).unwrap()
+    );
+}
+
+#[test]
+fn saved_agents_start_a_mixed_team() {
+    let tmp = tempfile::tempdir().unwrap();
+    let agents = tmp.path().join("agents");
+    let pre = tmp.path().join("pre");
+    ok(&run_tiny(
+        "no-advice",
+        &pre,
+        &["--save-agents", agents.to_str().unwrap()],
+    ));
+    for run in 0..2 {
+        for agent in 0..3 {
+            assert!(
+                agents
+                    .join(format!("run-{run}-agent-{agent}.qtable"))
+                    .is_file()
+            );
+        }
+    }
+    // The expert experiment's team: two AdHocTD learners and a loaded
+    // NoAdvice expert that never asks.
+    let team = tmp.path().join("team.toml");
+    fs::write(
+        &team,
+        "[[agent]]\nstrategy = \"ad-hoc-td\"\n\n[[agent]]\nstrategy = \"ad-hoc-td\"\n\n\
+         [[agent]]\nstrategy = \"ad-hoc-td\"\nask_budget = 0\nload = \"agents/run-0-agent-2.qtable\"\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("expert");
+    let mut args = vec!["run", "--team", team.to_str().unwrap()];
+    args.extend(TINY);
+    args.extend(["--quiet", "--out", out.to_str().unwrap()]);
+    ok(&coordinator(&args));
+    let s = summary(&out);
+    let digests = s["snapshot_digests"].as_array().unwrap();
+    assert!(digests[0].is_null() && digests[1].is_null());
+    assert_eq!(digests[2].as_str().unwrap().len(), 16);
+    assert_eq!(s["config"]["team"][2]["ask_budget"], 0);
+    // The expert never asks: its ask budget stays unspent.
+    let csv = fs::read_to_string(out.join("run-0.csv")).unwrap();
+    for line in csv.lines().skip(1) {
+        assert_eq!(line.split(',').nth(8), Some("0"), "{line}");
+    }
+}
+
+#[test]
+fn bad_input_is_refused_with_exit_code_2() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = out.to_str().unwrap();
+
+    refused(&run_tiny("best-advice", &out, &[]), "adhoc-td");
+    refused(
+        &run_tiny("no-advice", &out, &["--eval-every", "0"]),
+        "eval_every",
+    );
+    refused(
+        &run_tiny("no-advice", &out, &["--eval-episodes", "0"]),
+        "eval_episodes",
+    );
+    refused(&run_tiny("no-advice", &out, &["--runs", "0"]), "runs");
+    refused(
+        &run_tiny("no-advice", &out, &["--transport", "zenoh"]),
+        "in-process",
+    );
+    refused(
+        &run_tiny("no-advice", &out, &["--mistake-correcting"]),
+        "mistake_correcting",
+    );
+    refused(&coordinator(&["run", "--out", o]), "--algorithm");
+    assert!(!out.exists(), "nothing written for bad input");
+
+    // A missing and a corrupt agent file.
+    let team = tmp.path().join("team.toml");
+    let missing = tmp.path().join("missing.qtable");
+    fs::write(
+        &team,
+        format!(
+            "[[agent]]\n[[agent]]\n[[agent]]\nload = {:?}\n",
+            missing.to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let team_args = |team: &Path| {
+        let mut args = vec![
+            "run".to_owned(),
+            "--team".into(),
+            team.to_str().unwrap().into(),
+        ];
+        args.extend(TINY.map(String::from));
+        args.extend(["--quiet".into(), "--out".into(), o.into()]);
+        args
+    };
+    refused(&coordinator(&team_args(&team)), "missing.qtable");
+    fs::write(&missing, b"ADVQTAB\0 not really a snapshot").unwrap();
+    refused(&coordinator(&team_args(&team)), "agent 2");
+    fs::write(&missing, b"garbage").unwrap();
+    refused(&coordinator(&team_args(&team)), "not an agent snapshot");
+    // A team file of the wrong size or with a typo.
+    fs::write(&team, "[[agent]]\n[[agent]]\n").unwrap();
+    let mut args = team_args(&team);
+    args.extend(["--offense".into(), "3".into()]);
+    refused(&coordinator(&args), "team");
+    fs::write(&team, "[[agent]]\nepsilonn = 0.2\n").unwrap();
+    refused(&coordinator(&team_args(&team)), "epsilonn");
+    assert!(!out.exists(), "nothing written for bad input");
+
+    // A directory holding another configuration's results is left untouched.
+    ok(&run_tiny("no-advice", &out, &[]));
+    let before = contents(&out);
+    refused(&run_tiny("no-advice", &out, &["--seed", "8"]), o);
+    refused(&run_tiny("torrey", &out, &[]), "another configuration");
+    assert_eq!(contents(&out), before);
+}
+
+/// NoAdvice learns: over 4 runs, the mean goal percentage after 600
+/// training episodes is clearly above the one before training (about 5%
+/// before, 30% after with this simulator).
+#[test]
+fn no_advice_learns() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("learn");
+    let output = coordinator(&[
+        "run",
+        "--algorithm",
+        "no-advice",
+        "--runs",
+        "4",
+        "--episodes",
+        "600",
+        "--eval-every",
+        "300",
+        "--eval-episodes",
+        "100",
+        "--seed",
+        "1",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    ok(&output);
+    let s = summary(&out);
+    let points = s["eval_points"].as_array().unwrap();
+    let gp = |p: &Value| p["goal_pct"]["mean"].as_f64().unwrap();
+    let (first, last) = (gp(&points[0]), gp(&points[2]));
+    assert!(last >= first + 10.0, "goal_pct {first} -> {last}");
+}
