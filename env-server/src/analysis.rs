@@ -179,20 +179,35 @@ pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> u
         let ratio = control / d;
         usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
     };
-    for (t, &b) in path.iter().enumerate() {
-        let (rel, control) = reach_vector(t, b);
+    // Per cycle the gap closes by at most the ball's and the player's initial
+    // speeds plus one metre of dashing (plus the keeper's larger area once):
+    // far out of reach, the cycles that cannot qualify are skipped.
+    let ball_speed = if path.len() > 1 {
+        path[1].distance(path[0])
+    } else {
+        0.0
+    };
+    let closing = ball_speed + p.vel.length() + 1.0;
+    let slack = keeper_control.map_or(0.0, |c| (c - KICKABLE_AREA).max(0.0));
+    let mut t = 0;
+    while t < path.len() {
+        let (rel, control) = reach_vector(t, path[t]);
+        let reach = control + dash_distance(t);
+        if rel.length_squared() > reach * reach {
+            let excess = rel.length() - reach - slack;
+            t += ((excess / closing).ceil() as usize).max(1);
+            continue; // out of reach even without turning
+        }
         let d = rel.length();
         let gap = d - control;
         if gap <= 0.0 {
             return t;
         }
-        if gap > dash_distance(t) {
-            continue; // out of reach even without turning
-        }
         let n_turn = turns(rel, d, control);
         if t >= n_turn && gap <= dash_distance(t - n_turn) {
             return t;
         }
+        t += 1;
     }
     let last = path.len() - 1;
     let (rel, control) = reach_vector(last, path[last]);

@@ -6,7 +6,7 @@ use std::f64::consts::{PI, TAU};
 
 /// Wraps an angle (radians) into `(-π, π]`.
 pub fn normalize_angle(a: f64) -> f64 {
-    let mut a = a % TAU;
+    let mut a = if a.abs() <= 3.0 * PI { a } else { a % TAU };
     if a > PI {
         a -= TAU;
     } else if a <= -PI {

@@ -278,7 +278,9 @@ impl<'a> View<'a> {
         let mut target = self.target_point();
         let power = self.dash_power(target);
         let tolerance = (0.1 * self.ball_dist).max(0.5);
-        let ball_off_axis = angle_diff(direction(ball - GOAL_CENTER), PI) > 60f64.to_radians();
+        // More than 60° off the goal axis, seen from the goal centre (cos 60° = 0.5).
+        let from_goal = ball - GOAL_CENTER;
+        let ball_off_axis = -from_goal.x < 0.5 * from_goal.length();
         // Deep cross: hold the near-post spot facing the field.
         if target.y.abs() >= 6.21 && ball_off_axis {
             return go_to_point(k, target, tolerance, power).unwrap_or_else(|| {

@@ -201,10 +201,14 @@ fn keeper_verdict(s: &Situation, target: DVec2, speed: f64) -> Option<bool> {
             KICKABLE_AREA
         };
         let k = keeper.pos + keeper.vel * DRIFT[c.min(DRIFT.len() - 1)];
-        let mut dist = b.distance(k);
-        if in_area {
-            dist -= 0.02 * keeper_shooter;
+        let margin = if in_area { 0.02 * keeper_shooter } else { 0.0 };
+        // Beyond this the keeper neither catches nor comes close (the tests below).
+        let far = (dash_distance(c + 1) + 0.9 * control) / 0.999 + margin;
+        let dist_sq = b.distance_squared(k);
+        if dist_sq > far * far {
+            continue;
         }
+        let dist = dist_sq.sqrt() - margin;
         if dist - control - 0.15 < 0.001 {
             return None;
         }
