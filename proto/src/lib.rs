@@ -1,7 +1,21 @@
 //! Wire protocol shared by env-server, agents and coordinator.
 //!
-//! Messages are serde types encoded with postcard; every message carries
-//! [`PROTOCOL_VERSION`] so that peers of another version are recognised.
+//! Messages are serde types encoded with postcard ([`codec`]); every message
+//! carries a [`Header`] with [`PROTOCOL_VERSION`], the experiment, run,
+//! episode and frame, so that stale, duplicate, foreign or malformed
+//! messages are recognised and dropped. Key expressions live in [`keys`],
+//! message and byte counters in [`counters`], and the zenoh session settings
+//! (as plain JSON5 text, no zenoh types) in [`net`].
+
+pub mod codec;
+pub mod counters;
+pub mod keys;
+pub mod message;
+pub mod net;
+
+pub use codec::{DecodeError, decode, encode};
+pub use counters::{Direction, DropReason, MessageCounters, MessageKind};
+pub use message::*;
 
 use serde::{Deserialize, Serialize};
 

@@ -1,0 +1,208 @@
+//! Encoding and checked decoding of [`Envelope`]s.
+
+use crate::{Envelope, Header, PROTOCOL_VERSION};
+use thiserror::Error;
+
+/// Why received bytes were not accepted as a message of this experiment.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+pub enum DecodeError {
+    /// Not a message of this protocol at all.
+    #[error("malformed message: {0}")]
+    Malformed(String),
+    /// A message of another protocol version.
+    #[error("protocol version {found}, expected {expected}")]
+    Version {
+        /// Version in the message.
+        found: u16,
+        /// Our version.
+        expected: u16,
+    },
+    /// A message of another experiment.
+    #[error("message of experiment {0:#018x}")]
+    Foreign(u64),
+}
+
+/// Encodes a message.
+pub fn encode(envelope: &Envelope) -> Vec<u8> {
+    // Every message type is plain data: serialising into a Vec cannot fail.
+    postcard::to_allocvec(envelope).unwrap_or_default()
+}
+
+/// Decodes a message of `experiment`, checking version and experiment first;
+/// never panics, whatever the bytes.
+pub fn decode(bytes: &[u8], experiment: u64) -> Result<Envelope, DecodeError> {
+    let (header, _) = postcard::take_from_bytes::<Header>(bytes)
+        .map_err(|e| DecodeError::Malformed(e.to_string()))?;
+    if header.version != PROTOCOL_VERSION {
+        return Err(DecodeError::Version {
+            found: header.version,
+            expected: PROTOCOL_VERSION,
+        });
+    }
+    if header.experiment != experiment {
+        return Err(DecodeError::Foreign(header.experiment));
+    }
+    let (envelope, rest) = postcard::take_from_bytes::<Envelope>(bytes)
+        .map_err(|e| DecodeError::Malformed(e.to_string()))?;
+    if !rest.is_empty() {
+        return Err(DecodeError::Malformed(format!(
+            "{} trailing bytes",
+            rest.len()
+        )));
+    }
+    Ok(envelope)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::*;
+    use proptest::prelude::*;
+
+    fn action() -> impl Strategy<Value = Action> {
+        prop::sample::select(Action::ALL.to_vec())
+    }
+
+    fn state() -> impl Strategy<Value = State> {
+        prop::array::uniform6(-1.0f64..=1.0)
+    }
+
+    fn mode() -> impl Strategy<Value = Mode> {
+        prop::sample::select(vec![Mode::Training, Mode::Evaluation])
+    }
+
+    fn body() -> impl Strategy<Value = Body> {
+        prop_oneof![
+            (
+                any::<u8>(),
+                mode(),
+                state(),
+                any::<bool>(),
+                prop::collection::vec(prop::array::uniform2(-60.0f64..60.0), 0..5),
+                -1.0f64..=1.0,
+                any::<bool>()
+            )
+                .prop_map(
+                    |(agent, mode, state, can_kick, positions, reward, terminal)| Body::Observation(
+                        Observation {
+                            agent,
+                            mode,
+                            state,
+                            can_kick,
+                            positions,
+                            reward,
+                            terminal
+                        }
+                    )
+                ),
+            (any::<u8>(), action())
+                .prop_map(|(agent, action)| Body::Action(ActionChoice { agent, action })),
+            (any::<u8>(), state(), prop::option::of(action())).prop_map(
+                |(from, state, intended)| Body::AdviceRequest(AdviceRequest {
+                    from,
+                    state,
+                    intended
+                })
+            ),
+            (any::<u8>(), prop::option::of(action()))
+                .prop_map(|(from, advice)| Body::AdviceReply(AdviceReply { from, advice })),
+            (
+                any::<u8>(),
+                any::<u8>(),
+                prop::collection::vec(
+                    (
+                        state(),
+                        action(),
+                        -1.0f64..=1.0,
+                        prop::option::of((state(), action()))
+                    ),
+                    0..20
+                )
+            )
+                .prop_map(|(from, to, t)| Body::SharedEpisode(SharedEpisode {
+                    from,
+                    to,
+                    transitions: t
+                        .into_iter()
+                        .map(|(state, action, reward, next)| SharedTransition {
+                            state,
+                            action,
+                            reward,
+                            next
+                        })
+                        .collect()
+                })),
+            (any::<u64>(), ".{0,40}")
+                .prop_map(|(seed, config)| Body::Control(Control::Reset { seed, config })),
+            (mode(), prop::option::of(any::<u64>()))
+                .prop_map(|(mode, seed)| Body::Control(Control::PlayEpisode { mode, seed })),
+            Just(Body::Control(Control::Report)),
+            Just(Body::Control(Control::Stop)),
+            (any::<u32>()).prop_map(|frames| Body::ControlReply(ControlReply::Episode(
+                EpisodeResult {
+                    outcome: EpisodeOutcome::Goal,
+                    frames
+                }
+            ))),
+            (any::<u64>(), prop::collection::vec(0f32..100.0, 0..10)).prop_map(
+                |(digest, advice_rtt_ms)| Body::ControlReply(ControlReply::Agent(AgentReport {
+                    digest,
+                    advice_rtt_ms,
+                    ..AgentReport::default()
+                }))
+            ),
+            ".{0,40}".prop_map(|e| Body::ControlReply(ControlReply::Error(e))),
+        ]
+    }
+
+    fn header(experiment: u64) -> impl Strategy<Value = Header> {
+        (any::<u32>(), any::<u32>(), any::<u32>())
+            .prop_map(move |(run, episode, frame)| Header::new(experiment, run, episode, frame))
+    }
+
+    proptest! {
+        #[test]
+        fn round_trips(header in header(7), body in body()) {
+            let envelope = Envelope { header, body };
+            prop_assert_eq!(decode(&encode(&envelope), 7), Ok(envelope));
+        }
+
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..256)) {
+            let _ = decode(&bytes, 7);
+        }
+
+        #[test]
+        fn truncated_messages_are_malformed(header in header(7), body in body(), cut in 0usize..1000) {
+            let bytes = encode(&Envelope { header, body });
+            let cut = cut % bytes.len();
+            prop_assert!(decode(&bytes[..cut], 7).is_err());
+        }
+    }
+
+    #[test]
+    fn foreign_and_old_messages_are_recognised() {
+        let envelope = Envelope {
+            header: Header::new(1, 0, 0, 0),
+            body: Body::Control(Control::Stop),
+        };
+        assert_eq!(decode(&encode(&envelope), 2), Err(DecodeError::Foreign(1)));
+        let old = Envelope {
+            header: Header {
+                version: PROTOCOL_VERSION + 1,
+                ..envelope.header
+            },
+            ..envelope
+        };
+        assert!(matches!(
+            decode(&encode(&old), 1),
+            Err(DecodeError::Version { .. })
+        ));
+        let mut bytes = encode(&Envelope {
+            header: Header::new(1, 0, 0, 0),
+            body: Body::Control(Control::Stop),
+        });
+        bytes.push(0);
+        assert!(matches!(decode(&bytes, 1), Err(DecodeError::Malformed(_))));
+    }
+}

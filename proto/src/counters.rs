@@ -1,0 +1,217 @@
+//! Message and byte counters by kind and direction, and dropped-message counts.
+
+use crate::Body;
+use serde::{Deserialize, Serialize};
+
+/// The kinds of message, for accounting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum MessageKind {
+    /// Observations.
+    Observation,
+    /// Actions.
+    Action,
+    /// Advice requests.
+    AdviceRequest,
+    /// Advice replies.
+    AdviceReply,
+    /// Shared episodes.
+    SharedEpisode,
+    /// Control commands.
+    Control,
+    /// Control replies.
+    ControlReply,
+}
+
+impl MessageKind {
+    /// Every kind, in counter order.
+    pub const ALL: [MessageKind; 7] = [
+        MessageKind::Observation,
+        MessageKind::Action,
+        MessageKind::AdviceRequest,
+        MessageKind::AdviceReply,
+        MessageKind::SharedEpisode,
+        MessageKind::Control,
+        MessageKind::ControlReply,
+    ];
+
+    /// The kind of a message body.
+    pub fn of(body: &Body) -> Self {
+        match body {
+            Body::Observation(_) => MessageKind::Observation,
+            Body::Action(_) => MessageKind::Action,
+            Body::AdviceRequest(_) => MessageKind::AdviceRequest,
+            Body::AdviceReply(_) => MessageKind::AdviceReply,
+            Body::SharedEpisode(_) => MessageKind::SharedEpisode,
+            Body::Control(_) => MessageKind::Control,
+            Body::ControlReply(_) => MessageKind::ControlReply,
+        }
+    }
+
+    /// Snake-case name used in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            MessageKind::Observation => "observation",
+            MessageKind::Action => "action",
+            MessageKind::AdviceRequest => "advice_request",
+            MessageKind::AdviceReply => "advice_reply",
+            MessageKind::SharedEpisode => "shared_episode",
+            MessageKind::Control => "control",
+            MessageKind::ControlReply => "control_reply",
+        }
+    }
+}
+
+/// Whether a message was sent or received.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// Sent by this process.
+    Sent,
+    /// Received by this process.
+    Received,
+}
+
+/// Why a received message was dropped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DropReason {
+    /// Undecodable bytes.
+    Malformed,
+    /// Another protocol version.
+    Version,
+    /// Another experiment.
+    Foreign,
+    /// From an earlier run, episode or frame.
+    Stale,
+    /// Already received.
+    Duplicate,
+}
+
+/// Messages and bytes of one kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Tally {
+    /// Messages.
+    pub messages: u64,
+    /// Payload bytes.
+    pub bytes: u64,
+}
+
+/// Dropped messages by reason.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Dropped {
+    /// Undecodable.
+    pub malformed: u64,
+    /// Other protocol version.
+    pub version: u64,
+    /// Other experiment.
+    pub foreign: u64,
+    /// Earlier run, episode or frame.
+    pub stale: u64,
+    /// Already received.
+    pub duplicate: u64,
+}
+
+impl Dropped {
+    /// All dropped messages.
+    pub fn total(&self) -> u64 {
+        self.malformed + self.version + self.foreign + self.stale + self.duplicate
+    }
+}
+
+/// A process's message accounting.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct MessageCounters {
+    /// Sent, indexed like [`MessageKind::ALL`].
+    pub sent: [Tally; 7],
+    /// Received and accepted, indexed like [`MessageKind::ALL`].
+    pub received: [Tally; 7],
+    /// Received and dropped.
+    pub dropped: Dropped,
+}
+
+impl MessageCounters {
+    /// Counts one message of `bytes` bytes.
+    pub fn record(&mut self, direction: Direction, kind: MessageKind, bytes: usize) {
+        let table = match direction {
+            Direction::Sent => &mut self.sent,
+            Direction::Received => &mut self.received,
+        };
+        let tally = &mut table[kind as usize];
+        tally.messages += 1;
+        tally.bytes += bytes as u64;
+    }
+
+    /// Counts one dropped message.
+    pub fn drop(&mut self, reason: DropReason) {
+        let d = &mut self.dropped;
+        match reason {
+            DropReason::Malformed => d.malformed += 1,
+            DropReason::Version => d.version += 1,
+            DropReason::Foreign => d.foreign += 1,
+            DropReason::Stale => d.stale += 1,
+            DropReason::Duplicate => d.duplicate += 1,
+        }
+    }
+
+    /// Counts a decode failure under its reason.
+    pub fn drop_undecodable(&mut self, error: &crate::DecodeError) {
+        self.drop(match error {
+            crate::DecodeError::Malformed(_) => DropReason::Malformed,
+            crate::DecodeError::Version { .. } => DropReason::Version,
+            crate::DecodeError::Foreign(_) => DropReason::Foreign,
+        });
+    }
+
+    /// Total messages and bytes in one direction.
+    pub fn total(&self, direction: Direction) -> Tally {
+        let table = match direction {
+            Direction::Sent => &self.sent,
+            Direction::Received => &self.received,
+        };
+        table.iter().fold(Tally::default(), |a, t| Tally {
+            messages: a.messages + t.messages,
+            bytes: a.bytes + t.bytes,
+        })
+    }
+
+    /// Adds another process's counters to these.
+    pub fn merge(&mut self, other: &MessageCounters) {
+        for (a, b) in self
+            .sent
+            .iter_mut()
+            .zip(&other.sent)
+            .chain(self.received.iter_mut().zip(&other.received))
+        {
+            a.messages += b.messages;
+            a.bytes += b.bytes;
+        }
+        let (d, o) = (&mut self.dropped, &other.dropped);
+        d.malformed += o.malformed;
+        d.version += o.version;
+        d.foreign += o.foreign;
+        d.stale += o.stale;
+        d.duplicate += o.duplicate;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn totals_and_merge() {
+        let mut a = MessageCounters::default();
+        a.record(Direction::Sent, MessageKind::AdviceRequest, 40);
+        a.record(Direction::Sent, MessageKind::Action, 10);
+        a.drop(DropReason::Foreign);
+        let mut b = a.clone();
+        b.merge(&a);
+        assert_eq!(
+            b.total(Direction::Sent),
+            Tally {
+                messages: 4,
+                bytes: 100
+            }
+        );
+        assert_eq!(b.sent[MessageKind::AdviceRequest as usize].messages, 2);
+        assert_eq!(b.dropped.total(), 2);
+    }
+}

@@ -1,0 +1,255 @@
+//! The messages every process exchanges, and the header they all carry.
+
+use crate::{Action, PROTOCOL_VERSION, State};
+use serde::{Deserialize, Serialize};
+
+/// Where a message belongs: protocol version, experiment, run, episode, frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Header {
+    /// [`PROTOCOL_VERSION`] of the sender.
+    pub version: u16,
+    /// Experiment id (see [`experiment_id`]).
+    pub experiment: u64,
+    /// Run index.
+    pub run: u32,
+    /// Episode index within the run (training and evaluation episodes alike).
+    pub episode: u32,
+    /// Frame (agent decision) within the episode.
+    pub frame: u32,
+}
+
+impl Header {
+    /// A header of this protocol version.
+    pub fn new(experiment: u64, run: u32, episode: u32, frame: u32) -> Self {
+        Header {
+            version: PROTOCOL_VERSION,
+            experiment,
+            run,
+            episode,
+            frame,
+        }
+    }
+}
+
+/// A stable 64-bit id of an experiment name (FNV-1a), carried in every header.
+pub fn experiment_id(name: &str) -> u64 {
+    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// Whether an episode trains the agents or evaluates them frozen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Mode {
+    /// Learning, exploring and asking for advice.
+    Training,
+    /// Frozen: greedy play, nothing learned, asked or given.
+    Evaluation,
+}
+
+/// One message: a header and its body.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Envelope {
+    /// Where the message belongs.
+    pub header: Header,
+    /// What it says.
+    pub body: Body,
+}
+
+/// What a message says.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Body {
+    /// env-server -> agent: one frame's observation.
+    Observation(Observation),
+    /// agent -> env-server: the action of an agent that was asked to act.
+    Action(ActionChoice),
+    /// agent -> agents in G: a request for advice (query payload).
+    AdviceRequest(AdviceRequest),
+    /// advisor -> advisee: the reply to a request (query reply).
+    AdviceReply(AdviceReply),
+    /// agent -> agent: transitions of a goal episode (EpisodeSharing).
+    SharedEpisode(SharedEpisode),
+    /// coordinator -> process: a command (query payload).
+    Control(Control),
+    /// process -> coordinator: the answer to a command (query reply).
+    ControlReply(ControlReply),
+}
+
+/// One agent's observation of a frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Observation {
+    /// The observing agent.
+    pub agent: u8,
+    /// Training or evaluation episode.
+    pub mode: Mode,
+    /// The paper's 6 features.
+    pub state: State,
+    /// Whether the agent can kick (and so has a decision to make).
+    pub can_kick: bool,
+    /// Field positions of every offense agent, by id (for distance-based G).
+    pub positions: Vec<[f64; 2]>,
+    /// Reward of the transition that led here.
+    pub reward: f64,
+    /// Whether this frame ends the episode (no action expected).
+    pub terminal: bool,
+}
+
+/// An agent's chosen action for a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ActionChoice {
+    /// The acting agent.
+    pub agent: u8,
+    /// Its action.
+    pub action: Action,
+}
+
+/// A request for advice about a state.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdviceRequest {
+    /// The asking agent.
+    pub from: u8,
+    /// Its state.
+    pub state: State,
+    /// Its intended action (Mistake Correcting), if sent.
+    pub intended: Option<Action>,
+}
+
+/// An advisor's answer: its action, or `None` when it gives no advice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct AdviceReply {
+    /// The answering agent.
+    pub from: u8,
+    /// The advised action.
+    pub advice: Option<Action>,
+}
+
+/// One transition of a shared episode.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SharedTransition {
+    /// State.
+    pub state: State,
+    /// Action taken.
+    pub action: Action,
+    /// Reward received.
+    pub reward: f64,
+    /// Next state and action, `None` at the terminal step.
+    pub next: Option<(State, Action)>,
+}
+
+/// Transitions of a goal episode sent to one receiver.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SharedEpisode {
+    /// The sharing agent.
+    pub from: u8,
+    /// The receiver.
+    pub to: u8,
+    /// The transitions, in order.
+    pub transitions: Vec<SharedTransition>,
+}
+
+/// A coordinator's command to env-server or an agent.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum Control {
+    /// Start run `header.run` afresh: new learner (agents) or simulator (env-server)
+    /// from `config` (JSON of the process's settings) and `seed`.
+    Reset {
+        /// Seed of the process's random stream for this run.
+        seed: u64,
+        /// The process's settings as JSON (`AgentConfig` or `EnvConfig`).
+        config: String,
+    },
+    /// env-server: play episode `header.episode` in `mode` and report its result.
+    PlayEpisode {
+        /// Training or evaluation.
+        mode: Mode,
+        /// Reseed the simulator first (evaluation points use their own seeds).
+        seed: Option<u64>,
+    },
+    /// Agent: save its learned state to a file on its host.
+    Save {
+        /// Destination path.
+        path: String,
+    },
+    /// Agent: load its learned state from a file on its host.
+    Load {
+        /// Source path.
+        path: String,
+    },
+    /// Report counters, budgets and the digest of the learned state.
+    Report,
+    /// Exit cleanly.
+    Stop,
+}
+
+/// The answer to a [`Control`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ControlReply {
+    /// Done.
+    Ok,
+    /// Result of a played episode.
+    Episode(EpisodeResult),
+    /// An agent's report.
+    Agent(Box<AgentReport>),
+    /// env-server's report.
+    Server(Box<ServerReport>),
+    /// The command failed; the text says why.
+    Error(String),
+}
+
+/// How an episode ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum EpisodeOutcome {
+    /// Goal.
+    Goal,
+    /// Captured by the keeper.
+    Captured,
+    /// Out of bounds.
+    OutOfBounds,
+    /// Out of time.
+    OutOfTime,
+}
+
+/// Result of one episode played by env-server.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct EpisodeResult {
+    /// How it ended.
+    pub outcome: EpisodeOutcome,
+    /// Agent decisions taken.
+    pub frames: u32,
+}
+
+/// An agent's counters and the digest of its learned state.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct AgentReport {
+    /// The agent.
+    pub agent: u8,
+    /// Digest of the Q-table and visit counts.
+    pub digest: u64,
+    /// Ask budget spent (advised steps).
+    pub ask_spent: u64,
+    /// Give budget spent (advice given, or transitions shared).
+    pub give_spent: u64,
+    /// Advice requests sent.
+    pub advice_requests_sent: u64,
+    /// Advice replies received (with or without advice).
+    pub advice_replies_received: u64,
+    /// Advice given to others.
+    pub advice_given: u64,
+    /// Messages and bytes by kind and direction.
+    pub messages: crate::MessageCounters,
+    /// Round-trip times of advice requests (ms), one per request with a reply.
+    pub advice_rtt_ms: Vec<f32>,
+    /// Teammates currently seen alive.
+    pub alive_peers: Vec<u8>,
+}
+
+/// env-server's counters.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ServerReport {
+    /// Frames stepped.
+    pub frames: u64,
+    /// Actions that did not arrive within the step timeout (the fallback was used).
+    pub missing_actions: u64,
+    /// Messages and bytes by kind and direction.
+    pub messages: crate::MessageCounters,
+}
