@@ -145,11 +145,13 @@ mod tests {
                 }
             ))),
             (any::<u64>(), prop::collection::vec(0f32..100.0, 0..10)).prop_map(
-                |(digest, advice_rtt_ms)| Body::ControlReply(ControlReply::Agent(AgentReport {
-                    digest,
-                    advice_rtt_ms,
-                    ..AgentReport::default()
-                }))
+                |(digest, advice_rtt_ms)| Body::ControlReply(ControlReply::Agent(Box::new(
+                    AgentReport {
+                        digest,
+                        advice_rtt_ms,
+                        ..AgentReport::default()
+                    }
+                )))
             ),
             ".{0,40}".prop_map(|e| Body::ControlReply(ControlReply::Error(e))),
         ]
