@@ -177,6 +177,8 @@ pub enum Control {
     },
     /// Report counters, budgets and the digest of the learned state.
     Report,
+    /// Agent: send its learned state (the bytes of a snapshot file).
+    Snapshot,
     /// Exit cleanly.
     Stop,
 }
@@ -192,6 +194,8 @@ pub enum ControlReply {
     Agent(Box<AgentReport>),
     /// env-server's report.
     Server(Box<ServerReport>),
+    /// An agent's learned state, as the bytes of a snapshot file.
+    Snapshot(Vec<u8>),
     /// The command failed; the text says why.
     Error(String),
 }
