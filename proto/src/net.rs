@@ -24,7 +24,8 @@ impl NetConfig {
     }
 
     /// The zenoh configuration: multicast scouting off, gossip on (peers
-    /// learn each other's listeners through the ones they connect to).
+    /// learn each other's listeners through the ones they connect to), and
+    /// opening fails after 5 s if a configured endpoint cannot be reached.
     pub fn to_json5(&self) -> String {
         let list = |v: &[String]| {
             v.iter()
@@ -33,7 +34,7 @@ impl NetConfig {
                 .join(", ")
         };
         format!(
-            r#"{{ mode: {mode:?}, listen: {{ endpoints: [{listen}] }}, connect: {{ endpoints: [{connect}] }}, scouting: {{ multicast: {{ enabled: false }}, gossip: {{ enabled: true }} }} }}"#,
+            r#"{{ mode: {mode:?}, listen: {{ endpoints: [{listen}] }}, connect: {{ endpoints: [{connect}], timeout_ms: 5000, exit_on_failure: true }}, scouting: {{ multicast: {{ enabled: false }}, gossip: {{ enabled: true }} }} }}"#,
             mode = self.mode,
             listen = list(&self.listen),
             connect = list(&self.connect),
