@@ -55,7 +55,7 @@ mod tests {
             "{j}"
         );
         assert!(
-            j.contains(r#"connect: { endpoints: ["tcp/127.0.0.1:7000"] }"#),
+            j.contains(r#"connect: { endpoints: ["tcp/127.0.0.1:7000"],"#),
             "{j}"
         );
         assert!(j.contains("multicast: { enabled: false }"));
