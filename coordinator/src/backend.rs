@@ -10,12 +10,15 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::experiment::{Experiment, RunSeeds};
+use crate::remote::{Network, RemoteBackend};
 
 /// The transports a run can use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum Transport {
-    /// Simulator and agents as library calls in the run's thread.
+    /// env-server and every agent as separate processes talking over zenoh.
     #[default]
+    Zenoh,
+    /// Simulator and agents as library calls in the run's thread.
     InProcess,
 }
 
@@ -37,8 +40,20 @@ pub struct AgentStats {
     pub spent_ask: u64,
     /// Advice requests sent.
     pub requests: u64,
+    /// Replies received to those requests (advice or not).
+    pub replies_received: u64,
     /// Answers given.
     pub advice_given: u64,
+    /// Messages sent (0 in process).
+    pub messages_sent: u64,
+    /// Bytes sent (0 in process).
+    pub bytes_sent: u64,
+    /// Messages received (0 in process).
+    pub messages_received: u64,
+    /// Bytes received (0 in process).
+    pub bytes_received: u64,
+    /// Received messages dropped as malformed, foreign, stale or duplicate.
+    pub dropped: u64,
 }
 
 impl AgentStats {
@@ -49,7 +64,9 @@ impl AgentStats {
             spent_give: agent.spent_budget(),
             spent_ask: c.advised_steps,
             requests: c.requests_sent,
+            replies_received: c.advice_received,
             advice_given: c.advice_given,
+            ..Self::default()
         }
     }
 }
@@ -70,16 +87,30 @@ pub trait Backend {
 
     /// Every agent's learned state, by id.
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error>;
+
+    /// Every agent's advice round-trip times (ms) as of the last
+    /// [`agent_stats`](Self::agent_stats); empty in process.
+    fn advice_rtt_ms(&self) -> Vec<Vec<f32>> {
+        Vec::new()
+    }
 }
 
 /// Opens the backend of run `run` on `transport`.
-pub fn open(
+pub fn open<'a>(
     transport: Transport,
     experiment: &Experiment,
     run: u64,
-) -> Result<Box<dyn Backend>, Error> {
-    match transport {
-        Transport::InProcess => Ok(Box::new(InProcess::new(experiment, run)?)),
+    network: Option<&'a Network>,
+) -> Result<Box<dyn Backend + 'a>, Error> {
+    match (transport, network) {
+        (Transport::InProcess, _) => Ok(Box::new(InProcess::new(experiment, run)?)),
+        (Transport::Zenoh, Some(network)) => {
+            Ok(Box::new(RemoteBackend::new(network, experiment, run)?))
+        }
+        (Transport::Zenoh, None) => Err(Error::Backend {
+            run,
+            message: "the zenoh transport needs a joined network".into(),
+        }),
     }
 }
 

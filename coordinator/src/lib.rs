@@ -9,6 +9,7 @@
 //! - [`experiment`]: a validated configuration with its snapshots loaded.
 //! - [`backend`]: the [`Backend`] the protocol drives; [`InProcess`] calls
 //!   the simulator and an `agent::Team` directly.
+//! - [`remote`]: the zenoh transport: env-server and agents as processes.
 //! - [`protocol`]: one run: evaluate, train K, evaluate, ..., through N.
 //! - [`stats`] and [`summary`]: mean and Student's t interval over runs.
 //! - [`output`]: `config.json`, `run-<k>.csv`, `summary.json`.
@@ -33,6 +34,7 @@ pub mod error;
 pub mod experiment;
 pub mod output;
 pub mod protocol;
+pub mod remote;
 pub mod runner;
 pub mod seeds;
 pub mod stats;
@@ -44,6 +46,7 @@ pub use error::Error;
 pub use experiment::{Experiment, RunSeeds};
 pub use output::OutputDir;
 pub use protocol::{EvalPoint, RunResult, Timing};
+pub use remote::{Network, NetworkOptions, RemoteBackend};
 pub use runner::{Report, RunOptions, run_experiment};
 pub use stats::{Estimate, estimate};
 pub use summary::{Summary, SummaryPoint, summarize};

@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use coordinator::{
-    AgentSpec, Algorithm, Estimate, Experiment, ExperimentConfig, OutputDir, RunOptions, Transport,
-    load_team_file, run_experiment,
+    AgentSpec, Algorithm, Estimate, Experiment, ExperimentConfig, NetworkOptions, OutputDir,
+    RunOptions, Transport, load_team_file, run_experiment,
 };
 
 #[derive(Parser)]
@@ -67,9 +67,12 @@ struct RunArgs {
     /// Worker threads, one run each at a time (default: one per core).
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
     threads: Option<u64>,
-    /// Where agents and simulator live.
-    #[arg(long, value_enum, default_value = "in-process")]
+    /// Where agents and simulator live: separate processes over zenoh, or
+    /// library calls in this process (fast, bit-for-bit deterministic).
+    #[arg(long, value_enum, default_value = "zenoh")]
     transport: Transport,
+    #[command(flatten)]
+    network: NetworkArgs,
     /// Output directory: config.json, run-<k>.csv, summary.json.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
@@ -79,6 +82,58 @@ struct RunArgs {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+/// Settings of the zenoh transport.
+#[derive(Args)]
+struct NetworkArgs {
+    /// Experiment name, the key prefix adv/<NAME> of every message
+    /// (default: one unique to this invocation).
+    #[arg(long, value_name = "NAME")]
+    experiment: Option<String>,
+    /// Loopback port this coordinator listens on for its processes (0: any free port).
+    #[arg(long, default_value_t = 0)]
+    port: u16,
+    /// zenoh endpoint to connect to, e.g. a router (repeatable).
+    #[arg(long, value_name = "ENDPOINT")]
+    connect: Vec<String>,
+    /// Drive env-server and agents already running (e.g. on other hosts)
+    /// instead of starting them here.
+    #[arg(long)]
+    attach: bool,
+    /// Directory of the env-server and agent executables (default: next to this one).
+    #[arg(long, value_name = "DIR")]
+    bin_dir: Option<PathBuf>,
+    /// How long an agent waits for advice (ms).
+    #[arg(long, value_name = "MS", default_value_t = 5)]
+    advice_timeout_ms: u64,
+    /// How long env-server waits for a kicker's action before Move (ms).
+    #[arg(long, value_name = "MS", default_value_t = 1000)]
+    step_timeout_ms: u64,
+    /// How long to wait for every process to join (s).
+    #[arg(long, value_name = "S", default_value_t = 30)]
+    startup_timeout: u64,
+}
+
+impl NetworkArgs {
+    fn options(&self) -> NetworkOptions {
+        let unique = || {
+            let nanos = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.subsec_nanos());
+            format!("exp-{}-{nanos}", std::process::id())
+        };
+        NetworkOptions {
+            experiment: self.experiment.clone().unwrap_or_else(unique),
+            port: self.port,
+            connect: self.connect.clone(),
+            attach: self.attach,
+            bin_dir: self.bin_dir.clone(),
+            advice_timeout_ms: self.advice_timeout_ms,
+            step_timeout_ms: self.step_timeout_ms,
+            startup_timeout: std::time::Duration::from_secs(self.startup_timeout),
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -157,6 +212,7 @@ fn run(cli: Cli) -> Result<()> {
         transport: args.transport,
         save_agents: args.save_agents,
         progress: !args.quiet && std::io::stderr().is_terminal(),
+        network: Some(args.network.options()),
     };
     let report = run_experiment(&experiment, &out, &options)?;
     let c = experiment.config();

@@ -159,7 +159,9 @@ fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
 /// Columns: `episode, goal_pct, time_to_goal` (empty without a goal),
 /// `give_spent_<i>` and `ask_spent_<i>` for every agent `i`,
 /// `advice_requests` and `advice_given` (team totals), `spent_budget` (the
-/// give budget spent, averaged over agents).
+/// give budget spent, averaged over agents), then the team's communication
+/// so far: `advice_replies_received`, `messages_sent`, `bytes_sent`,
+/// `messages_received`, `bytes_received`, `messages_dropped` (0 in process).
 #[derive(Debug)]
 pub struct RunWriter {
     path: PathBuf,
@@ -180,7 +182,20 @@ impl RunWriter {
             .to_vec();
         header.extend((0..agents).map(|i| format!("give_spent_{i}")));
         header.extend((0..agents).map(|i| format!("ask_spent_{i}")));
-        header.extend(["advice_requests", "advice_given", "spent_budget"].map(String::from));
+        header.extend(
+            [
+                "advice_requests",
+                "advice_given",
+                "spent_budget",
+                "advice_replies_received",
+                "messages_sent",
+                "bytes_sent",
+                "messages_received",
+                "bytes_received",
+                "messages_dropped",
+            ]
+            .map(String::from),
+        );
         w.write_row(&header)?;
         Ok(w)
     }
@@ -204,6 +219,17 @@ impl RunWriter {
                 .to_string(),
         );
         row.push(p.spent_budget.to_string());
+        let total = |f: fn(&crate::backend::AgentStats) -> u64| {
+            p.agents.iter().map(f).sum::<u64>().to_string()
+        };
+        row.extend([
+            total(|a| a.replies_received),
+            total(|a| a.messages_sent),
+            total(|a| a.bytes_sent),
+            total(|a| a.messages_received),
+            total(|a| a.bytes_received),
+            total(|a| a.dropped),
+        ]);
         self.write_row(&row)
     }
 

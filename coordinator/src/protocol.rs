@@ -83,6 +83,8 @@ pub struct RunResult {
     pub points: Vec<EvalPoint>,
     /// Where its time went.
     pub timing: Timing,
+    /// Every agent's advice round-trip times (ms) over the run; empty in process.
+    pub advice_rtt_ms: Vec<Vec<f32>>,
 }
 
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
@@ -142,5 +144,6 @@ pub fn run(
         run,
         points,
         timing,
+        advice_rtt_ms: backend.advice_rtt_ms(),
     })
 }

@@ -16,6 +16,7 @@ use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::output::{OutputDir, SUMMARY_FILE};
 use crate::protocol::{self, RunResult, Timing};
+use crate::remote::{Network, NetworkOptions};
 use crate::summary::{SummaryPoint, summarize};
 
 /// How to run an experiment (none of it changes the results).
@@ -30,6 +31,8 @@ pub struct RunOptions {
     pub save_agents: Option<PathBuf>,
     /// Show a progress bar on stderr.
     pub progress: bool,
+    /// How to reach the processes, for the zenoh transport.
+    pub network: Option<NetworkOptions>,
 }
 
 impl Default for RunOptions {
@@ -39,6 +42,7 @@ impl Default for RunOptions {
             transport: Transport::InProcess,
             save_agents: None,
             progress: false,
+            network: None,
         }
     }
 }
@@ -103,7 +107,21 @@ pub fn run_experiment(
     let failed = AtomicBool::new(false);
     let results = Mutex::new(Vec::with_capacity(config.runs as usize));
     let errors = Mutex::new(Vec::new());
-    let threads = options.threads.clamp(1, config.runs.max(1) as usize);
+    // Over zenoh the runs play one after another on the same processes.
+    let network = match options.transport {
+        Transport::Zenoh => {
+            let net = options.network.as_ref().ok_or_else(|| Error::Backend {
+                run: 0,
+                message: "the zenoh transport needs network options".into(),
+            })?;
+            Some(Network::start(net, config.team.len())?)
+        }
+        Transport::InProcess => None,
+    };
+    let threads = match network {
+        Some(_) => 1,
+        None => options.threads.clamp(1, config.runs.max(1) as usize),
+    };
     std::thread::scope(|s| {
         for _ in 0..threads {
             s.spawn(|| {
@@ -113,7 +131,7 @@ pub fn run_experiment(
                         break;
                     }
                     let progress = |n| bar.inc(n);
-                    match one_run(experiment, out, options, run, &progress) {
+                    match one_run(experiment, out, options, run, network.as_ref(), &progress) {
                         Ok(result) => {
                             let k = done.fetch_add(1, Ordering::Relaxed) + 1;
                             bar.set_message(format!("{k}/{} runs", config.runs));
@@ -141,7 +159,7 @@ pub fn run_experiment(
     }
     let mut results: Vec<RunResult> = results.into_inner().expect("no panic");
     results.sort_by_key(|r| r.run);
-    let summary = summarize(experiment, &results);
+    let summary = summarize(experiment, &results, options.transport == Transport::Zenoh);
     out.write_summary(&summary)?;
     let mut timing = Timing::default();
     for r in &results {
@@ -164,9 +182,10 @@ fn one_run(
     out: &OutputDir,
     options: &RunOptions,
     run: u64,
+    network: Option<&Network>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RunResult, Error> {
-    let mut backend = backend::open(options.transport, experiment, run)?;
+    let mut backend = backend::open(options.transport, experiment, run, network)?;
     let mut writer = out.run_writer(run, experiment.config().team.len())?;
     let result = protocol::run(
         experiment,

@@ -39,11 +39,110 @@ pub struct Summary<'a> {
     pub snapshot_digests: Vec<Option<String>>,
     /// Every evaluation point, in order.
     pub eval_points: Vec<SummaryPoint>,
+    /// Communication costs, for runs whose agents are processes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub comm: Option<CommSummary>,
+}
+
+/// Communication of a team or an agent over a run, averaged over runs
+/// (round-trip times pooled over runs).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct CommTotals {
+    /// Advice requests sent.
+    pub advice_requests_sent: f64,
+    /// Replies received to them.
+    pub advice_replies_received: f64,
+    /// Advice given.
+    pub advice_given: f64,
+    /// Messages sent, every kind.
+    pub messages_sent: f64,
+    /// Bytes sent, every kind.
+    pub bytes_sent: f64,
+    /// Messages received, every kind.
+    pub messages_received: f64,
+    /// Bytes received, every kind.
+    pub bytes_received: f64,
+    /// Received messages dropped (malformed, foreign, stale, duplicate).
+    pub messages_dropped: f64,
+    /// Advice round-trip time (ms).
+    pub advice_rtt_ms: Percentiles,
+}
+
+/// Median and 99th percentile of a sample (null without samples).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Percentiles {
+    /// Median.
+    pub median: Option<f64>,
+    /// 99th percentile.
+    pub p99: Option<f64>,
+}
+
+impl Percentiles {
+    /// Nearest-rank percentiles of `samples`.
+    pub fn of(mut samples: Vec<f64>) -> Self {
+        if samples.is_empty() {
+            return Self::default();
+        }
+        samples.sort_by(f64::total_cmp);
+        let rank = |p: f64| {
+            samples[((p * samples.len() as f64).ceil() as usize).clamp(1, samples.len()) - 1]
+        };
+        Self {
+            median: Some(rank(0.5)),
+            p99: Some(rank(0.99)),
+        }
+    }
+}
+
+/// The team's communication and every agent's.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CommSummary {
+    /// Totals over agents.
+    #[serde(flatten)]
+    pub team: CommTotals,
+    /// The same per agent, by id.
+    pub per_agent: Vec<CommTotals>,
+}
+
+impl CommSummary {
+    /// Communication over `results` (every run, each with its final agent statistics).
+    pub fn of(results: &[RunResult], agents: usize) -> Self {
+        let of_agents = |which: &dyn Fn(usize) -> bool| {
+            let runs = results.len().max(1) as f64;
+            let mut t = CommTotals::default();
+            let mut rtt = Vec::new();
+            for r in results {
+                let Some(last) = r.points.last() else {
+                    continue;
+                };
+                for (i, a) in last.agents.iter().enumerate().filter(|(i, _)| which(*i)) {
+                    t.advice_requests_sent += a.requests as f64 / runs;
+                    t.advice_replies_received += a.replies_received as f64 / runs;
+                    t.advice_given += a.advice_given as f64 / runs;
+                    t.messages_sent += a.messages_sent as f64 / runs;
+                    t.bytes_sent += a.bytes_sent as f64 / runs;
+                    t.messages_received += a.messages_received as f64 / runs;
+                    t.bytes_received += a.bytes_received as f64 / runs;
+                    t.messages_dropped += a.dropped as f64 / runs;
+                    if let Some(samples) = r.advice_rtt_ms.get(i) {
+                        rtt.extend(samples.iter().map(|&ms| f64::from(ms)));
+                    }
+                }
+            }
+            t.advice_rtt_ms = Percentiles::of(rtt);
+            t
+        };
+        Self {
+            team: of_agents(&|_| true),
+            per_agent: (0..agents).map(|i| of_agents(&|j| j == i)).collect(),
+        }
+    }
 }
 
 /// Summarises `results`, which must be every run of `experiment`, sorted by
 /// run index.
-pub fn summarize<'a>(experiment: &'a Experiment, results: &[RunResult]) -> Summary<'a> {
+/// With `comm`, the summary also holds the communication costs.
+pub fn summarize<'a>(experiment: &'a Experiment, results: &[RunResult], comm: bool) -> Summary<'a> {
     debug_assert!(results.windows(2).all(|w| w[0].run < w[1].run));
     let config = experiment.config();
     let level = config.ci_level;
@@ -72,5 +171,20 @@ pub fn summarize<'a>(experiment: &'a Experiment, results: &[RunResult]) -> Summa
         config,
         snapshot_digests: experiment.record().snapshot_digests,
         eval_points,
+        comm: comm.then(|| CommSummary::of(results, config.team.len())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Percentiles;
+
+    #[test]
+    fn nearest_rank_percentiles() {
+        let p = Percentiles::of((1..=100).map(f64::from).collect());
+        assert_eq!((p.median, p.p99), (Some(50.0), Some(99.0)));
+        let one = Percentiles::of(vec![3.0]);
+        assert_eq!((one.median, one.p99), (Some(3.0), Some(3.0)));
+        assert_eq!(Percentiles::of(Vec::new()), Percentiles::default());
     }
 }

@@ -218,7 +218,13 @@ fn saved_agents_start_a_mixed_team() {
     let out = tmp.path().join("expert");
     let mut args = vec!["run", "--team", team.to_str().unwrap()];
     args.extend(TINY);
-    args.extend(["--quiet", "--out", out.to_str().unwrap()]);
+    args.extend([
+        "--transport",
+        "in-process",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
     ok(&coordinator(&args));
     let s = summary(&out);
     let digests = s["snapshot_digests"].as_array().unwrap();
@@ -249,8 +255,8 @@ fn bad_input_is_refused_with_exit_code_2() {
     );
     refused(&run_tiny("no-advice", &out, &["--runs", "0"]), "runs");
     refused(
-        &run_tiny("no-advice", &out, &["--transport", "zenoh"]),
-        "in-process",
+        &run_tiny("no-advice", &out, &["--transport", "carrier-pigeon"]),
+        "zenoh, in-process",
     );
     refused(
         &run_tiny("no-advice", &out, &["--mistake-correcting"]),
@@ -277,7 +283,7 @@ fn bad_input_is_refused_with_exit_code_2() {
             team.to_str().unwrap().into(),
         ];
         args.extend(TINY.map(String::from));
-        args.extend(["--quiet".into(), "--out".into(), o.into()]);
+        args.extend(["--transport", "in-process", "--quiet", "--out", o].map(String::from));
         args
     };
     refused(&coordinator(&team_args(&team)), "missing.qtable");

@@ -140,7 +140,7 @@ impl MessageCounters {
     }
 
     /// Counts one dropped message.
-    pub fn drop(&mut self, reason: DropReason) {
+    pub fn record_drop(&mut self, reason: DropReason) {
         let d = &mut self.dropped;
         match reason {
             DropReason::Malformed => d.malformed += 1,
@@ -153,7 +153,7 @@ impl MessageCounters {
 
     /// Counts a decode failure under its reason.
     pub fn drop_undecodable(&mut self, error: &crate::DecodeError) {
-        self.drop(match error {
+        self.record_drop(match error {
             crate::DecodeError::Malformed(_) => DropReason::Malformed,
             crate::DecodeError::Version { .. } => DropReason::Version,
             crate::DecodeError::Foreign(_) => DropReason::Foreign,
@@ -201,7 +201,7 @@ mod tests {
         let mut a = MessageCounters::default();
         a.record(Direction::Sent, MessageKind::AdviceRequest, 40);
         a.record(Direction::Sent, MessageKind::Action, 10);
-        a.drop(DropReason::Foreign);
+        a.record_drop(DropReason::Foreign);
         let mut b = a.clone();
         b.merge(&a);
         assert_eq!(

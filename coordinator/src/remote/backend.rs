@@ -1,0 +1,227 @@
+//! One run driven over the network with the control messages of `docs/protocol.md`.
+
+use std::sync::Mutex;
+use std::time::Duration;
+
+use agent::{Mode, Snapshot};
+use env_server::Outcome;
+use proto::keys::Role;
+use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
+
+use super::Network;
+use crate::backend::{AgentStats, Backend, Episode};
+use crate::error::Error;
+use crate::experiment::Experiment;
+
+/// How long a process may take to answer a command other than playing.
+const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long one episode may take (200 frames, each at most one step timeout).
+const EPISODE_TIMEOUT: Duration = Duration::from_secs(600);
+
+/// Run `run` of an experiment, played by remote processes.
+#[derive(Debug)]
+pub struct RemoteBackend<'a> {
+    network: &'a Network,
+    run: u64,
+    agents: usize,
+    /// Episodes played so far in this run (the next episode's number).
+    episode: u32,
+    /// Seed of the evaluation simulator to start with the next evaluation episode.
+    evaluation_seed: Option<u64>,
+    /// Advice round-trip times of every agent, as of the last report.
+    rtt_ms: Mutex<Vec<Vec<f32>>>,
+}
+
+impl<'a> RemoteBackend<'a> {
+    /// Resets env-server and every agent for run `run` of `experiment`.
+    pub fn new(network: &'a Network, experiment: &Experiment, run: u64) -> Result<Self, Error> {
+        let config = experiment.config();
+        let seeds = experiment.seeds(run);
+        let backend = Self {
+            network,
+            run,
+            agents: config.team.len(),
+            episode: 0,
+            evaluation_seed: None,
+            rtt_ms: Mutex::new(Vec::new()),
+        };
+        let env = serde_json::to_string(&config.env).map_err(|e| backend.error(e.to_string()))?;
+        backend.expect_ok(
+            Role::Server,
+            Control::Reset {
+                seed: seeds.simulator,
+                config: env,
+            },
+        )?;
+        for (i, spec) in config.team.iter().enumerate() {
+            let role = Role::Agent(i as u8);
+            let agent =
+                serde_json::to_string(&spec.config).map_err(|e| backend.error(e.to_string()))?;
+            backend.expect_ok(
+                role,
+                Control::Reset {
+                    seed: seeds.agents[i],
+                    config: agent,
+                },
+            )?;
+            if let Some(path) = &spec.load {
+                let path = std::path::absolute(path).unwrap_or_else(|_| path.clone());
+                backend.expect_ok(
+                    role,
+                    Control::Load {
+                        path: path.display().to_string(),
+                    },
+                )?;
+            }
+        }
+        Ok(backend)
+    }
+
+    fn header(&self, episode: u32) -> Header {
+        Header::new(self.network.experiment(), self.run as u32, episode, 0)
+    }
+
+    fn error(&self, message: impl Into<String>) -> Error {
+        Error::Backend {
+            run: self.run,
+            message: message.into(),
+        }
+    }
+
+    /// Fails if a process of the experiment is gone.
+    fn check_alive(&self) -> Result<(), Error> {
+        match self.network.lost() {
+            Some(role) => Err(self.error(format!(
+                "{role} is gone (its liveliness token disappeared); stopping the experiment"
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    fn call(
+        &self,
+        role: Role,
+        episode: u32,
+        control: Control,
+        timeout: Duration,
+    ) -> Result<ControlReply, Error> {
+        self.check_alive()?;
+        self.network
+            .control(role, self.header(episode), control, timeout)
+            .map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))
+    }
+
+    fn expect_ok(&self, role: Role, control: Control) -> Result<(), Error> {
+        match self.call(role, 0, control, CONTROL_TIMEOUT)? {
+            ControlReply::Ok => Ok(()),
+            other => Err(self.error(format!("{role} answered {other:?}"))),
+        }
+    }
+
+    /// The last played episode, which reports and snapshots wait for.
+    fn last_episode(&self) -> u32 {
+        self.episode.saturating_sub(1)
+    }
+
+    fn reports(&self) -> Result<Vec<AgentReport>, Error> {
+        (0..self.agents)
+            .map(|i| {
+                match self.call(
+                    Role::Agent(i as u8),
+                    self.last_episode(),
+                    Control::Report,
+                    CONTROL_TIMEOUT,
+                )? {
+                    ControlReply::Agent(report) => Ok(*report),
+                    other => {
+                        Err(self.error(format!("agent {i} answered {other:?} to a report request")))
+                    }
+                }
+            })
+            .collect()
+    }
+}
+
+impl Backend for RemoteBackend<'_> {
+    fn begin_evaluation(&mut self, seed: u64) -> Result<(), Error> {
+        self.evaluation_seed = Some(seed);
+        Ok(())
+    }
+
+    fn play_episode(&mut self, mode: Mode) -> Result<Episode, Error> {
+        let (mode, seed) = match mode {
+            Mode::Training => (proto::Mode::Training, None),
+            Mode::Evaluation => (proto::Mode::Evaluation, self.evaluation_seed.take()),
+        };
+        let reply = self.call(
+            Role::Server,
+            self.episode,
+            Control::PlayEpisode { mode, seed },
+            EPISODE_TIMEOUT,
+        )?;
+        self.episode += 1;
+        let ControlReply::Episode(result) = reply else {
+            return Err(self.error(format!(
+                "env-server answered {reply:?} to an episode request"
+            )));
+        };
+        self.check_alive()?;
+        Ok(Episode {
+            outcome: match result.outcome {
+                EpisodeOutcome::Goal => Outcome::Goal,
+                EpisodeOutcome::Captured => Outcome::Captured,
+                EpisodeOutcome::OutOfBounds => Outcome::OutOfBounds,
+                EpisodeOutcome::OutOfTime => Outcome::OutOfTime,
+            },
+            frames: result.frames,
+        })
+    }
+
+    fn agent_stats(&self) -> Result<Vec<AgentStats>, Error> {
+        let reports = self.reports()?;
+        *self.rtt_ms.lock().expect("rtt samples") =
+            reports.iter().map(|r| r.advice_rtt_ms.clone()).collect();
+        Ok(reports.iter().map(stats_of).collect())
+    }
+
+    fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {
+        (0..self.agents)
+            .map(|i| {
+                match self.call(
+                    Role::Agent(i as u8),
+                    self.last_episode(),
+                    Control::Snapshot,
+                    CONTROL_TIMEOUT,
+                )? {
+                    ControlReply::Snapshot(bytes) => Snapshot::decode(&bytes)
+                        .map_err(|e| self.error(format!("agent {i} sent a bad snapshot: {e}"))),
+                    other => Err(self.error(format!(
+                        "agent {i} answered {other:?} to a snapshot request"
+                    ))),
+                }
+            })
+            .collect()
+    }
+
+    fn advice_rtt_ms(&self) -> Vec<Vec<f32>> {
+        self.rtt_ms.lock().expect("rtt samples").clone()
+    }
+}
+
+/// The coordinator's view of an agent's report.
+fn stats_of(r: &AgentReport) -> AgentStats {
+    let sent = r.messages.total(proto::Direction::Sent);
+    let received = r.messages.total(proto::Direction::Received);
+    AgentStats {
+        spent_give: r.give_spent,
+        spent_ask: r.ask_spent,
+        requests: r.advice_requests_sent,
+        replies_received: r.advice_replies_received,
+        advice_given: r.advice_given,
+        messages_sent: sent.messages,
+        bytes_sent: sent.bytes,
+        messages_received: received.messages,
+        bytes_received: received.bytes,
+        dropped: r.messages.dropped.total(),
+    }
+}

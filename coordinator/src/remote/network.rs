@@ -1,0 +1,391 @@
+//! The coordinator's side of the zenoh network: session, processes, liveliness.
+
+use std::collections::HashSet;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use proto::keys::{Keys, Role};
+use proto::net::NetConfig;
+use proto::{
+    Body, Control, ControlReply, Direction, Envelope, Header, MessageCounters, MessageKind,
+};
+use zenoh::liveliness::LivelinessToken;
+use zenoh::pubsub::Subscriber;
+use zenoh::query::{ConsolidationMode, QueryTarget};
+use zenoh::sample::SampleKind;
+
+use super::launch::{Children, find_binary};
+use crate::config::ConfigError;
+use crate::error::Error;
+
+/// How to reach the experiment's processes.
+#[derive(Clone, Debug)]
+pub struct NetworkOptions {
+    /// Experiment name: the key prefix `adv/<name>` of every message.
+    pub experiment: String,
+    /// Loopback port the coordinator listens on (0: any free port).
+    pub port: u16,
+    /// Endpoints to connect to (a zenoh router for multi-host setups).
+    pub connect: Vec<String>,
+    /// Drive processes already running instead of starting them.
+    pub attach: bool,
+    /// Directory of the `env-server` and `agent` executables.
+    pub bin_dir: Option<PathBuf>,
+    /// Agents' advice timeout (ms).
+    pub advice_timeout_ms: u64,
+    /// env-server's step timeout (ms).
+    pub step_timeout_ms: u64,
+    /// How long to wait for every process to join.
+    pub startup_timeout: Duration,
+}
+
+/// The joined network and the processes of the experiment.
+pub struct Network {
+    runtime: tokio::runtime::Runtime,
+    session: zenoh::Session,
+    keys: Keys,
+    experiment: u64,
+    roles: Vec<Role>,
+    alive: Arc<Mutex<HashSet<Role>>>,
+    lost: Arc<Mutex<Option<Role>>>,
+    children: Arc<Mutex<Children>>,
+    counters: Mutex<MessageCounters>,
+    _token: LivelinessToken,
+    _watch: Subscriber<()>,
+}
+
+impl std::fmt::Debug for Network {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Network")
+            .field("keys", &self.keys)
+            .field("roles", &self.roles)
+            .finish()
+    }
+}
+
+fn net_error(message: impl Into<String>) -> Error {
+    Error::Backend {
+        run: 0,
+        message: message.into(),
+    }
+}
+
+impl Network {
+    /// Joins the network of `options.experiment`, starts env-server and
+    /// `agents` agent processes (unless attaching) and waits until every
+    /// one of them is alive.
+    pub fn start(options: &NetworkOptions, agents: usize) -> Result<Self, Error> {
+        let keys = Keys::new(&options.experiment)
+            .map_err(|e| ConfigError::new("experiment", e.to_string()))?;
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .enable_all()
+            .build()
+            .map_err(|e| net_error(format!("cannot start the async runtime: {e}")))?;
+        let port = match (options.attach, options.port) {
+            (false, 0) => Some(free_port()?),
+            (_, 0) => None,
+            (_, p) => Some(p),
+        };
+        let net = NetConfig {
+            listen: port
+                .map(|p| format!("tcp/127.0.0.1:{p}"))
+                .into_iter()
+                .collect(),
+            connect: options.connect.clone(),
+            mode: "peer".to_owned(),
+        };
+        let config = zenoh::Config::from_json5(&net.to_json5())
+            .map_err(|e| net_error(format!("invalid zenoh settings: {e}")))?;
+        let session = runtime
+            .block_on(async { zenoh::open(config).await })
+            .map_err(|e| {
+                net_error(format!(
+                    "cannot join the zenoh network ({}): {e}",
+                    endpoints(&net)
+                ))
+            })?;
+        let roles: Vec<Role> = std::iter::once(Role::Server)
+            .chain((0..agents).map(|i| Role::Agent(i as u8)))
+            .collect();
+        let alive = Arc::new(Mutex::new(HashSet::new()));
+        let lost = Arc::new(Mutex::new(None));
+        let watch = {
+            let (alive, lost, keys) = (alive.clone(), lost.clone(), keys.clone());
+            let key = keys.alive_all();
+            runtime
+                .block_on(async {
+                    session
+                        .liveliness()
+                        .declare_subscriber(key)
+                        .history(true)
+                        .callback(move |sample| {
+                            let Some(role) = keys.role_of_alive(sample.key_expr().as_str()) else {
+                                return;
+                            };
+                            let mut alive = alive.lock().expect("liveliness set");
+                            if sample.kind() == SampleKind::Put {
+                                alive.insert(role);
+                            } else if alive.remove(&role) {
+                                tracing::warn!(%role, "lost");
+                                lost.lock().expect("lost role").get_or_insert(role);
+                            }
+                        })
+                        .await
+                })
+                .map_err(|e| net_error(format!("cannot watch liveliness: {e}")))?
+        };
+        let token = runtime
+            .block_on(async {
+                session
+                    .liveliness()
+                    .declare_token(keys.alive(Role::Coordinator))
+                    .await
+            })
+            .map_err(|e| net_error(format!("cannot declare liveliness: {e}")))?;
+        let network = Network {
+            runtime,
+            session,
+            experiment: proto::experiment_id(&options.experiment),
+            keys,
+            roles,
+            alive,
+            lost,
+            children: Arc::new(Mutex::new(Children::default())),
+            counters: Mutex::new(MessageCounters::default()),
+            _token: token,
+            _watch: watch,
+        };
+        if !options.attach {
+            // Give liveliness history a moment, then refuse a busy experiment.
+            std::thread::sleep(Duration::from_millis(200));
+            if let Some(role) = network.roles.iter().find(|r| network.is_alive(**r)) {
+                return Err(net_error(format!(
+                    "experiment {} already has a running {role}; choose another --experiment",
+                    options.experiment
+                )));
+            }
+            let connect = format!("tcp/127.0.0.1:{}", port.unwrap_or_default());
+            network.launch(options, agents, &connect)?;
+        }
+        network.wait_for_everyone(options)?;
+        network.stop_on_ctrl_c();
+        Ok(network)
+    }
+
+    fn launch(&self, options: &NetworkOptions, agents: usize, connect: &str) -> Result<(), Error> {
+        let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
+        let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
+        let common = |extra: &[String]| {
+            let mut args: Vec<String> = extra.to_vec();
+            args.extend([
+                "--experiment".into(),
+                options.experiment.clone(),
+                "--connect".into(),
+                connect.to_owned(),
+            ]);
+            args
+        };
+        let mut children = self.children.lock().expect("children");
+        children.spawn(
+            "env-server",
+            &server,
+            &common(&[
+                "serve".into(),
+                "--step-timeout-ms".into(),
+                options.step_timeout_ms.to_string(),
+            ]),
+        )?;
+        for i in 0..agents {
+            children.spawn(
+                &format!("agent {i}"),
+                &agent,
+                &common(&[
+                    "--id".into(),
+                    i.to_string(),
+                    "--team-size".into(),
+                    agents.to_string(),
+                    "--advice-timeout-ms".into(),
+                    options.advice_timeout_ms.to_string(),
+                ]),
+            )?;
+        }
+        Ok(())
+    }
+
+    fn wait_for_everyone(&self, options: &NetworkOptions) -> Result<(), Error> {
+        let deadline = Instant::now() + options.startup_timeout;
+        loop {
+            let missing: Vec<String> = self
+                .roles
+                .iter()
+                .filter(|r| !self.is_alive(**r))
+                .map(|r| r.to_string())
+                .collect();
+            if missing.is_empty() {
+                // Declarations propagate asynchronously: let queryables settle.
+                std::thread::sleep(Duration::from_millis(100));
+                *self.lost.lock().expect("lost role") = None;
+                return Ok(());
+            }
+            if let Some(exited) = self.children.lock().expect("children").exited() {
+                return Err(net_error(format!(
+                    "{exited} before joining experiment {}",
+                    options.experiment
+                )));
+            }
+            if Instant::now() > deadline {
+                return Err(net_error(format!(
+                    "{} did not join experiment {} within {:?}",
+                    missing.join(", "),
+                    options.experiment,
+                    options.startup_timeout
+                )));
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// On Ctrl-C: stop every process this coordinator started, then exit 130.
+    fn stop_on_ctrl_c(&self) {
+        let children = self.children.clone();
+        self.runtime.spawn(async move {
+            if tokio::signal::ctrl_c().await.is_ok() {
+                eprintln!("interrupted: stopping the experiment's processes");
+                children
+                    .lock()
+                    .expect("children")
+                    .reap(Duration::from_millis(500));
+                std::process::exit(130);
+            }
+        });
+    }
+
+    /// Whether `role`'s liveliness token is currently seen.
+    pub fn is_alive(&self, role: Role) -> bool {
+        self.alive.lock().expect("liveliness set").contains(&role)
+    }
+
+    /// The first process whose token disappeared after everyone joined.
+    pub fn lost(&self) -> Option<Role> {
+        *self.lost.lock().expect("lost role")
+    }
+
+    /// Experiment id carried in every header.
+    pub fn experiment(&self) -> u64 {
+        self.experiment
+    }
+
+    /// Sends `control` to `role` and returns its reply.
+    pub fn control(
+        &self,
+        role: Role,
+        header: Header,
+        control: Control,
+        timeout: Duration,
+    ) -> Result<ControlReply, String> {
+        let what = format!("{control:?}");
+        let bytes = proto::encode(&Envelope {
+            header,
+            body: Body::Control(control),
+        });
+        self.count(Direction::Sent, MessageKind::Control, bytes.len());
+        let key = self.keys.control(role);
+        let reply = self.runtime.block_on(async {
+            let replies = self
+                .session
+                .get(&key)
+                .payload(bytes)
+                .consolidation(ConsolidationMode::None)
+                .target(QueryTarget::All)
+                .timeout(timeout)
+                .await
+                .map_err(|e| format!("cannot send {what} to {role}: {e}"))?;
+            while let Ok(reply) = replies.recv_async().await {
+                let Ok(sample) = reply.result() else { continue };
+                let payload = sample.payload().to_bytes();
+                match proto::decode(&payload, self.experiment) {
+                    Ok(Envelope {
+                        body: Body::ControlReply(r),
+                        ..
+                    }) => {
+                        self.count(
+                            Direction::Received,
+                            MessageKind::ControlReply,
+                            payload.len(),
+                        );
+                        return Ok(r);
+                    }
+                    Ok(_) => self
+                        .counters
+                        .lock()
+                        .expect("counters")
+                        .record_drop(proto::DropReason::Stale),
+                    Err(e) => self.counters.lock().expect("counters").drop_undecodable(&e),
+                }
+            }
+            Err(format!("{role} did not answer {what} within {timeout:?}"))
+        })?;
+        match reply {
+            ControlReply::Error(e) => Err(format!("{role}: {e}")),
+            r => Ok(r),
+        }
+    }
+
+    fn count(&self, direction: Direction, kind: MessageKind, bytes: usize) {
+        self.counters
+            .lock()
+            .expect("counters")
+            .record(direction, kind, bytes);
+    }
+
+    /// Stops every process this coordinator started (attached ones keep running).
+    pub fn stop(&self) {
+        let mut children = self.children.lock().expect("children");
+        if children.is_empty() {
+            return;
+        }
+        for role in &self.roles {
+            if self.is_alive(*role) {
+                let _ = self.control(
+                    *role,
+                    Header::new(self.experiment, 0, 0, 0),
+                    Control::Stop,
+                    Duration::from_millis(500),
+                );
+            }
+        }
+        children.reap(Duration::from_secs(5));
+    }
+}
+
+impl Drop for Network {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
+/// A free loopback TCP port (bound and released).
+fn free_port() -> Result<u16, Error> {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0")
+        .map_err(|e| Error::io("bind", "127.0.0.1:0", e))?;
+    listener
+        .local_addr()
+        .map(|a| a.port())
+        .map_err(|e| Error::io("bind", "127.0.0.1:0", e))
+}
+
+fn endpoints(net: &NetConfig) -> String {
+    let all: Vec<&str> = net
+        .listen
+        .iter()
+        .chain(&net.connect)
+        .map(String::as_str)
+        .collect();
+    if all.is_empty() {
+        "no endpoints".into()
+    } else {
+        all.join(", ")
+    }
+}
