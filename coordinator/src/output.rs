@@ -302,7 +302,9 @@ mod tests {
         assert_eq!(
             csv,
             "episode,goal_pct,time_to_goal,give_spent_0,give_spent_1,ask_spent_0,ask_spent_1,\
-             advice_requests,advice_given,spent_budget\n20,0,,0,0,0,0,0,0,0\n"
+             advice_requests,advice_given,spent_budget,advice_replies_received,messages_sent,\
+             bytes_sent,messages_received,bytes_received,messages_dropped\n\
+             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0\n"
         );
         OutputDir::check(&dir, &ours).unwrap();
         let theirs = json!({"format": 1, "config": {"runs": 3}});
