@@ -110,12 +110,18 @@ fn writes_run_csvs_and_a_summary_of_the_right_shape() {
                 "ask_spent_2",
                 "advice_requests",
                 "advice_given",
-                "spent_budget"
+                "spent_budget",
+                "advice_replies_received",
+                "messages_sent",
+                "bytes_sent",
+                "messages_received",
+                "bytes_received",
+                "messages_dropped"
             ]
         );
         assert_eq!(rows.len(), 4, "header + evaluations at 0, 20, 40");
         for (row, episode) in rows[1..].iter().zip(["0", "20", "40"]) {
-            assert_eq!(row.len(), 12);
+            assert_eq!(row.len(), 18);
             assert_eq!(row[0], episode);
             let gp: f64 = row[1].parse().unwrap();
             assert!((0.0..=100.0).contains(&gp) && gp % 10.0 == 0.0, "{gp}");
@@ -329,6 +335,8 @@ fn no_advice_learns() {
         "100",
         "--seed",
         "1",
+        "--transport",
+        "in-process",
         "--quiet",
         "--out",
         out.to_str().unwrap(),
