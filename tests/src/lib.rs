@@ -1,1 +1,43 @@
-//! End-to-end tests live in `tests/`; this crate has no library code.
+//! Helpers shared by the end-to-end tests in `tests/`: where the workspace's
+//! executables are, and free loopback ports.
+
+use std::path::PathBuf;
+
+/// The directory holding the workspace's executables (`target/<profile>`).
+///
+/// # Panics
+/// If the `env-server`, `agent` and `coordinator` executables are not there:
+/// run the tests with `cargo test --workspace`, which builds them.
+pub fn bin_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("test executable path");
+    let dir = exe
+        .parent()
+        .and_then(|deps| deps.parent())
+        .expect("target/<profile>/deps")
+        .to_path_buf();
+    for name in ["env-server", "agent", "coordinator"] {
+        let path = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+        assert!(
+            path.is_file(),
+            "{} is missing: run `cargo test --workspace` (it builds every executable)",
+            path.display()
+        );
+    }
+    dir
+}
+
+/// The path of one of the workspace's executables.
+pub fn bin(name: &str) -> PathBuf {
+    bin_dir().join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
+}
+
+/// A loopback TCP port that was free a moment ago.
+pub fn free_port() -> u16 {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").expect("bind a loopback port");
+    listener.local_addr().expect("bound address").port()
+}
+
+/// An experiment name unique to this test process and `tag`.
+pub fn experiment_name(tag: &str) -> String {
+    format!("test-{tag}-{}", std::process::id())
+}

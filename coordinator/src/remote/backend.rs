@@ -123,7 +123,8 @@ impl<'a> RemoteBackend<'a> {
         self.episode.saturating_sub(1)
     }
 
-    fn reports(&self) -> Result<Vec<AgentReport>, Error> {
+    /// Every agent's report as of the last played episode.
+    pub fn reports(&self) -> Result<Vec<AgentReport>, Error> {
         (0..self.agents)
             .map(|i| {
                 match self.call(

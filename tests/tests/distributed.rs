@@ -1,0 +1,291 @@
+//! env-server, three agent processes and the coordinator over loopback zenoh.
+
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use agent::{AgentConfig, Mode, StrategyKind};
+use coordinator::{
+    AgentSpec, Backend, Experiment, ExperimentConfig, Network, NetworkOptions, RemoteBackend,
+};
+use integration_tests::{bin, bin_dir, experiment_name, free_port};
+use proto::keys::{Keys, Role};
+use proto::{Body, Control, ControlReply, Envelope, Header, experiment_id};
+use serde_json::Value;
+
+fn adhoc_td_experiment() -> Experiment {
+    let spec = AgentSpec {
+        config: AgentConfig {
+            strategy: StrategyKind::AdHocTd,
+            ..AgentConfig::default()
+        },
+        ..AgentSpec::of(StrategyKind::AdHocTd)
+    };
+    Experiment::prepare(ExperimentConfig {
+        runs: 1,
+        episodes: 20,
+        eval_every: 20,
+        eval_episodes: 5,
+        team: vec![spec; 3],
+        ..ExperimentConfig::default()
+    })
+    .expect("valid experiment")
+}
+
+fn network(tag: &str, port: u16) -> Network {
+    Network::start(
+        &NetworkOptions {
+            experiment: experiment_name(tag),
+            port,
+            connect: Vec::new(),
+            attach: false,
+            bin_dir: Some(bin_dir()),
+            advice_timeout_ms: 20,
+            step_timeout_ms: 2000,
+            startup_timeout: Duration::from_secs(60),
+        },
+        3,
+    )
+    .expect("processes start and join")
+}
+
+fn digests(backend: &RemoteBackend) -> Vec<u64> {
+    backend
+        .reports()
+        .expect("reports")
+        .iter()
+        .map(|r| r.digest)
+        .collect()
+}
+
+#[test]
+fn adhoc_td_run_advises_across_processes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("adhoc-td");
+    let output = Command::new(bin("coordinator"))
+        .args([
+            "run",
+            "--algorithm",
+            "adhoc-td",
+            "--runs",
+            "1",
+            "--episodes",
+            "60",
+        ])
+        .args(["--eval-every", "30", "--eval-episodes", "10", "--seed", "3"])
+        .args([
+            "--transport",
+            "zenoh",
+            "--advice-timeout-ms",
+            "20",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let comm = &summary["comm"];
+    for key in [
+        "advice_requests_sent",
+        "advice_replies_received",
+        "messages_sent",
+        "bytes_sent",
+    ] {
+        assert!(comm[key].as_f64().unwrap() > 0.0, "{key}: {comm}");
+    }
+    assert!(comm["advice_rtt_ms"]["median"].as_f64().unwrap() > 0.0);
+    assert_eq!(comm["per_agent"].as_array().unwrap().len(), 3);
+    assert_eq!(summary["eval_points"].as_array().unwrap().len(), 3);
+}
+
+#[test]
+fn evaluation_changes_no_learned_state() {
+    let experiment = adhoc_td_experiment();
+    let net = network("frozen", 0);
+    let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
+    for _ in 0..10 {
+        backend.play_episode(Mode::Training).unwrap();
+    }
+    let before = digests(&backend);
+    backend.begin_evaluation(7).unwrap();
+    for _ in 0..10 {
+        backend.play_episode(Mode::Evaluation).unwrap();
+    }
+    assert_eq!(digests(&backend), before, "evaluation changed a Q-table");
+    for _ in 0..3 {
+        backend.play_episode(Mode::Training).unwrap();
+    }
+    assert_ne!(digests(&backend), before, "training changes the Q-tables");
+}
+
+#[test]
+fn malformed_and_foreign_messages_change_nothing() {
+    let experiment = adhoc_td_experiment();
+    let port = free_port();
+    let net = network("intruder", port);
+    let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
+    for _ in 0..3 {
+        backend.play_episode(Mode::Training).unwrap();
+    }
+    let before = backend.reports().unwrap();
+    let name = experiment_name("intruder");
+    let keys = Keys::new(&name).unwrap();
+    let foreign = proto::encode(&Envelope {
+        header: Header::new(experiment_id("someone-else"), 0, 3, 0),
+        body: Body::Control(Control::Stop),
+    });
+    let mut old = proto::encode(&Envelope {
+        header: Header::new(experiment_id(&name), 0, 3, 0),
+        body: Body::Control(Control::Stop),
+    });
+    old[0] = old[0].wrapping_add(1); // another protocol version
+    let garbage = b"\x07not a message".to_vec();
+    let runtime = tokio::runtime::Runtime::new().unwrap();
+    runtime.block_on(async {
+        let config = proto::net::NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
+        let session = zenoh::open(zenoh::Config::from_json5(&config.to_json5()).unwrap())
+            .await
+            .unwrap();
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        for key in [keys.observation(0), keys.action(1), keys.share(2)] {
+            for payload in [&garbage, &foreign, &old] {
+                session.put(&key, payload.clone()).await.unwrap();
+            }
+        }
+        for key in [keys.advice(1), keys.control(Role::Agent(2))] {
+            for payload in [&garbage, &foreign, &old] {
+                let replies = session
+                    .get(&key)
+                    .payload(payload.clone())
+                    .timeout(Duration::from_millis(300))
+                    .await
+                    .unwrap();
+                while replies.recv_async().await.is_ok() {}
+            }
+        }
+        tokio::time::sleep(Duration::from_millis(300)).await;
+        session.close().await.unwrap();
+    });
+    let after = backend.reports().unwrap();
+    for (b, a) in before.iter().zip(&after) {
+        assert_eq!(a.digest, b.digest, "agent {} changed", a.agent);
+    }
+    let dropped = |reports: &[proto::AgentReport]| -> u64 {
+        reports.iter().map(|r| r.messages.dropped.total()).sum()
+    };
+    assert!(
+        dropped(&after) >= dropped(&before) + 9,
+        "dropped before {} after {}",
+        dropped(&before),
+        dropped(&after)
+    );
+    // The run goes on normally.
+    backend.play_episode(Mode::Training).unwrap();
+    let server = net
+        .control(
+            Role::Server,
+            Header::new(experiment_id(&name), 0, 4, 0),
+            Control::Report,
+            Duration::from_secs(5),
+        )
+        .unwrap();
+    let ControlReply::Server(report) = server else {
+        panic!("server report expected, got {server:?}");
+    };
+    assert!(report.messages.dropped.total() >= 3, "{report:?}");
+}
+
+#[test]
+fn killing_an_agent_ends_the_run_with_a_clear_message() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut coordinator = Command::new(bin("coordinator"))
+        .args([
+            "run",
+            "--algorithm",
+            "adhoc-td",
+            "--runs",
+            "1",
+            "--episodes",
+            "100000",
+        ])
+        .args(["--transport", "zenoh", "--quiet", "--out"])
+        .arg(tmp.path().join("killed"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let children = wait_for_children(coordinator.id(), 4);
+    std::thread::sleep(Duration::from_secs(2));
+    let victim = children
+        .iter()
+        .copied()
+        .find(|pid| cmdline(*pid).contains("--id\u{0}1\u{0}"))
+        .expect("agent 1 among the children");
+    assert!(
+        Command::new("kill")
+            .args(["-9", &victim.to_string()])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let status = loop {
+        if let Some(status) = coordinator.try_wait().unwrap() {
+            break status;
+        }
+        if Instant::now() > deadline {
+            let _ = coordinator.kill();
+            panic!("the coordinator hung after an agent was killed");
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    let stderr = std::io::read_to_string(coordinator.stderr.take().unwrap()).unwrap();
+    assert!(!status.success());
+    assert!(stderr.contains("agent/1 is gone"), "stderr: {stderr}");
+    std::thread::sleep(Duration::from_millis(200));
+    for pid in children.into_iter().filter(|p| *p != victim) {
+        assert!(
+            !is_running(pid),
+            "process {pid} left behind: {}",
+            cmdline(pid)
+        );
+    }
+}
+
+/// Child pids of `parent` once there are `n` of them (Linux /proc).
+fn wait_for_children(parent: u32, n: usize) -> Vec<u32> {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let path = format!("/proc/{parent}/task/{parent}/children");
+        let pids: Vec<u32> = std::fs::read_to_string(&path)
+            .unwrap_or_default()
+            .split_whitespace()
+            .filter_map(|p| p.parse().ok())
+            .collect();
+        if pids.len() >= n {
+            return pids;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "only {} children appeared",
+            pids.len()
+        );
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+fn cmdline(pid: u32) -> String {
+    std::fs::read_to_string(format!("/proc/{pid}/cmdline")).unwrap_or_default()
+}
+
+fn is_running(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat"))
+        .map(|s| !s.contains(") Z "))
+        .unwrap_or(false)
+}
