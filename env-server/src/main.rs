@@ -5,6 +5,9 @@ use clap::{Parser, Subcommand};
 use env_server::{BaselinePolicy, EnvConfig, render, rollout};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Duration;
+
+mod serve;
 
 #[derive(Parser)]
 #[command(
@@ -60,11 +63,30 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         env_config: Option<PathBuf>,
     },
+    /// Step the simulator for remote agents over zenoh until a Stop command
+    /// (docs/protocol.md).
+    Serve {
+        /// Experiment name (letters, digits, '-' and '_'); every key lives under adv/NAME.
+        #[arg(long)]
+        experiment: String,
+        /// zenoh endpoint to listen on (port 0: any free port).
+        #[arg(long, default_value = "tcp/127.0.0.1:0", value_name = "ENDPOINT")]
+        listen: String,
+        /// zenoh endpoint to connect to: the coordinator's, or a router's (repeatable).
+        #[arg(long, value_name = "ENDPOINT")]
+        connect: Vec<String>,
+        /// Milliseconds to wait for a kicker's action before it falls back to Move.
+        #[arg(long, default_value_t = 1000, value_parser = at_least_one)]
+        step_timeout_ms: u64,
+    },
 }
 
 fn main() -> ExitCode {
+    // Without RUST_LOG: errors, and this program's warnings (missing actions).
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("error,env_server=warn"));
     tracing_subscriber::fmt()
-        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
+        .with_env_filter(filter)
         .with_writer(std::io::stderr)
         .init();
     let cli = match Cli::try_parse() {
@@ -150,6 +172,17 @@ fn run(cli: Cli) -> Result<()> {
             render::write_picture(&trace, &out)?;
             println!("wrote {}: {}", out.display(), trace.summary());
         }
+        Command::Serve {
+            experiment,
+            listen,
+            connect,
+            step_timeout_ms,
+        } => serve::run(serve::Options {
+            experiment,
+            listen,
+            connect,
+            step_timeout: Duration::from_millis(step_timeout_ms),
+        })?,
     }
     Ok(())
 }

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Launch a whole experiment on this host: env-server, N agent processes and a
+# coordinator that attaches to them, all over loopback zenoh.
+#
+#   deploy/launch-local.sh [coordinator run options...]
+#   e.g. deploy/launch-local.sh --algorithm adhoc-td --runs 5 --episodes 1000 --out results/local
+#
+# Environment: AGENTS (default 3), PORT (default 7447), EXPERIMENT (default
+# local-<pid>), BIN (default target/release).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+AGENTS=${AGENTS:-3}
+PORT=${PORT:-7447}
+EXPERIMENT=${EXPERIMENT:-local-$$}
+BIN=${BIN:-target/release}
+[ -x "$BIN/coordinator" ] || cargo build --release --workspace
+pids=()
+cleanup() { kill "${pids[@]}" 2>/dev/null || true; wait 2>/dev/null || true; }
+trap cleanup EXIT INT TERM
+"$BIN/env-server" serve --experiment "$EXPERIMENT" --listen "tcp/127.0.0.1:$PORT" &
+pids+=($!)
+for ((i = 0; i < AGENTS; i++)); do
+    "$BIN/agent" --experiment "$EXPERIMENT" --id "$i" --team-size "$AGENTS" \
+        --connect "tcp/127.0.0.1:$PORT" &
+    pids+=($!)
+done
+"$BIN/coordinator" run --transport zenoh --attach --experiment "$EXPERIMENT" \
+    --connect "tcp/127.0.0.1:$PORT" --offense "$AGENTS" "$@"

@@ -1,0 +1,198 @@
+//! The server's zenoh side: the session, its liveliness token, the control
+//! queryable, the action subscriber and one observation publisher per agent.
+//!
+//! Queries and action samples are handed over through unbounded channels
+//! fed by zenoh callbacks, so the event loop can wait on both (and on the
+//! step deadline) without ever blocking one behind the other.
+
+use super::Options;
+use anyhow::{Result, anyhow};
+use proto::keys::{Keys, Role};
+use proto::net::NetConfig;
+use tokio::sync::mpsc::{UnboundedReceiver, unbounded_channel};
+use zenoh::Session;
+use zenoh::liveliness::LivelinessToken;
+use zenoh::pubsub::{Publisher, Subscriber};
+use zenoh::qos::CongestionControl;
+use zenoh::query::{Query, Queryable};
+use zenoh::sample::Sample;
+
+/// What arrives from the network, in arrival order per source.
+pub struct Inbox {
+    /// Control queries on `ctl/server`.
+    pub queries: UnboundedReceiver<Query>,
+    /// Samples on `act/*`.
+    pub actions: UnboundedReceiver<Sample>,
+}
+
+/// An open session with every declaration of env-server.
+pub struct Link {
+    session: Session,
+    keys: Keys,
+    experiment: u64,
+    control_key: String,
+    publishers: Vec<Publisher<'static>>,
+    // Held for their lifetime: dropping them undeclares them.
+    _queryable: Queryable<()>,
+    _subscriber: Subscriber<()>,
+    _token: LivelinessToken,
+}
+
+impl Link {
+    /// Opens the session and declares the queryable, the subscriber and,
+    /// last, the liveliness token (so a process that sees the token finds
+    /// the rest declared).
+    pub async fn open(options: &Options, keys: Keys) -> Result<(Self, Inbox)> {
+        let net = NetConfig {
+            listen: vec![options.listen.clone()],
+            connect: options.connect.clone(),
+            mode: "peer".to_owned(),
+        };
+        let config = zenoh::Config::from_json5(&net.to_json5())
+            .map_err(|e| anyhow!("invalid zenoh endpoint: {}", one_line(&e.to_string())))?;
+        let mut place = format!("listening on {}", options.listen);
+        if !options.connect.is_empty() {
+            place += &format!(" and connecting to {}", options.connect.join(", "));
+        }
+        let session = zenoh::open(config).await.map_err(|e| {
+            anyhow!(
+                "cannot open the zenoh session {place}: {}",
+                one_line(&e.to_string())
+            )
+        })?;
+        let control_key = keys.control(Role::Server);
+        let (query_tx, queries) = unbounded_channel();
+        let queryable = session
+            .declare_queryable(control_key.clone())
+            .callback(move |query| {
+                // The receiver only goes away when the server stops.
+                let _ = query_tx.send(query);
+            })
+            .await
+            .map_err(|e| zenoh_error("declare the control queryable", &e))?;
+        let (action_tx, actions) = unbounded_channel();
+        let subscriber = session
+            .declare_subscriber(keys.actions())
+            .callback(move |sample| {
+                let _ = action_tx.send(sample);
+            })
+            .await
+            .map_err(|e| zenoh_error("subscribe to the actions", &e))?;
+        let token = session
+            .liveliness()
+            .declare_token(keys.alive(Role::Server))
+            .await
+            .map_err(|e| zenoh_error("declare the liveliness token", &e))?;
+        let link = Link {
+            session,
+            keys,
+            experiment: proto::experiment_id(&options.experiment),
+            control_key,
+            publishers: Vec::new(),
+            _queryable: queryable,
+            _subscriber: subscriber,
+            _token: token,
+        };
+        Ok((link, Inbox { queries, actions }))
+    }
+
+    /// The experiment id carried in every header.
+    pub fn experiment(&self) -> u64 {
+        self.experiment
+    }
+
+    /// Declares one observation publisher per agent of a team of `n`
+    /// (nothing to do when the team size is unchanged).
+    pub async fn set_team(&mut self, n: usize) -> Result<()> {
+        if self.publishers.len() == n {
+            return Ok(());
+        }
+        self.publishers.clear();
+        for i in 0..n {
+            let id = u8::try_from(i).map_err(|_| anyhow!("team of {n} agents is too large"))?;
+            let publisher = self
+                .session
+                .declare_publisher(self.keys.observation(id))
+                // Every agent must see every frame: wait rather than drop.
+                .congestion_control(CongestionControl::Block)
+                .await
+                .map_err(|e| zenoh_error("declare an observation publisher", &e))?;
+            self.publishers.push(publisher);
+        }
+        Ok(())
+    }
+
+    /// Publishes `bytes` to agent `agent`.
+    pub async fn publish(&self, agent: usize, bytes: Vec<u8>) -> Result<()> {
+        let publisher = self
+            .publishers
+            .get(agent)
+            .ok_or_else(|| anyhow!("no observation publisher for agent {agent}"))?;
+        publisher
+            .put(bytes)
+            .await
+            .map_err(|e| zenoh_error("publish an observation", &e))
+    }
+
+    /// Replies to a control query on the server's own control key.
+    pub async fn reply(&self, query: &Query, bytes: Vec<u8>) -> Result<()> {
+        query
+            .reply(self.control_key.as_str(), bytes)
+            .await
+            .map_err(|e| zenoh_error("reply to a control query", &e))
+    }
+
+    /// Closes the session (undeclaring everything, the token included).
+    pub async fn close(self) -> Result<()> {
+        self.session
+            .close()
+            .await
+            .map_err(|e| zenoh_error("close the zenoh session", &e))
+    }
+}
+
+/// A zenoh failure while doing `what`, on one line.
+fn zenoh_error(what: &str, error: &zenoh::Error) -> anyhow::Error {
+    anyhow!("cannot {what}: {}", one_line(&error.to_string()))
+}
+
+/// zenoh's error text on one line, without the source locations
+/// (" at path/file.rs:123.") it appends to every cause.
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(" at ") {
+        out.push_str(&rest[..at]);
+        let after = &rest[at + 4..];
+        let end = after.find(".rs:").and_then(|rs| {
+            let digits = after[rs + 4..].find(|c: char| !c.is_ascii_digit())?;
+            let stop = rs + 4 + digits;
+            after[stop..].starts_with('.').then_some(stop + 1)
+        });
+        match end {
+            Some(end) => rest = &after[end..],
+            None => {
+                out.push_str(" at ");
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::one_line;
+
+    #[test]
+    fn source_locations_and_line_breaks_go() {
+        let text = "Can not create a new TCP listener bound to tcp/127.0.0.1:7447: \
+                    Address in use at /r/zenoh-link-tcp/src/unicast.rs:412.\n - Caused by x at a.rs:3.";
+        assert_eq!(
+            one_line(text),
+            "Can not create a new TCP listener bound to tcp/127.0.0.1:7447: Address in use - Caused by x"
+        );
+        assert_eq!(one_line("look at me"), "look at me");
+    }
+}

@@ -1,0 +1,425 @@
+//! The event loop: control queries, actions and the step deadline, one at a
+//! time, so that an episode waiting for actions never holds up a control
+//! query and a silent agent never holds up the episode.
+//!
+//! Rules beyond `docs/protocol.md`: `Report` and `Stop` concern the process
+//! and are obeyed whatever run their header names; `PlayEpisode` must name
+//! the run of the last `Reset` and an episode after the last one played
+//! (else it is stale), and is refused while another episode is played;
+//! `Reset` abandons an episode in progress. An action from an agent that
+//! has no decision to make (or whose id differs from its key's) is counted
+//! as malformed; any action not of the current run, episode and frame is
+//! stale.
+
+use super::episode::{Episode, ObservationSlot, Offer, Simulators};
+use super::link::{Inbox, Link};
+use anyhow::{Result, bail};
+use proto::{
+    Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
+    MessageCounters, MessageKind, Mode, ServerReport,
+};
+use std::time::Duration;
+use tokio::time::Instant;
+use tracing::{debug, warn};
+use zenoh::query::Query;
+use zenoh::sample::Sample;
+
+/// Whether the loop goes on after a command.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Flow {
+    Continue,
+    Stop,
+}
+
+/// The episode being played and the query that asked for it.
+struct Play {
+    query: Query,
+    episode: Episode,
+    /// When the awaited actions are given up (set while waiting).
+    deadline: Option<Instant>,
+}
+
+/// The current run.
+struct Run {
+    run: u32,
+    simulators: Simulators,
+    /// The last episode played in this run.
+    last_episode: Option<u32>,
+}
+
+/// env-server's state.
+pub struct Server {
+    link: Link,
+    experiment: u64,
+    step_timeout: Duration,
+    run: Option<Run>,
+    play: Option<Play>,
+    slot: ObservationSlot,
+    frames: u64,
+    missing_actions: u64,
+    counters: MessageCounters,
+}
+
+impl Server {
+    /// A server on `link`, waiting `step_timeout` for each frame's actions.
+    pub fn new(link: Link, step_timeout: Duration) -> Self {
+        let experiment = link.experiment();
+        Server {
+            link,
+            experiment,
+            step_timeout,
+            run: None,
+            play: None,
+            slot: ObservationSlot::new(experiment),
+            frames: 0,
+            missing_actions: 0,
+            counters: MessageCounters::default(),
+        }
+    }
+
+    /// Serves until `Stop`, then closes the session.
+    pub async fn run(mut self, mut inbox: Inbox) -> Result<()> {
+        let sleep = tokio::time::sleep(Duration::ZERO);
+        tokio::pin!(sleep);
+        let mut armed = None;
+        loop {
+            let deadline = self.play.as_ref().and_then(|p| p.deadline);
+            if deadline != armed {
+                if let Some(d) = deadline {
+                    sleep.as_mut().reset(d);
+                }
+                armed = deadline;
+            }
+            tokio::select! {
+                biased;
+                query = inbox.queries.recv() => {
+                    let Some(query) = query else { bail!("the control queryable closed") };
+                    if self.on_query(query).await? == Flow::Stop {
+                        break;
+                    }
+                }
+                // Before the actions, so that a flood of them cannot hold
+                // the episode up past its deadline.
+                () = &mut sleep, if armed.is_some() => self.on_timeout().await?,
+                sample = inbox.actions.recv() => {
+                    let Some(sample) = sample else { bail!("the action subscriber closed") };
+                    self.on_action(&sample).await?;
+                }
+            }
+        }
+        self.link.close().await
+    }
+
+    /// Handles one control query: decodes it (replying `Error` to what
+    /// cannot be accepted, and counting it) and carries it out.
+    async fn on_query(&mut self, query: Query) -> Result<Flow> {
+        let decoded = match query.payload() {
+            Some(payload) => {
+                let bytes = payload.to_bytes();
+                proto::decode(&bytes, self.experiment).map(|e| (e, bytes.len()))
+            }
+            None => Err(DecodeError::Malformed("no payload".to_owned())),
+        };
+        let (Envelope { header, body }, size) = match decoded {
+            Ok(ok) => ok,
+            Err(e) => {
+                self.counters.drop_undecodable(&e);
+                debug!(error = %e, "dropped a control query");
+                let header = Header::new(self.experiment, self.current_run(), 0, 0);
+                let text = format!("rejected: {e}");
+                self.reply(&query, header, ControlReply::Error(text)).await;
+                return Ok(Flow::Continue);
+            }
+        };
+        let Body::Control(control) = body else {
+            self.counters.record_drop(DropReason::Malformed);
+            debug!(kind = ?MessageKind::of(&body), "dropped a control query");
+            let text = format!(
+                "expected a control command, got {:?}",
+                MessageKind::of(&body)
+            );
+            self.reply(&query, header, ControlReply::Error(text)).await;
+            return Ok(Flow::Continue);
+        };
+        if let Control::PlayEpisode { mode, seed } = control {
+            return match self.check_episode(&header) {
+                Ok(()) => {
+                    self.received(size);
+                    self.begin(query, header, mode, seed).await?;
+                    Ok(Flow::Continue)
+                }
+                Err(text) => {
+                    self.reply(&query, header, ControlReply::Error(text)).await;
+                    Ok(Flow::Continue)
+                }
+            };
+        }
+        self.received(size);
+        let (reply, flow) = match control {
+            Control::Reset { seed, config } => {
+                (self.reset(header, seed, &config).await?, Flow::Continue)
+            }
+            Control::Report => (
+                ControlReply::Server(Box::new(self.report())),
+                Flow::Continue,
+            ),
+            Control::Stop => {
+                self.abandon("env-server stopped").await;
+                (ControlReply::Ok, Flow::Stop)
+            }
+            other => {
+                let text = format!("env-server does not handle {other:?}");
+                (ControlReply::Error(text), Flow::Continue)
+            }
+        };
+        self.reply(&query, header, reply).await;
+        Ok(flow)
+    }
+
+    /// Starts run `header.run` with a training simulator seeded with
+    /// `seed`; an in-progress episode is abandoned. A bad config changes
+    /// nothing.
+    async fn reset(&mut self, header: Header, seed: u64, config: &str) -> Result<ControlReply> {
+        let simulators = match Simulators::new(config, seed) {
+            Ok(s) => s,
+            Err(text) => return Ok(ControlReply::Error(text)),
+        };
+        self.abandon("its run was reset").await;
+        self.link.set_team(simulators.offense()).await?;
+        self.run = Some(Run {
+            run: header.run,
+            simulators,
+            last_episode: None,
+        });
+        Ok(ControlReply::Ok)
+    }
+
+    /// Whether `PlayEpisode` with `header` may start now; counts stale ones.
+    fn check_episode(&mut self, header: &Header) -> Result<(), String> {
+        if let Some(play) = &self.play {
+            let h = play.episode.header;
+            return Err(format!(
+                "busy playing episode {} of run {}",
+                h.episode, h.run
+            ));
+        }
+        let verdict = match &self.run {
+            None => Err("no run: Reset first".to_owned()),
+            Some(r) if r.run != header.run => Err(format!(
+                "run {} is not the current run {}",
+                header.run, r.run
+            )),
+            Some(r) if r.last_episode.is_some_and(|last| header.episode <= last) => Err(format!(
+                "episode {} of run {} is not after the last one played",
+                header.episode, r.run
+            )),
+            Some(_) => Ok(()),
+        };
+        if verdict.is_err() {
+            self.counters.record_drop(DropReason::Stale);
+            debug!(
+                run = header.run,
+                episode = header.episode,
+                "dropped a stale PlayEpisode"
+            );
+        }
+        verdict
+    }
+
+    /// Starts episode `header.episode` and plays it up to its first wait.
+    async fn begin(
+        &mut self,
+        query: Query,
+        header: Header,
+        mode: Mode,
+        seed: Option<u64>,
+    ) -> Result<()> {
+        let Some(run) = self.run.as_mut() else {
+            return Ok(());
+        };
+        let env = match run.simulators.prepare(mode, seed) {
+            Ok(env) => env,
+            Err(text) => {
+                self.reply(&query, header, ControlReply::Error(text)).await;
+                return Ok(());
+            }
+        };
+        run.last_episode = Some(header.episode);
+        let start = Header::new(self.experiment, header.run, header.episode, 0);
+        let episode = Episode::start(env, start, mode);
+        self.play = Some(Play {
+            query,
+            episode,
+            deadline: None,
+        });
+        self.advance().await
+    }
+
+    /// Publishes the current frame, then steps on through frames where no
+    /// agent can kick, until one awaits actions (arming the deadline) or the
+    /// episode ends (answering its query).
+    async fn advance(&mut self) -> Result<()> {
+        loop {
+            let (Some(play), Some(run)) = (self.play.as_mut(), self.run.as_mut()) else {
+                return Ok(());
+            };
+            let Some(env) = run.simulators.env(play.episode.mode) else {
+                return Ok(());
+            };
+            for agent in 0..play.episode.offense() {
+                let bytes = self.slot.encode(&play.episode, env, agent);
+                self.counters
+                    .record(Direction::Sent, MessageKind::Observation, bytes.len());
+                self.link.publish(agent, bytes).await?;
+            }
+            if play.episode.is_over() {
+                self.finish().await;
+                return Ok(());
+            }
+            if play.episode.is_waiting() {
+                play.deadline = Some(Instant::now() + self.step_timeout);
+                return Ok(());
+            }
+            play.episode.step(env);
+            self.frames += 1;
+        }
+    }
+
+    /// Steps the episode with the actions it has, then advances.
+    async fn proceed(&mut self) -> Result<()> {
+        if let (Some(play), Some(run)) = (self.play.as_mut(), self.run.as_mut())
+            && let Some(env) = run.simulators.env(play.episode.mode)
+        {
+            play.deadline = None;
+            play.episode.step(env);
+            self.frames += 1;
+        }
+        self.advance().await
+    }
+
+    /// Answers the query of the finished episode with its result.
+    async fn finish(&mut self) {
+        if let Some(play) = self.play.take() {
+            let reply = match play.episode.result() {
+                Some(result) => ControlReply::Episode(result),
+                None => ControlReply::Error("the episode did not end".to_owned()),
+            };
+            self.reply(&play.query, play.episode.header, reply).await;
+        }
+    }
+
+    /// Gives up the episode in progress, if any, telling its query why.
+    async fn abandon(&mut self, why: &str) {
+        if let Some(play) = self.play.take() {
+            let h = play.episode.header;
+            warn!(
+                run = h.run,
+                episode = h.episode,
+                frame = h.frame,
+                "episode abandoned: {why}"
+            );
+            let text = format!("episode {} of run {} abandoned: {why}", h.episode, h.run);
+            self.reply(&play.query, h, ControlReply::Error(text)).await;
+        }
+    }
+
+    /// Handles a sample on `act/*`: the awaited action of a kicker moves
+    /// the episode on once the frame's last one arrives; anything else is
+    /// dropped and counted.
+    async fn on_action(&mut self, sample: &Sample) -> Result<()> {
+        let bytes = sample.payload().to_bytes();
+        let envelope = match proto::decode(&bytes, self.experiment) {
+            Ok(envelope) => envelope,
+            Err(e) => {
+                self.counters.drop_undecodable(&e);
+                debug!(key = %sample.key_expr(), error = %e, "dropped an action");
+                return Ok(());
+            }
+        };
+        let offer = match (&envelope.body, self.play.as_mut()) {
+            (Body::Action(choice), _) if key_agent(sample) != Some(choice.agent) => {
+                Offer::Unexpected
+            }
+            (Body::Action(choice), Some(play)) => play.episode.offer(&envelope.header, choice),
+            (Body::Action(_), None) => Offer::Stale,
+            _ => Offer::Unexpected,
+        };
+        let reason = match offer {
+            Offer::Accepted => {
+                self.counters
+                    .record(Direction::Received, MessageKind::Action, bytes.len());
+                let waiting = self.play.as_ref().is_some_and(|p| p.episode.is_waiting());
+                return if waiting {
+                    Ok(())
+                } else {
+                    self.proceed().await
+                };
+            }
+            Offer::Stale => DropReason::Stale,
+            Offer::Duplicate => DropReason::Duplicate,
+            Offer::Unexpected => DropReason::Malformed,
+        };
+        self.counters.record_drop(reason);
+        debug!(key = %sample.key_expr(), header = ?envelope.header, ?reason, "dropped an action");
+        Ok(())
+    }
+
+    /// The step timeout passed: every missing kicker moves.
+    async fn on_timeout(&mut self) -> Result<()> {
+        let Some(play) = &self.play else {
+            return Ok(());
+        };
+        let h = play.episode.header;
+        for agent in play.episode.missing() {
+            warn!(
+                run = h.run,
+                episode = h.episode,
+                frame = h.frame,
+                agent,
+                "no action within the step timeout: Move instead"
+            );
+            self.missing_actions += 1;
+        }
+        self.proceed().await
+    }
+
+    /// Replies `reply` with `header`'s run, episode and frame; a reply that
+    /// cannot be sent is logged (the asker is gone or timed out).
+    async fn reply(&mut self, query: &Query, header: Header, reply: ControlReply) {
+        let header = Header::new(self.experiment, header.run, header.episode, header.frame);
+        let bytes = proto::encode(&Envelope {
+            header,
+            body: Body::ControlReply(reply),
+        });
+        self.counters
+            .record(Direction::Sent, MessageKind::ControlReply, bytes.len());
+        if let Err(e) = self.link.reply(query, bytes).await {
+            warn!("{e:#}");
+        }
+    }
+
+    /// Counts an accepted control command of `size` bytes.
+    fn received(&mut self, size: usize) {
+        self.counters
+            .record(Direction::Received, MessageKind::Control, size);
+    }
+
+    /// The counters so far.
+    fn report(&self) -> ServerReport {
+        ServerReport {
+            frames: self.frames,
+            missing_actions: self.missing_actions,
+            messages: self.counters.clone(),
+        }
+    }
+
+    /// The run of the last Reset (0 before any).
+    fn current_run(&self) -> u32 {
+        self.run.as_ref().map_or(0, |r| r.run)
+    }
+}
+
+/// The agent id in a sample's key (`.../act/<id>`).
+fn key_agent(sample: &Sample) -> Option<u8> {
+    sample.key_expr().as_str().rsplit('/').next()?.parse().ok()
+}
