@@ -60,11 +60,43 @@ struct Pending {
     state: State,
 }
 
+/// A frame waiting for advice: everything [`Agent::act_complete`] needs to
+/// finish it.
+#[derive(Clone, Copy, Debug)]
+struct InFlight {
+    key: u64,
+    entry: EntryId,
+    state: State,
+    reward: f64,
+    intended: Option<Action>,
+}
+
+/// The first half of a frame (see [`Agent::act_begin`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Decision {
+    /// The action for this frame; the frame is complete.
+    Act(Action),
+    /// Ask these advisors about `state` (with the `intended` action in
+    /// Mistake Correcting mode), then pass their advice to
+    /// [`Agent::act_complete`].
+    Ask {
+        /// The advisors, in the order of the reachable set.
+        to: Vec<usize>,
+        /// The advisee's state.
+        state: State,
+        /// Its own epsilon-greedy choice, sent along in Mistake Correcting mode.
+        intended: Option<Action>,
+    },
+}
+
 /// A learning agent (or the random baseline) with its advising strategy.
 ///
 /// Drive it per episode: [`begin_episode`](Self::begin_episode), one
 /// [`act`](Self::act) per simulator frame, [`end_episode`](Self::end_episode)
 /// at the terminal frame, then [`share_episode`](Self::share_episode).
+/// A transport that cannot call the advisors in place splits each frame in
+/// [`act_begin`](Self::act_begin) and [`act_complete`](Self::act_complete)
+/// and ships shared episodes from [`take_shared`](Self::take_shared).
 #[derive(Clone, Debug)]
 pub struct Agent {
     id: usize,
@@ -77,6 +109,7 @@ pub struct Agent {
     rng: AgentRng,
     mode: Mode,
     pending: Option<Pending>,
+    in_flight: Option<InFlight>,
     advised: Vec<u64>,
     reach: Vec<usize>,
     answers: Vec<Action>,
@@ -122,6 +155,7 @@ impl Agent {
             rng: AgentRng::seed_from_u64(seed),
             mode: Mode::Training,
             pending: None,
+            in_flight: None,
             advised: Vec::new(),
             reach: Vec::with_capacity(team_size),
             answers: Vec::with_capacity(team_size),
@@ -195,6 +229,7 @@ impl Agent {
 
     fn reset_episode(&mut self) {
         self.pending = None;
+        self.in_flight = None;
         self.sarsa.clear();
         self.advised.clear();
     }
@@ -209,6 +244,9 @@ impl Agent {
     ///
     /// `positions` holds every agent's field position by id (only needed by
     /// [`Reachable::WithinDistance`]); `exchange` reaches the advisors.
+    /// The same as [`act_begin`](Self::act_begin) with everyone reachable,
+    /// then, if asked to, [`act_complete`](Self::act_complete) with the
+    /// answers `exchange` collects.
     pub fn act(
         &mut self,
         obs: &Observation,
@@ -216,35 +254,122 @@ impl Agent {
         positions: &[[f64; 2]],
         exchange: &mut dyn AdviceExchange,
     ) -> Action {
+        match self.act_begin(obs, reward, positions, &|_| true) {
+            Decision::Act(action) => action,
+            Decision::Ask {
+                to,
+                state,
+                intended,
+            } => {
+                let mut answers = std::mem::take(&mut self.answers);
+                answers.clear();
+                exchange.ask(self.id, &to, &state, intended, &mut answers);
+                let action = self.act_complete(&answers);
+                self.answers = answers;
+                action
+            }
+        }
+    }
+
+    /// The first half of [`act`](Self::act): either the frame's action, or
+    /// the advisors to ask first. `reachable(j)` says whether agent `j` can
+    /// be asked now (e.g. its liveliness token is seen); the others are left
+    /// out of the reachable set.
+    ///
+    /// After [`Decision::Ask`] the frame stays open until
+    /// [`act_complete`](Self::act_complete); the agent may advise others
+    /// meanwhile. A new `act_begin`, [`begin_episode`](Self::begin_episode),
+    /// [`end_episode`](Self::end_episode) or [`restore`](Self::restore)
+    /// abandons it.
+    pub fn act_begin(
+        &mut self,
+        obs: &Observation,
+        reward: f64,
+        positions: &[[f64; 2]],
+        reachable: &dyn Fn(usize) -> bool,
+    ) -> Decision {
+        self.in_flight = None;
         if !self.config.strategy.learns() {
-            return self.random_action(obs.can_kick);
+            return Decision::Act(self.random_action(obs.can_kick));
         }
         let key = self.tiling.key(&obs.state);
         if self.mode == Mode::Evaluation {
             if !obs.can_kick {
-                return Action::Move;
+                return Decision::Act(Action::Move);
             }
-            return self
-                .table
-                .get(key)
-                .map_or(Action::Shoot, |e| greedy_first(&e.q));
+            return Decision::Act(
+                self.table
+                    .get(key)
+                    .map_or(Action::Shoot, |e| greedy_first(&e.q)),
+            );
         }
         let entry = self.table.id_or_insert(key);
-        let action = if obs.can_kick {
-            self.choose(key, entry, &obs.state, positions, exchange)
-        } else {
-            Action::Move
+        if !obs.can_kick {
+            self.step(entry, Action::Move, obs.state, reward);
+            return Decision::Act(Action::Move);
+        }
+        if self.asks(key, entry) {
+            self.fill_reach(positions, reachable);
+            if !self.reach.is_empty() {
+                let intended = self
+                    .config
+                    .mistake_correcting
+                    .then(|| self.explore_in(entry));
+                self.counters.requests_sent += 1;
+                self.in_flight = Some(InFlight {
+                    key,
+                    entry,
+                    state: obs.state,
+                    reward,
+                    intended,
+                });
+                return Decision::Ask {
+                    to: self.reach.clone(),
+                    state: obs.state,
+                    intended,
+                };
+            }
+        }
+        let action = self.explore_in(entry);
+        self.step(entry, action, obs.state, reward);
+        Decision::Act(action)
+    }
+
+    /// The second half of a frame that asked: `answers` holds the advice
+    /// that arrived (in any number, possibly none). With advice the agent
+    /// plays the majority vote and spends one unit of its ask budget, else
+    /// its intended or epsilon-greedy action; then the frame completes as in
+    /// [`act`](Self::act). Without a frame waiting for advice it returns
+    /// `Move` and changes nothing.
+    pub fn act_complete(&mut self, answers: &[Action]) -> Action {
+        let Some(f) = self.in_flight.take() else {
+            return Action::Move;
         };
+        let action = match majority(answers, &mut self.rng) {
+            Some(advice) => {
+                self.counters.advice_received += answers.len() as u64;
+                self.counters.advised_steps += 1;
+                self.advised.push(f.key);
+                advice
+            }
+            None => f.intended.unwrap_or_else(|| self.explore_in(f.entry)),
+        };
+        self.step(f.entry, action, f.state, f.reward);
+        action
+    }
+
+    /// Completes a training frame: learns the previous step towards this
+    /// one, counts the visit and keeps this step open.
+    fn step(&mut self, entry: EntryId, action: Action, state: State, reward: f64) {
         if let Some(prev) = self.pending.take() {
-            self.learn(prev, reward, Some((entry, action, obs.state)));
+            self.learn(prev, reward, Some((entry, action, state)));
         }
         self.table.entry_mut(entry).visits += 1;
         self.pending = Some(Pending {
             entry,
             action,
-            state: obs.state,
+            state,
         });
-        action
     }
 
     /// The terminal frame: a training episode learns its last step with
@@ -271,22 +396,34 @@ impl Agent {
     /// episode: sends its transitions to every other agent, one budget unit
     /// per transition per receiver, until the budget is spent.
     pub fn share_episode(&mut self, exchange: &mut dyn AdviceExchange) {
+        for (to, transitions) in self.take_shared() {
+            exchange.share(self.id, to, &transitions);
+        }
+    }
+
+    /// What [`share_episode`](Self::share_episode) sends, as data: the
+    /// transitions for each receiver, in id order (receivers the budget does
+    /// not reach are left out). The budget is spent as if they were sent;
+    /// empty unless an EpisodeSharing goal episode just ended.
+    pub fn take_shared(&mut self) -> Vec<(usize, Vec<Transition>)> {
         if !std::mem::take(&mut self.share_ready) {
-            return;
+            return Vec::new();
         }
         let budget = self
             .config
             .sharing_budget
             .saturating_sub(self.counters.shared_sent);
         let receivers = self.team_size - 1;
+        let mut shares = Vec::with_capacity(receivers);
         for (k, to) in (0..self.team_size).filter(|&j| j != self.id).enumerate() {
             let n = shared_prefix(self.episode.len(), receivers, k, budget);
             if n > 0 {
-                exchange.share(self.id, to, &self.episode[..n]);
+                shares.push((to, self.episode[..n].to_vec()));
                 self.counters.shared_sent += n as u64;
             }
         }
         self.episode.clear();
+        shares
     }
 
     /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
@@ -347,53 +484,27 @@ impl Agent {
         self.replay.clear();
     }
 
-    /// Training choice with the ball: the strategy may ask for advice
-    /// (Algorithm 1, or Torrey's student), else epsilon-greedy.
-    fn choose(
-        &mut self,
-        key: u64,
-        entry: EntryId,
-        state: &State,
-        positions: &[[f64; 2]],
-        exchange: &mut dyn AdviceExchange,
-    ) -> Action {
-        let e = *self.table.entry(entry);
+    /// Whether a training step with the ball asks for advice (Algorithm 1,
+    /// or Torrey's student at every fresh state).
+    fn asks(&mut self, key: u64, entry: EntryId) -> bool {
+        let visits = self.table.entry(entry).visits;
         let c = &self.config;
         let fresh = !self.advised.contains(&key);
-        let asks = match c.strategy {
+        match c.strategy {
             StrategyKind::AdHocVisit | StrategyKind::AdHocTd => {
                 fresh
                     && self.counters.advised_steps < c.ask_budget
                     && self.training_episodes >= 1
-                    && chance(&mut self.rng, p_ask(e.visits, c.v_a))
+                    && chance(&mut self.rng, p_ask(visits, c.v_a))
             }
             StrategyKind::Torrey => fresh,
             StrategyKind::NoAdvice | StrategyKind::EpisodeSharing | StrategyKind::Random => false,
-        };
-        if !asks {
-            return self.explore(&e.q);
-        }
-        self.fill_reach(positions);
-        if self.reach.is_empty() {
-            return self.explore(&e.q);
-        }
-        let intended = self.config.mistake_correcting.then(|| self.explore(&e.q));
-        self.answers.clear();
-        exchange.ask(self.id, &self.reach, state, intended, &mut self.answers);
-        self.counters.requests_sent += 1;
-        match majority(&self.answers, &mut self.rng) {
-            Some(advice) => {
-                self.counters.advice_received += self.answers.len() as u64;
-                self.counters.advised_steps += 1;
-                self.advised.push(key);
-                advice
-            }
-            None => intended.unwrap_or_else(|| self.explore(&e.q)),
         }
     }
 
-    /// Whom to ask: Torrey's fixed teacher `(i + 1) mod n`, else G(s).
-    fn fill_reach(&mut self, positions: &[[f64; 2]]) {
+    /// Whom to ask among the `reachable` agents: Torrey's fixed teacher
+    /// `(i + 1) mod n`, else G(s).
+    fn fill_reach(&mut self, positions: &[[f64; 2]], reachable: &dyn Fn(usize) -> bool) {
         self.reach.clear();
         if self.config.strategy == StrategyKind::Torrey {
             let teacher = (self.id + 1) % self.team_size;
@@ -407,6 +518,13 @@ impl Agent {
                 &mut self.reach,
             );
         }
+        self.reach.retain(|&j| reachable(j));
+    }
+
+    /// Epsilon-greedy over the Q values of a table entry.
+    fn explore_in(&mut self, entry: EntryId) -> Action {
+        let q = self.table.entry(entry).q;
+        self.explore(&q)
     }
 
     fn explore(&mut self, q: &[f64; ACTIONS]) -> Action {

@@ -4,20 +4,10 @@
 //! [`crate::Agent::receive_shared`]); an exchange only carries messages.
 
 use proto::{Action, State};
-use serde::{Deserialize, Serialize};
 
-/// One step of a shared episode, `(s, a, r, s', a')`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Transition {
-    /// The state s the action was taken in.
-    pub state: State,
-    /// The action a.
-    pub action: Action,
-    /// The reward r that followed.
-    pub reward: f64,
-    /// `(s', a')`, the sharer's next state and action; `None` at the terminal step.
-    pub next: Option<(State, Action)>,
-}
+/// One step of a shared episode, `(s, a, r, s', a')`: the wire type itself,
+/// so that a transport ships shared episodes as they are.
+pub use proto::SharedTransition as Transition;
 
 /// Carries advice requests and shared episodes between agents.
 pub trait AdviceExchange {

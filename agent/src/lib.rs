@@ -4,7 +4,9 @@
 //!
 //! The library does no I/O besides saving and loading snapshots and knows no
 //! transport: agents reach each other through [`AdviceExchange`], which
-//! [`Team`] implements in process with direct calls.
+//! [`Team`] implements in process with direct calls. A networked agent
+//! splits each frame in [`Agent::act_begin`] and [`Agent::act_complete`]
+//! around its advice requests and ships [`Agent::take_shared`]'s episodes.
 //!
 //! Driving a [`Team`]: one training episode, then one evaluation episode
 //! (frozen: greedy play, nothing learned, asked or given).
@@ -46,9 +48,10 @@ mod qtable;
 mod sarsa;
 mod team;
 mod tiles;
+mod wire;
 
 pub use advice::{p_ask, p_give, psi_td, psi_visit};
-pub use agent::{Agent, Counters, Mode, Observation};
+pub use agent::{Agent, Counters, Decision, Mode, Observation};
 pub use config::{AgentConfig, ConfigError, Reachable, StrategyKind};
 pub use exchange::{AdviceExchange, Isolated, Transition};
 pub use persist::{FORMAT_VERSION, PersistError, Snapshot};

@@ -701,3 +701,176 @@ fn bad_construction_and_frames_are_errors() {
         }
     );
 }
+
+/// Random episodes like [`play`]'s: frames of 3 observations and the final reward.
+fn random_episodes(rng: &mut AgentRng, episodes: usize) -> Vec<(Vec<Vec<Observation>>, f64)> {
+    let values = [-0.5, 0.0, 0.5];
+    (0..episodes)
+        .map(|_| {
+            let frames = (0..rng.random_range(1..25))
+                .map(|_| {
+                    let kicker = rng.random_range(0..4);
+                    (0..3)
+                        .map(|i| {
+                            let mut s = [0.0; 6];
+                            s[1] = values[rng.random_range(0..values.len())];
+                            s[2] = values[rng.random_range(0..values.len())];
+                            s[0] = if i == kicker { 1.0 } else { -1.0 };
+                            Observation {
+                                state: s,
+                                can_kick: i == kicker,
+                                position: [rng.random_range(0.0..10.0), 0.0],
+                            }
+                        })
+                        .collect()
+                })
+                .collect();
+            (frames, [-1.0, 0.0, 1.0][rng.random_range(0..3)])
+        })
+        .collect()
+}
+
+/// Plays `episodes` with the two-phase API, advisors answering in the order
+/// of each request and shared episodes delivered from `take_shared`.
+fn play_two_phase(
+    agents: &mut [Agent],
+    episodes: &[(Vec<Vec<Observation>>, f64)],
+    mode: Mode,
+) -> Vec<Action> {
+    let mut log = Vec::new();
+    for (frames, final_reward) in episodes {
+        agents.iter_mut().for_each(|a| a.begin_episode(mode));
+        for frame in frames {
+            let positions: Vec<[f64; 2]> = frame.iter().map(|o| o.position).collect();
+            for (i, obs) in frame.iter().enumerate() {
+                let action = match agents[i].act_begin(obs, 0.0, &positions, &|_| true) {
+                    Decision::Act(action) => action,
+                    Decision::Ask {
+                        to,
+                        state,
+                        intended,
+                    } => {
+                        let answers: Vec<Action> = to
+                            .iter()
+                            .filter_map(|&j| agents[j].advise(&state, intended))
+                            .collect();
+                        agents[i].act_complete(&answers)
+                    }
+                };
+                log.push(action);
+            }
+        }
+        agents.iter_mut().for_each(|a| a.end_episode(*final_reward));
+        for i in 0..agents.len() {
+            for (to, transitions) in agents[i].take_shared() {
+                agents[to].receive_shared(&transitions);
+            }
+        }
+    }
+    log
+}
+
+/// Plays `episodes` through [`Team::act`].
+fn play_team(
+    team: &mut Team,
+    episodes: &[(Vec<Vec<Observation>>, f64)],
+    mode: Mode,
+) -> Vec<Action> {
+    let mut log = Vec::new();
+    for (frames, final_reward) in episodes {
+        team.begin_episode(mode);
+        for frame in frames {
+            log.extend_from_slice(team.act(frame, 0.0).unwrap());
+        }
+        team.end_episode(*final_reward);
+    }
+    log
+}
+
+#[test]
+fn two_phase_frames_equal_act_for_the_same_seed() {
+    for strategy in [
+        StrategyKind::AdHocVisit,
+        StrategyKind::AdHocTd,
+        StrategyKind::Torrey,
+        StrategyKind::EpisodeSharing,
+        StrategyKind::Random,
+    ] {
+        for mistake_correcting in [false, true] {
+            if mistake_correcting && !strategy.supports_mistake_correcting() {
+                continue;
+            }
+            let c = AgentConfig {
+                mistake_correcting,
+                ..config(strategy)
+            };
+            let build = || -> Vec<Agent> {
+                (0..3)
+                    .map(|i| Agent::new(i, 3, c.clone(), 21 + i as u64).unwrap())
+                    .collect()
+            };
+            let episodes = random_episodes(&mut AgentRng::seed_from_u64(4), 50);
+            let mut team = Team::new(build()).unwrap();
+            let mut agents = build();
+            let mut team_log = Vec::new();
+            let mut split_log = Vec::new();
+            for mode in [Mode::Training, Mode::Evaluation] {
+                team_log.extend(play_team(&mut team, &episodes, mode));
+                split_log.extend(play_two_phase(&mut agents, &episodes, mode));
+            }
+            let label = format!("{strategy:?}, mistake correcting {mistake_correcting}");
+            assert_eq!(team_log, split_log, "{label}");
+            assert_eq!(
+                digests(&team),
+                agents.iter().map(Agent::digest).collect::<Vec<_>>(),
+                "{label}"
+            );
+            assert!(
+                agents
+                    .iter()
+                    .all(|a| *a.counters() == *team.agents()[a.id()].counters()),
+                "{label}"
+            );
+        }
+    }
+}
+
+#[test]
+fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
+    let mut a = agent(0, 3, config(StrategyKind::AdHocTd));
+    finish_one_episode(&mut a);
+    // Unvisited state: P_ask = 1.
+    let decision = a.act_begin(&obs(kick_state(0)), 0.0, &[], &|j| j != 1);
+    assert_eq!(
+        decision,
+        Decision::Ask {
+            to: vec![2],
+            state: kick_state(0),
+            intended: None
+        }
+    );
+    assert_eq!(a.act_complete(&[PassNear]), PassNear);
+    assert_eq!(a.counters().advised_steps, 1);
+    // Nobody reachable: the agent acts on its own and sends no request.
+    let decision = a.act_begin(&obs(kick_state(1)), 0.0, &[], &|_| false);
+    assert!(matches!(decision, Decision::Act(a) if a.is_kick()));
+    assert_eq!(a.counters().requests_sent, 1);
+}
+
+#[test]
+fn an_abandoned_ask_completes_to_nothing() {
+    let mut a = agent(0, 3, config(StrategyKind::AdHocTd));
+    finish_one_episode(&mut a);
+    let before = a.digest();
+    assert!(matches!(
+        a.act_begin(&obs(kick_state(0)), 0.0, &[], &|_| true),
+        Decision::Ask { .. }
+    ));
+    // The episode ends before the answers arrive: they change nothing.
+    a.end_episode(0.0);
+    let after_end = a.digest();
+    assert_eq!(a.act_complete(&[Dribble]), Move);
+    assert_eq!(a.digest(), after_end);
+    assert_eq!(a.counters().advised_steps, 0);
+    assert_ne!(before, after_end, "the episode count moved on");
+}

@@ -1,0 +1,29 @@
+//! Liveliness: which agents are reachable, and whether the coordinator is
+//! still there (docs/protocol.md, "Liveness").
+
+use std::sync::Arc;
+
+use proto::keys::Role;
+use zenoh::handlers::FifoChannelHandler;
+use zenoh::pubsub::Subscriber;
+use zenoh::sample::{Sample, SampleKind};
+
+use super::node::{Exit, Node};
+
+/// Follows the experiment's liveliness tokens until the session closes:
+/// agents come and go from the live set; once the coordinator has been
+/// seen, its disappearance stops the process (nobody would stop it).
+pub async fn track(node: Arc<Node>, tokens: Subscriber<FifoChannelHandler<Sample>>) {
+    let mut coordinator_seen = false;
+    while let Ok(sample) = tokens.recv_async().await {
+        let present = sample.kind() == SampleKind::Put;
+        let role = node.keys.role_of_alive(sample.key_expr().as_str());
+        tracing::debug!(?role, present, "liveliness");
+        match role {
+            Some(Role::Agent(j)) => node.set_alive(j, present),
+            Some(Role::Coordinator) if present => coordinator_seen = true,
+            Some(Role::Coordinator) if coordinator_seen => node.stop(Exit::CoordinatorGone),
+            _ => {}
+        }
+    }
+}

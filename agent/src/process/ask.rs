@@ -1,0 +1,160 @@
+//! The advisee side of advising: one query per live advisor, all in
+//! parallel, replies taken as they stream in until every advisor answered
+//! or the advice timeout passed (docs/protocol.md §6).
+
+use std::time::{Duration, Instant};
+
+use proto::{Action, Body, DropReason, Header, MessageKind};
+use tokio::sync::mpsc;
+use zenoh::query::{ConsolidationMode, QueryTarget};
+
+use super::learner::Ask;
+use super::node::Node;
+
+/// The replies collected for one request.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Collector {
+    waiting: Vec<u8>,
+    /// The advice received (replies without advice add nothing).
+    pub advice: Vec<Action>,
+    /// Replies received, with or without advice.
+    pub replies: u64,
+    /// Round-trip time of each reply (ms).
+    pub rtt_ms: Vec<f32>,
+}
+
+impl Collector {
+    /// Waits for a reply from each of `advisors`.
+    pub fn new(advisors: &[u8]) -> Self {
+        Self {
+            waiting: advisors.to_vec(),
+            ..Self::default()
+        }
+    }
+
+    /// Takes advisor `from`'s reply, received `rtt` after its request.
+    /// Only kick actions count as advice. A reply from an advisor that was
+    /// not asked, or that already answered, is refused.
+    pub fn take(
+        &mut self,
+        from: u8,
+        advice: Option<Action>,
+        rtt: Duration,
+    ) -> Result<(), DropReason> {
+        let Some(k) = self.waiting.iter().position(|&j| j == from) else {
+            return Err(DropReason::Duplicate);
+        };
+        self.waiting.swap_remove(k);
+        self.replies += 1;
+        self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
+        self.advice.extend(advice.filter(|a| a.is_kick()));
+        Ok(())
+    }
+
+    /// Whether every advisor answered.
+    pub fn done(&self) -> bool {
+        self.waiting.is_empty()
+    }
+}
+
+/// A reply as it arrives: the advisor queried, the payload and the round trip.
+type Arrival = (u8, Vec<u8>, Duration);
+
+/// Sends `ask` (for the frame of `header`) to its advisors and collects
+/// their replies.
+pub async fn ask(node: &Node, header: Header, ask: &Ask) -> Collector {
+    let deadline = tokio::time::Instant::now() + node.advice_timeout;
+    let (tx, mut rx) = mpsc::unbounded_channel::<Arrival>();
+    let mut collector = Collector::new(&[]);
+    for &j in &ask.to {
+        let bytes = node.encode(header, Body::AdviceRequest(ask.request));
+        let tx = tx.clone();
+        let sent = Instant::now();
+        let query = node
+            .session
+            .get(node.keys.advice(j))
+            .payload(bytes)
+            .consolidation(ConsolidationMode::None)
+            .target(QueryTarget::All)
+            .timeout(node.advice_timeout)
+            .callback(move |reply| {
+                if let Ok(sample) = reply.result() {
+                    // The receiver is gone once the request is settled.
+                    let _ = tx.send((j, sample.payload().to_bytes().into_owned(), sent.elapsed()));
+                }
+            })
+            .await;
+        match query {
+            Ok(()) => collector.waiting.push(j),
+            Err(e) => tracing::warn!(advisor = j, error = %e, "cannot send an advice request"),
+        }
+    }
+    drop(tx);
+    while !collector.done() {
+        let Ok(Some((j, bytes, rtt))) = tokio::time::timeout_at(deadline, rx.recv()).await else {
+            break;
+        };
+        take_reply(node, header, &mut collector, j, &bytes, rtt);
+    }
+    collector
+}
+
+/// Checks one reply and hands it to the collector, counting it.
+fn take_reply(
+    node: &Node,
+    header: Header,
+    collector: &mut Collector,
+    j: u8,
+    bytes: &[u8],
+    rtt: Duration,
+) {
+    let Some(envelope) = node.decode(bytes) else {
+        return;
+    };
+    let result = match envelope.body {
+        Body::AdviceReply(r) if r.from == j && envelope.header == header => {
+            collector.take(j, r.advice, rtt)
+        }
+        Body::AdviceReply(_) => Err(DropReason::Stale),
+        _ => Err(DropReason::Malformed),
+    };
+    match result {
+        Ok(()) => node.accepted(MessageKind::AdviceReply, bytes.len()),
+        Err(reason) => node.dropped(reason, Some(&envelope.header)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proto::Action::{Dribble, Move, Shoot};
+
+    #[test]
+    fn collects_until_every_advisor_answered() {
+        let ms = Duration::from_millis;
+        let mut c = Collector::new(&[2, 0]);
+        assert!(!c.done());
+        c.take(0, Some(Shoot), ms(3)).unwrap();
+        assert_eq!(c.take(0, Some(Dribble), ms(4)), Err(DropReason::Duplicate));
+        assert_eq!(
+            c.take(1, Some(Dribble), ms(4)),
+            Err(DropReason::Duplicate),
+            "not asked"
+        );
+        assert!(!c.done());
+        // No advice, or a non-kick one: a reply, but no advice.
+        c.take(2, None, ms(1)).unwrap();
+        assert!(c.done());
+        assert_eq!(c.advice, vec![Shoot]);
+        assert_eq!(c.replies, 2);
+        assert_eq!(c.rtt_ms, vec![3.0, 1.0]);
+        let mut d = Collector::new(&[1]);
+        d.take(1, Some(Move), ms(1)).unwrap();
+        assert!(d.advice.is_empty());
+    }
+
+    #[test]
+    fn nobody_to_ask_is_done_at_once() {
+        assert!(Collector::new(&[]).done());
+    }
+}

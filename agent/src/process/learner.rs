@@ -1,0 +1,403 @@
+//! The learning side of the process: the library's agent for the current
+//! run, its position in the observation stream and the shares waiting for
+//! it. Pure state, driven by the tasks that hold it under a lock.
+
+use agent::{Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
+use proto::{Action, AdviceRequest, DropReason, Header, SharedEpisode};
+
+use super::order::{Position, Stream};
+use super::shares::PendingShares;
+
+/// What the process does after an accepted observation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    /// Publish this action (a kicker's choice), or nothing.
+    Act(Option<Action>),
+    /// Ask for advice, then call [`Learner::complete`].
+    Ask(Ask),
+    /// The episode ended: publish these shared episodes (receiver, transitions).
+    End(Vec<(usize, Vec<Transition>)>),
+}
+
+/// An advice request to send.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ask {
+    /// The advisors, already restricted to the live ones.
+    pub to: Vec<u8>,
+    /// The request.
+    pub request: AdviceRequest,
+    /// Which learner asked (see [`Learner::complete`]).
+    epoch: u64,
+}
+
+/// How far the observations of the current run were processed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Progress {
+    /// The run of the last reset.
+    pub run: u32,
+    /// Its last episode whose terminal frame was processed.
+    pub finished: Option<u32>,
+}
+
+/// Agent `id`'s learning state.
+#[derive(Debug)]
+pub struct Learner {
+    id: u8,
+    team_size: u8,
+    agent: Option<Agent>,
+    run: u32,
+    /// Counts resets and loads, so that answers to an older learner's
+    /// request are not fed to a newer one.
+    epoch: u64,
+    stream: Stream,
+    shares: PendingShares,
+}
+
+impl Learner {
+    /// Agent `id` of a team of `team_size`, waiting for its first reset.
+    pub fn new(id: u8, team_size: u8) -> Self {
+        Self {
+            id,
+            team_size,
+            agent: None,
+            run: 0,
+            epoch: 0,
+            stream: Stream::default(),
+            shares: PendingShares::default(),
+        }
+    }
+
+    /// Starts run `run` with a fresh agent from `config` (`AgentConfig`
+    /// JSON) and `seed`; on error the current state is kept.
+    pub fn reset(&mut self, run: u32, seed: u64, config: &str) -> Result<(), String> {
+        let config: AgentConfig = serde_json::from_str(config)
+            .map_err(|e| format!("agent config does not parse: {e}"))?;
+        config.validate().map_err(|e| e.to_string())?;
+        let agent = Agent::new(self.id.into(), self.team_size.into(), config, seed)
+            .map_err(|e| e.to_string())?;
+        *self = Self {
+            agent: Some(agent),
+            run,
+            epoch: self.epoch + 1,
+            ..Self::new(self.id, self.team_size)
+        };
+        Ok(())
+    }
+
+    /// Replaces the learned state with the snapshot file at `path`.
+    pub fn load(&mut self, path: &str) -> Result<(), String> {
+        let agent = self.agent.as_mut().ok_or(NO_RUN)?;
+        let snapshot = Snapshot::load(path.as_ref()).map_err(|e| e.to_string())?;
+        agent.restore(snapshot).map_err(|e| e.to_string())?;
+        self.epoch += 1;
+        Ok(())
+    }
+
+    /// The agent of the current run, if reset.
+    pub fn agent(&self) -> Result<&Agent, String> {
+        self.agent.as_ref().ok_or_else(|| NO_RUN.to_owned())
+    }
+
+    /// How far the current run was processed.
+    pub fn progress(&self) -> Progress {
+        Progress {
+            run: self.run,
+            finished: self.stream.finished(),
+        }
+    }
+
+    /// One observation, in stream order: begins, plays or ends an episode.
+    /// `reachable(j)` says whether agent `j` can be asked now.
+    pub fn observe(
+        &mut self,
+        header: &Header,
+        obs: &proto::Observation,
+        reachable: &dyn Fn(usize) -> bool,
+    ) -> Result<Step, DropReason> {
+        if obs.agent != self.id {
+            return Err(DropReason::Malformed);
+        }
+        let agent = match self.agent.as_mut() {
+            Some(a) if header.run == self.run => a,
+            _ => return Err(DropReason::Stale),
+        };
+        let position = self
+            .stream
+            .accept(header.episode, header.frame, obs.terminal)?;
+        if position == Position::NewEpisode {
+            agent.begin_episode(obs.mode.into());
+            replay(agent, &mut self.shares, self.stream.finished());
+        }
+        if obs.terminal {
+            agent.end_episode(obs.reward);
+            let shares = agent.take_shared();
+            replay(agent, &mut self.shares, self.stream.finished());
+            return Ok(Step::End(shares));
+        }
+        let me = Observation {
+            state: obs.state,
+            can_kick: obs.can_kick,
+            position: obs
+                .positions
+                .get(usize::from(self.id))
+                .copied()
+                .unwrap_or_default(),
+        };
+        Ok(
+            match agent.act_begin(&me, obs.reward, &obs.positions, reachable) {
+                Decision::Act(action) => Step::Act(obs.can_kick.then_some(action)),
+                Decision::Ask {
+                    to,
+                    state,
+                    intended,
+                } => Step::Ask(Ask {
+                    // Ids come from a team of at most u8::MAX agents.
+                    to: to
+                        .into_iter()
+                        .filter_map(|j| u8::try_from(j).ok())
+                        .collect(),
+                    request: AdviceRequest {
+                        from: self.id,
+                        state,
+                        intended,
+                    },
+                    epoch: self.epoch,
+                }),
+            },
+        )
+    }
+
+    /// Completes the frame that asked with the advice that arrived; `None`
+    /// if the learner was reset or loaded meanwhile.
+    pub fn complete(&mut self, ask: &Ask, advice: &[Action]) -> Option<Action> {
+        let agent = self.agent.as_mut().filter(|_| ask.epoch == self.epoch)?;
+        Some(agent.act_complete(advice))
+    }
+
+    /// A shared episode: replayed once this agent has finished that episode
+    /// itself and is not evaluating.
+    pub fn receive_share(
+        &mut self,
+        header: &Header,
+        share: SharedEpisode,
+    ) -> Result<(), DropReason> {
+        if share.to != self.id || share.from == self.id || share.from >= self.team_size {
+            return Err(DropReason::Malformed);
+        }
+        let agent = match self.agent.as_mut() {
+            Some(a) if header.run == self.run => a,
+            _ => return Err(DropReason::Stale),
+        };
+        self.shares
+            .push(share.from.into(), header.episode, share.transitions)?;
+        replay(agent, &mut self.shares, self.stream.finished());
+        Ok(())
+    }
+
+    /// The advice for a request of the current run (`None`: no advice).
+    pub fn advise(
+        &mut self,
+        header: &Header,
+        request: &AdviceRequest,
+    ) -> Result<Option<Action>, DropReason> {
+        if request.from == self.id || request.from >= self.team_size {
+            return Err(DropReason::Malformed);
+        }
+        match self.agent.as_mut() {
+            Some(a) if header.run == self.run => Ok(a.advise(&request.state, request.intended)),
+            _ => Err(DropReason::Stale),
+        }
+    }
+}
+
+/// Why a command needs a reset first.
+const NO_RUN: &str = "no run started: the agent has not been reset";
+
+/// Replays the shares that are due.
+fn replay(agent: &mut Agent, shares: &mut PendingShares, finished: Option<u32>) {
+    let training = agent.mode() == agent::Mode::Training;
+    for transitions in shares.take_ready(finished, training) {
+        agent.receive_shared(&transitions);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proto::Mode;
+
+    const CONFIG: &str = r#"{"strategy": "episode-sharing"}"#;
+
+    fn header(run: u32, episode: u32, frame: u32) -> Header {
+        Header::new(1, run, episode, frame)
+    }
+
+    fn obs(agent: u8, kick: bool, terminal: bool, reward: f64) -> proto::Observation {
+        proto::Observation {
+            agent,
+            mode: Mode::Training,
+            state: [0.1, 0.2, 0.3, 0.4, 0.5, if kick { 0.6 } else { -0.6 }],
+            can_kick: kick,
+            positions: vec![[0.0, 0.0], [1.0, 1.0]],
+            reward,
+            terminal,
+        }
+    }
+
+    fn reset(id: u8) -> Learner {
+        let mut l = Learner::new(id, 2);
+        l.reset(3, 9, CONFIG).unwrap();
+        l
+    }
+
+    /// Plays a goal episode of two Move frames: the shares it produces.
+    fn goal_episode(l: &mut Learner, episode: u32) -> Vec<(usize, Vec<Transition>)> {
+        let id = l.id;
+        let all = |_| true;
+        assert_eq!(
+            l.observe(&header(3, episode, 0), &obs(id, false, false, 0.0), &all),
+            Ok(Step::Act(None))
+        );
+        assert_eq!(
+            l.observe(&header(3, episode, 1), &obs(id, false, false, 0.0), &all),
+            Ok(Step::Act(None))
+        );
+        match l.observe(&header(3, episode, 2), &obs(id, false, true, 1.0), &all) {
+            Ok(Step::End(shares)) => shares,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn bad_resets_keep_the_current_state() {
+        let mut l = Learner::new(0, 2);
+        assert!(l.agent().is_err());
+        assert!(l.reset(0, 1, "{").unwrap_err().contains("does not parse"));
+        assert!(
+            l.reset(0, 1, r#"{"alpha": 2.0}"#)
+                .unwrap_err()
+                .contains("alpha")
+        );
+        assert!(l.agent().is_err());
+        assert!(
+            l.load("/nonexistent.qtable")
+                .unwrap_err()
+                .contains("not been reset")
+        );
+    }
+
+    #[test]
+    fn observations_of_other_runs_agents_or_before_a_reset_are_dropped() {
+        let all = |_| true;
+        let mut fresh = Learner::new(0, 2);
+        assert_eq!(
+            fresh.observe(&header(0, 0, 0), &obs(0, true, false, 0.0), &all),
+            Err(DropReason::Stale)
+        );
+        let mut l = reset(0);
+        let before = l.agent().unwrap().digest();
+        assert_eq!(
+            l.observe(&header(2, 0, 0), &obs(0, true, false, 0.0), &all),
+            Err(DropReason::Stale)
+        );
+        assert_eq!(
+            l.observe(&header(3, 0, 0), &obs(1, true, false, 0.0), &all),
+            Err(DropReason::Malformed)
+        );
+        assert_eq!(l.agent().unwrap().digest(), before);
+        assert_eq!(
+            l.progress(),
+            Progress {
+                run: 3,
+                finished: None
+            }
+        );
+    }
+
+    #[test]
+    fn shares_are_published_as_data_and_replayed_after_the_own_terminal_frame() {
+        let (mut a, mut b) = (reset(0), reset(1));
+        let shares = goal_episode(&mut a, 0);
+        assert_eq!(shares.len(), 1);
+        let (to, transitions) = shares.into_iter().next().unwrap();
+        assert_eq!((to, transitions.len()), (1, 2));
+        let share = SharedEpisode {
+            from: 0,
+            to: 1,
+            transitions,
+        };
+        // b has not finished episode 0 yet: the share waits.
+        let all = |_| true;
+        b.observe(&header(3, 0, 0), &obs(1, false, false, 0.0), &all)
+            .unwrap();
+        let before = b.agent().unwrap().digest();
+        b.receive_share(&header(3, 0, 0), share.clone()).unwrap();
+        assert_eq!(b.agent().unwrap().counters().shared_received, 0);
+        assert_eq!(
+            b.receive_share(&header(3, 0, 0), share.clone()),
+            Err(DropReason::Duplicate)
+        );
+        assert_eq!(
+            b.receive_share(&header(4, 1, 0), share.clone()),
+            Err(DropReason::Stale)
+        );
+        let wrong = SharedEpisode { to: 0, ..share };
+        assert_eq!(
+            b.receive_share(&header(3, 1, 0), wrong),
+            Err(DropReason::Malformed)
+        );
+        assert_eq!(b.agent().unwrap().digest(), before);
+        b.observe(&header(3, 0, 1), &obs(1, false, true, 0.0), &all)
+            .unwrap();
+        assert_eq!(b.agent().unwrap().counters().shared_received, 2);
+        assert_eq!(b.progress().finished, Some(0));
+    }
+
+    #[test]
+    fn advice_for_another_run_or_from_oneself_is_refused() {
+        let mut l = reset(0);
+        let request = |from| AdviceRequest {
+            from,
+            state: [0.0; 6],
+            intended: None,
+        };
+        assert_eq!(l.advise(&header(3, 0, 0), &request(1)), Ok(None));
+        assert_eq!(
+            l.advise(&header(2, 0, 0), &request(1)),
+            Err(DropReason::Stale)
+        );
+        assert_eq!(
+            l.advise(&header(3, 0, 0), &request(0)),
+            Err(DropReason::Malformed)
+        );
+        assert_eq!(
+            l.advise(&header(3, 0, 0), &request(2)),
+            Err(DropReason::Malformed)
+        );
+    }
+
+    #[test]
+    fn asks_live_advisors_and_ignores_answers_for_a_replaced_learner() {
+        let config = r#"{"strategy": "torrey"}"#;
+        let mut l = Learner::new(0, 2);
+        l.reset(0, 1, config).unwrap();
+        // Torrey students ask their teacher at every fresh kick state, if alive.
+        let kick = obs(0, true, false, 0.0);
+        let step = l.observe(&header(0, 0, 0), &kick, &|_| false).unwrap();
+        assert!(
+            matches!(step, Step::Act(Some(a)) if a.is_kick()),
+            "{step:?}"
+        );
+        let Ok(Step::Ask(ask)) = l.observe(&header(0, 0, 1), &kick, &|_| true) else {
+            panic!("no request");
+        };
+        assert_eq!(ask.to, vec![1]);
+        assert_eq!(ask.request.from, 0);
+        assert_eq!(l.complete(&ask, &[Action::PassFar]), Some(Action::PassFar));
+        let Ok(Step::Ask(ask)) = l.observe(&header(0, 1, 0), &kick, &|_| true) else {
+            panic!("no request");
+        };
+        l.reset(1, 1, config).unwrap();
+        assert_eq!(l.complete(&ask, &[Action::Shoot]), None);
+    }
+}

@@ -1,0 +1,115 @@
+//! The `agent` process: the agent library behind zenoh (docs/protocol.md).
+//!
+//! Tasks: the stream task ([`frames`]) processes observations and shared
+//! episodes in order and asks for advice ([`ask`]) without holding the
+//! learner; [`advise`] answers other agents' requests meanwhile; [`control`]
+//! answers the coordinator; [`alive`] follows liveliness tokens.
+
+mod advise;
+mod alive;
+mod ask;
+mod control;
+mod frames;
+mod learner;
+mod node;
+mod order;
+mod session;
+mod shares;
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use anyhow::{Result, anyhow};
+use proto::keys::{Keys, Role};
+use proto::net::NetConfig;
+
+pub use node::Exit;
+use node::Node;
+
+/// Who this agent is and how it joins the network.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Experiment name.
+    pub name: String,
+    /// The experiment's keys.
+    pub keys: Keys,
+    /// This agent's id.
+    pub id: u8,
+    /// Agents in the team.
+    pub team_size: u8,
+    /// zenoh endpoints.
+    pub net: NetConfig,
+    /// How long to wait for advice.
+    pub advice_timeout: Duration,
+}
+
+/// Joins the network, serves until stopped, and leaves it.
+pub async fn run(settings: Settings) -> Result<Exit> {
+    let Settings {
+        name,
+        keys,
+        id,
+        team_size,
+        net,
+        advice_timeout,
+    } = settings;
+    let session = session::open(&net).await?;
+    session::ensure_unique(&session, &keys, &name, id).await?;
+    let declare =
+        |what: &str, e: zenoh::Error| anyhow!("cannot declare {what}: {}", session::describe(&e));
+    let tokens = session
+        .liveliness()
+        .declare_subscriber(keys.alive_all())
+        .history(true)
+        .await
+        .map_err(|e| declare("the liveliness subscriber", e))?;
+    let observations = session
+        .declare_subscriber(keys.observation(id))
+        .await
+        .map_err(|e| declare("the observation subscriber", e))?;
+    let shares = session
+        .declare_subscriber(keys.share(id))
+        .await
+        .map_err(|e| declare("the share subscriber", e))?;
+    let advice = session
+        .declare_queryable(keys.advice(id))
+        .await
+        .map_err(|e| declare("the advice queryable", e))?;
+    let control = session
+        .declare_queryable(keys.control(Role::Agent(id)))
+        .await
+        .map_err(|e| declare("the control queryable", e))?;
+    let actions = session
+        .declare_publisher(keys.action(id))
+        .await
+        .map_err(|e| declare("the action publisher", e))?;
+    let node = Arc::new(Node::new(
+        session.clone(),
+        &name,
+        keys,
+        id,
+        team_size,
+        advice_timeout,
+    ));
+    tokio::spawn(alive::track(node.clone(), tokens));
+    tokio::spawn(frames::run(node.clone(), observations, shares, actions));
+    tokio::spawn(advise::serve(node.clone(), advice));
+    tokio::spawn(control::serve(node.clone(), control));
+    // Declared last: whoever sees the token can already reach the rest.
+    let token = session
+        .liveliness()
+        .declare_token(node.keys.alive(Role::Agent(id)))
+        .await
+        .map_err(|e| declare("the liveliness token", e))?;
+    tracing::info!(experiment = %name, id, "agent ready");
+    let exit = node.stopped().await;
+    tracing::info!(?exit, "stopping");
+    drop(token);
+    session.close().await.map_err(|e| {
+        anyhow!(
+            "cannot leave the zenoh network cleanly: {}",
+            session::describe(&e)
+        )
+    })?;
+    Ok(exit)
+}

@@ -1,0 +1,63 @@
+//! Bad input makes the `agent` binary print one clear line and exit 2.
+
+mod support;
+
+use std::net::TcpListener;
+use std::time::Duration;
+
+use support::{Guard, free_port};
+
+#[test]
+fn bad_input_gives_one_line_and_exit_code_2() {
+    let busy = TcpListener::bind("127.0.0.1:0").unwrap();
+    let busy_port = busy.local_addr().unwrap().port();
+    let listen_busy = format!("tcp/127.0.0.1:{busy_port}");
+    let nobody = format!("tcp/127.0.0.1:{}", free_port());
+    let ok = ["--experiment", "e", "--id", "0", "--team-size", "2"];
+    let cases: Vec<(Vec<&str>, String)> = vec![
+        (
+            [&ok[..], &["--listen", &listen_busy]].concat(),
+            format!("{busy_port}: Address already in use"),
+        ),
+        (
+            [&ok[..], &["--connect", &nobody]].concat(),
+            format!("Unable to connect to any of [Single({nobody})]"),
+        ),
+        (
+            [&ok[..], &["--listen", "foo"]].concat(),
+            "invalid network settings (listen foo".into(),
+        ),
+        (
+            vec!["--experiment", "a/b", "--id", "0", "--team-size", "2"],
+            "invalid experiment name 'a/b'".into(),
+        ),
+        (
+            vec!["--experiment", "e", "--id", "2", "--team-size", "2"],
+            "agent id 2 is not below the team size 2".into(),
+        ),
+        (
+            vec!["--experiment", "e", "--id", "0", "--team-size", "0"],
+            "--team-size".into(),
+        ),
+        (vec!["--id", "0", "--team-size", "2"], "--experiment".into()),
+        (
+            [&ok[..], &["--advice-timeout-ms", "soon"]].concat(),
+            "--advice-timeout-ms".into(),
+        ),
+    ];
+    // All at once: the unreachable endpoint takes the connect timeout (5 s).
+    let mut running: Vec<(Guard, &Vec<&str>, &String)> = cases
+        .iter()
+        .map(|(args, expected)| (Guard::agent(args), args, expected))
+        .collect();
+    for (agent, args, expected) in &mut running {
+        let status = agent.wait_exit(Duration::from_secs(20));
+        assert_eq!(status.map(|s| s.code()), Some(Some(2)), "{args:?}");
+        let stderr = agent.stderr();
+        assert_eq!(stderr.lines().count(), 1, "{args:?}: {stderr}");
+        assert!(stderr.starts_with("error: "), "{args:?}: {stderr}");
+        assert!(stderr.contains(expected.as_str()), "{args:?}: {stderr}");
+        assert!(!stderr.contains(".rs:"), "{args:?}: {stderr}");
+    }
+    drop(busy);
+}

@@ -1,0 +1,445 @@
+//! The `agent` binary as real processes on loopback, driven by an in-test
+//! zenoh session playing env-server and the coordinator.
+
+mod support;
+
+use std::time::{Duration, Instant};
+
+use agent::{Agent, AgentConfig, Isolated, StrategyKind};
+use proto::keys::{Keys, Role};
+use proto::net::NetConfig;
+use proto::{
+    AgentReport, Body, Control, ControlReply, Envelope, Header, MessageKind, Mode, Observation,
+    PROTOCOL_VERSION,
+};
+use support::{Guard, free_port};
+use zenoh::Session;
+use zenoh::handlers::FifoChannelHandler;
+use zenoh::pubsub::Subscriber;
+use zenoh::query::{ConsolidationMode, QueryTarget};
+use zenoh::sample::{Sample, SampleKind};
+
+/// Starts agent `id` of a team of 2, connected to the coordinator's port.
+fn spawn_agent(name: &str, id: u8, coordinator: u16) -> Guard {
+    let (id, listen) = (id.to_string(), format!("tcp/127.0.0.1:{}", free_port()));
+    let connect = format!("tcp/127.0.0.1:{coordinator}");
+    let args = ["--experiment", name, "--id", &id, "--team-size", "2"];
+    let network = ["--listen", &listen, "--connect", &connect];
+    // Generous, for a loaded test machine.
+    Guard::agent(&[&args[..], &network, &["--advice-timeout-ms", "200"]].concat())
+}
+
+/// The in-test coordinator and env-server.
+struct Fake {
+    session: Session,
+    keys: Keys,
+    experiment: u64,
+    tokens: Subscriber<FifoChannelHandler<Sample>>,
+    port: u16,
+}
+
+impl Fake {
+    async fn open(name: &str) -> Self {
+        let port = free_port();
+        let config = NetConfig::loopback_peer(port, Vec::new()).to_json5();
+        let session = zenoh::open(zenoh::Config::from_json5(&config).unwrap())
+            .await
+            .unwrap();
+        let keys = Keys::new(name).unwrap();
+        let tokens = session
+            .liveliness()
+            .declare_subscriber(keys.alive_all())
+            .history(true)
+            .await
+            .unwrap();
+        Self {
+            session,
+            experiment: proto::experiment_id(name),
+            keys,
+            tokens,
+            port,
+        }
+    }
+
+    /// Waits until the tokens of agents `ids` are seen.
+    async fn wait_for_agents(&self, ids: &[u8]) {
+        let mut seen = Vec::new();
+        let deadline = tokio::time::Instant::now() + Duration::from_secs(30);
+        while !ids.iter().all(|i| seen.contains(i)) {
+            let sample = tokio::time::timeout_at(deadline, self.tokens.recv_async())
+                .await
+                .expect("agents did not join in time")
+                .unwrap();
+            if let (Some(Role::Agent(i)), SampleKind::Put) = (
+                self.keys.role_of_alive(sample.key_expr().as_str()),
+                sample.kind(),
+            ) {
+                seen.push(i);
+            }
+        }
+    }
+
+    fn header(&self, run: u32, episode: u32, frame: u32) -> Header {
+        Header::new(self.experiment, run, episode, frame)
+    }
+
+    /// Sends a command to agent `id` and returns its reply.
+    async fn control(&self, id: u8, header: Header, control: Control) -> ControlReply {
+        let bytes = proto::encode(&Envelope {
+            header,
+            body: Body::Control(control),
+        });
+        let replies = self
+            .session
+            .get(self.keys.control(Role::Agent(id)))
+            .payload(bytes)
+            .consolidation(ConsolidationMode::None)
+            .target(QueryTarget::All)
+            .timeout(Duration::from_secs(15))
+            .await
+            .unwrap();
+        let reply = replies.recv_async().await.expect("no reply");
+        let payload = reply.result().unwrap().payload().to_bytes();
+        match proto::decode(&payload, self.experiment).unwrap().body {
+            Body::ControlReply(r) => r,
+            other => panic!("not a control reply: {other:?}"),
+        }
+    }
+
+    async fn reset(&self, id: u8, config: &AgentConfig) {
+        let config = serde_json::to_string(config).unwrap();
+        let reply = self
+            .control(
+                id,
+                self.header(0, 0, 0),
+                Control::Reset {
+                    seed: 7 + u64::from(id),
+                    config,
+                },
+            )
+            .await;
+        assert_eq!(reply, ControlReply::Ok);
+    }
+
+    async fn report(&self, id: u8, episode: u32) -> AgentReport {
+        match self
+            .control(id, self.header(0, episode, 0), Control::Report)
+            .await
+        {
+            ControlReply::Agent(r) => *r,
+            other => panic!("agent {id} answered {other:?}"),
+        }
+    }
+
+    /// Reports of agent `id` until `done` holds (or panics after 20 s).
+    async fn report_until(
+        &self,
+        id: u8,
+        episode: u32,
+        done: impl Fn(&AgentReport) -> bool,
+    ) -> AgentReport {
+        let deadline = Instant::now() + Duration::from_secs(20);
+        loop {
+            let r = self.report(id, episode).await;
+            if done(&r) {
+                return r;
+            }
+            assert!(Instant::now() < deadline, "agent {id}: {r:?}");
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+    }
+
+    async fn publish(&self, id: u8, bytes: Vec<u8>) {
+        self.session
+            .put(self.keys.observation(id), bytes)
+            .await
+            .unwrap();
+    }
+
+    /// Publishes one frame to both agents.
+    async fn frame(&self, header: Header, mode: Mode, kick: bool, terminal: bool, reward: f64) {
+        for id in 0..2u8 {
+            let obs = observation(id, header.frame, mode, kick, terminal, reward);
+            let bytes = proto::encode(&Envelope {
+                header,
+                body: Body::Observation(obs),
+            });
+            self.publish(id, bytes).await;
+        }
+    }
+
+    async fn stop(&self, id: u8) {
+        let reply = self.control(id, self.header(0, 0, 0), Control::Stop).await;
+        assert_eq!(reply, ControlReply::Ok);
+    }
+}
+
+/// Agent `id`'s observation of `frame`: a state of its own per frame.
+fn observation(
+    id: u8,
+    frame: u32,
+    mode: Mode,
+    kick: bool,
+    terminal: bool,
+    reward: f64,
+) -> Observation {
+    let f = f64::from(frame) / 10.0;
+    Observation {
+        agent: id,
+        mode,
+        state: [f, 0.5 - f, f64::from(id) / 2.0, 0.1, -0.2, 0.3],
+        can_kick: kick,
+        positions: vec![[0.0, 0.0], [1.0, 0.0]],
+        reward,
+        terminal,
+    }
+}
+
+/// Waits for the actions of both agents for `header`'s frame.
+async fn both_actions(
+    actions: &Subscriber<FifoChannelHandler<Sample>>,
+    fake: &Fake,
+    header: Header,
+) {
+    let mut seen = [false; 2];
+    let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
+    while seen != [true; 2] {
+        let sample = tokio::time::timeout_at(deadline, actions.recv_async())
+            .await
+            .expect("actions did not arrive")
+            .unwrap();
+        let envelope = proto::decode(&sample.payload().to_bytes(), fake.experiment).unwrap();
+        if let Body::Action(choice) = envelope.body {
+            assert_eq!(envelope.header, header);
+            assert!(choice.action.is_kick(), "{choice:?}");
+            seen[usize::from(choice.agent)] = true;
+        }
+    }
+}
+
+fn received(r: &AgentReport, kind: MessageKind) -> u64 {
+    r.messages.received[kind as usize].messages
+}
+
+fn sent(r: &AgentReport, kind: MessageKind) -> u64 {
+    r.messages.sent[kind as usize].messages
+}
+
+#[tokio::test(flavor = "multi_thread")]
+async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
+    let name = format!("advise-{}", std::process::id());
+    let fake = Fake::open(&name).await;
+    let mut agents = [
+        spawn_agent(&name, 0, fake.port),
+        spawn_agent(&name, 1, fake.port),
+    ];
+    fake.wait_for_agents(&[0, 1]).await;
+    let actions = fake
+        .session
+        .declare_subscriber(fake.keys.actions())
+        .await
+        .unwrap();
+    let config = AgentConfig {
+        strategy: StrategyKind::AdHocTd,
+        ..AgentConfig::default()
+    };
+    for id in 0..2 {
+        fake.reset(id, &config).await;
+    }
+
+    // Episode 0: one training episode without the ball, so that both may ask.
+    fake.frame(fake.header(0, 0, 0), Mode::Training, false, false, 0.0)
+        .await;
+    fake.frame(fake.header(0, 0, 1), Mode::Training, false, true, 0.0)
+        .await;
+    for id in 0..2 {
+        let r = fake
+            .report_until(id, 0, |r| r.alive_peers == vec![1 - id])
+            .await;
+        assert_eq!(r.advice_requests_sent, 0);
+    }
+
+    // Episode 1: both kick at once in fresh states (P_ask = 1): each asks
+    // the other while answering the other's request.
+    for frame in 0..3 {
+        let header = fake.header(0, 1, frame);
+        fake.frame(header, Mode::Training, true, false, 0.0).await;
+        both_actions(&actions, &fake, header).await;
+    }
+    fake.frame(fake.header(0, 1, 3), Mode::Training, false, true, 1.0)
+        .await;
+    let mut reports = Vec::new();
+    for id in 0..2 {
+        let r = fake.report(id, 1).await;
+        assert!(r.advice_requests_sent > 0, "{r:?}");
+        assert!(r.advice_replies_received > 0, "{r:?}");
+        assert_eq!(r.advice_rtt_ms.len() as u64, r.advice_replies_received);
+        assert!(sent(&r, MessageKind::AdviceRequest) > 0, "{r:?}");
+        assert!(
+            received(&r, MessageKind::AdviceRequest) > 0,
+            "served: {r:?}"
+        );
+        assert!(sent(&r, MessageKind::AdviceReply) > 0, "{r:?}");
+        assert_eq!(sent(&r, MessageKind::Action), 3);
+        assert_eq!(received(&r, MessageKind::Observation), 6);
+        assert_eq!(r.messages.dropped.total(), 0);
+        eprintln!(
+            "agent {id}: {} requests, {} replies, advice RTT ms {:?}",
+            r.advice_requests_sent, r.advice_replies_received, r.advice_rtt_ms
+        );
+        reports.push(r);
+    }
+
+    // Bad messages on obs/0 are counted and change nothing.
+    let good = |header: Header| {
+        proto::encode(&Envelope {
+            header,
+            body: Body::Observation(Observation {
+                agent: 0,
+                mode: Mode::Training,
+                state: [0.9; 6],
+                can_kick: true,
+                positions: vec![],
+                reward: 1.0,
+                terminal: false,
+            }),
+        })
+    };
+    fake.publish(0, vec![0xff, 0x00, 0x13, 0x37]).await;
+    fake.publish(0, good(Header::new(proto::experiment_id("other"), 0, 2, 0)))
+        .await;
+    let old = Header {
+        version: PROTOCOL_VERSION + 1,
+        ..fake.header(0, 2, 0)
+    };
+    fake.publish(0, good(old)).await;
+    fake.publish(0, good(fake.header(0, 1, 2))).await; // an ended episode
+    fake.publish(0, good(fake.header(5, 2, 0))).await; // another run
+    let r = fake
+        .report_until(0, 1, |r| r.messages.dropped.total() == 5)
+        .await;
+    let d = r.messages.dropped;
+    assert_eq!((d.malformed, d.foreign, d.version, d.stale), (1, 1, 1, 2));
+    assert_eq!(r.digest, reports[0].digest);
+    assert_eq!(received(&r, MessageKind::Observation), 6);
+
+    // An evaluation episode: frozen, nobody asks, nothing learned.
+    fake.frame(fake.header(0, 2, 0), Mode::Evaluation, true, false, 0.0)
+        .await;
+    both_actions(&actions, &fake, fake.header(0, 2, 0)).await;
+    fake.frame(fake.header(0, 2, 1), Mode::Evaluation, false, true, 0.0)
+        .await;
+    for id in 0..2u8 {
+        let r = fake.report(id, 2).await;
+        let before = &reports[usize::from(id)];
+        assert_eq!(r.digest, before.digest);
+        assert_eq!(r.advice_requests_sent, before.advice_requests_sent);
+    }
+
+    for (id, agent) in agents.iter_mut().enumerate() {
+        fake.stop(id as u8).await;
+        let status = agent.wait_exit(Duration::from_secs(5));
+        assert_eq!(status.map(|s| s.code()), Some(Some(0)), "agent {id}");
+    }
+}
+
+#[tokio::test(flavor = "multi_thread")]
+async fn episode_sharing_travels_as_published_messages() {
+    let name = format!("share-{}", std::process::id());
+    let fake = Fake::open(&name).await;
+    let _agents = [
+        spawn_agent(&name, 0, fake.port),
+        spawn_agent(&name, 1, fake.port),
+    ];
+    fake.wait_for_agents(&[0, 1]).await;
+    let config = AgentConfig {
+        strategy: StrategyKind::EpisodeSharing,
+        ..AgentConfig::default()
+    };
+    for id in 0..2 {
+        fake.reset(id, &config).await;
+    }
+    // Episode 0 ends without a goal (nothing shared); episode 1 with one.
+    for (episode, reward) in [(0, 0.0), (1, 1.0)] {
+        for frame in 0..3 {
+            let header = fake.header(0, episode, frame);
+            fake.frame(header, Mode::Training, false, false, 0.0).await;
+        }
+        let header = fake.header(0, episode, 3);
+        fake.frame(header, Mode::Training, false, true, reward)
+            .await;
+        if episode == 0 {
+            for id in 0..2 {
+                fake.report_until(id, 0, |r| r.alive_peers == vec![1 - id])
+                    .await;
+            }
+        }
+    }
+
+    // The same episodes in process: after the goal each agent sends its 3
+    // transitions to the other, who replays them.
+    let mut local: Vec<Agent> = (0..2u8)
+        .map(|id| Agent::new(id.into(), 2, config.clone(), 7 + u64::from(id)).unwrap())
+        .collect();
+    for (id, a) in local.iter_mut().enumerate() {
+        for reward in [0.0, 1.0] {
+            a.begin_episode(agent::Mode::Training);
+            for frame in 0..3 {
+                let o = observation(id as u8, frame, Mode::Training, false, false, 0.0);
+                let me = agent::Observation {
+                    state: o.state,
+                    can_kick: false,
+                    position: o.positions[id],
+                };
+                a.act(&me, 0.0, &o.positions, &mut Isolated);
+            }
+            a.end_episode(reward);
+        }
+    }
+    let shares: Vec<_> = local.iter_mut().map(Agent::take_shared).collect();
+    for (from, to_share) in shares.into_iter().enumerate() {
+        assert_eq!(to_share.len(), 1);
+        let (to, transitions) = &to_share[0];
+        assert_eq!((*to, transitions.len()), (1 - from, 3));
+        local[*to].receive_shared(transitions);
+    }
+
+    for id in 0..2u8 {
+        let expected = local[usize::from(id)].digest();
+        let r = fake.report_until(id, 1, |r| r.digest == expected).await;
+        assert_eq!(sent(&r, MessageKind::SharedEpisode), 1);
+        assert_eq!(received(&r, MessageKind::SharedEpisode), 1);
+        assert_eq!(r.give_spent, 3);
+    }
+}
+#[tokio::test(flavor = "multi_thread")]
+async fn a_second_agent_with_the_same_id_exits_2_and_a_lost_coordinator_stops_agents() {
+    let name = format!("twice-{}", std::process::id());
+    let fake = Fake::open(&name).await;
+    let _token = fake
+        .session
+        .liveliness()
+        .declare_token(fake.keys.alive(Role::Coordinator))
+        .await
+        .unwrap();
+    let mut first = spawn_agent(&name, 0, fake.port);
+    fake.wait_for_agents(&[0]).await;
+    let mut second = spawn_agent(&name, 0, fake.port);
+    let status = second.wait_exit(Duration::from_secs(20));
+    assert_eq!(status.map(|s| s.code()), Some(Some(2)));
+    let stderr = second.stderr();
+    assert_eq!(
+        stderr.trim_end(),
+        format!("error: agent id 0 is already running in experiment {name}")
+    );
+    assert!(
+        first.wait_exit(Duration::ZERO).is_none(),
+        "the first one runs on"
+    );
+
+    // Without its coordinator the agent stops by itself.
+    fake.session.close().await.unwrap();
+    let status = first.wait_exit(Duration::from_secs(10));
+    assert_eq!(status.map(|s| s.code()), Some(Some(1)));
+    assert!(first.stderr().contains("coordinator"));
+}
