@@ -36,6 +36,10 @@ struct Cli {
     /// How long to wait for advice after asking, in milliseconds.
     #[arg(long, value_name = "MS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
     advice_timeout_ms: u64,
+    /// Exit when the coordinator that was seen leaves (for processes a
+    /// coordinator starts itself; services keep running).
+    #[arg(long)]
+    exit_with_coordinator: bool,
 }
 
 fn main() {
@@ -104,6 +108,7 @@ fn run(cli: Cli) -> Result<Exit> {
             mode: "peer".to_owned(),
         },
         advice_timeout: Duration::from_millis(cli.advice_timeout_ms),
+        exit_with_coordinator: cli.exit_with_coordinator,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()

@@ -26,7 +26,14 @@ fn spawn_agent(name: &str, id: u8, coordinator: u16) -> Guard {
     let args = ["--experiment", name, "--id", &id, "--team-size", "2"];
     let network = ["--listen", &listen, "--connect", &connect];
     // Generous, for a loaded test machine.
-    Guard::agent(&[&args[..], &network, &["--advice-timeout-ms", "200"]].concat())
+    Guard::agent(
+        &[
+            &args[..],
+            &network,
+            &["--advice-timeout-ms", "200", "--exit-with-coordinator"],
+        ]
+        .concat(),
+    )
 }
 
 /// The in-test coordinator and env-server.

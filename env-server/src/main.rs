@@ -78,6 +78,10 @@ enum Command {
         /// Milliseconds to wait for a kicker's action before it falls back to Move.
         #[arg(long, default_value_t = 1000, value_parser = at_least_one)]
         step_timeout_ms: u64,
+        /// Exit when the coordinator that was seen leaves (for servers a
+        /// coordinator starts itself; services keep running).
+        #[arg(long)]
+        exit_with_coordinator: bool,
     },
 }
 
@@ -177,11 +181,13 @@ fn run(cli: Cli) -> Result<()> {
             listen,
             connect,
             step_timeout_ms,
+            exit_with_coordinator,
         } => serve::run(serve::Options {
             experiment,
             listen,
             connect,
             step_timeout: Duration::from_millis(step_timeout_ms),
+            exit_with_coordinator,
         })?,
     }
     Ok(())

@@ -11,9 +11,14 @@ use zenoh::sample::{Sample, SampleKind};
 use super::node::{Exit, Node};
 
 /// Follows the experiment's liveliness tokens until the session closes:
-/// agents come and go from the live set; once the coordinator has been
-/// seen, its disappearance stops the process (nobody would stop it).
-pub async fn track(node: Arc<Node>, tokens: Subscriber<FifoChannelHandler<Sample>>) {
+/// agents come and go from the live set; with `exit_with_coordinator`,
+/// once the coordinator has been seen, its disappearance stops the process
+/// (nobody else would stop it).
+pub async fn track(
+    node: Arc<Node>,
+    tokens: Subscriber<FifoChannelHandler<Sample>>,
+    exit_with_coordinator: bool,
+) {
     let mut coordinator_seen = false;
     while let Ok(sample) = tokens.recv_async().await {
         let present = sample.kind() == SampleKind::Put;
@@ -22,7 +27,9 @@ pub async fn track(node: Arc<Node>, tokens: Subscriber<FifoChannelHandler<Sample
         match role {
             Some(Role::Agent(j)) => node.set_alive(j, present),
             Some(Role::Coordinator) if present => coordinator_seen = true,
-            Some(Role::Coordinator) if coordinator_seen => node.stop(Exit::CoordinatorGone),
+            Some(Role::Coordinator) if coordinator_seen && exit_with_coordinator => {
+                node.stop(Exit::CoordinatorGone)
+            }
             _ => {}
         }
     }

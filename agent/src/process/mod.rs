@@ -41,6 +41,8 @@ pub struct Settings {
     pub net: NetConfig,
     /// How long to wait for advice.
     pub advice_timeout: Duration,
+    /// Exit once the coordinator that was seen is gone.
+    pub exit_with_coordinator: bool,
 }
 
 /// Joins the network, serves until stopped, and leaves it.
@@ -52,6 +54,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         team_size,
         net,
         advice_timeout,
+        exit_with_coordinator,
     } = settings;
     let session = session::open(&net).await?;
     session::ensure_unique(&session, &keys, &name, id).await?;
@@ -91,7 +94,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         team_size,
         advice_timeout,
     ));
-    tokio::spawn(alive::track(node.clone(), tokens));
+    tokio::spawn(alive::track(node.clone(), tokens, exit_with_coordinator));
     tokio::spawn(frames::run(node.clone(), observations, shares, actions));
     tokio::spawn(advise::serve(node.clone(), advice));
     tokio::spawn(control::serve(node.clone(), control));

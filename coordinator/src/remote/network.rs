@@ -208,6 +208,7 @@ impl Network {
                     agents.to_string(),
                     "--advice-timeout-ms".into(),
                     options.advice_timeout_ms.to_string(),
+                    "--exit-with-coordinator".into(),
                 ]),
             )?;
         }

@@ -23,6 +23,8 @@ pub struct Inbox {
     pub queries: UnboundedReceiver<Query>,
     /// Samples on `act/*`.
     pub actions: UnboundedReceiver<Sample>,
+    /// Signals that the coordinator left (with `exit_with_coordinator`).
+    pub coordinator_gone: UnboundedReceiver<()>,
 }
 
 /// An open session with every declaration of env-server.
@@ -35,6 +37,7 @@ pub struct Link {
     // Held for their lifetime: dropping them undeclares them.
     _queryable: Queryable<()>,
     _subscriber: Subscriber<()>,
+    _watch: Option<Subscriber<()>>,
     _token: LivelinessToken,
 }
 
@@ -78,6 +81,28 @@ impl Link {
             })
             .await
             .map_err(|e| zenoh_error("subscribe to the actions", &e))?;
+        let (gone_tx, coordinator_gone) = unbounded_channel();
+        let watch = match options.exit_with_coordinator {
+            false => None,
+            true => {
+                let seen = std::sync::atomic::AtomicBool::new(false);
+                let watch = session
+                    .liveliness()
+                    .declare_subscriber(keys.alive(Role::Coordinator))
+                    .history(true)
+                    .callback(move |sample| {
+                        use std::sync::atomic::Ordering::Relaxed;
+                        if sample.kind() == zenoh::sample::SampleKind::Put {
+                            seen.store(true, Relaxed);
+                        } else if seen.load(Relaxed) {
+                            let _ = gone_tx.send(());
+                        }
+                    })
+                    .await
+                    .map_err(|e| zenoh_error("watch the coordinator", &e))?;
+                Some(watch)
+            }
+        };
         let token = session
             .liveliness()
             .declare_token(keys.alive(Role::Server))
@@ -91,9 +116,17 @@ impl Link {
             publishers: Vec::new(),
             _queryable: queryable,
             _subscriber: subscriber,
+            _watch: watch,
             _token: token,
         };
-        Ok((link, Inbox { queries, actions }))
+        Ok((
+            link,
+            Inbox {
+                queries,
+                actions,
+                coordinator_gone,
+            },
+        ))
     }
 
     /// The experiment id carried in every header.

@@ -27,6 +27,8 @@ pub struct Options {
     pub connect: Vec<String>,
     /// How long to wait for a kicker's action before falling back to Move.
     pub step_timeout: Duration,
+    /// Exit once the coordinator that was seen is gone.
+    pub exit_with_coordinator: bool,
 }
 
 /// Serves the simulator until a `Stop` command; errors are the start-up

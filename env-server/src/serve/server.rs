@@ -101,6 +101,9 @@ impl Server {
                 // Before the actions, so that a flood of them cannot hold
                 // the episode up past its deadline.
                 () = &mut sleep, if armed.is_some() => self.on_timeout().await?,
+                Some(()) = inbox.coordinator_gone.recv() => {
+                    bail!("the coordinator that started this server is gone; stopping");
+                }
                 sample = inbox.actions.recv() => {
                     let Some(sample) = sample else { bail!("the action subscriber closed") };
                     self.on_action(&sample).await?;

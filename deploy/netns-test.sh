@@ -1,0 +1,352 @@
+#!/usr/bin/env bash
+# Test the multi-host deployment (deploy/README.md, "Many hosts") for real on
+# this one machine: three "hosts" are Linux network namespaces on a private
+# bridge, and the experiment runs across them exactly as the README says.
+#
+#   adv-sim  10.213.47.10   env-server (the rendezvous, tcp/10.213.47.10:7447)
+#                           and, once the agents are up, the coordinator
+#   adv-a    10.213.47.11   agents 0 and 1
+#   adv-b    10.213.47.12   agent 2
+#   adv-net  (no address)   the bridge adv-br joining the three veth pairs
+#
+# The bridge lives in a fourth namespace, so nothing is added to the root
+# namespace (no interface, no route, no firewall interplay) and no packet can
+# leave the machine: 10.213.47.0/24 exists only inside these namespaces.
+#
+# Pass: the coordinator exits 0; summary.json has comm.advice_requests_sent
+# > 0 and comm.advice_replies_received > 0; advice crossed hosts both ways
+# (agent 2 on adv-b got replies, all from adv-a, and agents 0 and 1 got more
+# replies than they sent requests, so agent 2 answered them); and both agents
+# on adv-a had a direct TCP connection to adv-b while the experiment ran
+# (advice goes agent to agent, not through env-server). It also prints which
+# processes are still running after the coordinator has finished.
+#
+#   sudo deploy/netns-test.sh [--skip-if-unavailable] [--keep] [--listen-any]
+#
+#   --skip-if-unavailable  not root / no `ip netns`: print "SKIP: <reason>"
+#                          and exit 0 (without it: exit 1)
+#   --keep                 keep the logs (one per process, and `ss` samples)
+#                          and results even on pass (always kept on failure)
+#   --listen-any           listen on tcp/0.0.0.0 (every interface) as the
+#                          README's own commands do, instead of each host's
+#                          test address
+#
+# Environment: BIN (default target/release), RUST_LOG (default info, for
+# every process), TIMEOUT (coordinator time limit in s, default 300).
+# Exit status: 0 pass (or skip with --skip-if-unavailable), 1 fail/unavailable,
+# 130/143 interrupted. Everything it creates is removed on exit, whatever
+# happens; leftovers of an earlier run are removed first.
+set -euo pipefail
+
+skip_ok=0
+keep=0
+listen_any=0
+for arg in "$@"; do
+    case $arg in
+        --skip-if-unavailable) skip_ok=1 ;;
+        --keep) keep=1 ;;
+        --listen-any) listen_any=1 ;;
+        -h | --help)
+            sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
+            exit 0
+            ;;
+        *)
+            echo "unknown argument: $arg (see --help)" >&2
+            exit 1
+            ;;
+    esac
+done
+
+cd "$(dirname "$0")/.."
+BIN=${BIN:-$PWD/target/release}
+LOG_LEVEL=${RUST_LOG:-info}
+TIMEOUT=${TIMEOUT:-300}
+
+# The test network. Names are fixed so that a rerun finds and removes the
+# leftovers of an interrupted run.
+NS_SIM=adv-sim
+NS_A=adv-a
+NS_B=adv-b
+NS_NET=adv-net
+ALL_NS=("$NS_SIM" "$NS_A" "$NS_B" "$NS_NET")
+SIM_IP=10.213.47.10
+A_IP=10.213.47.11
+B_IP=10.213.47.12
+PORT=7447
+EXPERIMENT=netns
+RENDEZVOUS=tcp/$SIM_IP:$PORT
+
+# The experiment (small: about a minute at most).
+RUN_ARGS=(--algorithm adhoc-td --runs 1 --episodes 100 --eval-every 50 --eval-episodes 20)
+
+say() { printf '[netns-test] %s\n' "$*"; }
+
+# Not root, or no working `ip netns`: SKIP, exit 0 only if allowed.
+unavailable() {
+    echo "SKIP: $1"
+    if [ "$skip_ok" = 1 ]; then exit 0; fi
+    exit 1
+}
+
+fail() {
+    echo "FAIL: $1"
+    exit 1
+}
+
+# --- processes -------------------------------------------------------------
+
+pids=()  # every process started (ip netns exec execs, so these are the programs)
+names=() # their names, same order
+
+# start NAME NAMESPACE COMMAND...: runs COMMAND in NAMESPACE in the
+# background, output in $work/NAME.log.
+start() {
+    local name=$1 ns=$2
+    shift 2
+    ip netns exec "$ns" env RUST_LOG="$LOG_LEVEL" "$@" >"$work/$name.log" 2>&1 &
+    pids+=("$!")
+    names+=("$name")
+}
+
+pid_of() {
+    local i
+    for i in "${!names[@]}"; do
+        if [ "${names[$i]}" = "$1" ]; then echo "${pids[$i]}"; fi
+    done
+}
+
+# Kills every process this script started (TERM, then KILL after 5 s), then,
+# as a safety net, whatever still runs inside the test namespaces (only
+# processes of this script, or of an earlier run of it, can be there).
+stop_processes() {
+    local pid ns deadline
+    for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+    deadline=$((SECONDS + 5))
+    for pid in "${pids[@]}"; do
+        while kill -0 "$pid" 2>/dev/null && [ "$SECONDS" -lt "$deadline" ]; do sleep 0.1; done
+        kill -KILL "$pid" 2>/dev/null || true
+    done
+    for ns in "${ALL_NS[@]}"; do
+        for pid in $(ip netns pids "$ns" 2>/dev/null); do kill -KILL "$pid" 2>/dev/null || true; done
+    done
+    wait 2>/dev/null || true
+}
+
+# --- network ---------------------------------------------------------------
+
+ns_exists() { ip netns list 2>/dev/null | awk '{print $1}' | grep -qx "$1"; }
+
+# Deleting a namespace deletes its interfaces: the bridge, and both ends of
+# every veth pair (a veth dies with its peer).
+delete_namespaces() {
+    local ns pid
+    for ns in "${ALL_NS[@]}" adv-probe; do
+        ns_exists "$ns" || continue
+        for pid in $(ip netns pids "$ns" 2>/dev/null); do kill -KILL "$pid" 2>/dev/null || true; done
+        ip netns del "$ns" 2>/dev/null || true
+    done
+}
+
+# Can this machine do what the test needs: namespaces, a veth pair, a bridge?
+probe() {
+    local err
+    if ! err=$(ip netns add adv-probe 2>&1); then
+        unavailable "cannot create a network namespace (ip netns add: ${err:-no message})"
+    fi
+    if ! err=$({ ip -n adv-probe link add probe-br type bridge &&
+        ip -n adv-probe link add probe0 type veth peer name probe1; } 2>&1); then
+        ip netns del adv-probe 2>/dev/null || true
+        unavailable "cannot create a bridge or veth pair in a namespace: ${err:-no message}"
+    fi
+    ip netns del adv-probe
+}
+
+# host NAMESPACE ADDRESS BRIDGE-PORT: a namespace with eth0 = ADDRESS/24,
+# the other end of its veth plugged into the bridge.
+host() {
+    local ns=$1 ip=$2 port=$3
+    ip netns add "$ns"
+    ip -n "$ns" link set lo up
+    ip link add eth0 netns "$ns" type veth peer name "$port" netns "$NS_NET"
+    ip -n "$NS_NET" link set "$port" master adv-br up
+    ip -n "$ns" addr add "$ip/24" dev eth0
+    ip -n "$ns" link set eth0 up
+}
+
+setup_network() {
+    ip netns add "$NS_NET"
+    ip -n "$NS_NET" link set lo up
+    ip -n "$NS_NET" link add adv-br type bridge
+    ip -n "$NS_NET" link set adv-br up
+    host "$NS_SIM" "$SIM_IP" to-sim
+    host "$NS_A" "$A_IP" to-a
+    host "$NS_B" "$B_IP" to-b
+}
+
+# --- cleanup ---------------------------------------------------------------
+
+work=""
+cleanup() {
+    local rc=$?
+    trap - EXIT INT TERM
+    stop_processes
+    delete_namespaces
+    if [ -n "$work" ]; then
+        if [ "$rc" = 0 ] && [ "$keep" = 0 ]; then
+            rm -rf "$work"
+        else
+            say "logs and results kept in $work"
+        fi
+    fi
+    exit "$rc"
+}
+
+# --- checks before touching anything ---------------------------------------
+
+[ "$(id -u)" = 0 ] || unavailable "not root (network namespaces need CAP_SYS_ADMIN and CAP_NET_ADMIN)"
+command -v ip >/dev/null || unavailable "iproute2's ip is not installed"
+ip netns list >/dev/null 2>&1 || unavailable "ip netns is not supported by this ip ($(ip -V 2>&1))"
+command -v ss >/dev/null || unavailable "iproute2's ss is not installed"
+for tool in jq timeout; do
+    command -v "$tool" >/dev/null || fail "$tool is needed by this test"
+done
+for exe in env-server agent coordinator; do
+    [ -x "$BIN/$exe" ] || fail "$BIN/$exe missing: cargo build --release --workspace"
+done
+
+trap cleanup EXIT
+trap 'echo "FAIL: interrupted"; exit 130' INT
+trap 'echo "FAIL: terminated"; exit 143' TERM
+
+delete_namespaces # leftovers of an interrupted run
+probe
+work=$(mktemp -d "${TMPDIR:-/tmp}/adv-netns-test.XXXXXX")
+
+# --- the experiment --------------------------------------------------------
+
+say "network: $NS_SIM=$SIM_IP $NS_A=$A_IP $NS_B=$B_IP on bridge adv-br in $NS_NET"
+setup_network
+
+# What each process listens on: its host's test address, or (--listen-any)
+# every interface of its host, as in the README.
+listen_on() { if [ "$listen_any" = 1 ]; then echo "tcp/0.0.0.0:$2"; else echo "tcp/$1:$2"; fi; }
+
+say "env-server on $NS_SIM, listening on $(listen_on "$SIM_IP" "$PORT")"
+start env-server "$NS_SIM" "$BIN/env-server" serve --experiment "$EXPERIMENT" \
+    --listen "$(listen_on "$SIM_IP" "$PORT")"
+for _ in $(seq 100); do
+    [ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] && break
+    kill -0 "$(pid_of env-server)" 2>/dev/null || fail "env-server exited (see $work/env-server.log)"
+    sleep 0.1
+done
+[ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] || fail "env-server does not listen on $RENDEZVOUS"
+# Both agent hosts reach the rendezvous over the bridge (a bare TCP connect,
+# closed at once; no ping needed).
+for ns in "$NS_A" "$NS_B"; do
+    ip netns exec "$ns" timeout 5 bash -c "exec 3<>/dev/tcp/$SIM_IP/$PORT" ||
+        fail "$ns cannot reach $RENDEZVOUS over the test bridge"
+done
+
+say "agents 0, 1 on $NS_A and 2 on $NS_B, listening on $(listen_on "<host>" 0), connecting to $RENDEZVOUS"
+agent() { # ID NAMESPACE ADDRESS
+    start "agent-$1" "$2" "$BIN/agent" --experiment "$EXPERIMENT" --id "$1" --team-size 3 \
+        --listen "$(listen_on "$3" 0)" --connect "$RENDEZVOUS"
+}
+agent 0 "$NS_A" "$A_IP"
+agent 1 "$NS_A" "$A_IP"
+agent 2 "$NS_B" "$B_IP"
+
+# Who is connected to whom: sampled every 0.2 s while the experiment runs
+# (the run is short, and whether the processes outlive the coordinator is
+# reported separately below).
+connections() { ip netns exec "$1" ss -Htnp state established 2>/dev/null || true; }
+(
+    while :; do
+        for ns in "$NS_SIM" "$NS_A" "$NS_B"; do connections "$ns" >>"$work/ss-$ns.txt"; done
+        sleep 0.2
+    done
+) &
+pids+=("$!")
+names+=(ss-sampler)
+
+say "coordinator on $NS_SIM: ${RUN_ARGS[*]}"
+start coordinator "$NS_SIM" timeout "$TIMEOUT" "$BIN/coordinator" run --transport zenoh --attach \
+    --experiment "$EXPERIMENT" --connect "$RENDEZVOUS" "${RUN_ARGS[@]}" --quiet --out "$work/out"
+started=$SECONDS
+# `wait` in the background, so that Ctrl-C runs the cleanup at once.
+coordinator_rc=0
+wait "$(pid_of coordinator)" || coordinator_rc=$?
+say "coordinator exited $coordinator_rc after $((SECONDS - started)) s$([ "$coordinator_rc" != 124 ] || echo " (killed: TIMEOUT=$TIMEOUT s)")"
+kill "$(pid_of ss-sampler)" 2>/dev/null || true
+
+# The README says attached processes keep running for the next experiment:
+# report which ones did (a second later).
+sleep 1
+after=()
+for name in env-server agent-0 agent-1 agent-2; do
+    if kill -0 "$(pid_of "$name")" 2>/dev/null; then
+        after+=("$name running")
+    else
+        status=0
+        wait "$(pid_of "$name")" || status=$?
+        after+=("$name exited $status")
+    fi
+done
+after_text=$(IFS=,; echo "${after[*]}")
+say "after the coordinator: ${after_text//,/, }"
+
+# adv-a and adv-b hold only agents, so every TCP connection between them is
+# agent to agent, never through env-server. The pids on adv-a holding one:
+a_to_b=$(awk -v b="$B_IP" '$4 ~ "^"b":" {print $5}' "$work/ss-$NS_A.txt" |
+    { grep -o 'pid=[0-9]*' || true; } | cut -d= -f2 | sort -u | tr '\n' ' ')
+# distinct connections (local and peer endpoints)
+a_b_links=$(awk -v b="$B_IP" '$4 ~ "^"b":" {print $3, $4}' "$work/ss-$NS_A.txt" | sort -u | wc -l)
+
+# --- verdict ---------------------------------------------------------------
+
+summary=$work/out/summary.json
+if [ "$coordinator_rc" != 0 ] || [ ! -s "$summary" ]; then
+    for f in "$work"/*.log; do
+        echo "--- $(basename "$f") (last lines)"
+        tail -n 15 "$f"
+    done
+    fail "coordinator exit status $coordinator_rc$([ -s "$summary" ] || echo ', no summary.json')"
+fi
+
+num() { jq -r "$1 // 0" "$summary"; }
+requests=$(num .comm.advice_requests_sent)
+replies=$(num .comm.advice_replies_received)
+given=$(num .comm.advice_given)
+b_requests=$(num '.comm.per_agent[2].advice_requests_sent')
+b_replies=$(num '.comm.per_agent[2].advice_replies_received')
+b_given=$(num '.comm.per_agent[2].advice_given')
+a_requests=$(num '[.comm.per_agent[0,1].advice_requests_sent] | add')
+a_replies=$(num '[.comm.per_agent[0,1].advice_replies_received] | add')
+rtt=$(jq -r '.comm.advice_rtt_ms | "median \(.median) ms, p99 \(.p99) ms"' "$summary")
+gt0() { jq -en --argjson v "$1" '$v > 0' >/dev/null; }
+
+say "team: requests $requests, replies $replies, advice given $given; rtt $rtt"
+say "agents 0+1 ($NS_A): requests $a_requests, replies $a_replies (from each other and from $NS_B)"
+say "agent 2 ($NS_B): requests $b_requests, replies $b_replies (from $NS_A), advice given $b_given (to $NS_A)"
+say "direct TCP $NS_A<->$NS_B: $a_b_links distinct connection(s) seen; agents on $NS_A in them: pids ${a_to_b:-none}" \
+    "(agent 0 = $(pid_of agent-0), agent 1 = $(pid_of agent-1))"
+
+problems=()
+gt0 "$requests" || problems+=("no advice requests")
+gt0 "$replies" || problems+=("no advice replies")
+gt0 "$b_replies" || problems+=("agent 2 on $NS_B got no reply from $NS_A")
+# Agents 0 and 1 each ask their two teammates; a request gets at most one
+# reply per advisor, so more replies than requests means agent 2 (adv-b)
+# answered some.
+jq -en --argjson r "$a_replies" --argjson q "$a_requests" '$r > $q' >/dev/null ||
+    problems+=("agent 2 on $NS_B never answered $NS_A (agents 0+1: $a_requests requests, $a_replies replies)")
+for id in 0 1; do
+    [[ " $a_to_b " == *" $(pid_of "agent-$id") "* ]] ||
+        problems+=("agent $id on $NS_A has no direct connection to $NS_B")
+done
+
+numbers="requests=$requests replies=$replies given=$given agent2(replies=$b_replies given=$b_given) a<->b-links=$a_b_links"
+if [ "${#problems[@]}" -gt 0 ]; then
+    fail "$(IFS=';'; echo "${problems[*]}") [$numbers]"
+fi
+echo "PASS: netns multi-host adhoc-td, coordinator exit 0, $numbers"
