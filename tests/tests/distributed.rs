@@ -258,6 +258,44 @@ fn killing_an_agent_ends_the_run_with_a_clear_message() {
     }
 }
 
+#[test]
+fn killing_the_coordinator_leaves_no_process_behind() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut coordinator = Command::new(bin("coordinator"))
+        .args([
+            "run",
+            "--algorithm",
+            "no-advice",
+            "--runs",
+            "1",
+            "--episodes",
+            "100000",
+        ])
+        .args(["--transport", "zenoh", "--quiet", "--out"])
+        .arg(tmp.path().join("orphans"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let children = wait_for_children(coordinator.id(), 4);
+    std::thread::sleep(Duration::from_secs(1));
+    coordinator.kill().unwrap();
+    coordinator.wait().unwrap();
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while children.iter().any(|pid| is_running(*pid)) {
+        assert!(
+            Instant::now() < deadline,
+            "left behind: {:?}",
+            children
+                .iter()
+                .filter(|p| is_running(**p))
+                .map(|p| cmdline(*p))
+                .collect::<Vec<_>>()
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
 /// Child pids of `parent` once there are `n` of them (Linux /proc).
 fn wait_for_children(parent: u32, n: usize) -> Vec<u32> {
     let deadline = Instant::now() + Duration::from_secs(60);

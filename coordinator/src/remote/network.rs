@@ -195,6 +195,7 @@ impl Network {
                 "serve".into(),
                 "--step-timeout-ms".into(),
                 options.step_timeout_ms.to_string(),
+                "--exit-with-coordinator".into(),
             ]),
         )?;
         for i in 0..agents {
