@@ -32,7 +32,7 @@ pub struct Episode {
 }
 
 /// One agent's budgets and communication so far.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct AgentStats {
     /// The give budget the paper plots: advice given, or transitions shared.
     pub spent_give: u64,

@@ -29,7 +29,8 @@ impl ConfigError {
 }
 
 /// The algorithms a homogeneous team can run, by their command-line names.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Algorithm {
     /// SARSA(lambda) alone.
     NoAdvice,
@@ -48,6 +49,12 @@ pub enum Algorithm {
 }
 
 impl Algorithm {
+    /// The command-line and file name.
+    pub fn name(self) -> String {
+        clap::ValueEnum::to_possible_value(&self)
+            .map_or_else(String::new, |v| v.get_name().to_owned())
+    }
+
     /// The agents' strategy.
     pub fn strategy(self) -> StrategyKind {
         match self {

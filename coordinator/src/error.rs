@@ -42,6 +42,9 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Figure(#[from] crate::figures::FigureError),
     /// A backend failed while playing (a bug or a lost peer).
     #[error("run {run}: {message}")]
     Backend {

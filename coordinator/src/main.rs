@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
+use coordinator::study::{StudyConfig, StudyOptions, StudyTransport};
 use coordinator::{
     AgentSpec, Algorithm, Estimate, Experiment, ExperimentConfig, NetworkOptions, OutputDir,
     RunOptions, Transport, load_team_file, run_experiment,
@@ -26,6 +27,40 @@ enum Command {
     /// Run one configuration: R runs of N training episodes, an evaluation of
     /// M episodes before training and every K episodes.
     Run(RunArgs),
+    /// Run a study: every algorithm of a preset or study file, statistics,
+    /// figures and REPORT.md; resumes in the same directory.
+    Study(StudyArgs),
+}
+
+#[derive(Args)]
+#[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
+struct StudyArgs {
+    /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert.
+    #[arg(long, value_name = "NAME")]
+    preset: Option<String>,
+    /// A study file (TOML, the format of coordinator/presets/*.toml).
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Override the runs of every experiment.
+    #[arg(long, value_name = "R")]
+    runs: Option<u64>,
+    /// Override the training episodes of every experiment.
+    #[arg(long, value_name = "N")]
+    episodes: Option<u64>,
+    /// Override where agents and simulator live.
+    #[arg(long, value_enum)]
+    transport: Option<Transport>,
+    /// Worker threads for in-process runs (default: one per core).
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
+    threads: Option<u64>,
+    /// Output directory: one directory per experiment, figures, REPORT.md.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+    #[command(flatten)]
+    network: NetworkArgs,
 }
 
 #[derive(Args)]
@@ -174,7 +209,48 @@ fn one_line(message: &str) -> String {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    let Command::Run(args) = cli.command;
+    match cli.command {
+        Command::Run(args) => run_one(args),
+        Command::Study(args) => run_study(args),
+    }
+}
+
+fn run_study(args: StudyArgs) -> Result<()> {
+    let mut study = match (&args.preset, &args.config) {
+        (Some(name), _) => StudyConfig::preset(name)?,
+        (None, Some(path)) => StudyConfig::load(path)?,
+        (None, None) => unreachable!("clap requires --preset or --config"),
+    };
+    if let Some(runs) = args.runs {
+        study.runs = runs;
+    }
+    if let Some(episodes) = args.episodes {
+        study.episodes = episodes;
+    }
+    if let Some(t) = args.transport {
+        study.transport = match t {
+            Transport::InProcess => StudyTransport::InProcess,
+            Transport::Zenoh => StudyTransport::Zenoh,
+        };
+    }
+    let options = StudyOptions {
+        threads: args
+            .threads
+            .map_or_else(coordinator::runner::default_threads, |t| t as usize),
+        progress: !args.quiet && std::io::stderr().is_terminal(),
+        network: Some(args.network.options()),
+    };
+    let outcome = coordinator::study::run_study(&study, &args.out, &options)?;
+    println!(
+        "study {} -> {} ({:.1} s)",
+        study.name,
+        outcome.report.display(),
+        outcome.wall.as_secs_f64()
+    );
+    Ok(())
+}
+
+fn run_one(args: RunArgs) -> Result<()> {
     let (team, label) = match (&args.team, args.algorithm) {
         (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
         (None, Some(algorithm)) => {
@@ -212,6 +288,7 @@ fn run(cli: Cli) -> Result<()> {
         transport: args.transport,
         save_agents: args.save_agents,
         progress: !args.quiet && std::io::stderr().is_terminal(),
+        bar: None,
         network: Some(args.network.options()),
     };
     let report = run_experiment(&experiment, &out, &options)?;

@@ -13,7 +13,7 @@ use serde::Serialize;
 use serde_json::Value;
 
 use crate::error::Error;
-use crate::protocol::EvalPoint;
+use crate::protocol::{EvalPoint, RunResult};
 
 /// Name of the configuration record in the output directory.
 pub const CONFIG_FILE: &str = "config.json";
@@ -25,12 +25,17 @@ pub fn run_file_name(run: u64) -> String {
     format!("run-{run}.csv")
 }
 
+/// The file name of run `run`'s complete results.
+pub fn run_result_name(run: u64) -> String {
+    format!("run-{run}.json")
+}
+
 /// Whether `name` is a file this crate writes as a result.
 fn is_result_file(name: &str) -> bool {
     name == SUMMARY_FILE
         || name
             .strip_prefix("run-")
-            .and_then(|r| r.strip_suffix(".csv"))
+            .and_then(|r| r.strip_suffix(".csv").or_else(|| r.strip_suffix(".json")))
             .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
 }
 
@@ -101,6 +106,20 @@ impl OutputDir {
     /// Starts run `run`'s CSV for a team of `agents`, replacing any old one.
     pub fn run_writer(&self, run: u64, agents: usize) -> Result<RunWriter, Error> {
         RunWriter::create(&self.dir.join(run_file_name(run)), agents)
+    }
+
+    /// The results of run `run` if an earlier invocation finished it.
+    pub fn finished_run(&self, run: u64) -> Option<RunResult> {
+        let bytes = fs::read(self.dir.join(run_result_name(run))).ok()?;
+        serde_json::from_slice::<RunResult>(&bytes)
+            .ok()
+            .filter(|r| r.run == run)
+    }
+
+    /// Marks run `result.run` finished by writing its results atomically.
+    pub fn write_run_result(&self, result: &RunResult) -> Result<(), Error> {
+        let bytes = serde_json::to_vec(result).expect("a run result serialises");
+        write_atomically(&self.dir.join(run_result_name(result.run)), &bytes)
     }
 
     /// Writes `summary.json` atomically (a temporary file, then a rename).

@@ -11,7 +11,7 @@ use crate::error::Error;
 use crate::experiment::Experiment;
 
 /// The measurements of one evaluation.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EvalPoint {
     /// Training episodes played before it.
     pub episode: u64,
@@ -74,22 +74,23 @@ fn rate(frames: u64, time: Duration) -> f64 {
     }
 }
 
-/// The results of one run.
-#[derive(Clone, Debug, PartialEq)]
+/// The results of one run (saved as `run-<k>.json` once it is complete).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunResult {
     /// The run's index.
     pub run: u64,
     /// Its evaluations, in order.
     pub points: Vec<EvalPoint>,
-    /// Where its time went.
+    /// Where its time went (not saved: it varies).
+    #[serde(skip)]
     pub timing: Timing,
     /// Every agent's advice round-trip times (ms) over the run; empty in process.
     pub advice_rtt_ms: Vec<Vec<f32>>,
 }
 
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
-/// evaluation as soon as it is measured, `progress` the number of episodes
-/// just played.
+/// evaluation as soon as it is measured, `progress` the frames of every
+/// episode just played.
 pub fn run(
     experiment: &Experiment,
     backend: &mut dyn Backend,
@@ -107,7 +108,7 @@ pub fn run(
             let episode = backend.play_episode(Mode::Training)?;
             timing.training_frames += u64::from(episode.frames);
             trained += 1;
-            progress(1);
+            progress(u64::from(episode.frames));
         }
         timing.training += start.elapsed();
 
@@ -117,11 +118,11 @@ pub fn run(
         for _ in 0..config.eval_episodes {
             let episode = backend.play_episode(Mode::Evaluation)?;
             timing.evaluation_frames += u64::from(episode.frames);
+            progress(u64::from(episode.frames));
             if episode.outcome == Outcome::Goal {
                 goals += 1;
                 goal_frames += u64::from(episode.frames);
             }
-            progress(1);
         }
         timing.evaluation += start.elapsed();
 

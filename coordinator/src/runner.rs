@@ -31,6 +31,9 @@ pub struct RunOptions {
     pub save_agents: Option<PathBuf>,
     /// Show a progress bar on stderr.
     pub progress: bool,
+    /// A progress bar to advance instead of a new one (a study's, over all
+    /// its experiments): one step per episode.
+    pub bar: Option<ProgressBar>,
     /// How to reach the processes, for the zenoh transport.
     pub network: Option<NetworkOptions>,
 }
@@ -42,6 +45,7 @@ impl Default for RunOptions {
             transport: Transport::InProcess,
             save_agents: None,
             progress: false,
+            bar: None,
             network: None,
         }
     }
@@ -67,6 +71,8 @@ pub struct Report {
     pub first: SummaryPoint,
     /// The last evaluation point of the summary.
     pub last: SummaryPoint,
+    /// Every run's results, sorted by run.
+    pub results: Vec<RunResult>,
 }
 
 /// The snapshot file of agent `agent` at the end of run `run`.
@@ -85,27 +91,42 @@ pub fn run_experiment(
     if let Some(dir) = &options.save_agents {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))?;
     }
-    let total = config.runs * config.episodes_per_run();
-    let bar = if options.progress {
-        let bar = ProgressBar::new(total);
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{elapsed_precise} [{wide_bar}] {percent:>3}% {msg} eta {eta}",
-            )
-            .expect("a valid template")
-            .progress_chars("=> "),
-        );
-        bar
-    } else {
-        ProgressBar::hidden()
+    let bar = match &options.bar {
+        Some(bar) => bar.clone(),
+        None => new_bar(options.progress, config.runs * config.episodes_per_run()),
     };
-    let done = AtomicU64::new(0);
-    bar.set_message(format!("0/{} runs", config.runs));
-
+    // Runs an earlier invocation finished are kept, not played again.
+    let finished: Vec<RunResult> = (0..config.runs)
+        .filter_map(|r| out.finished_run(r))
+        .collect();
+    let pending: Vec<u64> = (0..config.runs)
+        .filter(|r| finished.iter().all(|f| f.run != *r))
+        .collect();
+    bar.inc(finished.len() as u64 * config.episodes_per_run());
+    if !finished.is_empty() {
+        tracing::info!(
+            runs = finished.len(),
+            "resuming: runs already finished are kept"
+        );
+    }
+    let done = AtomicU64::new(finished.len() as u64);
+    let frames = AtomicU64::new(0);
     let start = Instant::now();
+    let tick = |n: u64| {
+        bar.inc(1);
+        let total = frames.fetch_add(n, Ordering::Relaxed) + n;
+        if bar.position() % 50 == 0 {
+            let rate = total as f64 / start.elapsed().as_secs_f64().max(1e-9);
+            bar.set_message(format!(
+                "{}/{} runs, {rate:.0} frames/s",
+                done.load(Ordering::Relaxed),
+                config.runs
+            ));
+        }
+    };
     let next = AtomicU64::new(0);
     let failed = AtomicBool::new(false);
-    let results = Mutex::new(Vec::with_capacity(config.runs as usize));
+    let results = Mutex::new(finished);
     let errors = Mutex::new(Vec::new());
     // Over zenoh the runs play one after another on the same processes.
     let network = match options.transport {
@@ -120,21 +141,19 @@ pub fn run_experiment(
     };
     let threads = match network {
         Some(_) => 1,
-        None => options.threads.clamp(1, config.runs.max(1) as usize),
+        None => options.threads.clamp(1, pending.len().max(1)),
     };
     std::thread::scope(|s| {
         for _ in 0..threads {
             s.spawn(|| {
                 while !failed.load(Ordering::Relaxed) {
-                    let run = next.fetch_add(1, Ordering::Relaxed);
-                    if run >= config.runs {
+                    let Some(&run) = pending.get(next.fetch_add(1, Ordering::Relaxed) as usize)
+                    else {
                         break;
-                    }
-                    let progress = |n| bar.inc(n);
-                    match one_run(experiment, out, options, run, network.as_ref(), &progress) {
+                    };
+                    match one_run(experiment, out, options, run, network.as_ref(), &tick) {
                         Ok(result) => {
-                            let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-                            bar.set_message(format!("{k}/{} runs", config.runs));
+                            done.fetch_add(1, Ordering::Relaxed);
                             tracing::info!(
                                 run,
                                 training_frames_per_sec = result.timing.training_frames_per_sec(),
@@ -151,7 +170,9 @@ pub fn run_experiment(
             });
         }
     });
-    bar.finish_and_clear();
+    if options.bar.is_none() {
+        bar.finish_and_clear();
+    }
     let mut errors = errors.into_inner().expect("no panic");
     if !errors.is_empty() {
         errors.sort_by_key(|(run, _)| *run);
@@ -173,6 +194,7 @@ pub fn run_experiment(
         summary: out.path().join(SUMMARY_FILE),
         first: points[0].clone(),
         last: points[points.len() - 1].clone(),
+        results,
     })
 }
 
@@ -197,6 +219,7 @@ fn one_run(
     if let Some(dir) = &options.save_agents {
         save_agents(dir, run, &backend.snapshots()?)?;
     }
+    out.write_run_result(&result)?;
     Ok(result)
 }
 
@@ -209,4 +232,20 @@ fn save_agents(dir: &Path, run: u64, snapshots: &[agent::Snapshot]) -> Result<()
         })?;
     }
     Ok(())
+}
+
+/// A progress bar over `total` episodes, hidden unless `visible`.
+pub fn new_bar(visible: bool, total: u64) -> ProgressBar {
+    if !visible {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{elapsed_precise} [{wide_bar}] {percent:>3}% {msg} eta {eta}",
+        )
+        .expect("a valid template")
+        .progress_chars("=> "),
+    );
+    bar
 }
