@@ -1,0 +1,185 @@
+//! `coordinator study`: a study interrupted and started again completes with
+//! the same results; bad studies are refused with one line and exit code 2.
+
+use std::fs;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+const TINY: &str = r#"
+name = "tiny"
+runs = 3
+episodes = 200
+eval_every = 50
+eval_episodes = 20
+seed = 5
+transport = "in-process"
+baseline = "no-advice"
+
+[[entry]]
+name = "no-advice"
+algorithm = "no-advice"
+
+[[entry]]
+name = "adhoc-td"
+algorithm = "adhoc-td"
+"#;
+
+fn study(args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_coordinator"));
+    c.arg("study")
+        .args(args)
+        .args(["--threads", "1", "--quiet"]);
+    c
+}
+
+fn run(args: &[&str]) -> Output {
+    study(args).output().expect("coordinator runs")
+}
+
+fn refused(output: &Output, needle: &str) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "stderr: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    assert!(
+        stderr.starts_with("error:") && stderr.contains(needle),
+        "{needle:?} not in {stderr}"
+    );
+}
+
+fn read(path: &Path) -> String {
+    fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn an_interrupted_study_resumes_to_the_same_results() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("tiny.toml");
+    fs::write(&config, TINY).unwrap();
+    let config = config.to_str().unwrap();
+
+    let whole = tmp.path().join("whole");
+    let out = run(&["--config", config, "--out", whole.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    // Interrupt a second study as soon as its first run is finished.
+    let resumed = tmp.path().join("resumed");
+    let mut child = study(&["--config", config, "--out", resumed.to_str().unwrap()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let first = resumed.join("no-advice").join("run-0.json");
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while !first.exists() {
+        assert!(Instant::now() < deadline, "the first run never finished");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(
+        !resumed.join("REPORT.md").exists(),
+        "interrupted before the end"
+    );
+
+    let out = run(&["--config", config, "--out", resumed.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for entry in ["no-advice", "adhoc-td"] {
+        let summary = |dir: &Path| read(&dir.join(entry).join("summary.json"));
+        assert_eq!(summary(&resumed), summary(&whole), "{entry}");
+        for k in 0..3 {
+            let csv = |dir: &Path| read(&dir.join(entry).join(format!("run-{k}.csv")));
+            assert_eq!(csv(&resumed), csv(&whole), "{entry} run {k}");
+        }
+    }
+    assert_eq!(
+        read(&resumed.join("significance.json")),
+        read(&whole.join("significance.json"))
+    );
+    let report = read(&resumed.join("REPORT.md"));
+    for needle in [
+        "| no-advice |",
+        "| adhoc-td |",
+        "Significance against `no-advice`",
+        "figures/goal_pct.svg",
+    ] {
+        assert!(report.contains(needle), "{needle:?} missing from REPORT.md");
+    }
+    for figure in ["goal_pct", "time_to_goal", "spent_budget", "goal_pct_last"] {
+        for ext in ["svg", "png"] {
+            assert!(
+                resumed
+                    .join("figures")
+                    .join(format!("{figure}.{ext}"))
+                    .is_file()
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_studies_are_refused_and_nothing_is_overwritten() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = out.to_str().unwrap();
+    refused(
+        &run(&["--preset", "paper-everything", "--out", o]),
+        "paper-scratch",
+    );
+    let write = |name: &str, text: &str| {
+        let path = tmp.path().join(name);
+        fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_owned()
+    };
+    let unknown = write("unknown.toml", &format!("colour = \"red\"\n{TINY}"));
+    refused(&run(&["--config", &unknown, "--out", o]), "colour");
+    let zero = write("zero.toml", &TINY.replace("runs = 3", "runs = 0"));
+    refused(&run(&["--config", &zero, "--out", o]), "runs");
+    let wide = write(
+        "wide.toml",
+        &TINY.replace("eval_every = 50", "eval_every = 500"),
+    );
+    refused(&run(&["--config", &wide, "--out", o]), "eval_every");
+    assert!(!out.exists(), "nothing written for bad input");
+
+    // A directory holding another study is left untouched.
+    let tiny = write("tiny.toml", TINY);
+    let done = run(&[
+        "--config",
+        &tiny,
+        "--runs",
+        "1",
+        "--episodes",
+        "50",
+        "--out",
+        o,
+    ]);
+    assert!(
+        done.status.success(),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    let before = read(&out.join("study.json"));
+    refused(
+        &run(&[
+            "--config",
+            &tiny,
+            "--runs",
+            "2",
+            "--episodes",
+            "50",
+            "--out",
+            o,
+        ]),
+        "other settings",
+    );
+    assert_eq!(read(&out.join("study.json")), before);
+}
