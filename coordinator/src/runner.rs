@@ -109,6 +109,11 @@ pub fn run_experiment(
             "resuming: runs already finished are kept"
         );
     }
+    // Within a study's bar, say which experiment the runs belong to.
+    let label = match (&options.bar, out.path().file_name()) {
+        (Some(_), Some(name)) => format!("{}: ", name.to_string_lossy()),
+        _ => String::new(),
+    };
     let done = AtomicU64::new(finished.len() as u64);
     let frames = AtomicU64::new(0);
     let start = Instant::now();
@@ -118,7 +123,7 @@ pub fn run_experiment(
         if bar.position() % 50 == 0 {
             let rate = total as f64 / start.elapsed().as_secs_f64().max(1e-9);
             bar.set_message(format!(
-                "{}/{} runs, {rate:.0} frames/s",
+                "{label}{}/{} runs, {rate:.0} frames/s",
                 done.load(Ordering::Relaxed),
                 config.runs
             ));
