@@ -90,7 +90,14 @@ fn writes_run_csvs_and_a_summary_of_the_right_shape() {
     names.sort();
     assert_eq!(
         names,
-        ["config.json", "run-0.csv", "run-1.csv", "summary.json"]
+        [
+            "config.json",
+            "run-0.csv",
+            "run-0.json",
+            "run-1.csv",
+            "run-1.json",
+            "summary.json"
+        ]
     );
 
     for run in 0..2 {
