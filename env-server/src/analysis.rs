@@ -107,11 +107,6 @@ impl Analysis {
     pub fn attacker_reach(&self) -> usize {
         self.reach.iter().copied().min().unwrap_or(NO_REACH)
     }
-
-    /// The attacker that reaches the ball first.
-    pub fn fastest_attacker(&self, offense: usize) -> usize {
-        (0..offense).min_by_key(|&i| self.reach[i]).unwrap_or(0)
-    }
 }
 
 /// Updates agent2d's offside line as the attackers see it (spec 6.1.1 step 3).

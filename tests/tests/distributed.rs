@@ -204,19 +204,7 @@ fn malformed_and_foreign_messages_change_nothing() {
 #[test]
 fn killing_an_agent_ends_the_run_with_a_clear_message() {
     let tmp = tempfile::tempdir().unwrap();
-    let mut coordinator = Command::new(bin("coordinator"))
-        .args([
-            "run",
-            "--algorithm",
-            "adhoc-td",
-            "--runs",
-            "1",
-            "--episodes",
-            "100000",
-        ])
-        .args(["--transport", "zenoh", "--quiet", "--out"])
-        .arg(tmp.path().join("killed"))
-        .stdout(Stdio::null())
+    let mut coordinator = long_run("adhoc-td", &tmp.path().join("killed"))
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
@@ -261,19 +249,7 @@ fn killing_an_agent_ends_the_run_with_a_clear_message() {
 #[test]
 fn killing_the_coordinator_leaves_no_process_behind() {
     let tmp = tempfile::tempdir().unwrap();
-    let mut coordinator = Command::new(bin("coordinator"))
-        .args([
-            "run",
-            "--algorithm",
-            "no-advice",
-            "--runs",
-            "1",
-            "--episodes",
-            "100000",
-        ])
-        .args(["--transport", "zenoh", "--quiet", "--out"])
-        .arg(tmp.path().join("orphans"))
-        .stdout(Stdio::null())
+    let mut coordinator = long_run("no-advice", &tmp.path().join("orphans"))
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
@@ -294,6 +270,24 @@ fn killing_the_coordinator_leaves_no_process_behind() {
         );
         std::thread::sleep(Duration::from_millis(100));
     }
+}
+
+/// A coordinator run over zenoh that lasts far longer than any test.
+fn long_run(algorithm: &str, out: &std::path::Path) -> Command {
+    let mut c = Command::new(bin("coordinator"));
+    c.args([
+        "run",
+        "--algorithm",
+        algorithm,
+        "--runs",
+        "1",
+        "--episodes",
+        "100000",
+    ])
+    .args(["--transport", "zenoh", "--quiet", "--out"])
+    .arg(out)
+    .stdout(Stdio::null());
+    c
 }
 
 /// Child pids of `parent` once there are `n` of them (Linux /proc).
