@@ -1,4 +1,4 @@
-//! The formulas of the advising strategies (algorithms.md 2-3): asking and
+//! The formulas of the advising strategies (docs/algorithms.md 2-3): asking and
 //! giving probabilities, confidence functions, the reachable set and the
 //! EpisodeSharing budget split.
 

@@ -17,7 +17,7 @@ use crate::tiles::{Tiling, TilingParams};
 /// What an agent sees in one simulator frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Observation {
-    /// The 6 features of algorithms.md section 1, each in [-1, 1].
+    /// The 6 features of docs/algorithms.md section 1, each in [-1, 1].
     pub state: State,
     /// Whether the agent can kick the ball (it chooses a kick action only then).
     pub can_kick: bool,

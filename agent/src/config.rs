@@ -1,10 +1,10 @@
-//! Every constant of the learner and of the advising strategies (algorithms.md
+//! Every constant of the learner and of the advising strategies (docs/algorithms.md
 //! sections 1-3), with the paper's defaults, and its validation.
 
 use proto::STATE_FEATURES;
 use serde::{Deserialize, Serialize};
 
-/// Which learner and advising strategy an agent runs (algorithms.md 1-3).
+/// Which learner and advising strategy an agent runs (docs/algorithms.md 1-3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum StrategyKind {

@@ -1,4 +1,4 @@
-//! SARSA(lambda) with accumulating eligibility traces (algorithms.md 1).
+//! SARSA(lambda) with accumulating eligibility traces (docs/algorithms.md 1).
 
 use proto::Action;
 

@@ -150,7 +150,7 @@ fn default_ci_level() -> f64 {
     DEFAULT_CI_LEVEL
 }
 
-/// One experiment: algorithms.md section 4 for one configuration.
+/// One experiment: docs/algorithms.md section 4 for one configuration.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExperimentConfig {

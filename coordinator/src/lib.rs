@@ -1,5 +1,5 @@
 //! Experiments of "ad hoc advising among simultaneously learning agents"
-//! (da Silva, Glatt & Costa, AAMAS 2017): the protocol of algorithms.md
+//! (da Silva, Glatt & Costa, AAMAS 2017): the protocol of docs/algorithms.md
 //! section 4 for one configuration, its runs in parallel, statistics and
 //! output files.
 //!

@@ -1,4 +1,4 @@
-//! One run of the protocol (algorithms.md section 4): an evaluation before
+//! One run of the protocol (docs/algorithms.md section 4): an evaluation before
 //! training, then K training episodes and an evaluation, ..., through N.
 
 use std::time::{Duration, Instant};

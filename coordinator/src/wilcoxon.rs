@@ -1,6 +1,6 @@
 //! Wilcoxon signed-rank test between two algorithms at one evaluation point,
 //! paired by run, and the intervals of episodes where one of them is
-//! significantly better (algorithms.md section 4).
+//! significantly better (docs/algorithms.md section 4).
 //!
 //! [`signed_rank`] follows `scipy.stats.wilcoxon` of SciPy 1.17.1 with its
 //! defaults (`zero_method="wilcox"`, `correction=False`, `method="auto"`):

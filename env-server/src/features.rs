@@ -1,5 +1,5 @@
 //! HFO's high-level feature set of the authors' version (spec 5.3) and the
-//! paper's 6-feature view (spec 5.4, algorithms.md section 1).
+//! paper's 6-feature view (spec 5.4, docs/algorithms.md section 1).
 
 use crate::analysis::offense_unums;
 use crate::geom::direction;
@@ -124,7 +124,7 @@ pub fn high_level(world: &World, agent: usize) -> Vec<f64> {
 
 /// The paper's 6-feature state of agent `agent`: able to kick, goal distance,
 /// goal angle, goal opening, then the goal openings of the nearest and the
-/// farthest teammate (algorithms.md section 1; -1 when there is no teammate).
+/// farthest teammate (docs/algorithms.md section 1; -1 when there is no teammate).
 pub fn paper_state(world: &World, agent: usize) -> State {
     let me = world.offense[agent].pos;
     let k = world.keeper.pos;

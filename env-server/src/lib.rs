@@ -1,7 +1,7 @@
 //! A Rust simulator of RoboCup 2D Half Field Offense: K offense agents
 //! choosing HFO's high-level actions against agent2d's goalkeeper.
 //!
-//! The specification is `shared/docs/hfo-sim-spec.md`. Modules follow one
+//! The specification is `docs/hfo-sim-spec.md` ("spec N" in comments). Modules follow one
 //! cycle's data flow: [`world`] holds the state, [`analysis`] derives what
 //! every behaviour reads (reach cycles, formation), [`behaviour`] turns
 //! actions into body commands, [`physics`] executes them, [`referee`] ends

@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 /// Version of the wire protocol; bumped on every incompatible change.
 pub const PROTOCOL_VERSION: u16 = 1;
 
-/// Number of features in the paper's state view (algorithms.md section 1).
+/// Number of features in the paper's state view (docs/algorithms.md section 1).
 pub const STATE_FEATURES: usize = 6;
 
 /// The paper's 6-feature state of one offense agent, each in [-1, 1].
