@@ -7,6 +7,8 @@ use agent::{AgentConfig, StrategyKind};
 use env_server::EnvConfig;
 use serde::{Deserialize, Serialize};
 
+use crate::transport::Transport;
+
 /// A configuration value out of its allowed range, or a file that cannot be
 /// read as a configuration.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -167,6 +169,10 @@ pub struct ExperimentConfig {
     /// Level of the confidence intervals of the summary, in (0, 1).
     #[serde(default = "default_ci_level")]
     pub ci_level: f64,
+    /// Where agents and simulator live (part of the identity: over zenoh
+    /// the timeouts change results).
+    #[serde(default)]
+    pub transport: Transport,
     /// The simulator's settings.
     #[serde(default)]
     pub env: EnvConfig,
@@ -186,6 +192,7 @@ impl Default for ExperimentConfig {
             eval_episodes: 100,
             seed: 1,
             ci_level: DEFAULT_CI_LEVEL,
+            transport: Transport::InProcess,
             team: vec![AgentSpec::of(StrategyKind::NoAdvice); env.offense],
             env,
         }
@@ -211,6 +218,7 @@ impl ExperimentConfig {
                 format!("must be in (0, 1), e.g. 0.95, got {}", self.ci_level),
             ));
         }
+        self.transport.validate()?;
         self.env.validate().map_err(env_error)?;
         if self.team.len() != self.env.offense {
             return Err(ConfigError::new(

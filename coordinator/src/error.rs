@@ -32,6 +32,9 @@ pub enum Error {
         /// What differs.
         reason: String,
     },
+    /// The output path exists and is not a directory.
+    #[error("output path {} is a file, not a directory; choose another --out", .0.display())]
+    NotADirectory(PathBuf),
     /// Reading or writing a file failed.
     #[error("cannot {action} {}: {source}", path.display())]
     Io {
@@ -45,17 +48,28 @@ pub enum Error {
     /// A figure could not be drawn or written.
     #[error(transparent)]
     Figure(#[from] crate::figures::FigureError),
-    /// A backend failed while playing (a bug or a lost peer).
+    /// A run failed while playing (a lost peer, a process that did not answer).
     #[error("run {run}: {message}")]
-    Backend {
+    Run {
         /// The run.
         run: u64,
         /// What happened.
         message: String,
     },
+    /// The processes of an experiment could not be started, joined or reached.
+    #[error("{0}")]
+    Transport(String),
 }
 
 impl Error {
+    /// A failure of run `run`.
+    pub fn run(run: u64, message: impl std::fmt::Display) -> Self {
+        Self::Run {
+            run,
+            message: message.to_string(),
+        }
+    }
+
     /// An I/O error on `path`.
     pub fn io(action: &'static str, path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Self::Io {

@@ -5,28 +5,31 @@
 //!
 //! - [`config`]: what an experiment is ([`ExperimentConfig`], one
 //!   [`AgentSpec`] per agent), validated with errors naming the key.
+//! - [`transport`]: where agents and simulator live ([`Transport`]), part of
+//!   an experiment's identity.
 //! - [`seeds`]: every run's and role's seed from `(seed, run, role)`.
 //! - [`experiment`]: a validated configuration with its snapshots loaded.
-//! - [`backend`]: the [`Backend`] the protocol drives; [`InProcess`] calls
-//!   the simulator and an `agent::Team` directly.
-//! - [`remote`]: the zenoh transport: env-server and agents as processes.
-//! - [`protocol`]: one run: evaluate, train K, evaluate, ..., through N.
+//! - [`backend`]: the [`Backend`] a run is played on; [`in_process`] calls
+//!   the simulator and an `agent::Team` directly, [`remote`] drives
+//!   env-server and agents as processes over zenoh.
+//! - [`driver`]: a transport opened for one experiment, handing out backends.
+//! - [`schedule`]: one run: evaluate, train K, evaluate, ..., through N.
 //! - [`stats`] and [`summary`]: mean and Student's t interval over runs.
 //! - [`wilcoxon`]: signed-rank test between algorithms, intervals where one is better.
-//! - [`output`]: `config.json`, `run-<k>.csv`, `summary.json`.
+//! - [`store`]: the results directory: claim, resume, atomic writes.
 //! - [`runner`]: R runs over T threads, then the summary.
 //! - [`figures`]: the paper's figures of summaries, as SVG and PNG.
 //! - [`study`]: the paper's experiments in one command: presets, tests
 //!   between algorithms, figures and `REPORT.md`.
 //!
 //! ```no_run
-//! use coordinator::{Experiment, ExperimentConfig, OutputDir, RunOptions, run_experiment};
+//! use coordinator::{Experiment, ExperimentConfig, ExperimentDir, RunOptions, run_experiment};
 //!
 //! let config = ExperimentConfig { runs: 2, episodes: 100, ..ExperimentConfig::default() };
 //! let experiment = Experiment::prepare(config)?;
-//! let out = OutputDir::check("results/no-advice".as_ref(), &experiment.record())?;
+//! let out = ExperimentDir::check("results/no-advice".as_ref(), &experiment.record())?;
 //! let report = run_experiment(&experiment, &out, &RunOptions::default())?;
-//! println!("{:?}", report.last.goal_pct);
+//! println!("{:?}", report.summary.eval_points.last());
 //! # Ok::<(), coordinator::Error>(())
 //! ```
 
@@ -34,28 +37,33 @@
 
 pub mod backend;
 pub mod config;
+pub mod driver;
 pub mod error;
 pub mod experiment;
 pub mod figures;
-pub mod output;
-pub mod protocol;
+pub mod in_process;
 pub mod remote;
 pub mod runner;
+pub mod schedule;
 pub mod seeds;
 pub mod stats;
+pub mod store;
 pub mod study;
 pub mod summary;
+pub mod transport;
 pub mod wilcoxon;
 
-pub use backend::{AgentStats, Backend, Episode, InProcess, Transport};
+pub use backend::{AgentStats, Backend, Episode};
 pub use config::{AgentSpec, Algorithm, ConfigError, ExperimentConfig, load_team_file};
 pub use error::Error;
 pub use experiment::{Experiment, RunSeeds};
 pub use figures::{FigureError, Metric, Series, SeriesSet, write_figures};
-pub use output::OutputDir;
-pub use protocol::{EvalPoint, RunResult, Timing};
-pub use remote::{Network, NetworkOptions, RemoteBackend};
+pub use in_process::InProcess;
+pub use remote::{Network, RemoteBackend};
 pub use runner::{Report, RunOptions, run_experiment};
+pub use schedule::{EvalPoint, RunResult, Timing};
 pub use stats::{Estimate, estimate};
+pub use store::ExperimentDir;
 pub use summary::{Summary, SummaryPoint, summarize};
+pub use transport::{Endpoints, Transport, ZenohSettings};
 pub use wilcoxon::{Interval, SignedRank, better_intervals, signed_rank};

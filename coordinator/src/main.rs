@@ -6,10 +6,11 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
-use coordinator::study::{StudyConfig, StudyOptions, StudyTransport};
+use coordinator::study::{StudyConfig, StudyOptions};
+use coordinator::transport::TRANSPORT_NAMES;
 use coordinator::{
-    AgentSpec, Algorithm, Estimate, Experiment, ExperimentConfig, NetworkOptions, OutputDir,
-    RunOptions, Transport, load_team_file, run_experiment,
+    AgentSpec, Algorithm, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir,
+    RunOptions, Transport, ZenohSettings, load_team_file, run_experiment,
 };
 
 #[derive(Parser)]
@@ -47,9 +48,9 @@ struct StudyArgs {
     /// Override the training episodes of every experiment.
     #[arg(long, value_name = "N")]
     episodes: Option<u64>,
-    /// Override where agents and simulator live.
-    #[arg(long, value_enum)]
-    transport: Option<Transport>,
+    /// Override where agents and simulator live: in-process or zenoh.
+    #[arg(long, value_parser = TRANSPORT_NAMES)]
+    transport: Option<String>,
     /// Worker threads for in-process runs (default: one per core).
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
     threads: Option<u64>,
@@ -103,9 +104,9 @@ struct RunArgs {
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
     threads: Option<u64>,
     /// Where agents and simulator live: separate processes over zenoh, or
-    /// library calls in this process (fast, bit-for-bit deterministic).
-    #[arg(long, value_enum, default_value = "zenoh")]
-    transport: Transport,
+    /// library calls in this process (in-process: fast, bit-for-bit deterministic).
+    #[arg(long, value_parser = TRANSPORT_NAMES, default_value = "zenoh")]
+    transport: String,
     #[command(flatten)]
     network: NetworkArgs,
     /// Output directory: config.json, run-<k>.csv, summary.json.
@@ -139,35 +140,46 @@ struct NetworkArgs {
     /// Directory of the env-server and agent executables (default: next to this one).
     #[arg(long, value_name = "DIR")]
     bin_dir: Option<PathBuf>,
-    /// How long an agent waits for advice (ms).
-    #[arg(long, value_name = "MS", default_value_t = 5)]
-    advice_timeout_ms: u64,
-    /// How long env-server waits for a kicker's action before Move (ms).
-    #[arg(long, value_name = "MS", default_value_t = 1000)]
-    step_timeout_ms: u64,
+    /// How long an agent waits for advice (ms; default 5).
+    #[arg(long, value_name = "MS")]
+    advice_timeout_ms: Option<u64>,
+    /// How long env-server waits for a kicker's action before Move (ms; default 1000).
+    #[arg(long, value_name = "MS")]
+    step_timeout_ms: Option<u64>,
     /// How long to wait for every process to join (s).
     #[arg(long, value_name = "S", default_value_t = 30)]
     startup_timeout: u64,
 }
 
 impl NetworkArgs {
-    fn options(&self) -> NetworkOptions {
+    /// The zenoh settings: `base`'s timeouts unless overridden, and the
+    /// endpoints of this invocation.
+    fn zenoh(&self, base: Option<&ZenohSettings>) -> ZenohSettings {
         let unique = || {
             let nanos = std::time::SystemTime::now()
                 .duration_since(std::time::UNIX_EPOCH)
                 .map_or(0, |d| d.subsec_nanos());
             format!("exp-{}-{nanos}", std::process::id())
         };
-        NetworkOptions {
-            experiment: self.experiment.clone().unwrap_or_else(unique),
-            port: self.port,
-            connect: self.connect.clone(),
-            attach: self.attach,
-            bin_dir: self.bin_dir.clone(),
-            advice_timeout_ms: self.advice_timeout_ms,
-            step_timeout_ms: self.step_timeout_ms,
-            startup_timeout: std::time::Duration::from_secs(self.startup_timeout),
+        let base = base.cloned().unwrap_or_default();
+        ZenohSettings {
+            advice_timeout_ms: self.advice_timeout_ms.unwrap_or(base.advice_timeout_ms),
+            step_timeout_ms: self.step_timeout_ms.unwrap_or(base.step_timeout_ms),
+            endpoints: Endpoints {
+                experiment: self.experiment.clone().unwrap_or_else(unique),
+                port: self.port,
+                connect: self.connect.clone(),
+                attach: self.attach,
+                bin_dir: self.bin_dir.clone(),
+                startup_timeout: std::time::Duration::from_secs(self.startup_timeout),
+            },
         }
+    }
+
+    /// The transport named `name` (or `current`'s kind), with these settings.
+    fn transport(&self, name: Option<&str>, current: &Transport) -> Result<Transport> {
+        let name = name.unwrap_or(current.name());
+        Ok(Transport::named(name, self.zenoh(current.zenoh()))?)
     }
 }
 
@@ -227,18 +239,14 @@ fn run_study(args: StudyArgs) -> Result<()> {
     if let Some(episodes) = args.episodes {
         study.episodes = episodes;
     }
-    if let Some(t) = args.transport {
-        study.transport = match t {
-            Transport::InProcess => StudyTransport::InProcess,
-            Transport::Zenoh => StudyTransport::Zenoh,
-        };
-    }
+    study.transport = args
+        .network
+        .transport(args.transport.as_deref(), &study.transport)?;
     let options = StudyOptions {
         threads: args
             .threads
             .map_or_else(coordinator::runner::default_threads, |t| t as usize),
         progress: !args.quiet && std::io::stderr().is_terminal(),
-        network: Some(args.network.options()),
     };
     let outcome = coordinator::study::run_study(&study, &args.out, &options)?;
     println!(
@@ -275,32 +283,34 @@ fn run_one(args: RunArgs) -> Result<()> {
         eval_episodes: args.eval_episodes,
         seed: args.seed,
         ci_level: args.ci_level,
+        transport: args
+            .network
+            .transport(Some(&args.transport), &Transport::InProcess)?,
         team,
         ..ExperimentConfig::default()
     };
     config.env.offense = args.offense.unwrap_or(config.team.len());
     let experiment = Experiment::prepare(config)?;
-    let out = OutputDir::check(&args.out, &experiment.record())?;
+    let out = ExperimentDir::check(&args.out, &experiment.record())?;
     let options = RunOptions {
         threads: args
             .threads
             .map_or_else(coordinator::runner::default_threads, |t| t as usize),
-        transport: args.transport,
         save_agents: args.save_agents,
         progress: !args.quiet && std::io::stderr().is_terminal(),
         bar: None,
-        network: Some(args.network.options()),
     };
     let report = run_experiment(&experiment, &out, &options)?;
     let c = experiment.config();
     let level = 100.0 * c.ci_level;
     println!(
         "{label}: {} runs x {} episodes -> {}",
-        report.runs,
+        report.summary.runs,
         c.episodes,
-        report.summary.display()
+        report.summary_path.display()
     );
-    for p in [&report.first, &report.last] {
+    let points = &report.summary.eval_points;
+    for p in [points.first(), points.last()].into_iter().flatten() {
         println!(
             "  episode {:>5}: goal_pct {}  time_to_goal {}  spent_budget {}",
             p.episode,

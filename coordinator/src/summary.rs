@@ -4,8 +4,8 @@
 use serde::Serialize;
 
 use crate::config::ExperimentConfig;
-use crate::experiment::{Experiment, FORMAT_VERSION};
-use crate::protocol::RunResult;
+use crate::experiment::Record;
+use crate::schedule::{EvalPoint, RunResult};
 use crate::stats::{Estimate, estimate};
 
 /// One evaluation point over all runs.
@@ -24,7 +24,7 @@ pub struct SummaryPoint {
 /// What `summary.json` holds. It depends only on the configuration, the
 /// loaded snapshots and the seed: never on threads or timing.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Summary<'a> {
+pub struct Summary {
     /// Version of the output formats.
     pub format: u32,
     /// The experiment seed.
@@ -34,7 +34,7 @@ pub struct Summary<'a> {
     /// Confidence level of the intervals.
     pub ci_level: f64,
     /// The configuration.
-    pub config: &'a ExperimentConfig,
+    pub config: ExperimentConfig,
     /// Per agent, the digest of the snapshot it starts from (hex), or null.
     pub snapshot_digests: Vec<Option<String>>,
     /// Every evaluation point, in order.
@@ -139,24 +139,24 @@ impl CommSummary {
     }
 }
 
-/// Summarises `results`, which must be every run of `experiment`, sorted by
-/// run index.
-/// With `comm`, the summary also holds the communication costs.
-pub fn summarize<'a>(experiment: &'a Experiment, results: &[RunResult], comm: bool) -> Summary<'a> {
+/// Summarises `results`, which must be every run of the experiment
+/// recorded in `record`, sorted by run index. Over a transport that
+/// communicates, the summary also holds the communication costs.
+pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
     debug_assert!(results.windows(2).all(|w| w[0].run < w[1].run));
-    let config = experiment.config();
+    let config = record.config;
     let level = config.ci_level;
-    let points = config.eval_points();
-    let column = |p: usize, f: &dyn Fn(&crate::protocol::EvalPoint) -> Option<f64>| {
+    let column = |p: usize, f: &dyn Fn(&EvalPoint) -> Option<f64>| {
         results
             .iter()
             .filter_map(|r| r.points.get(p).and_then(f))
             .collect::<Vec<f64>>()
     };
-    let eval_points = points
-        .iter()
+    let eval_points = config
+        .eval_points()
+        .into_iter()
         .enumerate()
-        .map(|(p, &episode)| SummaryPoint {
+        .map(|(p, episode)| SummaryPoint {
             episode,
             goal_pct: estimate(&column(p, &|e| Some(e.goal_pct)), level),
             time_to_goal: estimate(&column(p, &|e| e.time_to_goal), level),
@@ -164,14 +164,17 @@ pub fn summarize<'a>(experiment: &'a Experiment, results: &[RunResult], comm: bo
         })
         .collect();
     Summary {
-        format: FORMAT_VERSION,
+        format: record.format,
         seed: config.seed,
         runs: results.len() as u64,
         ci_level: level,
-        config,
-        snapshot_digests: experiment.record().snapshot_digests,
+        config: config.clone(),
+        snapshot_digests: record.snapshot_digests.clone(),
         eval_points,
-        comm: comm.then(|| CommSummary::of(results, config.team.len())),
+        comm: config
+            .transport
+            .communicates()
+            .then(|| CommSummary::of(results, config.team.len())),
     }
 }
 

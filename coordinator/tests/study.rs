@@ -179,7 +179,7 @@ fn bad_studies_are_refused_and_nothing_is_overwritten() {
             "--out",
             o,
         ]),
-        "other settings",
+        "study.json differs at `runs`",
     );
     assert_eq!(read(&out.join("study.json")), before);
 }

@@ -84,11 +84,8 @@ pub fn find_binary(dir: Option<&Path>, name: &str) -> Result<PathBuf, Error> {
         .iter()
         .find(|p| p.is_file())
         .cloned()
-        .ok_or_else(|| Error::Backend {
-            run: 0,
-            message: format!(
+        .ok_or_else(|| Error::Transport(format!(
                 "cannot find the {name} executable (looked at {}); build it with `cargo build --release` or pass --bin-dir",
                 candidates.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-            ),
-        })
+            )))
 }

@@ -5,9 +5,9 @@
 //! [`RemoteBackend`] drives one run through it with the control messages of
 //! `docs/protocol.md`.
 
-mod backend;
 mod launch;
 mod network;
+mod run;
 
-pub use backend::RemoteBackend;
-pub use network::{Network, NetworkOptions};
+pub use network::Network;
+pub use run::RemoteBackend;

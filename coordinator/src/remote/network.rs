@@ -1,7 +1,6 @@
 //! The coordinator's side of the zenoh network: session, processes, liveliness.
 
 use std::collections::HashSet;
-use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -18,27 +17,7 @@ use zenoh::sample::SampleKind;
 use super::launch::{Children, find_binary};
 use crate::config::ConfigError;
 use crate::error::Error;
-
-/// How to reach the experiment's processes.
-#[derive(Clone, Debug)]
-pub struct NetworkOptions {
-    /// Experiment name: the key prefix `adv/<name>` of every message.
-    pub experiment: String,
-    /// Loopback port the coordinator listens on (0: any free port).
-    pub port: u16,
-    /// Endpoints to connect to (a zenoh router for multi-host setups).
-    pub connect: Vec<String>,
-    /// Drive processes already running instead of starting them.
-    pub attach: bool,
-    /// Directory of the `env-server` and `agent` executables.
-    pub bin_dir: Option<PathBuf>,
-    /// Agents' advice timeout (ms).
-    pub advice_timeout_ms: u64,
-    /// env-server's step timeout (ms).
-    pub step_timeout_ms: u64,
-    /// How long to wait for every process to join.
-    pub startup_timeout: Duration,
-}
+use crate::transport::{Endpoints, ZenohSettings};
 
 /// The joined network and the processes of the experiment.
 pub struct Network {
@@ -65,17 +44,15 @@ impl std::fmt::Debug for Network {
 }
 
 fn net_error(message: impl Into<String>) -> Error {
-    Error::Backend {
-        run: 0,
-        message: message.into(),
-    }
+    Error::Transport(message.into())
 }
 
 impl Network {
-    /// Joins the network of `options.experiment`, starts env-server and
-    /// `agents` agent processes (unless attaching) and waits until every
-    /// one of them is alive.
-    pub fn start(options: &NetworkOptions, agents: usize) -> Result<Self, Error> {
+    /// Joins the network of `settings.endpoints.experiment`, starts
+    /// env-server and `agents` agent processes (unless attaching) and waits
+    /// until every one of them is alive.
+    pub fn start(settings: &ZenohSettings, agents: usize) -> Result<Self, Error> {
+        let options = &settings.endpoints;
         let keys = Keys::new(&options.experiment)
             .map_err(|e| ConfigError::new("experiment", e.to_string()))?;
         let runtime = tokio::runtime::Builder::new_multi_thread()
@@ -167,14 +144,15 @@ impl Network {
                 )));
             }
             let connect = format!("tcp/127.0.0.1:{}", port.unwrap_or_default());
-            network.launch(options, agents, &connect)?;
+            network.launch(settings, agents, &connect)?;
         }
         network.wait_for_everyone(options)?;
         network.stop_on_ctrl_c();
         Ok(network)
     }
 
-    fn launch(&self, options: &NetworkOptions, agents: usize, connect: &str) -> Result<(), Error> {
+    fn launch(&self, settings: &ZenohSettings, agents: usize, connect: &str) -> Result<(), Error> {
+        let options = &settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
         let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
         let common = |extra: &[String]| {
@@ -194,7 +172,7 @@ impl Network {
             &common(&[
                 "serve".into(),
                 "--step-timeout-ms".into(),
-                options.step_timeout_ms.to_string(),
+                settings.step_timeout_ms.to_string(),
                 "--exit-with-coordinator".into(),
             ]),
         )?;
@@ -208,7 +186,7 @@ impl Network {
                     "--team-size".into(),
                     agents.to_string(),
                     "--advice-timeout-ms".into(),
-                    options.advice_timeout_ms.to_string(),
+                    settings.advice_timeout_ms.to_string(),
                     "--exit-with-coordinator".into(),
                 ]),
             )?;
@@ -216,7 +194,7 @@ impl Network {
         Ok(())
     }
 
-    fn wait_for_everyone(&self, options: &NetworkOptions) -> Result<(), Error> {
+    fn wait_for_everyone(&self, options: &Endpoints) -> Result<(), Error> {
         let deadline = Instant::now() + options.startup_timeout;
         loop {
             let missing: Vec<String> = self

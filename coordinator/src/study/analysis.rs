@@ -3,10 +3,34 @@
 
 use serde::Serialize;
 
-use super::config::StudyConfig;
-use super::report::EntryResults;
-use crate::protocol::RunResult;
+use super::config::{Entry, StudyConfig};
+use crate::schedule::{EvalPoint, RunResult};
+use crate::stats::{Estimate, estimate};
+use crate::summary::Summary;
 use crate::wilcoxon::{Interval, better_intervals, signed_rank};
+
+/// One experiment's results.
+#[derive(Clone, Debug)]
+pub struct EntryResults {
+    /// The experiment.
+    pub entry: Entry,
+    /// Every run, sorted by run.
+    pub results: Vec<RunResult>,
+    /// Their summary.
+    pub summary: Summary,
+}
+
+impl EntryResults {
+    /// The metric over runs at the last evaluation point.
+    pub fn last(&self, level: f64, metric: fn(&EvalPoint) -> Option<f64>) -> Estimate {
+        let samples: Vec<f64> = self
+            .results
+            .iter()
+            .filter_map(|r| r.points.last().and_then(metric))
+            .collect();
+        estimate(&samples, level)
+    }
+}
 
 /// Where one experiment is significantly better than another.
 #[derive(Clone, Debug, PartialEq, Serialize)]

@@ -5,8 +5,8 @@ use std::path::Path;
 use agent::StrategyKind;
 use serde::{Deserialize, Serialize};
 
-use crate::backend::Transport;
 use crate::config::{AgentSpec, Algorithm, ConfigError, DEFAULT_CI_LEVEL, ExperimentConfig};
+use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
 pub const PRESETS: [(&str, &str); 4] = [
@@ -24,26 +24,6 @@ pub const PRESETS: [(&str, &str); 4] = [
         include_str!("../../presets/paper-expert.toml"),
     ),
 ];
-
-/// Where the study's processes live, as written in a study file.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StudyTransport {
-    /// Library calls in this process.
-    #[default]
-    InProcess,
-    /// Separate processes over zenoh.
-    Zenoh,
-}
-
-impl From<StudyTransport> for Transport {
-    fn from(t: StudyTransport) -> Self {
-        match t {
-            StudyTransport::InProcess => Transport::InProcess,
-            StudyTransport::Zenoh => Transport::Zenoh,
-        }
-    }
-}
 
 /// What a study runs.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -67,7 +47,7 @@ pub struct StudyConfig {
     pub seed: u64,
     /// Where agents and simulator live.
     #[serde(default)]
-    pub transport: StudyTransport,
+    pub transport: Transport,
     /// Confidence level of intervals and tests.
     #[serde(default = "default_ci_level")]
     pub ci_level: f64,
@@ -240,6 +220,7 @@ impl StudyConfig {
             eval_episodes: self.eval_episodes,
             seed: self.seed,
             ci_level: self.ci_level,
+            transport: self.transport.clone(),
             team,
             ..ExperimentConfig::default()
         }
@@ -254,6 +235,7 @@ impl StudyConfig {
             eval_episodes: self.eval_episodes,
             seed: self.seed,
             ci_level: self.ci_level,
+            transport: self.transport.clone(),
             team: vec![AgentSpec::of(p.algorithm.strategy()); TEAM],
             ..ExperimentConfig::default()
         }

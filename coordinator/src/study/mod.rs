@@ -8,7 +8,6 @@ mod config;
 mod report;
 mod run;
 
-pub use analysis::{Comparison, compare};
-pub use config::{Entry, PRESETS, Pretrain, StudyConfig, StudyTransport};
-pub use report::EntryResults;
+pub use analysis::{Comparison, EntryResults, compare};
+pub use config::{Entry, PRESETS, Pretrain, StudyConfig};
 pub use run::{StudyOptions, StudyOutcome, run_study};

@@ -4,37 +4,13 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use super::analysis::Comparison;
-use super::config::{Entry, StudyConfig, StudyTransport, is_ad_hoc};
-use super::run::write_file;
+use super::analysis::{Comparison, EntryResults};
+use super::config::{Entry, StudyConfig, is_ad_hoc};
 use crate::config::Algorithm;
 use crate::error::Error;
 use crate::figures::{SeriesSet, write_figures};
-use crate::output::SUMMARY_FILE;
-use crate::protocol::{EvalPoint, RunResult};
-use crate::stats::{Estimate, estimate};
-use crate::summary::CommSummary;
-
-/// One experiment's results.
-#[derive(Clone, Debug)]
-pub struct EntryResults {
-    /// The experiment.
-    pub entry: Entry,
-    /// Every run, sorted by run.
-    pub results: Vec<RunResult>,
-}
-
-impl EntryResults {
-    /// The metric over runs at the last evaluation point.
-    fn last(&self, level: f64, metric: fn(&EvalPoint) -> Option<f64>) -> Estimate {
-        let samples: Vec<f64> = self
-            .results
-            .iter()
-            .filter_map(|r| r.points.last().and_then(metric))
-            .collect();
-        estimate(&samples, level)
-    }
-}
+use crate::stats::Estimate;
+use crate::store::{self, SUMMARY_FILE};
 
 /// Writes `significance.json`, the figures and `REPORT.md` into `out`.
 pub fn write_report(
@@ -44,9 +20,7 @@ pub fn write_report(
     comparisons: &[Comparison],
     wall: Duration,
 ) -> Result<PathBuf, Error> {
-    let mut json = serde_json::to_vec_pretty(comparisons).expect("comparisons serialise");
-    json.push(b'\n');
-    write_file(&out.join("significance.json"), &json)?;
+    store::write_json(&out.join("significance.json"), &comparisons)?;
     let sets = entries
         .iter()
         .map(|e| SeriesSet::read(&e.entry.name, &out.join(&e.entry.name).join(SUMMARY_FILE)))
@@ -72,10 +46,7 @@ pub fn write_report(
         study.eval_episodes,
         study.eval_every,
         study.seed,
-        match study.transport {
-            StudyTransport::InProcess => "in-process",
-            StudyTransport::Zenoh => "zenoh (separate processes)",
-        },
+        study.transport.name(),
         wall.as_secs_f64(),
     );
     if let Some(p) = &study.pretrain {
@@ -191,7 +162,7 @@ pub fn write_report(
         let _ = writeln!(md, "![{name}](figures/{name})\n");
     }
 
-    if study.transport == StudyTransport::Zenoh {
+    if study.transport.communicates() {
         let _ = writeln!(
             md,
             "## Communication (per run, team totals, means over runs)\n"
@@ -202,7 +173,10 @@ pub fn write_report(
         );
         let _ = writeln!(md, "|---|---|---|---|---|---|---|");
         for e in entries {
-            let c = CommSummary::of(&e.results, 3).team;
+            let Some(comm) = &e.summary.comm else {
+                continue;
+            };
+            let c = &comm.team;
             let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.3}"));
             let _ = writeln!(
                 md,
@@ -224,7 +198,7 @@ pub fn write_report(
         "Data: `<algorithm>/summary.json` (every point, mean and interval), `<algorithm>/run-<k>.csv` (every run)."
     );
     let path = out.join("REPORT.md");
-    write_file(&path, md.as_bytes())?;
+    store::write_atomically(&path, md.as_bytes())?;
     Ok(path)
 }
 

@@ -1,17 +1,15 @@
 //! Running a study: pretraining, every experiment, then the analysis.
 
-use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::analysis::compare_all;
+use super::analysis::{EntryResults, compare_all};
 use super::config::StudyConfig;
-use super::report::{EntryResults, write_report};
+use super::report::write_report;
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::output::OutputDir;
-use crate::remote::NetworkOptions;
-use crate::runner::{RunOptions, agent_file_name, new_bar, run_experiment};
+use crate::runner::{RunOptions, new_bar, run_experiment};
+use crate::store::{self, ExperimentDir, agent_file_name};
 
 /// How to run a study (none of it changes the results in process).
 #[derive(Clone, Debug)]
@@ -20,9 +18,6 @@ pub struct StudyOptions {
     pub threads: usize,
     /// Show one progress bar for the whole study.
     pub progress: bool,
-    /// zenoh settings, for studies over zenoh (the experiment name gets each
-    /// entry's name appended).
-    pub network: Option<NetworkOptions>,
 }
 
 /// What a finished study reports besides its files.
@@ -54,45 +49,44 @@ pub fn run_study(
             * study.runs
             * study.experiment(&study.entries[0], None).episodes_per_run();
     let bar = new_bar(options.progress, total);
-    let run_options = |name: &str, save_agents: Option<PathBuf>| RunOptions {
+    let run_options = |save_agents: Option<PathBuf>| RunOptions {
         threads: options.threads,
-        transport: study.transport.into(),
         save_agents,
         progress: options.progress,
         bar: Some(bar.clone()),
-        network: options.network.clone().map(|mut n| {
-            n.experiment = format!("{}-{name}", n.experiment);
-            n
-        }),
+    };
+    // Over zenoh every experiment gets its own processes and keys.
+    let prepare = |mut config: crate::config::ExperimentConfig, name: &str| {
+        config.transport = config.transport.for_experiment(name);
+        Experiment::prepare(config)
     };
 
     let expert = out.join("pretrain").join("expert.qtable");
     if let Some(p) = &study.pretrain {
         let dir = out.join("pretrain");
-        let experiment = Experiment::prepare(study.pretraining(p))?;
+        let experiment = prepare(study.pretraining(p), "pretrain")?;
         if expert.is_file() {
             bar.inc(experiment.config().episodes_per_run());
         } else {
-            let output = OutputDir::check(&dir, &experiment.record())?;
+            let output = ExperimentDir::check(&dir, &experiment.record())?;
             let agents = dir.join("agents");
-            run_experiment(
-                &experiment,
-                &output,
-                &run_options("pretrain", Some(agents.clone())),
-            )?;
-            copy_atomically(&agents.join(agent_file_name(0, p.expert)), &expert)?;
+            run_experiment(&experiment, &output, &run_options(Some(agents.clone())))?;
+            let saved = agents.join(agent_file_name(0, p.expert));
+            let bytes = std::fs::read(&saved).map_err(|e| Error::io("read", &saved, e))?;
+            store::write_atomically(&expert, &bytes)?;
         }
     }
 
     let mut entries = Vec::with_capacity(study.entries.len());
     for entry in &study.entries {
         let config = study.experiment(entry, entry.expert.then_some(expert.as_path()));
-        let experiment = Experiment::prepare(config)?;
-        let output = OutputDir::check(&out.join(&entry.name), &experiment.record())?;
-        let report = run_experiment(&experiment, &output, &run_options(&entry.name, None))?;
+        let experiment = prepare(config, &entry.name)?;
+        let output = ExperimentDir::check(&out.join(&entry.name), &experiment.record())?;
+        let report = run_experiment(&experiment, &output, &run_options(None))?;
         entries.push(EntryResults {
             entry: entry.clone(),
             results: report.results,
+            summary: report.summary,
         });
     }
     bar.finish_and_clear();
@@ -107,48 +101,6 @@ pub fn run_study(
 /// Refuses a directory holding another study; records this one in it.
 fn claim_directory(out: &Path, study: &StudyConfig) -> Result<(), Error> {
     let ours = serde_json::to_value(study).expect("a study serialises");
-    let path = out.join(STUDY_FILE);
-    match fs::read(&path) {
-        Ok(bytes) => {
-            let theirs: serde_json::Value = serde_json::from_slice(&bytes).unwrap_or_default();
-            if theirs != ours {
-                let name = theirs["name"].as_str().unwrap_or("?").to_owned();
-                return Err(Error::OtherResults {
-                    dir: out.to_path_buf(),
-                    reason: format!("it holds study '{name}' with other settings"),
-                });
-            }
-            Ok(())
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            if out.is_dir()
-                && fs::read_dir(out)
-                    .map_err(|e| Error::io("read", out, e))?
-                    .next()
-                    .is_some()
-            {
-                return Err(Error::OtherResults {
-                    dir: out.to_path_buf(),
-                    reason: format!("it is not empty and has no {STUDY_FILE}"),
-                });
-            }
-            fs::create_dir_all(out).map_err(|e| Error::io("create", out, e))?;
-            let mut bytes = serde_json::to_vec_pretty(&ours).expect("a study serialises");
-            bytes.push(b'\n');
-            write_file(&path, &bytes)
-        }
-        Err(e) => Err(Error::io("read", path, e)),
-    }
-}
-
-/// Writes `bytes` to `path` atomically (a temporary file, then a rename).
-pub(super) fn write_file(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let tmp = path.with_extension("tmp");
-    fs::write(&tmp, bytes).map_err(|e| Error::io("write", &tmp, e))?;
-    fs::rename(&tmp, path).map_err(|e| Error::io("write", path, e))
-}
-
-fn copy_atomically(from: &Path, to: &Path) -> Result<(), Error> {
-    let bytes = fs::read(from).map_err(|e| Error::io("read", from, e))?;
-    write_file(to, &bytes)
+    store::check_claim(out, STUDY_FILE, &ours)?;
+    store::claim(out, STUDY_FILE, &ours)
 }

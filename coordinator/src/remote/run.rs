@@ -82,10 +82,7 @@ impl<'a> RemoteBackend<'a> {
     }
 
     fn error(&self, message: impl Into<String>) -> Error {
-        Error::Backend {
-            run: self.run,
-            message: message.into(),
-        }
+        Error::run(self.run, message.into())
     }
 
     /// Fails if a process of the experiment is gone.

@@ -1,5 +1,5 @@
-//! One run of the protocol (docs/algorithms.md section 4): an evaluation before
-//! training, then K training episodes and an evaluation, ..., through N.
+//! The schedule of one run (docs/algorithms.md section 4): an evaluation
+//! before training, then K training episodes and an evaluation, ..., through N.
 
 use std::time::{Duration, Instant};
 
@@ -91,7 +91,7 @@ pub struct RunResult {
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
 /// evaluation as soon as it is measured, `progress` the frames of every
 /// episode just played.
-pub fn run(
+pub fn play_run(
     experiment: &Experiment,
     backend: &mut dyn Backend,
     run: u64,

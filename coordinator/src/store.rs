@@ -1,24 +1,33 @@
-//! The output directory: `config.json` first, one `run-<k>.csv` per run
-//! written as it goes, `summary.json` at the end (atomically).
+//! The results store: the output layout, the claim/resume check and the one
+//! atomic write every result file goes through.
 //!
-//! A directory whose `config.json` describes another configuration (or that
-//! holds results without one) is refused before anything is written; the
-//! same configuration is run again from scratch over its own files.
+//! A directory is claimed by its identity file (`config.json` for an
+//! experiment, `study.json` for a study): a directory holding another
+//! identity, or files without one, is refused before anything is written;
+//! the same identity resumes over its own files. An experiment directory
+//! gets `config.json` first, one `run-<k>.csv` per run written as it goes,
+//! `run-<k>.json` when a run is complete and `summary.json` at the end.
 
 use std::fs::{self, File};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use agent::Snapshot;
 use serde::Serialize;
 use serde_json::Value;
 
+use crate::backend::AgentStats;
 use crate::error::Error;
-use crate::protocol::{EvalPoint, RunResult};
+use crate::schedule::{EvalPoint, RunResult};
 
-/// Name of the configuration record in the output directory.
+/// Name of an experiment directory's identity file.
 pub const CONFIG_FILE: &str = "config.json";
-/// Name of the summary in the output directory.
+/// Name of the summary in an experiment directory.
 pub const SUMMARY_FILE: &str = "summary.json";
+
+/// Prefix of the temporary files of [`write_atomically`]; a leftover one
+/// (a crash before its rename) never blocks a directory.
+const TEMP_PREFIX: &str = ".adv-tmp-";
 
 /// The file name of run `run`'s CSV.
 pub fn run_file_name(run: u64) -> String {
@@ -30,60 +39,95 @@ pub fn run_result_name(run: u64) -> String {
     format!("run-{run}.json")
 }
 
-/// Whether `name` is a file this crate writes as a result.
-fn is_result_file(name: &str) -> bool {
-    name == SUMMARY_FILE
-        || name
-            .strip_prefix("run-")
-            .and_then(|r| r.strip_suffix(".csv").or_else(|| r.strip_suffix(".json")))
-            .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+/// The snapshot file of agent `agent` at the end of run `run`.
+pub fn agent_file_name(run: u64, agent: usize) -> String {
+    format!("run-{run}-agent-{agent}.qtable")
 }
 
-/// An output directory checked to accept an experiment's results.
+/// Writes `bytes` to `path` atomically and durably: a temporary file in the
+/// same directory, synced, then renamed over `path`.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let fail = |e: std::io::Error| Error::io("write", path, e);
+    let mut tmp = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)
+        .map_err(fail)?;
+    tmp.write_all(bytes)
+        .and_then(|()| tmp.as_file().sync_all())
+        .map_err(fail)?;
+    tmp.persist(path).map_err(|e| fail(e.error))?;
+    Ok(())
+}
+
+/// Writes `value` as pretty JSON with a final newline, atomically.
+pub fn write_json(path: &Path, value: &impl Serialize) -> Result<(), Error> {
+    let mut bytes = serde_json::to_vec_pretty(value).expect("results serialise");
+    bytes.push(b'\n');
+    write_atomically(path, &bytes)
+}
+
+/// Checks that `dir` may hold the results identified by `identity` in its
+/// file `name`: `dir` is absent, holds nothing (but leftover temporary
+/// files), or holds the same identity. Writes nothing.
+pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error> {
+    let other = |reason: String| Error::OtherResults {
+        dir: dir.to_path_buf(),
+        reason,
+    };
+    if dir.exists() && !dir.is_dir() {
+        return Err(Error::NotADirectory(dir.to_path_buf()));
+    }
+    let path = dir.join(name);
+    match fs::read(&path) {
+        Ok(bytes) => {
+            let theirs: Value = serde_json::from_slice(&bytes)
+                .map_err(|e| other(format!("its {name} is unreadable: {e}")))?;
+            match first_difference(identity, &theirs, "") {
+                Some(diff) => Err(other(format!("{name} differs at {diff}"))),
+                None => Ok(()),
+            }
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            if !dir.is_dir() {
+                return Ok(());
+            }
+            let entries = fs::read_dir(dir).map_err(|e| Error::io("read", dir, e))?;
+            for entry in entries {
+                let entry = entry.map_err(|e| Error::io("read", dir, e))?;
+                let file = entry.file_name().to_string_lossy().into_owned();
+                if !file.starts_with(TEMP_PREFIX) {
+                    return Err(other(format!("it has {file} but no {name}")));
+                }
+            }
+            Ok(())
+        }
+        Err(e) => Err(Error::io("read", path, e)),
+    }
+}
+
+/// Creates `dir` and writes its identity file `name`.
+pub fn claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error> {
+    fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))?;
+    write_json(&dir.join(name), identity)
+}
+
+/// An experiment's directory, checked to accept its results.
 #[derive(Clone, Debug)]
-pub struct OutputDir {
+pub struct ExperimentDir {
     dir: PathBuf,
     record: Value,
 }
 
-impl OutputDir {
-    /// Checks that `dir` is absent, holds no results, or holds the results of
-    /// this same `record` (the content of `config.json`). Writes nothing.
+impl ExperimentDir {
+    /// Checks that `dir` may hold the results of the experiment whose
+    /// `config.json` is `record` (see [`check_claim`]). Writes nothing.
     pub fn check(dir: &Path, record: &impl Serialize) -> Result<Self, Error> {
         let record = serde_json::to_value(record).expect("a record serialises");
-        let other = |reason: String| Error::OtherResults {
-            dir: dir.to_path_buf(),
-            reason,
-        };
-        if dir.exists() && !dir.is_dir() {
-            return Err(other("it is not a directory".into()));
-        }
-        let config_path = dir.join(CONFIG_FILE);
-        match fs::read(&config_path) {
-            Ok(bytes) => {
-                let theirs: Value = serde_json::from_slice(&bytes)
-                    .map_err(|e| other(format!("its {CONFIG_FILE} is unreadable: {e}")))?;
-                if let Some(diff) = first_difference(&record, &theirs, "") {
-                    return Err(other(format!("{CONFIG_FILE} differs at {diff}")));
-                }
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                if dir.is_dir() {
-                    let entries = fs::read_dir(dir).map_err(|e| Error::io("read", dir, e))?;
-                    for entry in entries {
-                        let entry = entry.map_err(|e| Error::io("read", dir, e))?;
-                        let name = entry.file_name();
-                        if is_result_file(&name.to_string_lossy()) {
-                            return Err(other(format!(
-                                "it has {} but no {CONFIG_FILE}",
-                                name.to_string_lossy()
-                            )));
-                        }
-                    }
-                }
-            }
-            Err(e) => return Err(Error::io("read", config_path, e)),
-        }
+        check_claim(dir, CONFIG_FILE, &record)?;
         Ok(Self {
             dir: dir.to_path_buf(),
             record,
@@ -97,10 +141,7 @@ impl OutputDir {
 
     /// Creates the directory and writes `config.json`.
     pub fn create(&self) -> Result<(), Error> {
-        fs::create_dir_all(&self.dir).map_err(|e| Error::io("create", &self.dir, e))?;
-        let mut bytes = serde_json::to_vec_pretty(&self.record).expect("a record serialises");
-        bytes.push(b'\n');
-        write_atomically(&self.dir.join(CONFIG_FILE), &bytes)
+        claim(&self.dir, CONFIG_FILE, &self.record)
     }
 
     /// Starts run `run`'s CSV for a team of `agents`, replacing any old one.
@@ -116,18 +157,29 @@ impl OutputDir {
             .filter(|r| r.run == run)
     }
 
-    /// Marks run `result.run` finished by writing its results atomically.
+    /// Marks run `result.run` finished by writing its results.
     pub fn write_run_result(&self, result: &RunResult) -> Result<(), Error> {
         let bytes = serde_json::to_vec(result).expect("a run result serialises");
         write_atomically(&self.dir.join(run_result_name(result.run)), &bytes)
     }
 
-    /// Writes `summary.json` atomically (a temporary file, then a rename).
+    /// Writes `summary.json`.
     pub fn write_summary(&self, summary: &impl Serialize) -> Result<(), Error> {
-        let mut bytes = serde_json::to_vec_pretty(summary).expect("a summary serialises");
-        bytes.push(b'\n');
-        write_atomically(&self.dir.join(SUMMARY_FILE), &bytes)
+        write_json(&self.dir.join(SUMMARY_FILE), summary)
     }
+}
+
+/// Saves every agent's snapshot at the end of run `run` into `dir`, as
+/// [`agent_file_name`].
+pub fn write_agents(dir: &Path, run: u64, snapshots: &[Snapshot]) -> Result<(), Error> {
+    for (i, s) in snapshots.iter().enumerate() {
+        let path = dir.join(agent_file_name(run, i));
+        let bytes = s
+            .encode()
+            .map_err(|e| Error::io("write", &path, std::io::Error::other(e.to_string())))?;
+        write_atomically(&path, &bytes)?;
+    }
+    Ok(())
 }
 
 /// The path of the first value that differs between two JSON documents.
@@ -155,21 +207,6 @@ fn first_difference(ours: &Value, theirs: &Value, at: &str) -> Option<String> {
         _ if ours == theirs => None,
         _ => Some(format!("`{at}` (this run: {ours}, on disk: {theirs})")),
     }
-}
-
-/// Writes `bytes` to a temporary file beside `path`, then renames it over.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let name = path
-        .file_name()
-        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
-    let written = File::create(&tmp)
-        .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()))
-        .and_then(|()| fs::rename(&tmp, path));
-    written.map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        Error::io("write", path, e)
-    })
 }
 
 /// One run's CSV: a header, then one row per evaluation point, flushed as
@@ -238,9 +275,7 @@ impl RunWriter {
                 .to_string(),
         );
         row.push(p.spent_budget.to_string());
-        let total = |f: fn(&crate::backend::AgentStats) -> u64| {
-            p.agents.iter().map(f).sum::<u64>().to_string()
-        };
+        let total = |f: fn(&AgentStats) -> u64| p.agents.iter().map(f).sum::<u64>().to_string();
         row.extend([
             total(|a| a.replies_received),
             total(|a| a.messages_sent),
@@ -268,23 +303,20 @@ impl RunWriter {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::backend::AgentStats;
     use serde_json::json;
 
     #[test]
-    fn result_files_are_recognised() {
-        for name in ["summary.json", "run-0.csv", "run-49.csv"] {
-            assert!(is_result_file(name), "{name}");
-        }
-        for name in [
-            "config.json",
-            "run-.csv",
-            "run-a.csv",
-            "notes.txt",
-            "run-1.csv~",
-        ] {
-            assert!(!is_result_file(name), "{name}");
-        }
+    fn leftover_temporary_files_never_block_a_directory() {
+        let tmp = tempfile::tempdir().unwrap();
+        let identity = json!({"a": 1});
+        fs::write(tmp.path().join(format!("{TEMP_PREFIX}x")), b"half").unwrap();
+        check_claim(tmp.path(), "id.json", &identity).unwrap();
+        fs::write(tmp.path().join("notes.txt"), b"mine").unwrap();
+        let err = check_claim(tmp.path(), "id.json", &identity).unwrap_err();
+        assert!(err.to_string().contains("notes.txt"), "{err}");
+        let file = tmp.path().join("notes.txt");
+        let err = check_claim(&file, "id.json", &identity).unwrap_err();
+        assert!(err.to_string().contains("not a directory"), "{err}");
     }
 
     #[test]
@@ -303,7 +335,7 @@ mod tests {
         let tmp = tempfile::tempdir().unwrap();
         let dir = tmp.path().join("out");
         let ours = json!({"format": 1, "config": {"runs": 2}});
-        let out = OutputDir::check(&dir, &ours).unwrap();
+        let out = ExperimentDir::check(&dir, &ours).unwrap();
         assert!(!dir.exists(), "check writes nothing");
         out.create().unwrap();
         let mut w = out.run_writer(0, 2).unwrap();
@@ -325,22 +357,22 @@ mod tests {
              bytes_sent,messages_received,bytes_received,messages_dropped\n\
              20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0\n"
         );
-        OutputDir::check(&dir, &ours).unwrap();
+        ExperimentDir::check(&dir, &ours).unwrap();
         let theirs = json!({"format": 1, "config": {"runs": 3}});
-        let err = OutputDir::check(&dir, &theirs).unwrap_err().to_string();
+        let err = ExperimentDir::check(&dir, &theirs).unwrap_err().to_string();
         assert!(err.contains("config.runs") && err.contains("out"), "{err}");
         assert_eq!(fs::read_to_string(dir.join("run-0.csv")).unwrap(), csv);
 
         // Results without a config.json are someone else's too.
         fs::remove_file(dir.join(CONFIG_FILE)).unwrap();
-        let err = OutputDir::check(&dir, &ours).unwrap_err().to_string();
+        let err = ExperimentDir::check(&dir, &ours).unwrap_err().to_string();
         assert!(err.contains("run-0.csv"), "{err}");
     }
 
     #[test]
     fn summary_is_written_atomically() {
         let tmp = tempfile::tempdir().unwrap();
-        let out = OutputDir::check(tmp.path(), &json!({})).unwrap();
+        let out = ExperimentDir::check(tmp.path(), &json!({})).unwrap();
         out.create().unwrap();
         out.write_summary(&json!({"a": 1})).unwrap();
         out.write_summary(&json!({"a": 2})).unwrap();

@@ -1,0 +1,51 @@
+//! A transport opened for one experiment: a [`Driver`] hands out the
+//! backend of each run.
+
+use crate::backend::Backend;
+use crate::error::Error;
+use crate::experiment::Experiment;
+use crate::in_process::InProcess;
+use crate::remote::{Network, RemoteBackend};
+use crate::transport::Transport;
+
+/// Hands out one backend per run of an experiment.
+pub trait Driver: Sync {
+    /// The backend of run `run`, its agents at their start.
+    fn backend(&self, experiment: &Experiment, run: u64) -> Result<Box<dyn Backend + '_>, Error>;
+
+    /// How many runs may play at the same time.
+    fn max_parallel_runs(&self) -> usize;
+}
+
+/// Opens `transport` for an experiment with `agents` agents: over zenoh,
+/// joins the network and starts (or finds) the processes.
+pub fn open(transport: &Transport, agents: usize) -> Result<Box<dyn Driver>, Error> {
+    Ok(match transport {
+        Transport::InProcess => Box::new(InProcessDriver),
+        Transport::Zenoh(settings) => Box::new(Network::start(settings, agents)?),
+    })
+}
+
+/// Every run in its own thread, as library calls.
+struct InProcessDriver;
+
+impl Driver for InProcessDriver {
+    fn backend(&self, experiment: &Experiment, run: u64) -> Result<Box<dyn Backend + '_>, Error> {
+        Ok(Box::new(InProcess::new(experiment, run)?))
+    }
+
+    fn max_parallel_runs(&self) -> usize {
+        usize::MAX
+    }
+}
+
+/// Over zenoh the runs play one after another on the same processes.
+impl Driver for Network {
+    fn backend(&self, experiment: &Experiment, run: u64) -> Result<Box<dyn Backend + '_>, Error> {
+        Ok(Box::new(RemoteBackend::new(self, experiment, run)?))
+    }
+
+    fn max_parallel_runs(&self) -> usize {
+        1
+    }
+}

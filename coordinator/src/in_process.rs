@@ -1,0 +1,102 @@
+//! The in-process backend: the simulator and an `agent::Team` in the run's
+//! own thread, called directly: fast and bit-for-bit deterministic.
+
+use agent::{Agent, Mode, Observation, Snapshot, Team};
+use env_server::{Env, EnvConfig};
+
+use crate::backend::{AgentStats, Backend, Episode};
+use crate::config::ConfigError;
+use crate::error::Error;
+use crate::experiment::{Experiment, RunSeeds};
+
+/// The in-process backend of one run.
+#[derive(Debug)]
+pub struct InProcess {
+    run: u64,
+    env_config: EnvConfig,
+    training: Env,
+    evaluation: Option<Env>,
+    team: Team,
+    observations: Vec<Observation>,
+}
+
+fn simulator(config: &EnvConfig, seed: u64) -> Result<Env, Error> {
+    Env::new(config.clone(), seed).map_err(|e| ConfigError::new("env", e.to_string()).into())
+}
+
+impl InProcess {
+    /// Run `run` of `experiment`, its agents at their start.
+    pub fn new(experiment: &Experiment, run: u64) -> Result<Self, Error> {
+        let seeds: RunSeeds = experiment.seeds(run);
+        let env_config = experiment.config().env.clone();
+        let training = simulator(&env_config, seeds.simulator)?;
+        let team = Team::new(experiment.agents(&seeds)?).map_err(|e| Error::run(run, e))?;
+        let n = env_config.offense;
+        Ok(Self {
+            run,
+            env_config,
+            training,
+            evaluation: None,
+            team,
+            observations: Vec::with_capacity(n),
+        })
+    }
+
+    /// The team.
+    pub fn team(&self) -> &Team {
+        &self.team
+    }
+}
+
+impl Backend for InProcess {
+    fn begin_evaluation(&mut self, seed: u64) -> Result<(), Error> {
+        self.evaluation = Some(simulator(&self.env_config, seed)?);
+        Ok(())
+    }
+
+    fn play_episode(&mut self, mode: Mode) -> Result<Episode, Error> {
+        let run = self.run;
+        let env = match mode {
+            Mode::Training => &mut self.training,
+            Mode::Evaluation => self
+                .evaluation
+                .as_mut()
+                .ok_or_else(|| Error::run(run, "evaluation episode before begin_evaluation"))?,
+        };
+        env.reset();
+        self.team.begin_episode(mode);
+        let mut reward = 0.0;
+        loop {
+            self.observations.clear();
+            self.observations.extend((0..env.offense()).map(|i| {
+                let pos = env.world().offense[i].pos;
+                Observation {
+                    state: env.state(i),
+                    can_kick: env.can_kick(i),
+                    position: [pos.x, pos.y],
+                }
+            }));
+            let actions = self
+                .team
+                .act(&self.observations, reward)
+                .map_err(|e| Error::run(run, e))?;
+            let outcome = env.step(actions);
+            if outcome.is_terminal() {
+                self.team.end_episode(outcome.reward());
+                return Ok(Episode {
+                    outcome,
+                    frames: env.frame(),
+                });
+            }
+            reward = outcome.reward();
+        }
+    }
+
+    fn agent_stats(&self) -> Result<Vec<AgentStats>, Error> {
+        Ok(self.team.agents().iter().map(AgentStats::of).collect())
+    }
+
+    fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {
+        Ok(self.team.agents().iter().map(Agent::snapshot).collect())
+    }
+}

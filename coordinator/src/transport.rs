@@ -1,0 +1,231 @@
+//! Where an experiment's agents and simulator live: one value, recorded in
+//! `config.json` with everything that can change results.
+//!
+//! In a file: `transport = "in-process"`, `transport = "zenoh"` (default
+//! timeouts) or `[transport.zenoh]` with `advice_timeout_ms` and
+//! `step_timeout_ms`. How to reach the processes ([`Endpoints`]) changes no
+//! result and is not recorded.
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use serde::{Deserialize, Serialize};
+
+use crate::config::ConfigError;
+
+/// Where agents and simulator live.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", try_from = "TransportFile")]
+pub enum Transport {
+    /// Simulator and agents as library calls in the run's thread: fast and
+    /// bit-for-bit deterministic.
+    #[default]
+    InProcess,
+    /// env-server and every agent as separate processes talking over zenoh.
+    Zenoh(ZenohSettings),
+}
+
+/// The zenoh transport's settings: its timeouts (recorded: they change
+/// results) and its endpoints (not recorded).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ZenohSettings {
+    /// How long an agent waits for advice after asking (ms).
+    pub advice_timeout_ms: u64,
+    /// How long env-server waits for a kicker's action before Move (ms).
+    pub step_timeout_ms: u64,
+    /// How to reach the processes.
+    #[serde(skip)]
+    pub endpoints: Endpoints,
+}
+
+impl Default for ZenohSettings {
+    fn default() -> Self {
+        Self {
+            advice_timeout_ms: 5,
+            step_timeout_ms: 1000,
+            endpoints: Endpoints::default(),
+        }
+    }
+}
+
+/// How the coordinator reaches an experiment's processes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Endpoints {
+    /// Experiment name: the key prefix `adv/<name>` of every message.
+    pub experiment: String,
+    /// Loopback port the coordinator listens on (0: any free port).
+    pub port: u16,
+    /// Endpoints to connect to (a zenoh router for multi-host setups).
+    pub connect: Vec<String>,
+    /// Drive processes already running instead of starting them.
+    pub attach: bool,
+    /// Directory of the `env-server` and `agent` executables (default: next
+    /// to the coordinator's).
+    pub bin_dir: Option<PathBuf>,
+    /// How long to wait for every process to join.
+    pub startup_timeout: Duration,
+}
+
+impl Default for Endpoints {
+    fn default() -> Self {
+        Self {
+            experiment: "adv".to_owned(),
+            port: 0,
+            connect: Vec::new(),
+            attach: false,
+            bin_dir: None,
+            startup_timeout: Duration::from_secs(30),
+        }
+    }
+}
+
+/// The names `--transport` accepts.
+pub const TRANSPORT_NAMES: [&str; 2] = ["zenoh", "in-process"];
+
+impl Transport {
+    /// The transport named `name` (one of [`TRANSPORT_NAMES`]); `zenoh`
+    /// takes `settings`.
+    pub fn named(name: &str, settings: ZenohSettings) -> Result<Self, ConfigError> {
+        match name {
+            "in-process" => Ok(Transport::InProcess),
+            "zenoh" => Ok(Transport::Zenoh(settings)),
+            other => Err(ConfigError::new(
+                "transport",
+                format!("unknown transport '{other}', expected in-process or zenoh"),
+            )),
+        }
+    }
+
+    /// The name, one of [`TRANSPORT_NAMES`].
+    pub fn name(&self) -> &'static str {
+        match self {
+            Transport::InProcess => "in-process",
+            Transport::Zenoh(_) => "zenoh",
+        }
+    }
+
+    /// The zenoh settings, over zenoh.
+    pub fn zenoh(&self) -> Option<&ZenohSettings> {
+        match self {
+            Transport::InProcess => None,
+            Transport::Zenoh(settings) => Some(settings),
+        }
+    }
+
+    /// Whether agents are processes whose messages are counted.
+    pub fn communicates(&self) -> bool {
+        self.zenoh().is_some()
+    }
+
+    /// The same transport for another experiment name (a study's entries
+    /// each get their own processes and keys).
+    pub fn for_experiment(&self, suffix: &str) -> Self {
+        let mut t = self.clone();
+        if let Transport::Zenoh(z) = &mut t {
+            z.endpoints.experiment = format!("{}-{suffix}", z.endpoints.experiment);
+        }
+        t
+    }
+
+    /// Rejects timeouts of zero.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let Transport::Zenoh(z) = self else {
+            return Ok(());
+        };
+        for (key, value) in [
+            ("advice_timeout_ms", z.advice_timeout_ms),
+            ("step_timeout_ms", z.step_timeout_ms),
+        ] {
+            if value == 0 {
+                return Err(ConfigError::new(
+                    format!("transport.zenoh.{key}"),
+                    "must be at least 1 ms, got 0",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What a file may say: a name, or the zenoh table.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum TransportFile {
+    Name(String),
+    Zenoh { zenoh: ZenohSettings },
+}
+
+impl TryFrom<TransportFile> for Transport {
+    type Error = ConfigError;
+
+    fn try_from(file: TransportFile) -> Result<Self, ConfigError> {
+        match file {
+            TransportFile::Name(name) => Transport::named(&name, ZenohSettings::default()),
+            TransportFile::Zenoh { zenoh } => Ok(Transport::Zenoh(zenoh)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Deserialize)]
+    struct File {
+        transport: Transport,
+    }
+
+    fn parse(toml_text: &str) -> Result<Transport, String> {
+        toml::from_str::<File>(toml_text)
+            .map(|f| f.transport)
+            .map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn files_name_or_configure_the_transport() {
+        assert_eq!(
+            parse("transport = \"in-process\"").unwrap(),
+            Transport::InProcess
+        );
+        assert_eq!(
+            parse("transport = \"zenoh\"").unwrap(),
+            Transport::Zenoh(ZenohSettings::default())
+        );
+        let t = parse("[transport.zenoh]\nadvice_timeout_ms = 9\n").unwrap();
+        let Transport::Zenoh(z) = t else {
+            panic!("zenoh expected")
+        };
+        assert_eq!((z.advice_timeout_ms, z.step_timeout_ms), (9, 1000));
+        assert!(parse("transport = \"pigeon\"").is_err());
+    }
+
+    #[test]
+    fn the_record_holds_timeouts_not_endpoints() {
+        let mut z = ZenohSettings::default();
+        z.endpoints.port = 7447;
+        let json = serde_json::to_value(Transport::Zenoh(z)).unwrap();
+        assert_eq!(
+            json,
+            serde_json::json!({"zenoh": {"advice_timeout_ms": 5, "step_timeout_ms": 1000}})
+        );
+        assert_eq!(
+            serde_json::to_value(Transport::InProcess).unwrap(),
+            serde_json::json!("in-process")
+        );
+        let back: Transport = serde_json::from_value(json).unwrap();
+        assert_eq!(back, Transport::Zenoh(ZenohSettings::default()));
+    }
+
+    #[test]
+    fn zero_timeouts_are_refused() {
+        let t = Transport::Zenoh(ZenohSettings {
+            step_timeout_ms: 0,
+            ..ZenohSettings::default()
+        });
+        assert_eq!(
+            t.validate().unwrap_err().key,
+            "transport.zenoh.step_timeout_ms"
+        );
+    }
+}
