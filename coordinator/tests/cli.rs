@@ -318,6 +318,14 @@ fn bad_input_is_refused_with_exit_code_2() {
     let before = contents(&out);
     refused(&run_tiny("no-advice", &out, &["--seed", "8"]), o);
     refused(&run_tiny("torrey", &out, &[]), "another configuration");
+    // The transport is part of the identity: another one, or other zenoh
+    // timeouts, never rewrite these results.
+    let zenoh = ["--transport", "zenoh", "--advice-timeout-ms", "7"];
+    refused(&run_tiny("no-advice", &out, &zenoh), "config.transport");
+    // An output path that is a file.
+    let file = tmp.path().join("file");
+    fs::write(&file, b"mine").unwrap();
+    refused(&run_tiny("no-advice", &file, &[]), "is a file");
     assert_eq!(contents(&out), before);
 }
 
