@@ -5,7 +5,8 @@ use std::time::{Duration, Instant};
 
 use agent::{AgentConfig, Mode, StrategyKind};
 use coordinator::{
-    AgentSpec, Backend, Experiment, ExperimentConfig, Network, NetworkOptions, RemoteBackend,
+    AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
+    ZenohSettings,
 };
 use integration_tests::{bin, bin_dir, experiment_name, free_port};
 use proto::keys::{Keys, Role};
@@ -33,15 +34,17 @@ fn adhoc_td_experiment() -> Experiment {
 
 fn network(tag: &str, port: u16) -> Network {
     Network::start(
-        &NetworkOptions {
-            experiment: experiment_name(tag),
-            port,
-            connect: Vec::new(),
-            attach: false,
-            bin_dir: Some(bin_dir()),
+        &ZenohSettings {
             advice_timeout_ms: 20,
             step_timeout_ms: 2000,
-            startup_timeout: Duration::from_secs(60),
+            endpoints: Endpoints {
+                experiment: experiment_name(tag),
+                port,
+                connect: Vec::new(),
+                attach: false,
+                bin_dir: Some(bin_dir()),
+                startup_timeout: Duration::from_secs(60),
+            },
         },
         3,
     )
