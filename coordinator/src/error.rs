@@ -42,7 +42,7 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
-    /// A figure could not be drawn or written.
+    /// A figure could not be drawn.
     #[error(transparent)]
     Figure(#[from] crate::figures::FigureError),
     /// A backend failed while playing (a bug or a lost peer).

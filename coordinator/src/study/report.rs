@@ -1,6 +1,7 @@
 //! The study's `REPORT.md`, `significance.json` and figures.
 
 use std::fmt::Write as _;
+use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -9,8 +10,7 @@ use super::config::{Entry, StudyConfig, StudyTransport, is_ad_hoc};
 use super::run::write_file;
 use crate::config::Algorithm;
 use crate::error::Error;
-use crate::figures::{SeriesSet, write_figures};
-use crate::output::SUMMARY_FILE;
+use crate::figures::{Point, SeriesSet, draw_figures};
 use crate::protocol::{EvalPoint, RunResult};
 use crate::stats::{Estimate, estimate};
 use crate::summary::CommSummary;
@@ -27,12 +27,44 @@ pub struct EntryResults {
 impl EntryResults {
     /// The metric over runs at the last evaluation point.
     fn last(&self, level: f64, metric: fn(&EvalPoint) -> Option<f64>) -> Estimate {
+        self.over_runs(level, |r| r.points.last(), metric)
+    }
+
+    /// The metric over runs at the evaluation point `at` picks in each run
+    /// (runs without it, or without a value, are left out).
+    fn over_runs(
+        &self,
+        level: f64,
+        at: impl Fn(&RunResult) -> Option<&EvalPoint>,
+        metric: fn(&EvalPoint) -> Option<f64>,
+    ) -> Estimate {
         let samples: Vec<f64> = self
             .results
             .iter()
-            .filter_map(|r| r.points.last().and_then(metric))
+            .filter_map(|r| at(r).and_then(metric))
             .collect();
         estimate(&samples, level)
+    }
+
+    /// The figures' input: every metric over runs at every evaluation
+    /// point, as in the experiment's `summary.json`.
+    fn series_set(&self, level: f64) -> SeriesSet {
+        let first_run = self.results.first().map(|r| r.points.as_slice());
+        let points = first_run
+            .unwrap_or_default()
+            .iter()
+            .enumerate()
+            .map(|(p, at)| {
+                let over_runs = |metric| self.over_runs(level, |r| r.points.get(p), metric);
+                Point {
+                    episode: at.episode,
+                    goal_pct: over_runs(|e| Some(e.goal_pct)),
+                    time_to_goal: over_runs(|e| e.time_to_goal),
+                    spent_budget: over_runs(|e| Some(e.spent_budget)),
+                }
+            })
+            .collect();
+        SeriesSet::new(&self.entry.name, self.results.len() as u64, level, points)
     }
 }
 
@@ -47,11 +79,18 @@ pub fn write_report(
     let mut json = serde_json::to_vec_pretty(comparisons).expect("comparisons serialise");
     json.push(b'\n');
     write_file(&out.join("significance.json"), &json)?;
-    let sets = entries
+    let sets: Vec<SeriesSet> = entries
         .iter()
-        .map(|e| SeriesSet::read(&e.entry.name, &out.join(&e.entry.name).join(SUMMARY_FILE)))
-        .collect::<Result<Vec<_>, _>>()?;
-    let figures = write_figures(&out.join("figures"), &sets)?;
+        .map(|e| e.series_set(study.ci_level))
+        .collect();
+    let figures = draw_figures(&sets)?;
+    let figures_dir = out.join("figures");
+    fs::create_dir_all(&figures_dir).map_err(|e| Error::io("create", &figures_dir, e))?;
+    for figure in &figures {
+        for (file, bytes) in figure.files() {
+            write_file(&figures_dir.join(file), bytes)?;
+        }
+    }
 
     let level = study.ci_level;
     let pct = 100.0 * level;
@@ -180,15 +219,8 @@ pub fn write_report(
     );
 
     let _ = writeln!(md, "## Figures\n");
-    for f in figures
-        .iter()
-        .filter(|f| f.extension().is_some_and(|e| e == "svg"))
-    {
-        let name = f
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let _ = writeln!(md, "![{name}](figures/{name})\n");
+    for f in &figures {
+        let _ = writeln!(md, "![{name}.svg](figures/{name}.svg)\n", name = f.name);
     }
 
     if study.transport == StudyTransport::Zenoh {
