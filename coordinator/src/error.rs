@@ -45,7 +45,7 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
-    /// A figure could not be drawn or written.
+    /// A figure could not be drawn.
     #[error(transparent)]
     Figure(#[from] crate::figures::FigureError),
     /// A run failed while playing (a lost peer, a process that did not answer).

@@ -18,7 +18,7 @@
 //! - [`wilcoxon`]: signed-rank test between algorithms, intervals where one is better.
 //! - [`store`]: the results directory: claim, resume, atomic writes.
 //! - [`runner`]: R runs over T threads, then the summary.
-//! - [`figures`]: the paper's figures of summaries, as SVG and PNG.
+//! - [`figures`]: the paper's figures of in-memory results, as SVG and PNG.
 //! - [`study`]: the paper's experiments in one command: presets, tests
 //!   between algorithms, figures and `REPORT.md`.
 //!
@@ -57,7 +57,7 @@ pub use backend::{AgentStats, Backend, Episode};
 pub use config::{AgentSpec, Algorithm, ConfigError, ExperimentConfig, load_team_file};
 pub use error::Error;
 pub use experiment::{Experiment, RunSeeds};
-pub use figures::{FigureError, Metric, Series, SeriesSet, write_figures};
+pub use figures::{Figure, FigureError, Metric, Series, SeriesSet, draw_figures};
 pub use in_process::InProcess;
 pub use remote::{Network, RemoteBackend};
 pub use runner::{Report, RunOptions, run_experiment};

@@ -1,6 +1,7 @@
 //! The study's `REPORT.md`, `significance.json` and figures.
 
 use std::fmt::Write as _;
+use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -8,9 +9,9 @@ use super::analysis::{Comparison, EntryResults};
 use super::config::{Entry, StudyConfig, is_ad_hoc};
 use crate::config::Algorithm;
 use crate::error::Error;
-use crate::figures::{SeriesSet, write_figures};
+use crate::figures::{Point, SeriesSet, draw_figures};
 use crate::stats::Estimate;
-use crate::store::{self, SUMMARY_FILE};
+use crate::store;
 
 /// Writes `significance.json`, the figures and `REPORT.md` into `out`.
 pub fn write_report(
@@ -21,11 +22,18 @@ pub fn write_report(
     wall: Duration,
 ) -> Result<PathBuf, Error> {
     store::write_json(&out.join("significance.json"), &comparisons)?;
-    let sets = entries
+    let sets: Vec<SeriesSet> = entries
         .iter()
-        .map(|e| SeriesSet::read(&e.entry.name, &out.join(&e.entry.name).join(SUMMARY_FILE)))
-        .collect::<Result<Vec<_>, _>>()?;
-    let figures = write_figures(&out.join("figures"), &sets)?;
+        .map(|e| series_set(e, study.ci_level))
+        .collect();
+    let figures = draw_figures(&sets)?;
+    let figures_dir = out.join("figures");
+    fs::create_dir_all(&figures_dir).map_err(|e| Error::io("create", &figures_dir, e))?;
+    for figure in &figures {
+        for (file, bytes) in figure.files() {
+            store::write_atomically(&figures_dir.join(file), bytes)?;
+        }
+    }
 
     let level = study.ci_level;
     let pct = 100.0 * level;
@@ -151,15 +159,8 @@ pub fn write_report(
     );
 
     let _ = writeln!(md, "## Figures\n");
-    for f in figures
-        .iter()
-        .filter(|f| f.extension().is_some_and(|e| e == "svg"))
-    {
-        let name = f
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let _ = writeln!(md, "![{name}](figures/{name})\n");
+    for f in &figures {
+        let _ = writeln!(md, "![{name}.svg](figures/{name}.svg)\n", name = f.name);
     }
 
     if study.transport.communicates() {
@@ -200,6 +201,22 @@ pub fn write_report(
     let path = out.join("REPORT.md");
     store::write_atomically(&path, md.as_bytes())?;
     Ok(path)
+}
+
+/// The figures' input: an experiment's summary, from memory.
+fn series_set(e: &EntryResults, level: f64) -> SeriesSet {
+    let points = e
+        .summary
+        .eval_points
+        .iter()
+        .map(|p| Point {
+            episode: p.episode,
+            goal_pct: p.goal_pct,
+            time_to_goal: p.time_to_goal,
+            spent_budget: p.spent_budget,
+        })
+        .collect();
+    SeriesSet::new(&e.entry.name, e.summary.runs, level, points)
 }
 
 fn label(e: &Entry) -> String {

@@ -1,0 +1,329 @@
+//! Where things go: the page's areas, the data ranges of a chart, tick
+//! labels, the zoom window and the legend's size and place.
+
+use super::data::{Series, SeriesPoint};
+
+/// Width and height of every figure, in pixels.
+pub const SIZE: (u32, u32) = (1000, 600);
+/// Height of the header: the title, and the note below it.
+pub(super) const HEADER_H: u32 = 64;
+/// Margins around the chart (top, right, bottom, left).
+pub(super) const MARGIN: (u32, u32, u32, u32) = (6, 30, 10, 12);
+/// Height of the x tick labels and axis title.
+pub(super) const X_LABELS_H: u32 = 54;
+/// Width of the y tick labels and axis title.
+pub(super) const Y_LABELS_W: u32 = 84;
+/// Size of the plotting area.
+pub(super) const PLOT: (u32, u32) = (
+    SIZE.0 - MARGIN.1 - MARGIN.3 - Y_LABELS_W,
+    SIZE.1 - HEADER_H - MARGIN.0 - MARGIN.2 - X_LABELS_H,
+);
+/// Tick labels on each axis, at most.
+pub(super) const TICKS: usize = 11;
+
+/// Legend text size (pixels).
+pub(super) const LEGEND_TEXT: f64 = 15.0;
+/// Legend line height (pixels).
+pub(super) const LEGEND_LINE: i32 = 25;
+/// Legend inner padding (pixels).
+pub(super) const LEGEND_PAD: i32 = 10;
+/// Width of a legend swatch (pixels).
+pub(super) const LEGEND_SWATCH: i32 = 30;
+/// Gap between a legend swatch and its text (pixels).
+pub(super) const LEGEND_GAP: i32 = 9;
+/// Distance of the legend from the plot's edges (pixels).
+pub(super) const LEGEND_INSET: i32 = 12;
+
+/// Share of the training episodes the zoomed figure shows.
+const LAST_SHARE: f64 = 0.2;
+
+/// How a figure's y range is chosen.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum YRange {
+    /// Always these bounds.
+    Fixed(f64, f64),
+    /// From zero to the largest value, with a margin.
+    FromZero,
+    /// Around the values with a margin, within zero and the ceiling.
+    Fitted(Option<f64>),
+}
+
+/// Data ranges of a chart.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Ranges {
+    /// Episodes.
+    pub x: (f64, f64),
+    /// Metric values.
+    pub y: (f64, f64),
+}
+
+/// The legend's box in the plotting area, in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Legend {
+    /// Width and height.
+    pub size: (i32, i32),
+    /// Top-left corner.
+    pub place: (i32, i32),
+}
+
+/// Where a chart's data and legend go.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Layout {
+    /// The data ranges of the axes.
+    pub ranges: Ranges,
+    /// The legend, `None` without curves.
+    pub legend: Option<Legend>,
+}
+
+impl Layout {
+    /// The layout of the curves `shown` with y range rule `y`: the legend
+    /// where it covers the least data; if it covers some and the range is
+    /// not fixed, the y range grows to make room above the data.
+    pub(super) fn of(shown: &[Series], y: YRange) -> Self {
+        let mut ranges = Ranges {
+            x: x_range(shown),
+            y: y_range(y, shown),
+        };
+        let legend = legend_size(shown).map(|size| {
+            let (place, covered) = best_place(shown, ranges, size);
+            if covered == 0 || matches!(y, YRange::Fixed(..)) {
+                return Legend { size, place };
+            }
+            let free = f64::from(PLOT.1) - f64::from(size.1 + 2 * LEGEND_INSET);
+            let (lo, hi) = ranges.y;
+            ranges.y.1 = lo + (hi - lo) * f64::from(PLOT.1) / free.max(1.0);
+            Legend {
+                size,
+                place: best_place(shown, ranges, size).0,
+            }
+        });
+        Self { ranges, legend }
+    }
+}
+
+/// The first episode a zoomed figure shows: the start of the last
+/// [`LAST_SHARE`] of the episodes of `series`; `None` without points.
+pub(super) fn zoom_start(series: &[Series]) -> Option<f64> {
+    let episodes = || {
+        series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.episode))
+    };
+    let first = episodes().min_by(f64::total_cmp)?;
+    let last = episodes().max_by(f64::total_cmp)?;
+    Some(last - LAST_SHARE * (last - first))
+}
+
+/// Decimals that tell apart ticks over a range of `span`.
+pub(super) fn decimals(span: f64) -> usize {
+    if span >= 10.0 {
+        0
+    } else if span >= 1.0 {
+        1
+    } else {
+        2
+    }
+}
+
+/// From the first episode shown to the last.
+fn x_range(shown: &[Series]) -> (f64, f64) {
+    let episodes = shown
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.episode));
+    let lo = episodes.clone().min_by(f64::total_cmp).unwrap_or(0.0);
+    let hi = episodes.max_by(f64::total_cmp).unwrap_or(1.0);
+    if hi > lo {
+        (lo, hi)
+    } else {
+        (lo - 1.0, lo + 1.0)
+    }
+}
+
+/// The y range by `rule` over every known value shown.
+fn y_range(rule: YRange, shown: &[Series]) -> (f64, f64) {
+    let values = shown
+        .iter()
+        .flat_map(|s| &s.points)
+        .flat_map(|p| [p.mean, p.low, p.high])
+        .flatten();
+    let lo = values.clone().min_by(f64::total_cmp);
+    let hi = values.max_by(f64::total_cmp);
+    match rule {
+        YRange::Fixed(lo, hi) => (lo, hi),
+        YRange::FromZero => {
+            let hi = hi.unwrap_or(0.0) * 1.08;
+            (0.0, if hi > 0.0 { hi } else { 1.0 })
+        }
+        YRange::Fitted(ceiling) => {
+            let (Some(min), Some(max)) = (lo, hi) else {
+                return (0.0, ceiling.unwrap_or(1.0));
+            };
+            let margin = ((max - min) * 0.08).max(0.5);
+            let lo = (min - margin).max(0.0);
+            let hi = max + margin;
+            (lo, ceiling.map_or(hi, |c| hi.min(c).max(lo + 1.0)))
+        }
+    }
+}
+
+/// Size of the legend of `shown` in pixels, `None` without curves.
+fn legend_size(shown: &[Series]) -> Option<(i32, i32)> {
+    // A generous average glyph width: DejaVu Sans is wide.
+    let chars = shown.iter().map(|s| s.label.chars().count()).max()?;
+    let text = (chars as f64 * 0.62 * LEGEND_TEXT).ceil() as i32;
+    Some((
+        2 * LEGEND_PAD + LEGEND_SWATCH + LEGEND_GAP + text,
+        2 * LEGEND_PAD + LEGEND_LINE * (shown.len() as i32 - 1) + 18,
+    ))
+}
+
+/// Where a legend of `size` may go in the plotting area (its top-left
+/// pixel), best first: the upper left, upper right, lower right and lower
+/// left corners, then down the left and right edges.
+fn legend_places(size: (i32, i32)) -> Vec<(i32, i32)> {
+    let left = LEGEND_INSET;
+    let right = PLOT.0 as i32 - LEGEND_INSET - size.0;
+    let top = LEGEND_INSET;
+    let bottom = PLOT.1 as i32 - LEGEND_INSET - size.1;
+    let mut places = vec![(left, top), (right, top), (right, bottom), (left, bottom)];
+    for y in (top..bottom).step_by(10).skip(1) {
+        places.extend([(left, y), (right, y)]);
+    }
+    places
+}
+
+/// The first of the [`legend_places`] where a legend of `size` covers the
+/// least data, and how much it covers (samples of lines and bands under it).
+fn best_place(shown: &[Series], ranges: Ranges, size: (i32, i32)) -> ((i32, i32), usize) {
+    let (w, h) = (f64::from(PLOT.0), f64::from(PLOT.1));
+    let to_x = |px: i32| ranges.x.0 + (ranges.x.1 - ranges.x.0) * f64::from(px) / w;
+    let to_y = |px: i32| ranges.y.1 - (ranges.y.1 - ranges.y.0) * f64::from(px) / h;
+    // Pixels kept free above and below the legend.
+    const CLEAR: i32 = 8;
+    legend_places(size)
+        .into_iter()
+        .map(|(left, top)| {
+            let (x0, x1) = (to_x(left), to_x(left + size.0));
+            let (y0, y1) = (to_y(top + size.1 + CLEAR), to_y(top - CLEAR));
+            let covered = (0..=32)
+                .map(|i| x0 + (x1 - x0) * f64::from(i) / 32.0)
+                .flat_map(|x| shown.iter().filter_map(move |s| extent_at(&s.points, x)))
+                .filter(|&(lo, hi)| lo <= y1 && hi >= y0)
+                .count();
+            ((left, top), covered)
+        })
+        .min_by_key(|&(_, covered)| covered)
+        .expect("four corners at least")
+}
+
+/// The vertical extent of a series' line and band at episode `x`,
+/// interpolated between the evaluations around it.
+fn extent_at(points: &[SeriesPoint], x: f64) -> Option<(f64, f64)> {
+    let i = points.iter().position(|p| p.episode >= x)?;
+    let b = &points[i];
+    let a = if b.episode == x || i == 0 {
+        b
+    } else {
+        &points[i - 1]
+    };
+    let t = if b.episode > a.episode {
+        (x - a.episode) / (b.episode - a.episode)
+    } else {
+        0.0
+    };
+    let at = |f: fn(&SeriesPoint) -> Option<f64>| Some(f(a)? + (f(b)? - f(a)?) * t);
+    let known = [at(|p| p.mean), at(|p| p.low), at(|p| p.high)]
+        .into_iter()
+        .flatten();
+    let lo = known.clone().min_by(f64::total_cmp)?;
+    let hi = known.max_by(f64::total_cmp)?;
+    Some((lo, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::data::Metric;
+    use super::super::fixtures::set;
+    use super::*;
+
+    /// The goal percentage curve of a set with `goal`, labelled "Curve".
+    fn goal(goal: &[Option<f64>]) -> Series {
+        set("Curve", goal).series(Metric::GoalPct)
+    }
+
+    #[test]
+    fn zoom_window_is_the_last_fifth_with_a_fitted_range() {
+        let series = [goal(&[
+            Some(0.0),
+            Some(10.0),
+            Some(20.0),
+            Some(30.0),
+            Some(40.0),
+            Some(42.0),
+        ])];
+        assert_eq!(zoom_start(&series), Some(400.0));
+        assert_eq!(zoom_start(&[]), None);
+        let shown = [Series {
+            label: "A".to_owned(),
+            points: series[0].points[4..].to_vec(),
+        }];
+        let (lo, hi) = y_range(YRange::Fitted(Some(100.0)), &shown);
+        assert!(
+            lo > 30.0 && lo < 35.0 && hi > 47.0 && hi < 50.0,
+            "{lo}..{hi}"
+        );
+        assert_eq!(x_range(&shown), (400.0, 500.0));
+    }
+
+    #[test]
+    fn legend_avoids_the_data() {
+        let ranges = Ranges {
+            x: (0.0, 300.0),
+            y: (0.0, 100.0),
+        };
+        // Rising curves leave the upper left free.
+        let rising = [goal(&[Some(0.0), Some(50.0), Some(90.0), Some(95.0)])];
+        let size = legend_size(&rising).unwrap();
+        let places = legend_places(size);
+        assert_eq!(best_place(&rising, ranges, size), (places[0], 0));
+        // High ones leave the bottom free.
+        let high = [goal(&[Some(90.0); 4])];
+        assert_eq!(best_place(&high, ranges, size), (places[2], 0));
+        // High and low ones, the middle of the left edge.
+        let both = [goal(&[Some(90.0); 4]), goal(&[Some(5.0); 4])];
+        let size = legend_size(&both).unwrap();
+        let ((left, top), covered) = best_place(&both, ranges, size);
+        assert_eq!((left, covered), (LEGEND_INSET, 0));
+        assert!(top > LEGEND_INSET && top + size.1 < PLOT.1 as i32 - LEGEND_INSET);
+        // Covering everything, the first corner.
+        let wide = [wide_band()];
+        let (place, covered) = best_place(&wide, ranges, size);
+        assert_eq!(place, legend_places(size)[0]);
+        assert!(covered > 0);
+    }
+
+    #[test]
+    fn a_covering_legend_makes_room_above_the_data_unless_fixed() {
+        let wide = [wide_band()];
+        let grown = Layout::of(&wide, YRange::FromZero);
+        assert_eq!(grown.ranges.y.0, 0.0);
+        assert!(grown.ranges.y.1 > 100.0 * 1.08, "{grown:?}");
+        let fixed = Layout::of(&wide, YRange::Fixed(0.0, 100.0));
+        assert_eq!(fixed.ranges.y, (0.0, 100.0));
+        assert_eq!(Layout::of(&[], YRange::FromZero).legend, None);
+    }
+
+    /// A band from 0 to 100 over episodes 0 to 300.
+    fn wide_band() -> Series {
+        let point = |episode| SeriesPoint {
+            episode,
+            mean: Some(50.0),
+            low: Some(0.0),
+            high: Some(100.0),
+        };
+        Series {
+            label: "Wide".to_owned(),
+            points: vec![point(0.0), point(300.0)],
+        }
+    }
+}

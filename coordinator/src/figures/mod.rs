@@ -1,0 +1,158 @@
+//! Figures of experiments in the style of the paper's: goal percentage with
+//! a confidence band per algorithm (its Figures 3, 5, 7), time to goal
+//! (Figure 2), spent budget (Figures 4a, 6a, 8a) and the goal percentage of
+//! the last training episodes zoomed in (Figures 4b, 6b, 8b).
+//!
+//! Pure: the input is every algorithm's estimates in memory
+//! ([`SeriesSet`]), the output every figure as an SVG document drawn with
+//! `plotters` and a PNG of the same size rasterised with `resvg` and the
+//! system's fonts (without any, the PNG has no text); the caller writes
+//! them. Unknown means leave gaps in the lines; unknown interval bounds
+//! leave gaps in the bands.
+//!
+//! ```
+//! use coordinator::Estimate;
+//! use coordinator::figures::{Point, SeriesSet, draw_figures};
+//!
+//! let goal = |mean| Estimate { n: 1, mean: Some(mean), ci_low: None, ci_high: None };
+//! let point = |episode, pct| Point {
+//!     episode,
+//!     goal_pct: goal(pct),
+//!     time_to_goal: goal(100.0 - pct),
+//!     spent_budget: goal(0.0),
+//! };
+//! let sets = [SeriesSet::new("NoAdvice", 1, 0.95, vec![point(0, 5.0), point(100, 30.0)])];
+//! for figure in draw_figures(&sets)? {
+//!     for (file, bytes) in figure.files() {
+//!         println!("{file}: {} bytes", bytes.len());
+//!     }
+//! }
+//! # Ok::<(), coordinator::figures::FigureError>(())
+//! ```
+
+mod catalogue;
+mod data;
+mod draw;
+#[cfg(test)]
+mod fixtures;
+mod layout;
+
+pub use data::{Metric, Point, Series, SeriesPoint, SeriesSet};
+pub use layout::SIZE;
+
+use catalogue::{FIGURES, note};
+
+/// One figure, drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Figure {
+    /// File name without extension, e.g. `goal_pct`.
+    pub name: &'static str,
+    /// The SVG document.
+    pub svg: String,
+    /// The PNG image.
+    pub png: Vec<u8>,
+}
+
+impl Figure {
+    /// The figure's files: `<name>.svg` and `<name>.png` with their bytes.
+    pub fn files(&self) -> [(String, &[u8]); 2] {
+        [
+            (format!("{}.svg", self.name), self.svg.as_bytes()),
+            (format!("{}.png", self.name), &self.png),
+        ]
+    }
+}
+
+/// Why a figure could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum FigureError {
+    /// Plotting failed.
+    #[error("cannot draw figure {name}: {message}")]
+    Draw {
+        /// The figure.
+        name: &'static str,
+        /// What went wrong.
+        message: String,
+    },
+    /// The SVG could not be rasterised.
+    #[error("cannot rasterise figure {name}: {message}")]
+    Raster {
+        /// The figure.
+        name: &'static str,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+/// Every figure of `sets`, one colour per set in order: `goal_pct`,
+/// `time_to_goal`, `spent_budget` and `goal_pct_last`.
+pub fn draw_figures(sets: &[SeriesSet]) -> Result<Vec<Figure>, FigureError> {
+    let note = note(sets);
+    FIGURES
+        .iter()
+        .map(|kind| {
+            let series: Vec<Series> = sets.iter().map(|s| s.series(kind.metric)).collect();
+            let svg = kind.svg(&series, &note)?;
+            let png = draw::png(&svg).map_err(|message| FigureError::Raster {
+                name: kind.name,
+                message,
+            })?;
+            Ok(Figure {
+                name: kind.name,
+                svg,
+                png,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixtures::set;
+    use super::*;
+
+    #[test]
+    fn draws_every_figure_as_svg_and_png() {
+        let sets = [
+            set("NoAdvice", &[Some(5.0), Some(20.0), Some(30.0), Some(35.0)]),
+            set("AdHocTD", &[Some(5.0), Some(25.0), Some(40.0), Some(45.0)]),
+        ];
+        let figures = draw_figures(&sets).unwrap();
+        let names: Vec<_> = figures.iter().map(|f| f.name).collect();
+        assert_eq!(
+            names,
+            ["goal_pct", "time_to_goal", "spent_budget", "goal_pct_last"]
+        );
+        for (figure, axis) in figures.iter().zip([
+            "Goal percentage (%)",
+            "Time to goal (frames)",
+            "Spent budget (advice given, per agent)",
+            "Goal percentage (%)",
+        ]) {
+            let name = figure.name;
+            for text in [
+                "NoAdvice",
+                "AdHocTD",
+                "Training episodes",
+                axis,
+                "Mean over 3 runs; shaded: 95% confidence interval",
+            ] {
+                assert!(figure.svg.contains(text), "{name}.svg lacks {text:?}");
+            }
+            assert!(figure.png.starts_with(b"\x89PNG\r\n\x1a\n"), "{name}.png");
+            let [(svg, svg_bytes), (png, png_bytes)] = figure.files();
+            assert_eq!((svg, png), (format!("{name}.svg"), format!("{name}.png")));
+            assert_eq!(
+                (svg_bytes, png_bytes),
+                (figure.svg.as_bytes(), &figure.png[..])
+            );
+        }
+    }
+
+    #[test]
+    fn drawing_is_deterministic_and_needs_no_sets() {
+        let sets = [set("A", &[Some(1.0), None, Some(3.0)])];
+        assert_eq!(draw_figures(&sets).unwrap(), draw_figures(&sets).unwrap());
+        assert_eq!(draw_figures(&[]).unwrap().len(), FIGURES.len());
+    }
+}
