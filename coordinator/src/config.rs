@@ -7,28 +7,8 @@ use agent::{AgentConfig, StrategyKind};
 use env_server::EnvConfig;
 use serde::{Deserialize, Serialize};
 
+use crate::error::ConfigError;
 use crate::transport::Transport;
-
-/// A configuration value out of its allowed range, or a file that cannot be
-/// read as a configuration.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("invalid config `{key}`: {reason}")]
-pub struct ConfigError {
-    /// The offending key, as spelled in the configuration (`team[2].alpha`).
-    pub key: String,
-    /// What is wrong with its value, and what is accepted.
-    pub reason: String,
-}
-
-impl ConfigError {
-    /// An error about `key`.
-    pub fn new(key: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self {
-            key: key.into(),
-            reason: reason.into(),
-        }
-    }
-}
 
 /// The algorithms a homogeneous team can run, by their command-line names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize, Deserialize)]

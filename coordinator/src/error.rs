@@ -4,12 +4,33 @@ use std::path::PathBuf;
 
 use agent::PersistError;
 
+/// A configuration value out of its allowed range, or a file that cannot be
+/// read as a configuration.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("invalid config `{key}`: {reason}")]
+pub struct ConfigError {
+    /// The offending key, as spelled in the configuration (`team[2].alpha`).
+    pub key: String,
+    /// What is wrong with its value, and what is accepted.
+    pub reason: String,
+}
+
+impl ConfigError {
+    /// An error about `key`.
+    pub fn new(key: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self {
+            key: key.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
 /// Every failure of the coordinator library; each displays as one line.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A configuration value or file was rejected.
     #[error(transparent)]
-    Config(#[from] crate::config::ConfigError),
+    Config(#[from] ConfigError),
     /// An agent's snapshot could not be loaded or does not fit the agent.
     #[error("cannot load agent {agent} from {}: {}", path.display(), persist_reason(source))]
     Snapshot {

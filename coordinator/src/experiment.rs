@@ -97,7 +97,7 @@ impl Experiment {
         let mut agents = Vec::with_capacity(n);
         for (id, (spec, snapshot)) in self.config.team.iter().zip(&self.snapshots).enumerate() {
             let mut a = Agent::new(id, n, spec.config.clone(), seeds.agents[id]).map_err(|e| {
-                crate::config::ConfigError::new(format!("team[{id}].{}", e.key), e.reason)
+                crate::error::ConfigError::new(format!("team[{id}].{}", e.key), e.reason)
             })?;
             if let Some(s) = snapshot {
                 a.restore(Snapshot::clone(s))

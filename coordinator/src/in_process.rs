@@ -5,8 +5,7 @@ use agent::{Agent, Mode, Observation, Snapshot, Team};
 use env_server::{Env, EnvConfig};
 
 use crate::backend::{AgentStats, Backend, Episode};
-use crate::config::ConfigError;
-use crate::error::Error;
+use crate::error::{ConfigError, Error};
 use crate::experiment::{Experiment, RunSeeds};
 
 /// The in-process backend of one run.

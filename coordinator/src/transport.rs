@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::ConfigError;
+use crate::error::ConfigError;
 
 /// Where agents and simulator live.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

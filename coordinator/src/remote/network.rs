@@ -15,8 +15,7 @@ use zenoh::query::{ConsolidationMode, QueryTarget};
 use zenoh::sample::SampleKind;
 
 use super::launch::{Children, find_binary};
-use crate::config::ConfigError;
-use crate::error::Error;
+use crate::error::{ConfigError, Error};
 use crate::transport::{Endpoints, ZenohSettings};
 
 /// The joined network and the processes of the experiment.

@@ -5,7 +5,8 @@ use std::path::Path;
 use agent::StrategyKind;
 use serde::{Deserialize, Serialize};
 
-use crate::config::{AgentSpec, Algorithm, ConfigError, DEFAULT_CI_LEVEL, ExperimentConfig};
+use crate::config::{AgentSpec, Algorithm, DEFAULT_CI_LEVEL, ExperimentConfig};
+use crate::error::ConfigError;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
