@@ -48,7 +48,7 @@ pub mod summary;
 pub mod wilcoxon;
 
 pub use backend::{AgentStats, Backend, Episode, InProcess, Transport};
-pub use config::{AgentSpec, Algorithm, ConfigError, ExperimentConfig, load_team_file};
+pub use config::{AgentSpec, ConfigError, ExperimentConfig, load_team_file};
 pub use error::Error;
 pub use experiment::{Experiment, RunSeeds};
 pub use figures::{FigureError, Metric, Series, SeriesSet, write_figures};

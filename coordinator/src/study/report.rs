@@ -4,10 +4,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use agent::StrategyName;
+
 use super::analysis::Comparison;
-use super::config::{Entry, StudyConfig, StudyTransport, is_ad_hoc};
+use super::config::{Entry, StudyConfig, StudyTransport};
 use super::run::write_file;
-use crate::config::Algorithm;
 use crate::error::Error;
 use crate::figures::{SeriesSet, write_figures};
 use crate::output::SUMMARY_FILE;
@@ -145,9 +146,9 @@ pub fn write_report(
     };
     let advising = |name: &str| {
         Some(name) != study.baseline.as_deref()
-            && kind(name).is_some_and(|a| !matches!(a, Algorithm::NoAdvice | Algorithm::Random))
+            && kind(name).is_some_and(StrategyName::communicates)
     };
-    let ad_hoc = |name: &str| kind(name).is_some_and(is_ad_hoc);
+    let ad_hoc = |name: &str| kind(name).is_some_and(StrategyName::is_ad_hoc);
     let between: Vec<&Comparison> = comparisons
         .iter()
         .filter(|c| advising(&c.a) && advising(&c.b) && (ad_hoc(&c.a) || ad_hoc(&c.b)))
