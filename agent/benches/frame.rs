@@ -3,7 +3,7 @@
 
 use std::hint::black_box;
 
-use agent::{Agent, AgentConfig, Mode, Observation, StrategyKind, Team};
+use agent::{AdHoc, Agent, AgentConfig, Mode, Observation, Strategy, Team};
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -36,7 +36,7 @@ fn frames(n: usize) -> Vec<[Observation; AGENTS]> {
 
 fn team() -> Team {
     let config = AgentConfig {
-        strategy: StrategyKind::AdHocTd,
+        strategy: Strategy::AdHoc(AdHoc::td()),
         ..AgentConfig::default()
     };
     let agents = (0..AGENTS)

@@ -2,7 +2,20 @@
 //! giving probabilities, confidence functions, the reachable set and the
 //! EpisodeSharing budget split.
 
-use crate::config::Reachable;
+use serde::{Deserialize, Serialize};
+
+/// The reachable set G(s): whom an ad hoc advisee asks.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reachable {
+    /// Every other agent of the team, in id order.
+    #[default]
+    Everyone,
+    /// These agent ids, in the given order (the asking agent itself is skipped).
+    Agents(Vec<usize>),
+    /// Teammates whose field position is within this distance (metres).
+    WithinDistance(f64),
+}
 
 /// P_ask(s) = (1 + v_a)^(-sqrt(n(s))); 1 for an unvisited state.
 pub fn p_ask(visits: u64, v_a: f64) -> f64 {

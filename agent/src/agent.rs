@@ -5,13 +5,16 @@ use proto::{Action, State};
 use rand::{Rng, SeedableRng};
 use serde::{Deserialize, Serialize};
 
-use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set, shared_prefix};
-use crate::config::{AgentConfig, ConfigError, Reachable, StrategyKind};
+use crate::advice::shared_prefix;
+use crate::config::AgentConfig;
+use crate::config_error::ConfigError;
+use crate::counters::Counters;
 use crate::exchange::{AdviceExchange, Transition};
 use crate::persist::{PersistError, Snapshot};
-use crate::policy::{AgentRng, RANDOM_DRAW, chance, epsilon_greedy, greedy_first, majority};
+use crate::policy::{AgentRng, RANDOM_DRAW, epsilon_greedy, greedy_first, majority};
 use crate::qtable::{ACTIONS, EntryId, QTable};
 use crate::sarsa::Sarsa;
+use crate::strategy::AskContext;
 use crate::tiles::{Tiling, TilingParams};
 
 /// What an agent sees in one simulator frame.
@@ -21,7 +24,8 @@ pub struct Observation {
     pub state: State,
     /// Whether the agent can kick the ball (it chooses a kick action only then).
     pub can_kick: bool,
-    /// Field position, used only by [`Reachable::WithinDistance`].
+    /// Field position, used only by
+    /// [`Reachable::WithinDistance`](crate::Reachable::WithinDistance).
     pub position: [f64; 2],
 }
 
@@ -33,23 +37,6 @@ pub enum Mode {
     Training,
     /// Frozen: greedy play only; nothing learned, counted, asked or given.
     Evaluation,
-}
-
-/// Communication and budget counters of one agent.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Counters {
-    /// Advice requests sent (one per request, whatever the number of recipients).
-    pub requests_sent: u64,
-    /// Individual answers received.
-    pub advice_received: u64,
-    /// Steps acted on advice: the ad hoc ask budget spent.
-    pub advised_steps: u64,
-    /// Answers given: the give budget spent (ad hoc advisor or Torrey teacher).
-    pub advice_given: u64,
-    /// Transitions sent to receivers: the EpisodeSharing budget spent.
-    pub shared_sent: u64,
-    /// Transitions received and replayed.
-    pub shared_received: u64,
 }
 
 /// The previous step, closed by the next frame's reward and state.
@@ -134,16 +121,7 @@ impl Agent {
                 format!("agent id {id} is not below the team size {team_size}"),
             ));
         }
-        if let Reachable::Agents(ids) = &config.reachable {
-            for (k, &j) in ids.iter().enumerate() {
-                if j >= team_size || ids[..k].contains(&j) {
-                    return Err(ConfigError::new(
-                        "reachable",
-                        format!("agent {j} is out of range or repeated"),
-                    ));
-                }
-            }
-        }
+        config.strategy.check_team(team_size)?;
         Ok(Self {
             id,
             team_size,
@@ -209,13 +187,7 @@ impl Agent {
     /// The budget the paper plots: advice given (ad hoc advisor, Torrey
     /// teacher) or transitions shared (EpisodeSharing); 0 otherwise.
     pub fn spent_budget(&self) -> u64 {
-        match self.config.strategy {
-            StrategyKind::AdHocVisit | StrategyKind::AdHocTd | StrategyKind::Torrey => {
-                self.counters.advice_given
-            }
-            StrategyKind::EpisodeSharing => self.counters.shared_sent,
-            StrategyKind::NoAdvice | StrategyKind::Random => 0,
-        }
+        self.config.strategy.spent_budget(&self.counters)
     }
 
     /// Starts an episode in `mode`; forgets the previous episode's trace,
@@ -243,7 +215,8 @@ impl Agent {
     /// this frame (`Move` when the agent cannot kick).
     ///
     /// `positions` holds every agent's field position by id (only needed by
-    /// [`Reachable::WithinDistance`]); `exchange` reaches the advisors.
+    /// [`Reachable::WithinDistance`](crate::Reachable::WithinDistance));
+    /// `exchange` reaches the advisors.
     /// The same as [`act_begin`](Self::act_begin) with everyone reachable,
     /// then, if asked to, [`act_complete`](Self::act_complete) with the
     /// answers `exchange` collects.
@@ -313,7 +286,8 @@ impl Agent {
             if !self.reach.is_empty() {
                 let intended = self
                     .config
-                    .mistake_correcting
+                    .strategy
+                    .mistake_correcting()
                     .then(|| self.explore_in(entry));
                 self.counters.requests_sent += 1;
                 self.in_flight = Some(InFlight {
@@ -379,9 +353,8 @@ impl Agent {
             if let Some(prev) = self.pending.take() {
                 self.learn(prev, final_reward, None);
             }
-            self.share_ready = self.config.strategy == StrategyKind::EpisodeSharing
-                && final_reward > 0.0
-                && !self.episode.is_empty();
+            // Only a strategy that shares records its episode (see `learn`).
+            self.share_ready = final_reward > 0.0 && !self.episode.is_empty();
         }
         if !self.share_ready {
             self.episode.clear();
@@ -409,10 +382,7 @@ impl Agent {
         if !std::mem::take(&mut self.share_ready) {
             return Vec::new();
         }
-        let budget = self
-            .config
-            .sharing_budget
-            .saturating_sub(self.counters.shared_sent);
+        let budget = self.config.strategy.sharing_allowance(&self.counters);
         let receivers = self.team_size - 1;
         let mut shares = Vec::with_capacity(receivers);
         for (k, to) in (0..self.team_size).filter(|&j| j != self.id).enumerate() {
@@ -434,29 +404,10 @@ impl Agent {
             return None;
         }
         let entry = *self.table.get(self.tiling.key(state))?;
-        let c = &self.config;
-        let confident = match c.strategy {
-            StrategyKind::AdHocVisit | StrategyKind::AdHocTd => {
-                let psi = if c.strategy == StrategyKind::AdHocVisit {
-                    psi_visit(entry.visits)
-                } else {
-                    psi_td(entry.visits, entry.kick_spread())
-                };
-                let v_g = if c.strategy == StrategyKind::AdHocVisit {
-                    c.v_g_visit
-                } else {
-                    c.v_g_td
-                };
-                self.counters.advice_given < c.give_budget
-                    && entry.visits > 0
-                    && chance(&mut self.rng, p_give(psi, v_g))
-            }
-            StrategyKind::Torrey => {
-                self.counters.advice_given < c.torrey_budget
-                    && entry.kick_spread() > c.torrey_threshold
-            }
-            StrategyKind::NoAdvice | StrategyKind::EpisodeSharing | StrategyKind::Random => false,
-        };
+        let confident = self
+            .config
+            .strategy
+            .confident(&entry, &self.counters, &mut self.rng);
         let answer = greedy_first(&entry.q);
         if !confident || intended == Some(answer) {
             return None;
@@ -487,37 +438,21 @@ impl Agent {
     /// Whether a training step with the ball asks for advice (Algorithm 1,
     /// or Torrey's student at every fresh state).
     fn asks(&mut self, key: u64, entry: EntryId) -> bool {
-        let visits = self.table.entry(entry).visits;
-        let c = &self.config;
-        let fresh = !self.advised.contains(&key);
-        match c.strategy {
-            StrategyKind::AdHocVisit | StrategyKind::AdHocTd => {
-                fresh
-                    && self.counters.advised_steps < c.ask_budget
-                    && self.training_episodes >= 1
-                    && chance(&mut self.rng, p_ask(visits, c.v_a))
-            }
-            StrategyKind::Torrey => fresh,
-            StrategyKind::NoAdvice | StrategyKind::EpisodeSharing | StrategyKind::Random => false,
-        }
+        let at = AskContext {
+            fresh: !self.advised.contains(&key),
+            visits: self.table.entry(entry).visits,
+            training_episodes: self.training_episodes,
+            counters: &self.counters,
+        };
+        self.config.strategy.asks(at, &mut self.rng)
     }
 
     /// Whom to ask among the `reachable` agents: Torrey's fixed teacher
     /// `(i + 1) mod n`, else G(s).
     fn fill_reach(&mut self, positions: &[[f64; 2]], reachable: &dyn Fn(usize) -> bool) {
-        self.reach.clear();
-        if self.config.strategy == StrategyKind::Torrey {
-            let teacher = (self.id + 1) % self.team_size;
-            self.reach.extend((teacher != self.id).then_some(teacher));
-        } else {
-            reachable_set(
-                &self.config.reachable,
-                self.id,
-                self.team_size,
-                positions,
-                &mut self.reach,
-            );
-        }
+        self.config
+            .strategy
+            .advisors(self.id, self.team_size, positions, &mut self.reach);
         self.reach.retain(|&j| reachable(j));
     }
 
@@ -544,9 +479,7 @@ impl Agent {
         let target = next.map(|(entry, action, _)| (entry, action));
         self.sarsa
             .update(&mut self.table, (prev.entry, prev.action), reward, target);
-        if self.config.strategy == StrategyKind::EpisodeSharing
-            && self.counters.shared_sent < self.config.sharing_budget
-        {
+        if self.config.strategy.sharing_allowance(&self.counters) > 0 {
             self.episode.push(Transition {
                 state: prev.state,
                 action: prev.action,

@@ -1,62 +1,27 @@
-//! Every constant of the learner and of the advising strategies (docs/algorithms.md
-//! sections 1-3), with the paper's defaults, and its validation.
+//! Every constant of one agent: the learner's (docs/algorithms.md section 1)
+//! and its strategy's (sections 2-3), with the paper's defaults, and their
+//! validation.
+
+mod table;
 
 use proto::STATE_FEATURES;
-use serde::{Deserialize, Serialize};
 
-/// Which learner and advising strategy an agent runs (docs/algorithms.md 1-3).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StrategyKind {
-    /// SARSA(lambda) alone.
-    #[default]
-    NoAdvice,
-    /// Ad hoc advising with the visit-based confidence `Psi = log2 n(s)`.
-    AdHocVisit,
-    /// Ad hoc advising with `Psi = sqrt(n(s)) * spread of Q(s, .)`.
-    AdHocTd,
-    /// Importance advising from the fixed teacher `(i + 1) mod n`.
-    Torrey,
-    /// Tan's episode sharing after goal episodes, with a budget.
-    EpisodeSharing,
-    /// The authors' random baseline: never learns, never advises.
-    Random,
-}
-
-impl StrategyKind {
-    /// Whether the strategy learns a Q-table (everything but `Random`).
-    pub fn learns(self) -> bool {
-        self != StrategyKind::Random
-    }
-
-    /// Whether the Mistake Correcting option applies to this strategy.
-    pub fn supports_mistake_correcting(self) -> bool {
-        matches!(
-            self,
-            StrategyKind::AdHocVisit | StrategyKind::AdHocTd | StrategyKind::Torrey
-        )
-    }
-}
-
-/// The reachable set G(s): whom an ad hoc advisee asks.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Reachable {
-    /// Every other agent of the team, in id order.
-    #[default]
-    Everyone,
-    /// These agent ids, in the given order (the asking agent itself is skipped).
-    Agents(Vec<usize>),
-    /// Teammates whose field position is within this distance (metres).
-    WithinDistance(f64),
-}
+use crate::config_error::{ConfigError, require, require_unit};
+use crate::strategy::Strategy;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
 pub const TILE_ORIGIN: f64 = -1.0;
 
 /// Every constant of one agent, with the paper's defaults.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+///
+/// Human-readable formats (JSON, TOML) see one flat table: the learner's
+/// keys below, `strategy` (a [`StrategyName`](crate::StrategyName)) and the
+/// keys of that strategy, named as the fields of [`Strategy`]'s variants
+/// (`v_a`, `v_g`, `ask_budget`, `give_budget`, `mistake_correcting`,
+/// `reachable`, `importance_threshold`, `sharing_budget`). Missing keys take
+/// their defaults; an unknown key, or a key of another strategy, is an error
+/// naming it. Binary formats (postcard) see the plain structure.
+#[derive(Clone, Debug, PartialEq)]
 pub struct AgentConfig {
     /// Learning rate alpha, in (0, 1].
     pub alpha: f64,
@@ -74,29 +39,8 @@ pub struct AgentConfig {
     pub tile_step: f64,
     /// Traces below this value are dropped, in (0, 1).
     pub trace_threshold: f64,
-    /// Ad hoc advisee budget b_ask.
-    pub ask_budget: u64,
-    /// Ad hoc advisor budget b_give.
-    pub give_budget: u64,
-    /// Scaling v_a of P_ask.
-    pub v_a: f64,
-    /// Scaling v_g of P_give for AdHocVisit.
-    pub v_g_visit: f64,
-    /// Scaling v_g of P_give for AdHocTD.
-    pub v_g_td: f64,
-    /// Torrey's importance threshold t.
-    pub torrey_threshold: f64,
-    /// Torrey teacher budget.
-    pub torrey_budget: u64,
-    /// EpisodeSharing budget (one unit per transition per receiver).
-    pub sharing_budget: u64,
-    /// The strategy this agent runs.
-    pub strategy: StrategyKind,
-    /// Mistake Correcting (AdHocVisit, AdHocTD, Torrey only): the advisee sends
-    /// its own epsilon-greedy choice along, and plays it when no advice comes.
-    pub mistake_correcting: bool,
-    /// The reachable set G of an ad hoc advisee.
-    pub reachable: Reachable,
+    /// The advising strategy and its constants.
+    pub strategy: Strategy,
 }
 
 impl Default for AgentConfig {
@@ -110,61 +54,9 @@ impl Default for AgentConfig {
             tile_width: 0.5,
             tile_step: 0.2,
             trace_threshold: 1e-4,
-            ask_budget: 1000,
-            give_budget: 1000,
-            v_a: 0.5,
-            v_g_visit: 0.5,
-            v_g_td: 1.5,
-            torrey_threshold: 0.01,
-            torrey_budget: 1000,
-            sharing_budget: 1000,
-            strategy: StrategyKind::NoAdvice,
-            mistake_correcting: false,
-            reachable: Reachable::Everyone,
+            strategy: Strategy::NoAdvice,
         }
     }
-}
-
-/// A configuration value out of its allowed range.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("invalid agent config `{key}`: {reason}")]
-pub struct ConfigError {
-    /// The offending key, as spelled in the configuration.
-    pub key: &'static str,
-    /// What is wrong with its value.
-    pub reason: String,
-}
-
-impl ConfigError {
-    pub(crate) fn new(key: &'static str, reason: impl Into<String>) -> Self {
-        Self {
-            key,
-            reason: reason.into(),
-        }
-    }
-}
-
-/// `Ok` when `value` is finite and `ok`, else an error saying what `value`
-/// must be.
-fn require(key: &'static str, value: f64, rule: &str, ok: bool) -> Result<(), ConfigError> {
-    if ok && value.is_finite() {
-        Ok(())
-    } else {
-        Err(ConfigError::new(
-            key,
-            format!("must be {rule}, got {value}"),
-        ))
-    }
-}
-
-/// A probability-like value in [0, 1].
-fn require_unit(key: &'static str, value: f64) -> Result<(), ConfigError> {
-    require(key, value, "in [0, 1]", (0.0..=1.0).contains(&value))
-}
-
-/// A finite value >= 0.
-fn require_non_negative(key: &'static str, value: f64) -> Result<(), ConfigError> {
-    require(key, value, "finite and >= 0", value >= 0.0)
 }
 
 impl AgentConfig {
@@ -182,23 +74,7 @@ impl AgentConfig {
             threshold > 0.0 && threshold < 1.0,
         )?;
         self.validate_tiles()?;
-        require_non_negative("v_a", self.v_a)?;
-        require_non_negative("v_g_visit", self.v_g_visit)?;
-        require_non_negative("v_g_td", self.v_g_td)?;
-        require_non_negative("torrey_threshold", self.torrey_threshold)?;
-        if self.mistake_correcting && !self.strategy.supports_mistake_correcting() {
-            return Err(ConfigError::new(
-                "mistake_correcting",
-                format!(
-                    "only for ad-hoc-visit, ad-hoc-td and torrey, not {:?}",
-                    self.strategy
-                ),
-            ));
-        }
-        if let Reachable::WithinDistance(d) = self.reachable {
-            require_non_negative("reachable", d)?;
-        }
-        Ok(())
+        self.strategy.validate()
     }
 
     fn validate_tiles(&self) -> Result<(), ConfigError> {
@@ -247,6 +123,8 @@ impl AgentConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::advice::Reachable;
+    use crate::strategy::{AdHoc, StrategyName};
 
     fn key_of(config: AgentConfig) -> &'static str {
         config.validate().unwrap_err().key
@@ -264,19 +142,7 @@ mod tests {
             (c.tiles_per_feature, c.tile_width, c.tile_step),
             (10, 0.5, 0.2)
         );
-        assert_eq!(
-            (
-                c.ask_budget,
-                c.give_budget,
-                c.torrey_budget,
-                c.sharing_budget
-            ),
-            (1000, 1000, 1000, 1000)
-        );
-        assert_eq!(
-            (c.v_a, c.v_g_visit, c.v_g_td, c.torrey_threshold),
-            (0.5, 0.5, 1.5, 0.01)
-        );
+        assert_eq!(c.strategy, Strategy::NoAdvice);
     }
 
     #[test]
@@ -354,24 +220,24 @@ mod tests {
             }),
             "tiles_per_feature"
         );
+        let v_g = AdHoc {
+            v_g: -1.0,
+            ..AdHoc::td()
+        };
         assert_eq!(
             key_of(AgentConfig {
-                v_g_td: -1.0,
+                strategy: Strategy::AdHoc(v_g),
                 ..base()
             }),
-            "v_g_td"
+            "v_g"
         );
+        let far = AdHoc {
+            reachable: Reachable::WithinDistance(f64::INFINITY),
+            ..AdHoc::visit()
+        };
         assert_eq!(
             key_of(AgentConfig {
-                mistake_correcting: true,
-                ..base()
-            }),
-            "mistake_correcting"
-        );
-        let far = Reachable::WithinDistance(f64::INFINITY);
-        assert_eq!(
-            key_of(AgentConfig {
-                reachable: far,
+                strategy: Strategy::AdHoc(far),
                 ..base()
             }),
             "reachable"
@@ -405,8 +271,12 @@ mod tests {
         let c: AgentConfig =
             serde_json::from_str(r#"{"strategy": "ad-hoc-td", "reachable": {"agents": [1, 2]}}"#)
                 .unwrap();
-        assert_eq!(c.strategy, StrategyKind::AdHocTd);
-        assert_eq!(c.reachable, Reachable::Agents(vec![1, 2]));
+        assert_eq!(c.strategy.name(), StrategyName::AdHocTd);
+        let Strategy::AdHoc(a) = &c.strategy else {
+            panic!("ad hoc strategy expected, got {:?}", c.strategy);
+        };
+        assert_eq!(a.reachable, Reachable::Agents(vec![1, 2]));
+        assert_eq!((a.v_g, a.ask_budget), (1.5, 1000));
         assert_eq!(c.alpha, 0.1);
         let err = serde_json::from_str::<AgentConfig>(r#"{"alhpa": 0.2}"#).unwrap_err();
         assert!(err.to_string().contains("alhpa"), "{err}");

@@ -11,10 +11,10 @@
 //! Driving a [`Team`]: one training episode, then one evaluation episode
 //! (frozen: greedy play, nothing learned, asked or given).
 //! ```
-//! use agent::{Agent, AgentConfig, Mode, Observation, StrategyKind, Team};
+//! use agent::{AdHoc, Agent, AgentConfig, Mode, Observation, Strategy, Team};
 //! use proto::Action;
 //!
-//! let config = AgentConfig { strategy: StrategyKind::AdHocTd, ..AgentConfig::default() };
+//! let config = AgentConfig { strategy: Strategy::AdHoc(AdHoc::td()), ..AgentConfig::default() };
 //! let agents = (0..3).map(|i| Agent::new(i, 3, config.clone(), 100 + i as u64)).collect::<Result<_, _>>()?;
 //! let mut team = Team::new(agents)?;
 //! let obs = |kicker: bool| Observation { state: [0.0; 6], can_kick: kicker, position: [0.0, 0.0] };
@@ -41,20 +41,26 @@
 mod advice;
 mod agent;
 mod config;
+mod config_error;
+mod counters;
 mod exchange;
 mod persist;
 mod policy;
 mod qtable;
 mod sarsa;
+mod strategy;
 mod team;
 mod tiles;
 mod wire;
 
-pub use advice::{p_ask, p_give, psi_td, psi_visit};
-pub use agent::{Agent, Counters, Decision, Mode, Observation};
-pub use config::{AgentConfig, ConfigError, Reachable, StrategyKind};
+pub use advice::{Reachable, p_ask, p_give, psi_td, psi_visit};
+pub use agent::{Agent, Decision, Mode, Observation};
+pub use config::AgentConfig;
+pub use config_error::ConfigError;
+pub use counters::Counters;
 pub use exchange::{AdviceExchange, Isolated, Transition};
 pub use persist::{FORMAT_VERSION, PersistError, Snapshot};
 pub use qtable::{Entry, QTable};
+pub use strategy::{AdHoc, Confidence, Strategy, StrategyName, Torrey, UnknownStrategy};
 pub use team::{Team, TeamError};
 pub use tiles::TilingParams;

@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::{Deserialize, Serialize};
 
-use crate::agent::Counters;
+use crate::counters::Counters;
 use crate::qtable::{ACTIONS, Entry};
 use crate::tiles::TilingParams;
 

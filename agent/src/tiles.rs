@@ -4,7 +4,8 @@
 use proto::State;
 use serde::{Deserialize, Serialize};
 
-use crate::config::{AgentConfig, ConfigError, TILE_ORIGIN};
+use crate::config::{AgentConfig, TILE_ORIGIN};
+use crate::config_error::ConfigError;
 
 /// Slack on the tile bounds, so that a feature exactly on a decimal edge
 /// (e.g. 0.3, the upper edge of tile 4) is inside the tile although the edge

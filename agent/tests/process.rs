@@ -5,7 +5,7 @@ mod support;
 
 use std::time::{Duration, Instant};
 
-use agent::{Agent, AgentConfig, Isolated, StrategyKind};
+use agent::{AdHoc, Agent, AgentConfig, Isolated, Strategy, StrategyName};
 use proto::keys::{Keys, Role};
 use proto::net::NetConfig;
 use proto::{
@@ -247,7 +247,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         .await
         .unwrap();
     let config = AgentConfig {
-        strategy: StrategyKind::AdHocTd,
+        strategy: Strategy::AdHoc(AdHoc::td()),
         ..AgentConfig::default()
     };
     for id in 0..2 {
@@ -360,7 +360,7 @@ async fn episode_sharing_travels_as_published_messages() {
     ];
     fake.wait_for_agents(&[0, 1]).await;
     let config = AgentConfig {
-        strategy: StrategyKind::EpisodeSharing,
+        strategy: Strategy::from(StrategyName::EpisodeSharing),
         ..AgentConfig::default()
     };
     for id in 0..2 {

@@ -3,52 +3,12 @@
 
 use std::path::{Path, PathBuf};
 
-use agent::{AgentConfig, StrategyKind};
+use agent::{AgentConfig, StrategyName};
 use env_server::EnvConfig;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ConfigError;
 use crate::transport::Transport;
-
-/// The algorithms a homogeneous team can run, by their command-line names.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Algorithm {
-    /// SARSA(lambda) alone.
-    NoAdvice,
-    /// Ad hoc advising, visit-based confidence.
-    #[value(alias = "ad-hoc-visit")]
-    AdhocVisit,
-    /// Ad hoc advising, TD-based confidence.
-    #[value(alias = "ad-hoc-td")]
-    AdhocTd,
-    /// Importance advising from a fixed teacher.
-    Torrey,
-    /// Episode sharing after goal episodes.
-    EpisodeSharing,
-    /// The random-policy baseline.
-    Random,
-}
-
-impl Algorithm {
-    /// The command-line and file name.
-    pub fn name(self) -> String {
-        clap::ValueEnum::to_possible_value(&self)
-            .map_or_else(String::new, |v| v.get_name().to_owned())
-    }
-
-    /// The agents' strategy.
-    pub fn strategy(self) -> StrategyKind {
-        match self {
-            Algorithm::NoAdvice => StrategyKind::NoAdvice,
-            Algorithm::AdhocVisit => StrategyKind::AdHocVisit,
-            Algorithm::AdhocTd => StrategyKind::AdHocTd,
-            Algorithm::Torrey => StrategyKind::Torrey,
-            Algorithm::EpisodeSharing => StrategyKind::EpisodeSharing,
-            Algorithm::Random => StrategyKind::Random,
-        }
-    }
-}
 
 /// One agent of the team: its configuration (with its strategy) and,
 /// optionally, a saved snapshot it starts from.
@@ -114,10 +74,10 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
 
 impl AgentSpec {
     /// An agent running `strategy` from scratch with the paper's constants.
-    pub fn of(strategy: StrategyKind) -> Self {
+    pub fn of(strategy: StrategyName) -> Self {
         Self {
             config: AgentConfig {
-                strategy,
+                strategy: strategy.into(),
                 ..AgentConfig::default()
             },
             ..Self::default()
@@ -173,7 +133,7 @@ impl Default for ExperimentConfig {
             seed: 1,
             ci_level: DEFAULT_CI_LEVEL,
             transport: Transport::InProcess,
-            team: vec![AgentSpec::of(StrategyKind::NoAdvice); env.offense],
+            team: vec![AgentSpec::of(StrategyName::NoAdvice); env.offense],
             env,
         }
     }
@@ -303,6 +263,7 @@ pub fn load_team_file(path: &Path) -> Result<Vec<AgentSpec>, ConfigError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use agent::{AdHoc, Strategy};
 
     fn key_of(config: ExperimentConfig) -> String {
         config.validate().unwrap_err().key
@@ -379,10 +340,13 @@ mod tests {
         c.team[2].config.epsilon = 2.0;
         assert_eq!(key_of(c), "team[2].epsilon");
         let mut c = base();
-        c.team[1].config.mistake_correcting = true;
+        c.team[1].config.strategy = Strategy::AdHoc(AdHoc {
+            v_g: -1.0,
+            ..AdHoc::visit()
+        });
         let e = c.validate().unwrap_err();
-        assert_eq!(e.key, "team[1].mistake_correcting");
-        assert!(e.to_string().contains("ad-hoc-visit"), "{e}");
+        assert_eq!(e.key, "team[1].v_g");
+        assert!(e.to_string().contains(">= 0"), "{e}");
     }
 
     #[test]
@@ -391,8 +355,13 @@ mod tests {
             "strategy = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.qtable\"\n",
         )
         .unwrap();
-        assert_eq!(spec.config.strategy, StrategyKind::AdHocTd);
-        assert_eq!(spec.config.ask_budget, 0);
+        assert_eq!(
+            spec.config.strategy,
+            Strategy::AdHoc(AdHoc {
+                ask_budget: 0,
+                ..AdHoc::td()
+            })
+        );
         assert_eq!(spec.config.epsilon, 0.0);
         assert_eq!(spec.load, Some(PathBuf::from("expert.qtable")));
         assert!(!spec.keep_counters);
@@ -404,6 +373,15 @@ mod tests {
         assert!(err.to_string().contains("alhpa"), "{err}");
         let err = serde_json::from_str::<AgentSpec>(r#"{"load": 3}"#).unwrap_err();
         assert!(err.to_string().contains("load"), "{err}");
+        // So is a key of another strategy, with the strategies it belongs to.
+        let err = toml::from_str::<AgentSpec>(
+            "mistake_correcting = true
+",
+        )
+        .unwrap_err();
+        let err = err.to_string();
+        assert!(err.contains("`mistake_correcting`"), "{err}");
+        assert!(err.contains("adhoc-visit, adhoc-td, torrey"), "{err}");
     }
 
     #[test]
@@ -412,7 +390,7 @@ mod tests {
         c.team[2] = AgentSpec {
             load: Some("a/b.qtable".into()),
             keep_counters: true,
-            ..AgentSpec::of(StrategyKind::Torrey)
+            ..AgentSpec::of(StrategyName::Torrey)
         };
         let json = serde_json::to_string(&c).unwrap();
         assert_eq!(serde_json::from_str::<ExperimentConfig>(&json).unwrap(), c);
@@ -425,13 +403,17 @@ mod tests {
         std::fs::write(
             &toml_path,
             "[[agent]]\nstrategy = \"ad-hoc-td\"\n\n[[agent]]\nstrategy = \"ad-hoc-td\"\n\n\
-             [[agent]]\nask_budget = 0\nload = \"expert.qtable\"\n",
+             [[agent]]\nstrategy = \"adhoc-td\"\nask_budget = 0\nload = \"expert.qtable\"\n",
         )
         .unwrap();
         let team = load_team_file(&toml_path).unwrap();
         assert_eq!(team.len(), 3);
-        assert_eq!(team[0].config.strategy, StrategyKind::AdHocTd);
-        assert_eq!(team[2].config.strategy, StrategyKind::NoAdvice);
+        assert_eq!(team[0].config.strategy, Strategy::AdHoc(AdHoc::td()));
+        let expert = Strategy::AdHoc(AdHoc {
+            ask_budget: 0,
+            ..AdHoc::td()
+        });
+        assert_eq!(team[2].config.strategy, expert);
         assert_eq!(team[2].load, Some(dir.path().join("expert.qtable")));
 
         let json_path = dir.path().join("team.json");
@@ -441,13 +423,20 @@ mod tests {
         )
         .unwrap();
         let team = load_team_file(&json_path).unwrap();
-        assert_eq!(team[0].config.strategy, StrategyKind::Torrey);
+        assert_eq!(team[0].config.strategy.name(), StrategyName::Torrey);
+        assert_eq!(team[1].config.strategy, Strategy::NoAdvice);
         assert_eq!(team[1].load, Some(PathBuf::from("/abs.qtable")));
 
         std::fs::write(&toml_path, "[[agent]]\nstrategy = \"best\"\n").unwrap();
         let e = load_team_file(&toml_path).unwrap_err();
         assert_eq!(e.key, "team[0]");
         assert!(e.reason.contains("best"), "{e}");
+        assert!(!e.to_string().contains('\n'), "{e}");
+        std::fs::write(&toml_path, "[[agent]]\n[[agent]]\nask_budget = 0\n").unwrap();
+        let e = load_team_file(&toml_path).unwrap_err();
+        assert_eq!(e.key, "team[1]");
+        assert!(e.reason.contains("`ask_budget`"), "{e}");
+        assert!(e.reason.contains("no-advice"), "{e}");
         assert!(!e.to_string().contains('\n'), "{e}");
         let e = load_team_file(&dir.path().join("missing.toml")).unwrap_err();
         assert!(e.reason.contains("missing.toml"), "{e}");

@@ -54,7 +54,7 @@ pub mod transport;
 pub mod wilcoxon;
 
 pub use backend::{AgentStats, Backend, Episode};
-pub use config::{AgentSpec, Algorithm, ExperimentConfig, load_team_file};
+pub use config::{AgentSpec, ExperimentConfig, load_team_file};
 pub use error::{ConfigError, Error};
 pub use experiment::{Experiment, RunSeeds};
 pub use figures::{Figure, FigureError, Metric, Series, SeriesSet, draw_figures};

@@ -4,13 +4,15 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use agent::StrategyName;
 use anyhow::Result;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use coordinator::study::{StudyConfig, StudyOptions};
 use coordinator::transport::TRANSPORT_NAMES;
 use coordinator::{
-    AgentSpec, Algorithm, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir,
-    RunOptions, Transport, ZenohSettings, load_team_file, run_experiment,
+    AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
+    Transport, ZenohSettings, load_team_file, run_experiment,
 };
 
 #[derive(Parser)]
@@ -69,8 +71,8 @@ struct StudyArgs {
 #[command(args_override_self = true)]
 struct RunArgs {
     /// Algorithm of every agent (a homogeneous team).
-    #[arg(long, value_enum)]
-    algorithm: Option<Algorithm>,
+    #[arg(long, value_name = "NAME", value_parser = strategy_names())]
+    algorithm: Option<StrategyName>,
     /// Team file (TOML, or JSON by extension): one `[[agent]]` table per agent
     /// with its strategy, constants and an optional `load` snapshot path.
     #[arg(long, value_name = "FILE")]
@@ -258,15 +260,22 @@ fn run_study(args: StudyArgs) -> Result<()> {
     Ok(())
 }
 
+/// `--algorithm`: every strategy name, its aliases accepted.
+fn strategy_names() -> impl TypedValueParser<Value = StrategyName> {
+    let names = StrategyName::ALL.map(|n| PossibleValue::new(n.name()).aliases(n.aliases()));
+    PossibleValuesParser::new(names).try_map(|name| name.parse::<StrategyName>())
+}
+
 fn run_one(args: RunArgs) -> Result<()> {
     let (team, label) = match (&args.team, args.algorithm) {
         (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
         (None, Some(algorithm)) => {
             let offense = args.offense.unwrap_or(3);
-            let mut spec = AgentSpec::of(algorithm.strategy());
-            spec.config.mistake_correcting = args.mistake_correcting;
-            let name = clap::ValueEnum::to_possible_value(&algorithm)
-                .map_or_else(String::new, |v| v.get_name().to_owned());
+            let mut spec = AgentSpec::of(algorithm);
+            spec.config
+                .strategy
+                .set_mistake_correcting(args.mistake_correcting)?;
+            let name = algorithm.name();
             let mc = if args.mistake_correcting {
                 " (mistake correcting)"
             } else {

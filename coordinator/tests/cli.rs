@@ -151,7 +151,7 @@ fn writes_run_csvs_and_a_summary_of_the_right_shape() {
     assert_eq!(s["seed"], 7);
     assert_eq!(s["runs"], 2);
     assert_eq!(s["config"]["eval_every"], 20);
-    assert_eq!(s["config"]["team"][0]["strategy"], "ad-hoc-td");
+    assert_eq!(s["config"]["team"][0]["strategy"], "adhoc-td");
     let points = s["eval_points"].as_array().unwrap();
     assert_eq!(points.len(), 3);
     for (p, episode) in points.iter().zip([0, 20, 40]) {

@@ -3,7 +3,7 @@
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use agent::{AgentConfig, Mode, StrategyKind};
+use agent::{Mode, StrategyName};
 use coordinator::{
     AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
     ZenohSettings,
@@ -14,13 +14,7 @@ use proto::{Body, Control, ControlReply, Envelope, Header, experiment_id};
 use serde_json::Value;
 
 fn adhoc_td_experiment() -> Experiment {
-    let spec = AgentSpec {
-        config: AgentConfig {
-            strategy: StrategyKind::AdHocTd,
-            ..AgentConfig::default()
-        },
-        ..AgentSpec::of(StrategyKind::AdHocTd)
-    };
+    let spec = AgentSpec::of(StrategyName::AdHocTd);
     Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,

@@ -1,6 +1,8 @@
 use super::*;
+use crate::advice::Reachable;
 use crate::exchange::Isolated;
 use crate::qtable::Entry;
+use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -23,7 +25,11 @@ fn obs(state: State) -> Observation {
     }
 }
 
-fn config(strategy: StrategyKind) -> AgentConfig {
+fn config(name: StrategyName) -> AgentConfig {
+    with(Strategy::from(name))
+}
+
+fn with(strategy: Strategy) -> AgentConfig {
     AgentConfig {
         strategy,
         ..AgentConfig::default()
@@ -101,10 +107,10 @@ fn advisee_spends_its_ask_budget_only_when_advised() {
     let mut a = agent(
         0,
         3,
-        AgentConfig {
+        with(Strategy::AdHoc(AdHoc {
             ask_budget: 2,
-            ..config(StrategyKind::AdHocVisit)
-        },
+            ..AdHoc::visit()
+        })),
     );
     finish_one_episode(&mut a);
     // No answer: a request is sent, nothing is spent, the state is not marked.
@@ -134,10 +140,10 @@ fn asks_at_most_once_per_state_per_episode() {
     let mut a = agent(
         1,
         3,
-        AgentConfig {
+        with(Strategy::AdHoc(AdHoc {
             v_a: 0.0,
-            ..config(StrategyKind::AdHocTd)
-        },
+            ..AdHoc::td()
+        })),
     );
     finish_one_episode(&mut a);
     let mut ex = script(&[Dribble]);
@@ -152,7 +158,7 @@ fn asks_at_most_once_per_state_per_episode() {
 
 #[test]
 fn no_asking_before_a_finished_episode_without_the_ball_or_when_evaluating() {
-    let mut a = agent(0, 3, config(StrategyKind::AdHocTd));
+    let mut a = agent(0, 3, config(StrategyName::AdHocTd));
     let mut ex = script(&[Dribble]);
     a.begin_episode(Mode::Training);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
@@ -171,10 +177,10 @@ fn advisor_needs_visits_and_budget() {
     let mut a = agent(
         0,
         3,
-        AgentConfig {
+        with(Strategy::AdHoc(AdHoc {
             give_budget: 2,
-            ..config(StrategyKind::AdHocTd)
-        },
+            ..AdHoc::td()
+        })),
     );
     // Greedy PassFar; spread over tried kicks = 1 - 0 = 1; Psi = sqrt(10000) * 1 = 100;
     // P_give = 1 - 2.5^-100 = 1.0 in f64.
@@ -202,7 +208,7 @@ fn advisor_needs_visits_and_budget() {
 #[test]
 fn visit_based_advisor_uses_log2_visits() {
     // n = 1: Psi = log2 1 = 0, P_give = 0.
-    let mut a = agent(0, 3, config(StrategyKind::AdHocVisit));
+    let mut a = agent(0, 3, config(StrategyName::AdHocVisit));
     teach(
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
@@ -212,10 +218,10 @@ fn visit_based_advisor_uses_log2_visits() {
     let mut b = agent(
         0,
         3,
-        AgentConfig {
-            v_g_visit: 1e9,
-            ..config(StrategyKind::AdHocVisit)
-        },
+        with(Strategy::AdHoc(AdHoc {
+            v_g: 1e9,
+            ..AdHoc::visit()
+        })),
     );
     teach(
         &mut b,
@@ -227,11 +233,11 @@ fn visit_based_advisor_uses_log2_visits() {
 #[test]
 fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
     // Advisor side: greedy Shoot, P_give = 1 (see advisor_needs_visits_and_budget).
-    let mc = |s| AgentConfig {
+    let mc = with(Strategy::AdHoc(AdHoc {
         mistake_correcting: true,
-        ..config(s)
-    };
-    let mut advisor = agent(1, 3, mc(StrategyKind::AdHocTd));
+        ..AdHoc::td()
+    }));
+    let mut advisor = agent(1, 3, mc.clone());
     teach(
         &mut advisor,
         &[(kick_state(0), known([0.0, 1.0, 0.0, 0.0, 0.0], 10_000))],
@@ -243,14 +249,7 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
 
     // Advisee side: it sends its own epsilon-greedy choice (epsilon 0: greedy
     // Dribble) and, without an answer, plays it.
-    let mut advisee = agent(
-        0,
-        3,
-        AgentConfig {
-            epsilon: 0.0,
-            ..mc(StrategyKind::AdHocTd)
-        },
-    );
+    let mut advisee = agent(0, 3, AgentConfig { epsilon: 0.0, ..mc });
     teach(
         &mut advisee,
         &[(kick_state(0), known([0.0, 0.0, 0.7, 0.0, 0.0], 0))],
@@ -267,7 +266,7 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
 #[test]
 fn torrey_students_ask_their_fixed_teacher_at_every_fresh_kick_state() {
     for i in 0..3 {
-        let mut a = agent(i, 3, config(StrategyKind::Torrey));
+        let mut a = agent(i, 3, config(StrategyName::Torrey));
         // No finished episode needed, no ask budget.
         a.begin_episode(Mode::Training);
         let mut ex = script(&[]);
@@ -288,10 +287,10 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
     let mut t = agent(
         1,
         3,
-        AgentConfig {
-            torrey_budget: 1,
-            ..config(StrategyKind::Torrey)
-        },
+        with(Strategy::Torrey(Torrey {
+            give_budget: 1,
+            ..Torrey::default()
+        })),
     );
     // Spreads: 0.01 (not above t = 0.01) and 0.02; visits play no role.
     teach(
@@ -307,7 +306,7 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
 
     // In a team, agent 0's teacher is agent 1 (agent 2 knows too, but is not asked).
     let mut agents: Vec<Agent> = (0..3)
-        .map(|i| agent(i, 3, config(StrategyKind::Torrey)))
+        .map(|i| agent(i, 3, config(StrategyName::Torrey)))
         .collect();
     let q = [0.0, 0.0, 0.0, 0.0, 0.5];
     teach(&mut agents[1], &[(kick_state(0), known(q, 0))]);
@@ -329,14 +328,7 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
 
 #[test]
 fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
-    let mut a = agent(
-        0,
-        3,
-        AgentConfig {
-            sharing_budget: 5,
-            ..config(StrategyKind::EpisodeSharing)
-        },
-    );
+    let mut a = agent(0, 3, with(Strategy::EpisodeSharing { sharing_budget: 5 }));
     let mut ex = script(&[]);
     a.begin_episode(Mode::Training);
     // Frames s0..s3 then the terminal step: transitions t0..t3.
@@ -378,7 +370,7 @@ fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
 
 #[test]
 fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
-    let mut a = agent(2, 3, config(StrategyKind::EpisodeSharing));
+    let mut a = agent(2, 3, config(StrategyName::EpisodeSharing));
     let mut ex = script(&[]);
     for reward in [-1.0, 0.0, 1.0] {
         a.begin_episode(Mode::Training);
@@ -401,7 +393,7 @@ fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
 
 #[test]
 fn received_episode_is_replayed_with_a_fresh_trace() {
-    let mut a = agent(1, 3, config(StrategyKind::EpisodeSharing));
+    let mut a = agent(1, 3, config(StrategyName::EpisodeSharing));
     a.begin_episode(Mode::Training);
     // Own pending step in another state, untouched by the replay.
     a.act(&obs(move_state(4)), 0.0, &[], &mut Isolated);
@@ -439,7 +431,7 @@ fn received_episode_is_replayed_with_a_fresh_trace() {
 
 #[test]
 fn learns_move_steps_and_counts_visits() {
-    let mut a = agent(0, 1, config(StrategyKind::NoAdvice));
+    let mut a = agent(0, 1, config(StrategyName::NoAdvice));
     a.begin_episode(Mode::Training);
     assert_eq!(a.act(&obs(move_state(0)), 0.0, &[], &mut Isolated), Move);
     assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
@@ -455,7 +447,7 @@ fn learns_move_steps_and_counts_visits() {
 
 #[test]
 fn evaluation_plays_greedy_in_tie_order() {
-    let mut a = agent(0, 1, config(StrategyKind::NoAdvice));
+    let mut a = agent(0, 1, config(StrategyName::NoAdvice));
     teach(
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 0.0, 0.3, 0.3], 0))],
@@ -470,7 +462,7 @@ fn evaluation_plays_greedy_in_tie_order() {
 
 #[test]
 fn random_baseline_never_learns_nor_advises() {
-    let mut a = agent(0, 3, config(StrategyKind::Random));
+    let mut a = agent(0, 3, config(StrategyName::Random));
     let mut seen = [false; ACTIONS];
     for mode in [Mode::Training, Mode::Evaluation] {
         a.begin_episode(mode);
@@ -521,7 +513,7 @@ fn play(team: &mut Team, rng: &mut AgentRng, episodes: usize, mode: Mode) -> Vec
     log
 }
 
-fn team(strategy: StrategyKind, seed: u64) -> Team {
+fn team(strategy: StrategyName, seed: u64) -> Team {
     let c = config(strategy);
     Team::new(
         (0..3)
@@ -538,9 +530,9 @@ fn digests(team: &Team) -> Vec<u64> {
 #[test]
 fn evaluation_changes_no_learned_state() {
     for strategy in [
-        StrategyKind::AdHocTd,
-        StrategyKind::Torrey,
-        StrategyKind::EpisodeSharing,
+        StrategyName::AdHocTd,
+        StrategyName::Torrey,
+        StrategyName::EpisodeSharing,
     ] {
         let mut t = team(strategy, 7);
         let mut rng = AgentRng::seed_from_u64(1);
@@ -563,10 +555,10 @@ fn evaluation_changes_no_learned_state() {
 #[test]
 fn same_seed_same_run_bit_for_bit() {
     for strategy in [
-        StrategyKind::AdHocVisit,
-        StrategyKind::AdHocTd,
-        StrategyKind::Torrey,
-        StrategyKind::EpisodeSharing,
+        StrategyName::AdHocVisit,
+        StrategyName::AdHocTd,
+        StrategyName::Torrey,
+        StrategyName::EpisodeSharing,
     ] {
         let run = |seed| {
             let mut t = team(strategy, seed);
@@ -592,11 +584,11 @@ fn same_seed_same_run_bit_for_bit() {
 #[test]
 fn reachable_within_distance_filters_advisors() {
     // v_a = 0: P_ask = 1 on every visit.
-    let c = AgentConfig {
+    let c = with(Strategy::AdHoc(AdHoc {
         v_a: 0.0,
         reachable: Reachable::WithinDistance(5.0),
-        ..config(StrategyKind::AdHocTd)
-    };
+        ..AdHoc::td()
+    }));
     let mut agents: Vec<Agent> = (0..3).map(|i| agent(i, 3, c.clone())).collect();
     finish_one_episode(&mut agents[0]);
     // Only agent 2 could answer (greedy Dribble, P_give = 1).
@@ -640,14 +632,14 @@ fn reachable_within_distance_filters_advisors() {
 
 #[test]
 fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
-    let mut t = team(StrategyKind::AdHocTd, 5);
+    let mut t = team(StrategyName::AdHocTd, 5);
     play(&mut t, &mut AgentRng::seed_from_u64(9), 30, Mode::Training);
     let trained = &t.agents()[2];
     let dir = std::env::temp_dir().join(format!("agent-restore-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("expert.qtable");
     trained.snapshot().save(&path).unwrap();
-    let mut fresh = agent(2, 3, config(StrategyKind::AdHocTd));
+    let mut fresh = agent(2, 3, config(StrategyName::AdHocTd));
     fresh.restore(Snapshot::load(&path).unwrap()).unwrap();
     assert_eq!(fresh.digest(), trained.digest());
     assert_eq!(
@@ -672,10 +664,10 @@ fn bad_construction_and_frames_are_errors() {
         Agent::new(3, 3, AgentConfig::default(), 0).unwrap_err().key,
         "team_size"
     );
-    let dup = AgentConfig {
+    let dup = with(Strategy::AdHoc(AdHoc {
         reachable: Reachable::Agents(vec![1, 1]),
-        ..AgentConfig::default()
-    };
+        ..AdHoc::td()
+    }));
     assert_eq!(Agent::new(0, 3, dup, 0).unwrap_err().key, "reachable");
     let c = AgentConfig::default();
     let swapped = vec![agent(1, 2, c.clone()), agent(0, 2, c.clone())];
@@ -790,20 +782,20 @@ fn play_team(
 #[test]
 fn two_phase_frames_equal_act_for_the_same_seed() {
     for strategy in [
-        StrategyKind::AdHocVisit,
-        StrategyKind::AdHocTd,
-        StrategyKind::Torrey,
-        StrategyKind::EpisodeSharing,
-        StrategyKind::Random,
+        StrategyName::AdHocVisit,
+        StrategyName::AdHocTd,
+        StrategyName::Torrey,
+        StrategyName::EpisodeSharing,
+        StrategyName::Random,
     ] {
         for mistake_correcting in [false, true] {
             if mistake_correcting && !strategy.supports_mistake_correcting() {
                 continue;
             }
-            let c = AgentConfig {
-                mistake_correcting,
-                ..config(strategy)
-            };
+            let mut c = config(strategy);
+            c.strategy
+                .set_mistake_correcting(mistake_correcting)
+                .unwrap();
             let build = || -> Vec<Agent> {
                 (0..3)
                     .map(|i| Agent::new(i, 3, c.clone(), 21 + i as u64).unwrap())
@@ -837,7 +829,7 @@ fn two_phase_frames_equal_act_for_the_same_seed() {
 
 #[test]
 fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
-    let mut a = agent(0, 3, config(StrategyKind::AdHocTd));
+    let mut a = agent(0, 3, config(StrategyName::AdHocTd));
     finish_one_episode(&mut a);
     // Unvisited state: P_ask = 1.
     let decision = a.act_begin(&obs(kick_state(0)), 0.0, &[], &|j| j != 1);
@@ -859,7 +851,7 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
 
 #[test]
 fn an_abandoned_ask_completes_to_nothing() {
-    let mut a = agent(0, 3, config(StrategyKind::AdHocTd));
+    let mut a = agent(0, 3, config(StrategyName::AdHocTd));
     finish_one_episode(&mut a);
     let before = a.digest();
     assert!(matches!(

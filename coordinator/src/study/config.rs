@@ -2,10 +2,10 @@
 
 use std::path::Path;
 
-use agent::StrategyKind;
+use agent::{Strategy, StrategyName};
 use serde::{Deserialize, Serialize};
 
-use crate::config::{AgentSpec, Algorithm, DEFAULT_CI_LEVEL, ExperimentConfig};
+use crate::config::{AgentSpec, DEFAULT_CI_LEVEL, ExperimentConfig};
 use crate::error::ConfigError;
 use crate::transport::Transport;
 
@@ -76,7 +76,7 @@ fn default_ci_level() -> f64 {
 #[serde(deny_unknown_fields)]
 pub struct Pretrain {
     /// The pretraining team's algorithm.
-    pub algorithm: Algorithm,
+    pub algorithm: StrategyName,
     /// Training episodes.
     pub episodes: u64,
     /// Index of the agent saved as the expert.
@@ -90,7 +90,7 @@ pub struct Entry {
     /// Name: the experiment's directory and its label in figures.
     pub name: String,
     /// The team's algorithm.
-    pub algorithm: Algorithm,
+    pub algorithm: StrategyName,
     /// Advisees send their intended action along.
     #[serde(default)]
     pub mistake_correcting: bool,
@@ -170,6 +170,8 @@ impl StudyConfig {
                     "use letters, digits, '-' and '_'",
                 ));
             }
+            e.strategy()
+                .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
             if e.expert && self.pretrain.is_none() {
                 return Err(ConfigError::new(
                     format!("entry[{i}].expert"),
@@ -204,12 +206,17 @@ impl StudyConfig {
 
     /// The experiment of `entry`; `expert` is the pretrained snapshot when it has one.
     pub fn experiment(&self, entry: &Entry, expert: Option<&Path>) -> ExperimentConfig {
-        let mut spec = AgentSpec::of(entry.algorithm.strategy());
-        spec.config.mistake_correcting = entry.mistake_correcting;
+        let mut spec = AgentSpec::of(entry.algorithm);
+        // `validate` rejects Mistake Correcting where the strategy has no such mode.
+        if let Ok(strategy) = entry.strategy() {
+            spec.config.strategy = strategy;
+        }
         let mut team = vec![spec; TEAM];
         if let (true, Some(p)) = (entry.expert, &self.pretrain) {
             let agent = &mut team[p.expert];
-            agent.config.ask_budget = 0;
+            if let Strategy::AdHoc(a) = &mut agent.config.strategy {
+                a.ask_budget = 0;
+            }
             agent.load = expert
                 .map(Path::to_path_buf)
                 .or_else(|| Some("expert.qtable".into()));
@@ -237,18 +244,20 @@ impl StudyConfig {
             seed: self.seed,
             ci_level: self.ci_level,
             transport: self.transport.clone(),
-            team: vec![AgentSpec::of(p.algorithm.strategy()); TEAM],
+            team: vec![AgentSpec::of(p.algorithm); TEAM],
             ..ExperimentConfig::default()
         }
     }
 }
 
-/// Whether a strategy is one of the ad hoc methods (for the report's comparisons).
-pub fn is_ad_hoc(algorithm: Algorithm) -> bool {
-    matches!(
-        algorithm.strategy(),
-        StrategyKind::AdHocVisit | StrategyKind::AdHocTd
-    )
+impl Entry {
+    /// The team's strategy: the paper's constants, with Mistake Correcting
+    /// when asked for (an error for a strategy without that mode).
+    pub fn strategy(&self) -> Result<Strategy, agent::ConfigError> {
+        let mut strategy = Strategy::from(self.algorithm);
+        strategy.set_mistake_correcting(self.mistake_correcting)?;
+        Ok(strategy)
+    }
 }
 
 #[cfg(test)]
@@ -311,6 +320,17 @@ mod tests {
             .contains("best")
         );
         assert!(err(base).contains("entry"));
+        let mc = err(&format!(
+            "{base}[[entry]]\nname = \"a\"\nalgorithm = \"no-advice\"\nmistake_correcting = true\n"
+        ));
+        assert!(mc.contains("entry[0].mistake_correcting"), "{mc}");
+        assert!(
+            err(&format!(
+                "{base}[[entry]]\nname = \"a\"\nalgorithm = \"ad-hoc-td\"\n\n[[entry]]\nname = \"a\"\nalgorithm = \"adhoc-td\"\n"
+            ))
+            .contains("appears twice"),
+            "the old spelling still reads"
+        );
         assert!(
             StudyConfig::preset("paper-everything")
                 .unwrap_err()

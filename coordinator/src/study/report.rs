@@ -5,9 +5,10 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use agent::StrategyName;
+
 use super::analysis::{Comparison, EntryResults};
-use super::config::{Entry, StudyConfig, is_ad_hoc};
-use crate::config::Algorithm;
+use super::config::{Entry, StudyConfig};
 use crate::error::Error;
 use crate::figures::{Point, SeriesSet, draw_figures};
 use crate::stats::Estimate;
@@ -124,9 +125,9 @@ pub fn write_report(
     };
     let advising = |name: &str| {
         Some(name) != study.baseline.as_deref()
-            && kind(name).is_some_and(|a| !matches!(a, Algorithm::NoAdvice | Algorithm::Random))
+            && kind(name).is_some_and(StrategyName::communicates)
     };
-    let ad_hoc = |name: &str| kind(name).is_some_and(is_ad_hoc);
+    let ad_hoc = |name: &str| kind(name).is_some_and(StrategyName::is_ad_hoc);
     let between: Vec<&Comparison> = comparisons
         .iter()
         .filter(|c| advising(&c.a) && advising(&c.b) && (ad_hoc(&c.a) || ad_hoc(&c.b)))

@@ -1,0 +1,382 @@
+//! The two serde forms of [`AgentConfig`]: one flat table for human-readable
+//! formats (JSON, TOML), the plain structure for binary ones (postcard, which
+//! is not self-describing).
+
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use super::AgentConfig;
+use crate::advice::Reachable;
+use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
+
+impl Serialize for AgentConfig {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        if serializer.is_human_readable() {
+            Table::from(self).serialize(serializer)
+        } else {
+            Plain::serialize(self, serializer)
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for AgentConfig {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        if deserializer.is_human_readable() {
+            Table::deserialize(deserializer)?
+                .into_config()
+                .map_err(D::Error::custom)
+        } else {
+            Plain::deserialize(deserializer)
+        }
+    }
+}
+
+/// The binary form: every field in order, the strategy as an enum.
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "AgentConfig")]
+struct Plain {
+    alpha: f64,
+    gamma: f64,
+    lambda: f64,
+    epsilon: f64,
+    tiles_per_feature: u32,
+    tile_width: f64,
+    tile_step: f64,
+    trace_threshold: f64,
+    strategy: Strategy,
+}
+
+/// The flat table: the learner's keys, `strategy`, and the keys of that
+/// strategy (named as the fields of its variant); the others are absent.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct Table {
+    alpha: f64,
+    gamma: f64,
+    lambda: f64,
+    epsilon: f64,
+    tiles_per_feature: u32,
+    tile_width: f64,
+    tile_step: f64,
+    trace_threshold: f64,
+    strategy: StrategyName,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    v_a: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    v_g: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ask_budget: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    give_budget: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mistake_correcting: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    importance_threshold: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sharing_budget: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reachable: Option<Reachable>,
+}
+
+impl Default for Table {
+    fn default() -> Self {
+        Table::from(&AgentConfig::default())
+    }
+}
+
+impl From<&AgentConfig> for Table {
+    fn from(c: &AgentConfig) -> Self {
+        let mut table = Table {
+            alpha: c.alpha,
+            gamma: c.gamma,
+            lambda: c.lambda,
+            epsilon: c.epsilon,
+            tiles_per_feature: c.tiles_per_feature,
+            tile_width: c.tile_width,
+            tile_step: c.tile_step,
+            trace_threshold: c.trace_threshold,
+            strategy: c.strategy.name(),
+            v_a: None,
+            v_g: None,
+            ask_budget: None,
+            give_budget: None,
+            mistake_correcting: None,
+            importance_threshold: None,
+            sharing_budget: None,
+            reachable: None,
+        };
+        match &c.strategy {
+            Strategy::AdHoc(a) => {
+                table.v_a = Some(a.v_a);
+                table.v_g = Some(a.v_g);
+                table.ask_budget = Some(a.ask_budget);
+                table.give_budget = Some(a.give_budget);
+                table.mistake_correcting = Some(a.mistake_correcting);
+                table.reachable = Some(a.reachable.clone());
+            }
+            Strategy::Torrey(t) => {
+                table.importance_threshold = Some(t.importance_threshold);
+                table.give_budget = Some(t.give_budget);
+                table.mistake_correcting = Some(t.mistake_correcting);
+            }
+            Strategy::EpisodeSharing { sharing_budget } => {
+                table.sharing_budget = Some(*sharing_budget);
+            }
+            Strategy::NoAdvice | Strategy::Random => {}
+        }
+        table
+    }
+}
+
+/// Moves a key's value, when given, into its field.
+fn take<T>(key: &mut Option<T>, field: &mut T) {
+    if let Some(value) = key.take() {
+        *field = value;
+    }
+}
+
+impl Table {
+    /// The configuration, with the paper's constants for the strategy keys
+    /// left out; a key the strategy does not have is an error naming it.
+    fn into_config(mut self) -> Result<AgentConfig, String> {
+        let mut strategy = Strategy::from(self.strategy);
+        match &mut strategy {
+            Strategy::AdHoc(AdHoc {
+                confidence: _,
+                v_a,
+                v_g,
+                ask_budget,
+                give_budget,
+                mistake_correcting,
+                reachable,
+            }) => {
+                take(&mut self.v_a, v_a);
+                take(&mut self.v_g, v_g);
+                take(&mut self.ask_budget, ask_budget);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.mistake_correcting, mistake_correcting);
+                take(&mut self.reachable, reachable);
+            }
+            Strategy::Torrey(Torrey {
+                importance_threshold,
+                give_budget,
+                mistake_correcting,
+            }) => {
+                take(&mut self.importance_threshold, importance_threshold);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.mistake_correcting, mistake_correcting);
+            }
+            Strategy::EpisodeSharing { sharing_budget } => {
+                take(&mut self.sharing_budget, sharing_budget);
+            }
+            Strategy::NoAdvice | Strategy::Random => {}
+        }
+        if let Some(key) = self
+            .strategy_keys()
+            .find_map(|(key, given)| given.then_some(key))
+        {
+            let owners: Vec<&str> = StrategyName::ALL
+                .into_iter()
+                .filter(|&name| has_key(name, key))
+                .map(StrategyName::name)
+                .collect();
+            return Err(format!(
+                "key `{key}` does not apply to strategy {}; it belongs to {}",
+                self.strategy,
+                owners.join(", ")
+            ));
+        }
+        Ok(AgentConfig {
+            alpha: self.alpha,
+            gamma: self.gamma,
+            lambda: self.lambda,
+            epsilon: self.epsilon,
+            tiles_per_feature: self.tiles_per_feature,
+            tile_width: self.tile_width,
+            tile_step: self.tile_step,
+            trace_threshold: self.trace_threshold,
+            strategy,
+        })
+    }
+
+    /// Every strategy key and whether it is present.
+    fn strategy_keys(&self) -> impl Iterator<Item = (&'static str, bool)> {
+        [
+            ("v_a", self.v_a.is_some()),
+            ("v_g", self.v_g.is_some()),
+            ("ask_budget", self.ask_budget.is_some()),
+            ("give_budget", self.give_budget.is_some()),
+            ("mistake_correcting", self.mistake_correcting.is_some()),
+            ("importance_threshold", self.importance_threshold.is_some()),
+            ("sharing_budget", self.sharing_budget.is_some()),
+            ("reachable", self.reachable.is_some()),
+        ]
+        .into_iter()
+    }
+}
+
+/// Whether strategy `name` has the strategy key `key`.
+fn has_key(name: StrategyName, key: &str) -> bool {
+    let config = AgentConfig {
+        strategy: Strategy::from(name),
+        ..AgentConfig::default()
+    };
+    Table::from(&config)
+        .strategy_keys()
+        .any(|(k, given)| given && k == key)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::strategy::Confidence;
+
+    /// One configuration of every strategy, none with only its defaults.
+    fn every_strategy() -> Vec<AgentConfig> {
+        let with = |strategy| AgentConfig {
+            alpha: 0.2,
+            epsilon: 0.05,
+            strategy,
+            ..AgentConfig::default()
+        };
+        vec![
+            with(Strategy::NoAdvice),
+            with(Strategy::AdHoc(AdHoc {
+                v_a: 0.25,
+                ask_budget: 7,
+                reachable: Reachable::Agents(vec![2, 0]),
+                ..AdHoc::visit()
+            })),
+            with(Strategy::AdHoc(AdHoc {
+                v_g: 3.0,
+                give_budget: 0,
+                mistake_correcting: true,
+                reachable: Reachable::WithinDistance(12.5),
+                ..AdHoc::new(Confidence::Td)
+            })),
+            with(Strategy::Torrey(Torrey {
+                importance_threshold: 0.5,
+                give_budget: 3,
+                mistake_correcting: true,
+            })),
+            with(Strategy::EpisodeSharing { sharing_budget: 9 }),
+            with(Strategy::Random),
+        ]
+    }
+
+    #[test]
+    fn every_strategy_round_trips_through_postcard_json_and_toml() {
+        for config in every_strategy() {
+            let name = config.strategy.name();
+            let bytes = postcard::to_allocvec(&config).unwrap();
+            let back: AgentConfig = postcard::from_bytes(&bytes).unwrap();
+            assert_eq!(back, config, "postcard, {name}");
+
+            let json = serde_json::to_string(&config).unwrap();
+            let back: AgentConfig = serde_json::from_str(&json).unwrap();
+            assert_eq!(back, config, "JSON, {name}: {json}");
+            assert!(!json.contains("null"), "{json}");
+
+            let text = toml::to_string(&config).unwrap();
+            let back: AgentConfig = toml::from_str(&text).unwrap();
+            assert_eq!(back, config, "TOML, {name}: {text}");
+        }
+    }
+
+    #[test]
+    fn the_table_shows_only_the_strategys_keys() {
+        let keys = |name: StrategyName| {
+            let config = AgentConfig {
+                strategy: Strategy::from(name),
+                ..AgentConfig::default()
+            };
+            let serde_json::Value::Object(map) = serde_json::to_value(&config).unwrap() else {
+                panic!("a table expected");
+            };
+            let learner = [
+                "alpha",
+                "gamma",
+                "lambda",
+                "epsilon",
+                "tiles_per_feature",
+                "tile_width",
+                "tile_step",
+                "trace_threshold",
+                "strategy",
+            ];
+            let mut own: Vec<String> = map
+                .keys()
+                .filter(|k| !learner.contains(&k.as_str()))
+                .cloned()
+                .collect();
+            own.sort();
+            assert_eq!(map["strategy"], name.name());
+            own
+        };
+        assert!(keys(StrategyName::NoAdvice).is_empty());
+        assert!(keys(StrategyName::Random).is_empty());
+        let ad_hoc = [
+            "ask_budget",
+            "give_budget",
+            "mistake_correcting",
+            "reachable",
+            "v_a",
+            "v_g",
+        ];
+        assert_eq!(keys(StrategyName::AdHocVisit), ad_hoc);
+        assert_eq!(keys(StrategyName::AdHocTd), ad_hoc);
+        assert_eq!(
+            keys(StrategyName::Torrey),
+            ["give_budget", "importance_threshold", "mistake_correcting"]
+        );
+        assert_eq!(keys(StrategyName::EpisodeSharing), ["sharing_budget"]);
+    }
+
+    #[test]
+    fn missing_keys_take_the_papers_constants() {
+        let c: AgentConfig = toml::from_str("strategy = \"adhoc-visit\"\nv_a = 0\n").unwrap();
+        assert_eq!(
+            c.strategy,
+            Strategy::AdHoc(AdHoc {
+                v_a: 0.0,
+                ..AdHoc::visit()
+            })
+        );
+        let c: AgentConfig = toml::from_str("epsilon = 0\n").unwrap();
+        assert_eq!(
+            c,
+            AgentConfig {
+                epsilon: 0.0,
+                ..AgentConfig::default()
+            }
+        );
+    }
+
+    #[test]
+    fn a_key_of_another_strategy_is_an_error_naming_it_and_its_strategies() {
+        let err = |text: &str| toml::from_str::<AgentConfig>(text).unwrap_err().to_string();
+        let e = err("mistake_correcting = true\n");
+        assert!(
+            e.contains(
+                "key `mistake_correcting` does not apply to strategy no-advice; \
+                 it belongs to adhoc-visit, adhoc-td, torrey"
+            ),
+            "{e}"
+        );
+        let e = err("strategy = \"torrey\"\nsharing_budget = 3\n");
+        assert!(
+            e.contains(
+                "`sharing_budget` does not apply to strategy torrey; it belongs to episode-sharing"
+            ),
+            "{e}"
+        );
+        let e = err("strategy = \"episode-sharing\"\nv_g = 1\n");
+        assert!(e.contains("it belongs to adhoc-visit, adhoc-td"), "{e}");
+        let e = err("strategy = \"best\"\n");
+        assert!(e.contains("unknown strategy `best`"), "{e}");
+        let e = serde_json::from_str::<AgentConfig>(r#"{"strategy": "random", "v_a": 1}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`v_a` does not apply to strategy random"), "{e}");
+    }
+}
