@@ -241,7 +241,7 @@ pub fn write_figures(dir: &Path, sets: &[SeriesSet]) -> Result<Vec<PathBuf>, Fig
     for figure in &FIGURES {
         let series: Vec<Series> = sets.iter().map(|s| s.series(figure.metric)).collect();
         let svg = figure.svg(&series, &note)?;
-        let png = env_server::render::svg_to_png(&svg).map_err(|e| FigureError::Raster {
+        let png = node::files::svg_to_png(&svg).map_err(|e| FigureError::Raster {
             name: figure.name,
             message: e.to_string(),
         })?;
