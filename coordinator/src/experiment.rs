@@ -74,6 +74,12 @@ impl Experiment {
         &self.config
     }
 
+    /// The snapshot agent `agent` starts every run from, if any, as
+    /// prepared (its counters cleared unless `keep_counters`).
+    pub fn snapshot(&self, agent: usize) -> Option<&Snapshot> {
+        self.snapshots.get(agent)?.as_deref()
+    }
+
     /// The seeds of run `run`.
     pub fn seeds(&self, run: u64) -> RunSeeds {
         let seed = self.config.seed;

@@ -186,40 +186,12 @@ impl NetworkArgs {
 }
 
 fn main() -> ExitCode {
-    tracing_subscriber::fmt()
-        .with_env_filter(tracing_subscriber::EnvFilter::from_default_env())
-        .with_writer(std::io::stderr)
-        .init();
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
-        Err(e) if !e.use_stderr() => {
-            let _ = e.print();
-            return ExitCode::SUCCESS;
-        }
-        Err(e) => {
-            eprintln!("{}", one_line(&e.to_string()));
-            return ExitCode::from(2);
-        }
-    };
+    node::cli::init_tracing("error");
+    let cli: Cli = node::cli::parse_or_exit();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("{}", one_line(&format!("error: {e}")));
-            ExitCode::from(2)
-        }
+        Err(e) => node::cli::exit_with_error(e),
     }
-}
-
-/// Folds a multi-line message into one line, without clap's usage hints.
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| {
-            !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:")
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn run(cli: Cli) -> Result<()> {

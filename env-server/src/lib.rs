@@ -5,11 +5,12 @@
 //! cycle's data flow: [`world`] holds the state, [`analysis`] derives what
 //! every behaviour reads (reach cycles, formation), [`behaviour`] turns
 //! actions into body commands, [`physics`] executes them, [`referee`] ends
-//! episodes and [`features`] describes the state to the agents; [`env`] ties
-//! them together.
+//! episodes and [`features`] describes the state to the agents; [`env`](mod@env) ties
+//! them together, with the settings of [`config`].
 
 pub mod analysis;
 pub mod behaviour;
+pub mod config;
 pub mod env;
 pub mod features;
 pub mod formation;
@@ -22,7 +23,8 @@ pub mod render;
 pub mod rollout;
 pub mod world;
 
-pub use env::{ConfigError, Env, EnvConfig};
+pub use config::{ConfigError, EnvConfig, LongShot};
+pub use env::Env;
 pub use policy::BaselinePolicy;
 pub use referee::Outcome;
 pub use rollout::{RolloutSummary, rollout};

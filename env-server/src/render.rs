@@ -1,11 +1,12 @@
 //! Episode pictures: record one episode and draw it on the half field as an
-//! SVG document, or as a PNG rasterised with `resvg`.
+//! SVG document (writing it to a file, or as PNG, is the binary's job).
 //!
 //! The picture keeps the server's orientation (as rcssmonitor draws it): the
 //! attacked goal is on the right, +y points down.
 
 use crate::analysis::{MAX_OFFENSE, offense_unums};
-use crate::env::{ConfigError, Env, EnvConfig};
+use crate::config::{ConfigError, EnvConfig};
+use crate::env::Env;
 use crate::params::*;
 use crate::physics::Command;
 use crate::policy::BaselinePolicy;
@@ -13,7 +14,6 @@ use crate::referee::Outcome;
 use crate::rollout::{play_episode, policy_rng};
 use glam::DVec2;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
 
 /// Who kicked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,20 +65,6 @@ pub enum RenderError {
     /// Episodes are numbered from 1.
     #[error("episode must be at least 1")]
     EpisodeZero,
-    /// The output name has no supported extension.
-    #[error("cannot tell the picture format of {0}: the file name must end in .svg or .png")]
-    Extension(PathBuf),
-    /// The SVG could not be rasterised.
-    #[error("cannot rasterise the picture: {0}")]
-    Raster(String),
-    /// Writing the file failed.
-    #[error("cannot write {path}: {error}")]
-    Io {
-        /// The file written.
-        path: PathBuf,
-        /// The cause.
-        error: std::io::Error,
-    },
 }
 
 impl Trace {
@@ -316,74 +302,6 @@ pub fn record_episode(
     trace.outcome = outcome;
     trace.frames = frames;
     Ok(trace)
-}
-
-/// Picture formats, told by the file name's extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// `.svg`
-    Svg,
-    /// `.png`
-    Png,
-}
-
-impl Format {
-    /// The format of `path`, from its extension (either case).
-    pub fn of(path: &Path) -> Result<Format, RenderError> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("svg") => Ok(Format::Svg),
-            Some("png") => Ok(Format::Png),
-            _ => Err(RenderError::Extension(path.to_owned())),
-        }
-    }
-}
-
-/// Writes the picture of `trace` to `path` (SVG or PNG by extension), atomically.
-pub fn write_picture(trace: &Trace, path: &Path) -> Result<(), RenderError> {
-    let format = Format::of(path)?;
-    let svg = trace.to_svg();
-    let bytes = match format {
-        Format::Svg => svg.into_bytes(),
-        Format::Png => svg_to_png(&svg)?,
-    };
-    write_atomically(path, &bytes)
-}
-
-/// Rasterises an SVG document at its own size, with the system's fonts
-/// (without any, text is left out).
-pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, RenderError> {
-    use resvg::{tiny_skia, usvg};
-    let mut options = usvg::Options::default();
-    options.fontdb_mut().load_system_fonts();
-    let tree =
-        usvg::Tree::from_str(svg, &options).map_err(|e| RenderError::Raster(e.to_string()))?;
-    let size = tree.size().to_int_size();
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| {
-        RenderError::Raster(format!("bad size {}x{}", size.width(), size.height()))
-    })?;
-    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
-    pixmap
-        .encode_png()
-        .map_err(|e| RenderError::Raster(e.to_string()))
-}
-
-/// Writes `<path>.tmp` beside `path`, then renames it over `path`.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = PathBuf::from(tmp);
-    let result = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
-    result.map_err(|error| {
-        let _ = std::fs::remove_file(&tmp);
-        RenderError::Io {
-            path: path.to_owned(),
-            error,
-        }
-    })
 }
 
 // ---------------------------------------------------------------------------
@@ -763,27 +681,5 @@ mod tests {
             record_episode(config, BaselinePolicy::Random, 7, 0),
             Err(RenderError::EpisodeZero)
         ));
-    }
-
-    #[test]
-    fn png_output_is_a_png() {
-        let dir = std::env::temp_dir().join(format!("env-server-render-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("episode.png");
-        write_picture(&trace(2, 1), &path).unwrap();
-        let bytes = std::fs::read(&path).unwrap();
-        assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"));
-        assert!(!dir.join("episode.png.tmp").exists());
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn bad_paths_are_errors() {
-        let t = trace(3, 1);
-        let err = write_picture(&t, Path::new("/nonexistent-dir/x.svg")).unwrap_err();
-        assert!(matches!(err, RenderError::Io { .. }), "{err}");
-        assert!(err.to_string().contains("/nonexistent-dir/x.svg"));
-        let err = write_picture(&t, Path::new("x.gif")).unwrap_err();
-        assert!(err.to_string().contains(".svg or .png"), "{err}");
     }
 }

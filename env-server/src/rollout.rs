@@ -1,6 +1,7 @@
 //! Running episodes under a baseline policy and summarising them.
 
-use crate::env::{ConfigError, Env, EnvConfig};
+use crate::config::{ConfigError, EnvConfig};
+use crate::env::Env;
 use crate::policy::BaselinePolicy;
 use crate::referee::Outcome;
 use proto::Action;

@@ -1,6 +1,9 @@
-//! Encoding and checked decoding of [`Envelope`]s.
+//! Encoding and checked decoding of [`Envelope`]s, and of the settings a
+//! `Control::Reset` carries.
 
 use crate::{Envelope, Header, PROTOCOL_VERSION};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 use thiserror::Error;
 
 /// Why received bytes were not accepted as a message of this experiment.
@@ -51,6 +54,29 @@ pub fn decode(bytes: &[u8], experiment: u64) -> Result<Envelope, DecodeError> {
         )));
     }
     Ok(envelope)
+}
+
+/// Settings that could not be encoded, or bytes that are not the settings
+/// expected.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+#[error("{0}")]
+pub struct SettingsError(String);
+
+/// A process's settings (any serde type) as `Control::Reset` carries them:
+/// their postcard encoding.
+pub fn encode_settings<T: Serialize>(settings: &T) -> Result<Vec<u8>, SettingsError> {
+    postcard::to_allocvec(settings).map_err(|e| SettingsError(e.to_string()))
+}
+
+/// Decodes settings sent with `Control::Reset`; every byte must be used.
+/// Checking the values is the caller's job.
+pub fn decode_settings<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, SettingsError> {
+    let (settings, rest) =
+        postcard::take_from_bytes(bytes).map_err(|e| SettingsError(e.to_string()))?;
+    if !rest.is_empty() {
+        return Err(SettingsError(format!("{} trailing bytes", rest.len())));
+    }
+    Ok(settings)
 }
 
 #[cfg(test)]
@@ -132,8 +158,10 @@ mod tests {
                         })
                         .collect()
                 })),
-            (any::<u64>(), ".{0,40}")
+            (any::<u64>(), prop::collection::vec(any::<u8>(), 0..40))
                 .prop_map(|(seed, config)| Body::Control(Control::Reset { seed, config })),
+            prop::collection::vec(any::<u8>(), 0..100)
+                .prop_map(|snapshot| Body::Control(Control::Load { snapshot })),
             (mode(), prop::option::of(any::<u64>()))
                 .prop_map(|(mode, seed)| Body::Control(Control::PlayEpisode { mode, seed })),
             Just(Body::Control(Control::Report)),
@@ -180,6 +208,25 @@ mod tests {
             let cut = cut % bytes.len();
             prop_assert!(decode(&bytes[..cut], 7).is_err());
         }
+    }
+
+    #[test]
+    fn settings_round_trip_and_leftovers_are_refused() {
+        #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+        struct Settings {
+            rate: f64,
+            name: String,
+        }
+        let settings = Settings {
+            rate: 0.5,
+            name: "x".into(),
+        };
+        let mut bytes = encode_settings(&settings).unwrap();
+        assert_eq!(decode_settings::<Settings>(&bytes), Ok(settings));
+        assert!(decode_settings::<Settings>(&bytes[..bytes.len() - 1]).is_err());
+        bytes.push(0);
+        let e = decode_settings::<Settings>(&bytes).unwrap_err();
+        assert_eq!(e.to_string(), "1 trailing bytes");
     }
 
     #[test]

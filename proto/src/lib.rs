@@ -4,23 +4,22 @@
 //! carries a [`Header`] with [`PROTOCOL_VERSION`], the experiment, run,
 //! episode and frame, so that stale, duplicate, foreign or malformed
 //! messages are recognised and dropped. Key expressions live in [`keys`],
-//! message and byte counters in [`counters`], and the zenoh session settings
-//! (as plain JSON5 text, no zenoh types) in [`net`].
+//! message and byte counters in [`counters`]. Joining the zenoh network is
+//! the `node` crate's job: this one knows nothing of zenoh.
 
 pub mod codec;
 pub mod counters;
 pub mod keys;
 pub mod message;
-pub mod net;
 
-pub use codec::{DecodeError, decode, encode};
+pub use codec::{DecodeError, SettingsError, decode, decode_settings, encode, encode_settings};
 pub use counters::{Direction, DropReason, MessageCounters, MessageKind};
 pub use message::*;
 
 use serde::{Deserialize, Serialize};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 1;
+pub const PROTOCOL_VERSION: u16 = 2;
 
 /// Number of features in the paper's state view (docs/algorithms.md section 1).
 pub const STATE_FEATURES: usize = 6;

@@ -2,6 +2,7 @@
 
 use crate::{Action, PROTOCOL_VERSION, State};
 use serde::{Deserialize, Serialize};
+use std::fmt;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -147,16 +148,18 @@ pub struct SharedEpisode {
     pub transitions: Vec<SharedTransition>,
 }
 
-/// A coordinator's command to env-server or an agent.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// A coordinator's command to env-server or an agent. Its `Debug` form
+/// gives the size of byte payloads, not the bytes.
+#[derive(Clone, PartialEq, Serialize, Deserialize)]
 pub enum Control {
     /// Start run `header.run` afresh: new learner (agents) or simulator (env-server)
-    /// from `config` (JSON of the process's settings) and `seed`.
+    /// from `config` and `seed`.
     Reset {
         /// Seed of the process's random stream for this run.
         seed: u64,
-        /// The process's settings as JSON (`AgentConfig` or `EnvConfig`).
-        config: String,
+        /// The process's settings (`AgentConfig` or `EnvConfig`), encoded
+        /// with [`encode_settings`](crate::encode_settings).
+        config: Vec<u8>,
     },
     /// env-server: play episode `header.episode` in `mode` and report its result.
     PlayEpisode {
@@ -165,15 +168,10 @@ pub enum Control {
         /// Reseed the simulator first (evaluation points use their own seeds).
         seed: Option<u64>,
     },
-    /// Agent: save its learned state to a file on its host.
-    Save {
-        /// Destination path.
-        path: String,
-    },
-    /// Agent: load its learned state from a file on its host.
+    /// Agent: replace its learned state with this snapshot.
     Load {
-        /// Source path.
-        path: String,
+        /// The bytes of a snapshot file (`agent::Snapshot::encode`).
+        snapshot: Vec<u8>,
     },
     /// Report counters, budgets and the digest of the learned state.
     Report,
@@ -181,6 +179,39 @@ pub enum Control {
     Snapshot,
     /// Exit cleanly.
     Stop,
+}
+
+impl fmt::Debug for Control {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Control::Reset { seed, config } => f
+                .debug_struct("Reset")
+                .field("seed", seed)
+                .field("config", &ByteCount(config.len()))
+                .finish(),
+            Control::PlayEpisode { mode, seed } => f
+                .debug_struct("PlayEpisode")
+                .field("mode", mode)
+                .field("seed", seed)
+                .finish(),
+            Control::Load { snapshot } => f
+                .debug_struct("Load")
+                .field("snapshot", &ByteCount(snapshot.len()))
+                .finish(),
+            Control::Report => f.write_str("Report"),
+            Control::Snapshot => f.write_str("Snapshot"),
+            Control::Stop => f.write_str("Stop"),
+        }
+    }
+}
+
+/// The size of a byte payload, as `Debug` shows it.
+struct ByteCount(usize);
+
+impl fmt::Debug for ByteCount {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "<{} bytes>", self.0)
+    }
 }
 
 /// The answer to a [`Control`].
@@ -256,4 +287,31 @@ pub struct ServerReport {
     pub missing_actions: u64,
     /// Messages and bytes by kind and direction.
     pub messages: crate::MessageCounters,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn commands_show_the_size_of_their_payloads() {
+        let reset = Control::Reset {
+            seed: 3,
+            config: vec![1, 2],
+        };
+        assert_eq!(format!("{reset:?}"), "Reset { seed: 3, config: <2 bytes> }");
+        let load = Control::Load {
+            snapshot: vec![0; 1000],
+        };
+        assert_eq!(format!("{load:?}"), "Load { snapshot: <1000 bytes> }");
+        let play = Control::PlayEpisode {
+            mode: Mode::Training,
+            seed: None,
+        };
+        assert_eq!(
+            format!("{play:?}"),
+            "PlayEpisode { mode: Training, seed: None }"
+        );
+        assert_eq!(format!("{:?}", Control::Stop), "Stop");
+    }
 }

@@ -1,5 +1,6 @@
 //! Helpers shared by the end-to-end tests in `tests/`: where the workspace's
-//! executables are, and free loopback ports.
+//! executables are, and unique experiment names (free loopback ports come
+//! from `node::net::free_port`).
 
 use std::path::PathBuf;
 
@@ -29,12 +30,6 @@ pub fn bin_dir() -> PathBuf {
 /// The path of one of the workspace's executables.
 pub fn bin(name: &str) -> PathBuf {
     bin_dir().join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
-}
-
-/// A loopback TCP port that was free a moment ago.
-pub fn free_port() -> u16 {
-    let listener = std::net::TcpListener::bind("127.0.0.1:0").expect("bind a loopback port");
-    listener.local_addr().expect("bound address").port()
 }
 
 /// An experiment name unique to this test process and `tag`.

@@ -8,7 +8,8 @@ use coordinator::{
     AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
     ZenohSettings,
 };
-use integration_tests::{bin, bin_dir, experiment_name, free_port};
+use integration_tests::{bin, bin_dir, experiment_name};
+use node::net::{NetConfig, free_port};
 use proto::keys::{Keys, Role};
 use proto::{Body, Control, ControlReply, Envelope, Header, experiment_id};
 use serde_json::Value;
@@ -124,7 +125,7 @@ fn evaluation_changes_no_learned_state() {
 #[test]
 fn malformed_and_foreign_messages_change_nothing() {
     let experiment = adhoc_td_experiment();
-    let port = free_port();
+    let port = free_port().unwrap();
     let net = network("intruder", port);
     let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
     for _ in 0..3 {
@@ -145,10 +146,8 @@ fn malformed_and_foreign_messages_change_nothing() {
     let garbage = b"\x07not a message".to_vec();
     let runtime = tokio::runtime::Runtime::new().unwrap();
     runtime.block_on(async {
-        let config = proto::net::NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
-        let session = zenoh::open(zenoh::Config::from_json5(&config.to_json5()).unwrap())
-            .await
-            .unwrap();
+        let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
+        let session = node::net::open(&net).await.unwrap();
         tokio::time::sleep(Duration::from_millis(500)).await;
         for key in [keys.observation(0), keys.action(1), keys.share(2)] {
             for payload in [&garbage, &foreign, &old] {

@@ -3,7 +3,8 @@
 
 use std::process::Command;
 
-use integration_tests::{bin, free_port};
+use integration_tests::bin;
+use node::net::free_port;
 
 fn refused(args: &[&str], needle: &str) {
     let tmp = tempfile::tempdir().unwrap();
@@ -48,7 +49,7 @@ fn a_port_in_use_is_refused() {
 
 #[test]
 fn an_unreachable_router_is_refused() {
-    let endpoint = format!("tcp/127.0.0.1:{}", free_port());
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port().unwrap());
     refused(&["--attach", "--connect", &endpoint], &endpoint);
 }
 

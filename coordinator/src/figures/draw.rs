@@ -76,7 +76,7 @@ pub(super) fn svg(
 /// Rasterises an SVG document to a PNG of its size, with the system's fonts
 /// (without any, the PNG has no text); the error says why not.
 pub(super) fn png(svg: &str) -> Result<Vec<u8>, String> {
-    env_server::render::svg_to_png(svg).map_err(|e| e.to_string())
+    node::files::svg_to_png(svg).map_err(|e| e.to_string())
 }
 
 /// A text style of `px` pixels (plotters' SVG backend writes the size

@@ -4,8 +4,8 @@ use std::collections::HashSet;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+use node::net::NetConfig;
 use proto::keys::{Keys, Role};
-use proto::net::NetConfig;
 use proto::{
     Body, Control, ControlReply, Direction, Envelope, Header, MessageCounters, MessageKind,
 };
@@ -60,28 +60,21 @@ impl Network {
             .build()
             .map_err(|e| net_error(format!("cannot start the async runtime: {e}")))?;
         let port = match (options.attach, options.port) {
-            (false, 0) => Some(free_port()?),
+            (false, 0) => {
+                Some(node::net::free_port().map_err(|e| Error::io("bind", "127.0.0.1:0", e))?)
+            }
             (_, 0) => None,
             (_, p) => Some(p),
         };
-        let net = NetConfig {
-            listen: port
-                .map(|p| format!("tcp/127.0.0.1:{p}"))
+        let net = NetConfig::peer(
+            port.map(|p| format!("tcp/127.0.0.1:{p}"))
                 .into_iter()
                 .collect(),
-            connect: options.connect.clone(),
-            mode: "peer".to_owned(),
-        };
-        let config = zenoh::Config::from_json5(&net.to_json5())
-            .map_err(|e| net_error(format!("invalid zenoh settings: {e}")))?;
+            options.connect.clone(),
+        );
         let session = runtime
-            .block_on(async { zenoh::open(config).await })
-            .map_err(|e| {
-                net_error(format!(
-                    "cannot join the zenoh network ({}): {e}",
-                    endpoints(&net)
-                ))
-            })?;
+            .block_on(node::net::open(&net))
+            .map_err(|e| net_error(e.to_string()))?;
         let roles: Vec<Role> = std::iter::once(Role::Server)
             .chain((0..agents).map(|i| Role::Agent(i as u8)))
             .collect();
@@ -342,29 +335,5 @@ impl Network {
 impl Drop for Network {
     fn drop(&mut self) {
         self.stop();
-    }
-}
-
-/// A free loopback TCP port (bound and released).
-fn free_port() -> Result<u16, Error> {
-    let listener = std::net::TcpListener::bind("127.0.0.1:0")
-        .map_err(|e| Error::io("bind", "127.0.0.1:0", e))?;
-    listener
-        .local_addr()
-        .map(|a| a.port())
-        .map_err(|e| Error::io("bind", "127.0.0.1:0", e))
-}
-
-fn endpoints(net: &NetConfig) -> String {
-    let all: Vec<&str> = net
-        .listen
-        .iter()
-        .chain(&net.connect)
-        .map(String::as_str)
-        .collect();
-    if all.is_empty() {
-        "no endpoints".into()
-    } else {
-        all.join(", ")
     }
 }

@@ -45,7 +45,7 @@ impl<'a> RemoteBackend<'a> {
             evaluation_seed: None,
             rtt_ms: Mutex::new(Vec::new()),
         };
-        let env = serde_json::to_string(&config.env).map_err(|e| backend.error(e.to_string()))?;
+        let env = proto::encode_settings(&config.env).map_err(|e| backend.error(e.to_string()))?;
         backend.expect_ok(
             Role::Server,
             Control::Reset {
@@ -56,7 +56,7 @@ impl<'a> RemoteBackend<'a> {
         for (i, spec) in config.team.iter().enumerate() {
             let role = Role::Agent(i as u8);
             let agent =
-                serde_json::to_string(&spec.config).map_err(|e| backend.error(e.to_string()))?;
+                proto::encode_settings(&spec.config).map_err(|e| backend.error(e.to_string()))?;
             backend.expect_ok(
                 role,
                 Control::Reset {
@@ -64,14 +64,11 @@ impl<'a> RemoteBackend<'a> {
                     config: agent,
                 },
             )?;
-            if let Some(path) = &spec.load {
-                let path = std::path::absolute(path).unwrap_or_else(|_| path.clone());
-                backend.expect_ok(
-                    role,
-                    Control::Load {
-                        path: path.display().to_string(),
-                    },
-                )?;
+            if let Some(snapshot) = experiment.snapshot(i) {
+                let snapshot = snapshot
+                    .encode()
+                    .map_err(|e| backend.error(format!("agent {i}'s snapshot: {e}")))?;
+                backend.expect_ok(role, Control::Load { snapshot })?;
             }
         }
         Ok(backend)

@@ -9,10 +9,8 @@ mod movement;
 mod pass;
 mod shoot;
 
-pub use shoot::LongShot;
-
 use crate::analysis::Analysis;
-use crate::env::EnvConfig;
+use crate::config::EnvConfig;
 use crate::physics::Command;
 use crate::world::{Player, World};
 use proto::Action;

@@ -14,28 +14,6 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// Number of targets along the goal mouth.
 const TARGETS: usize = 25;
 
-/// How SHOOT kicks when no course is feasible (spec 6.2.2, calibrated in docs/calibration.md).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct LongShot {
-    /// Desired first speed of the fallback shot (m/cycle).
-    pub speed: f64,
-    /// Slowest first speed worth kicking; below it the agent holds the ball.
-    pub min_speed: f64,
-    /// Width (degrees) of the keeper-avoidance term used to pick the target.
-    pub sigma_deg: f64,
-}
-
-impl Default for LongShot {
-    fn default() -> Self {
-        LongShot {
-            speed: 1.85,
-            min_speed: 1.2,
-            sigma_deg: 10.0,
-        }
-    }
-}
-
 /// One candidate shot.
 #[derive(Clone, Copy, Debug)]
 struct Course {

@@ -8,8 +8,8 @@ use proto::{Action, Body, DropReason, Header, MessageKind};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
-use super::learner::Ask;
-use super::node::Node;
+use crate::context::Node;
+use crate::learner::Ask;
 
 /// The replies collected for one request.
 #[derive(Clone, Debug, Default, PartialEq)]

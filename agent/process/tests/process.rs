@@ -6,13 +6,14 @@ mod support;
 use std::time::{Duration, Instant};
 
 use agent::{AdHoc, Agent, AgentConfig, Isolated, Strategy, StrategyName};
+use node::net::NetConfig;
+use node::net::free_port;
 use proto::keys::{Keys, Role};
-use proto::net::NetConfig;
 use proto::{
     AgentReport, Body, Control, ControlReply, Envelope, Header, MessageKind, Mode, Observation,
     PROTOCOL_VERSION,
 };
-use support::{Guard, free_port};
+use support::Guard;
 use zenoh::Session;
 use zenoh::handlers::FifoChannelHandler;
 use zenoh::pubsub::Subscriber;
@@ -21,7 +22,10 @@ use zenoh::sample::{Sample, SampleKind};
 
 /// Starts agent `id` of a team of 2, connected to the coordinator's port.
 fn spawn_agent(name: &str, id: u8, coordinator: u16) -> Guard {
-    let (id, listen) = (id.to_string(), format!("tcp/127.0.0.1:{}", free_port()));
+    let (id, listen) = (
+        id.to_string(),
+        format!("tcp/127.0.0.1:{}", free_port().unwrap()),
+    );
     let connect = format!("tcp/127.0.0.1:{coordinator}");
     let args = ["--experiment", name, "--id", &id, "--team-size", "2"];
     let network = ["--listen", &listen, "--connect", &connect];
@@ -47,9 +51,8 @@ struct Fake {
 
 impl Fake {
     async fn open(name: &str) -> Self {
-        let port = free_port();
-        let config = NetConfig::loopback_peer(port, Vec::new()).to_json5();
-        let session = zenoh::open(zenoh::Config::from_json5(&config).unwrap())
+        let port = free_port().unwrap();
+        let session = node::net::open(&NetConfig::loopback_peer(port, Vec::new()))
             .await
             .unwrap();
         let keys = Keys::new(name).unwrap();
@@ -114,7 +117,7 @@ impl Fake {
     }
 
     async fn reset(&self, id: u8, config: &AgentConfig) {
-        let config = serde_json::to_string(config).unwrap();
+        let config = proto::encode_settings(config).unwrap();
         let reply = self
             .control(
                 id,
@@ -418,6 +421,24 @@ async fn episode_sharing_travels_as_published_messages() {
         assert_eq!(received(&r, MessageKind::SharedEpisode), 1);
         assert_eq!(r.give_spent, 3);
     }
+
+    // Learned state travels as snapshot bytes: agent 1 takes agent 0's.
+    let header = fake.header(0, 1, 0);
+    let ControlReply::Snapshot(bytes) = fake.control(0, header, Control::Snapshot).await else {
+        panic!("agent 0 sent no snapshot");
+    };
+    let truncated = Control::Load {
+        snapshot: bytes[..bytes.len() - 1].to_vec(),
+    };
+    let reply = fake.control(1, header, truncated).await;
+    assert!(
+        matches!(&reply, ControlReply::Error(e) if e.contains("snapshot")),
+        "{reply:?}"
+    );
+    let load = Control::Load { snapshot: bytes };
+    assert_eq!(fake.control(1, header, load).await, ControlReply::Ok);
+    let digest = fake.report(0, 1).await.digest;
+    assert_eq!(fake.report(1, 1).await.digest, digest);
 }
 #[tokio::test(flavor = "multi_thread")]
 async fn a_second_agent_with_the_same_id_exits_2_and_a_lost_coordinator_stops_agents() {

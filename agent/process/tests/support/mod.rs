@@ -1,15 +1,8 @@
 //! Running `agent` processes in tests, and never leaving one behind.
 
 use std::io::Read;
-use std::net::TcpListener;
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
-
-/// A free loopback port (bound, read, released).
-pub fn free_port() -> u16 {
-    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
-    listener.local_addr().unwrap().port()
-}
 
 /// A child process killed when dropped, so that no test leaves one behind.
 pub struct Guard(Child);

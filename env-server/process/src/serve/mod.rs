@@ -4,38 +4,32 @@
 //! [`link`] is the zenoh plumbing (session, token, queryable, subscriber,
 //! publishers), [`episode`] the simulator side of a run without any I/O
 //! (which simulator plays, what each agent observes, which actions are
-//! awaited), and [`server`] the event loop tying them together. These
-//! modules belong to the binary only, so the `env_server` library stays
-//! free of zenoh and tokio.
+//! awaited), and [`server`] the event loop tying them together. They
+//! belong to the binary, so the `env_server` library stays free of zenoh
+//! and tokio.
 
 mod episode;
 mod link;
 mod server;
 
 use anyhow::{Context, Result};
-use proto::keys::Keys;
+use node::cli::ConnectionArgs;
 use std::time::Duration;
 
 /// The settings of `env-server serve`.
 #[derive(Clone, Debug)]
 pub struct Options {
-    /// Experiment name: every key lives under `adv/<experiment>`.
-    pub experiment: String,
-    /// zenoh endpoint to listen on.
-    pub listen: String,
-    /// zenoh endpoints to connect to.
-    pub connect: Vec<String>,
+    /// The experiment, the endpoints, and whether to exit with the coordinator.
+    pub connection: ConnectionArgs,
     /// How long to wait for a kicker's action before falling back to Move.
     pub step_timeout: Duration,
-    /// Exit once the coordinator that was seen is gone.
-    pub exit_with_coordinator: bool,
 }
 
 /// Serves the simulator until a `Stop` command; errors are the start-up
 /// failures (bad name or endpoint, port in use, unreachable peer) and a
 /// zenoh session that fails underneath.
 pub fn run(options: Options) -> Result<()> {
-    let keys = Keys::new(&options.experiment)?;
+    let keys = options.connection.keys()?;
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()

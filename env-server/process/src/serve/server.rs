@@ -182,7 +182,7 @@ impl Server {
     /// Starts run `header.run` with a training simulator seeded with
     /// `seed`; an in-progress episode is abandoned. A bad config changes
     /// nothing.
-    async fn reset(&mut self, header: Header, seed: u64, config: &str) -> Result<ControlReply> {
+    async fn reset(&mut self, header: Header, seed: u64, config: &[u8]) -> Result<ControlReply> {
         let simulators = match Simulators::new(config, seed) {
             Ok(s) => s,
             Err(text) => return Ok(ControlReply::Error(text)),

@@ -7,7 +7,7 @@ use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind};
 use zenoh::handlers::FifoChannelHandler;
 use zenoh::query::{Query, Queryable};
 
-use super::node::Node;
+use crate::context::Node;
 
 /// A queryable whose queries are read from a channel.
 pub type Queries = Queryable<FifoChannelHandler<Query>>;

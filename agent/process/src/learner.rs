@@ -5,8 +5,8 @@
 use agent::{Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
 use proto::{Action, AdviceRequest, DropReason, Header, SharedEpisode};
 
-use super::order::{Position, Stream};
-use super::shares::PendingShares;
+use crate::order::{Position, Stream};
+use crate::shares::PendingShares;
 
 /// What the process does after an accepted observation.
 #[derive(Clone, Debug, PartialEq)]
@@ -67,11 +67,12 @@ impl Learner {
         }
     }
 
-    /// Starts run `run` with a fresh agent from `config` (`AgentConfig`
-    /// JSON) and `seed`; on error the current state is kept.
-    pub fn reset(&mut self, run: u32, seed: u64, config: &str) -> Result<(), String> {
-        let config: AgentConfig = serde_json::from_str(config)
-            .map_err(|e| format!("agent config does not parse: {e}"))?;
+    /// Starts run `run` with a fresh agent from `config` (an `AgentConfig`
+    /// encoded with `proto::encode_settings`) and `seed`; on error the
+    /// current state is kept.
+    pub fn reset(&mut self, run: u32, seed: u64, config: &[u8]) -> Result<(), String> {
+        let config: AgentConfig = proto::decode_settings(config)
+            .map_err(|e| format!("agent config does not decode: {e}"))?;
         config.validate().map_err(|e| e.to_string())?;
         let agent = Agent::new(self.id.into(), self.team_size.into(), config, seed)
             .map_err(|e| e.to_string())?;
@@ -84,10 +85,11 @@ impl Learner {
         Ok(())
     }
 
-    /// Replaces the learned state with the snapshot file at `path`.
-    pub fn load(&mut self, path: &str) -> Result<(), String> {
+    /// Replaces the learned state with a snapshot (the bytes of a snapshot
+    /// file); on error the current state is kept.
+    pub fn load(&mut self, snapshot: &[u8]) -> Result<(), String> {
         let agent = self.agent.as_mut().ok_or(NO_RUN)?;
-        let snapshot = Snapshot::load(path.as_ref()).map_err(|e| e.to_string())?;
+        let snapshot = Snapshot::decode(snapshot).map_err(|e| e.to_string())?;
         agent.restore(snapshot).map_err(|e| e.to_string())?;
         self.epoch += 1;
         Ok(())
@@ -226,7 +228,15 @@ mod tests {
     use super::*;
     use proto::Mode;
 
-    const CONFIG: &str = r#"{"strategy": "episode-sharing"}"#;
+    /// The wire form of the `AgentConfig` these JSON settings describe.
+    fn config(json: &str) -> Vec<u8> {
+        let config: AgentConfig = serde_json::from_str(json).unwrap();
+        proto::encode_settings(&config).unwrap()
+    }
+
+    fn sharing() -> Vec<u8> {
+        config(r#"{"strategy": "episode-sharing"}"#)
+    }
 
     fn header(run: u32, episode: u32, frame: u32) -> Header {
         Header::new(1, run, episode, frame)
@@ -246,7 +256,7 @@ mod tests {
 
     fn reset(id: u8) -> Learner {
         let mut l = Learner::new(id, 2);
-        l.reset(3, 9, CONFIG).unwrap();
+        l.reset(3, 9, &sharing()).unwrap();
         l
     }
 
@@ -272,18 +282,54 @@ mod tests {
     fn bad_resets_keep_the_current_state() {
         let mut l = Learner::new(0, 2);
         assert!(l.agent().is_err());
-        assert!(l.reset(0, 1, "{").unwrap_err().contains("does not parse"));
+        assert!(l.reset(0, 1, b"{").unwrap_err().contains("does not decode"));
+        let mut long = sharing();
+        long.push(0);
         assert!(
-            l.reset(0, 1, r#"{"alpha": 2.0}"#)
+            l.reset(0, 1, &long)
+                .unwrap_err()
+                .contains("does not decode")
+        );
+        assert!(
+            l.reset(0, 1, &config(r#"{"alpha": 2.0}"#))
                 .unwrap_err()
                 .contains("alpha")
         );
         assert!(l.agent().is_err());
-        assert!(
-            l.load("/nonexistent.qtable")
-                .unwrap_err()
-                .contains("not been reset")
-        );
+        assert!(l.load(&[]).unwrap_err().contains("not been reset"));
+    }
+
+    #[test]
+    fn every_strategy_crosses_the_wire() {
+        for strategy in [
+            "no-advice",
+            "ad-hoc-visit",
+            "ad-hoc-td",
+            "torrey",
+            "episode-sharing",
+            "random",
+        ] {
+            let json = format!(r#"{{"strategy": "{strategy}", "reachable": {{"agents": [1]}}}}"#);
+            let sent: AgentConfig = serde_json::from_str(&json).unwrap();
+            let bytes = proto::encode_settings(&sent).unwrap();
+            assert_eq!(proto::decode_settings::<AgentConfig>(&bytes), Ok(sent));
+            Learner::new(0, 2).reset(0, 1, &bytes).unwrap();
+        }
+    }
+
+    #[test]
+    fn loads_a_snapshot_and_refuses_bad_bytes() {
+        let (mut trained, mut fresh) = (reset(0), reset(0));
+        goal_episode(&mut trained, 0);
+        let snapshot = trained.agent().unwrap().snapshot();
+        let before = fresh.agent().unwrap().digest();
+        assert!(fresh.load(b"not a snapshot").is_err());
+        let mut bytes = snapshot.encode().unwrap();
+        bytes.pop();
+        assert!(fresh.load(&bytes).is_err());
+        assert_eq!(fresh.agent().unwrap().digest(), before);
+        fresh.load(&snapshot.encode().unwrap()).unwrap();
+        assert_eq!(fresh.agent().unwrap().digest(), snapshot.digest());
     }
 
     #[test]
@@ -378,9 +424,9 @@ mod tests {
 
     #[test]
     fn asks_live_advisors_and_ignores_answers_for_a_replaced_learner() {
-        let config = r#"{"strategy": "torrey"}"#;
+        let config = config(r#"{"strategy": "torrey"}"#);
         let mut l = Learner::new(0, 2);
-        l.reset(0, 1, config).unwrap();
+        l.reset(0, 1, &config).unwrap();
         // Torrey students ask their teacher at every fresh kick state, if alive.
         let kick = obs(0, true, false, 0.0);
         let step = l.observe(&header(0, 0, 0), &kick, &|_| false).unwrap();
@@ -397,7 +443,7 @@ mod tests {
         let Ok(Step::Ask(ask)) = l.observe(&header(0, 1, 0), &kick, &|_| true) else {
             panic!("no request");
         };
-        l.reset(1, 1, config).unwrap();
+        l.reset(1, 1, &config).unwrap();
         assert_eq!(l.complete(&ask, &[Action::Shoot]), None);
     }
 }

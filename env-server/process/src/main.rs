@@ -1,12 +1,15 @@
-//! `env-server`: run the HFO simulator from the command line.
+//! `env-server`: run the HFO simulator from the command line: rollouts,
+//! episode pictures ([`picture`]), and the simulator as a process stepping
+//! episodes for remote agents ([`serve`]).
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use env_server::{BaselinePolicy, EnvConfig, render, rollout};
+use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
-use std::process::ExitCode;
 use std::time::Duration;
 
+mod picture;
 mod serve;
 
 #[derive(Parser)]
@@ -66,63 +69,21 @@ enum Command {
     /// Step the simulator for remote agents over zenoh until a Stop command
     /// (docs/protocol.md).
     Serve {
-        /// Experiment name (letters, digits, '-' and '_'); every key lives under adv/NAME.
-        #[arg(long)]
-        experiment: String,
-        /// zenoh endpoint to listen on (port 0: any free port).
-        #[arg(long, default_value = "tcp/127.0.0.1:0", value_name = "ENDPOINT")]
-        listen: String,
-        /// zenoh endpoint to connect to: the coordinator's, or a router's (repeatable).
-        #[arg(long, value_name = "ENDPOINT")]
-        connect: Vec<String>,
+        #[command(flatten)]
+        connection: ConnectionArgs,
         /// Milliseconds to wait for a kicker's action before it falls back to Move.
         #[arg(long, default_value_t = 1000, value_parser = at_least_one)]
         step_timeout_ms: u64,
-        /// Exit when the coordinator that was seen leaves (for servers a
-        /// coordinator starts itself; services keep running).
-        #[arg(long)]
-        exit_with_coordinator: bool,
     },
 }
 
-fn main() -> ExitCode {
+fn main() {
     // Without RUST_LOG: errors, and this program's warnings (missing actions).
-    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
-        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("error,env_server=warn"));
-    tracing_subscriber::fmt()
-        .with_env_filter(filter)
-        .with_writer(std::io::stderr)
-        .init();
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
-        Err(e) if !e.use_stderr() => {
-            let _ = e.print();
-            return ExitCode::SUCCESS;
-        }
-        Err(e) => {
-            eprintln!("{}", one_line(&e.to_string()));
-            return ExitCode::from(2);
-        }
-    };
-    match run(cli) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(2)
-        }
+    init_tracing("error,env_server=warn");
+    let cli: Cli = parse_or_exit();
+    if let Err(e) = run(cli) {
+        exit_with_error(format_args!("{e:#}"));
     }
-}
-
-/// Folds clap's multi-line message into one line, without the usage hints.
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| {
-            !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:")
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -167,27 +128,21 @@ fn run(cli: Cli) -> Result<()> {
             offense,
             env_config,
         } => {
-            render::Format::of(&out)?;
+            picture::Format::of(&out)?;
             let config = EnvConfig {
                 offense: offense.into(),
                 ..load_env_config(env_config.as_deref())?
             };
             let trace = render::record_episode(config, policy, seed, episode)?;
-            render::write_picture(&trace, &out)?;
+            picture::write_picture(&trace, &out)?;
             println!("wrote {}: {}", out.display(), trace.summary());
         }
         Command::Serve {
-            experiment,
-            listen,
-            connect,
+            connection,
             step_timeout_ms,
-            exit_with_coordinator,
         } => serve::run(serve::Options {
-            experiment,
-            listen,
-            connect,
+            connection,
             step_timeout: Duration::from_millis(step_timeout_ms),
-            exit_with_coordinator,
         })?,
     }
     Ok(())

@@ -2,7 +2,6 @@
 //! §2, §7, §8), each answered in its own task so that a report waiting for
 //! an episode to end blocks nothing else.
 
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -10,10 +9,10 @@ use proto::keys::Role;
 use proto::{AgentReport, Body, Control, ControlReply, DropReason, Envelope, Header, MessageKind};
 use zenoh::query::Query;
 
-use super::advise::Queries;
-use super::node::{Exit, Node, Traffic};
+use crate::advise::Queries;
+use crate::context::{Exit, Node, Traffic};
 
-/// How long Report, Save and Snapshot wait for their episode to end
+/// How long Report and Snapshot wait for their episode to end
 /// (less than the coordinator's 10 s, so that it gets this error).
 const EPISODE_WAIT: Duration = Duration::from_secs(8);
 
@@ -66,14 +65,7 @@ async fn execute(node: &Node, header: Header, control: Control) -> ControlReply 
             node.publish_progress(&learner);
             done(result)
         }
-        Control::Load { path } => done(node.learner().load(&path)),
-        Control::Save { path } => done(
-            after_episode(node, header, |n| {
-                let snapshot = n.learner().agent()?.snapshot();
-                snapshot.save(Path::new(&path)).map_err(|e| e.to_string())
-            })
-            .await,
-        ),
+        Control::Load { snapshot } => done(node.learner().load(&snapshot)),
         Control::Snapshot => after_episode(node, header, |n| {
             let snapshot = n.learner().agent()?.snapshot();
             snapshot.encode().map_err(|e| e.to_string())

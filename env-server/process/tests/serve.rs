@@ -3,13 +3,13 @@
 //! (docs/protocol.md).
 
 use env_server::{Env, EnvConfig, Outcome};
+use node::net::{NetConfig, free_port};
 use proto::keys::{Keys, Role};
-use proto::net::NetConfig;
 use proto::{
     Action, ActionChoice, Body, Control, ControlReply, Envelope, EpisodeOutcome, EpisodeResult,
     Header, Mode, Observation, PROTOCOL_VERSION, ServerReport,
 };
-use std::net::{TcpListener, TcpStream};
+use std::net::TcpStream;
 use std::process::{Child, Command, Output, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -41,12 +41,6 @@ impl Server {
         }
         None
     }
-}
-
-/// A loopback port nobody listens on right now.
-fn free_port() -> u16 {
-    let listener = TcpListener::bind("127.0.0.1:0").expect("bind");
-    listener.local_addr().expect("local addr").port()
 }
 
 fn command(args: &[&str]) -> Command {
@@ -99,11 +93,10 @@ struct Harness {
 impl Harness {
     /// Starts a server and joins it with fake agents behaving `behaviour`.
     async fn new(name: &str, behaviour: Behaviour, extra: &[&str]) -> Self {
-        let port = free_port();
+        let port = free_port().expect("a free port");
         let server = start(name, port, extra);
         let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
-        let config = zenoh::Config::from_json5(&net.to_json5()).expect("config");
-        let session = zenoh::open(config).await.expect("open the test session");
+        let session = node::net::open(&net).await.expect("open the test session");
         let keys = Keys::new(name).expect("keys");
         let experiment = proto::experiment_id(name);
         let mut seen = Vec::new();
@@ -163,7 +156,7 @@ impl Harness {
     }
 
     async fn reset(&self, run: u32, seed: u64) {
-        let config = serde_json::to_string(&EnvConfig::default()).expect("json");
+        let config = proto::encode_settings(&EnvConfig::default()).expect("settings");
         let reply = self.control(run, 0, Control::Reset { seed, config }).await;
         assert_eq!(reply, ControlReply::Ok);
     }
@@ -476,19 +469,24 @@ async fn bad_commands_get_errors_and_change_nothing() {
     let play =
         |run, episode, mode, seed| h.control(run, episode, Control::PlayEpisode { mode, seed });
     assert!(error(play(0, 0, Mode::Training, None).await).contains("Reset"));
-    let reset = |config: &str| Control::Reset {
+    let reset = |config: &[u8]| Control::Reset {
         seed: 1,
         config: config.to_owned(),
     };
-    assert!(error(h.control(0, 0, reset(r#"{"offense": 9}"#)).await).contains("offense"));
-    assert!(error(h.control(0, 0, reset("{")).await).contains("invalid env config"));
+    let nine = EnvConfig {
+        offense: 9,
+        ..EnvConfig::default()
+    };
+    let nine = proto::encode_settings(&nine).expect("settings");
+    assert!(error(h.control(0, 0, reset(&nine)).await).contains("offense"));
+    assert!(error(h.control(0, 0, reset(b"{")).await).contains("invalid env config"));
     h.reset(1, 4).await;
     assert!(error(play(0, 0, Mode::Training, None).await).contains("run"));
     assert!(error(play(1, 0, Mode::Evaluation, None).await).contains("evaluation"));
-    let save = Control::Save {
-        path: "x".to_owned(),
+    let load = Control::Load {
+        snapshot: vec![0; 64],
     };
-    assert!(error(h.control(1, 0, save).await).contains("Save"));
+    assert!(error(h.control(1, 0, load).await).contains("does not handle Load"));
     assert!(!error(h.query(vec![0xff, 0xff]).await).is_empty());
     let foreign = proto::encode(&Envelope {
         header: Header::new(h.experiment ^ 1, 1, 0, 0),
@@ -542,7 +540,7 @@ fn fails(args: &[&str], within: Duration) -> String {
 
 #[test]
 fn second_server_on_the_same_port_exits_2() {
-    let port = free_port();
+    let port = free_port().expect("a free port");
     let _first = start("serve-port", port, &[]);
     let start = Instant::now();
     while TcpStream::connect(("127.0.0.1", port)).is_err() {
@@ -560,19 +558,22 @@ fn bad_input_is_one_line_and_exit_2() {
     let quick = Duration::from_secs(10);
     assert!(fails(&["--experiment", "a/b"], quick).contains("experiment name"));
     let e = fails(&["--experiment", "x", "--listen", "nonsense"], quick);
-    assert!(e.contains("endpoint"), "{e}");
+    assert!(
+        e.contains("invalid network settings (listen nonsense;"),
+        "{e}"
+    );
     let e = fails(
         &["--experiment", "x", "--listen", "tcp/127.0.0.1:99999"],
         quick,
     );
     assert!(e.contains("port"), "{e}");
-    let nobody = format!("tcp/127.0.0.1:{}", free_port());
+    let nobody = format!("tcp/127.0.0.1:{}", free_port().expect("a free port"));
     let e = fails(&["--experiment", "x", "--connect", &nobody], quick);
     assert!(e.contains(&nobody), "{e}");
 }
 
 /// Frames per second with fake agents answering at once (information, not
-/// a check): `cargo test --release -p env-server --test serve -- --ignored --nocapture`.
+/// a check): `cargo test --release -p env-server-process --test serve -- --ignored --nocapture`.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 #[ignore = "measurement"]
 async fn frames_per_second() {

@@ -9,9 +9,9 @@ use zenoh::handlers::FifoChannelHandler;
 use zenoh::pubsub::{Publisher, Subscriber};
 use zenoh::sample::Sample;
 
-use super::ask::ask;
-use super::learner::Step;
-use super::node::Node;
+use crate::ask::ask;
+use crate::context::Node;
+use crate::learner::Step;
 
 /// A subscriber whose samples are read from a channel.
 pub type Samples = Subscriber<FifoChannelHandler<Sample>>;

@@ -10,7 +10,7 @@ use proto::{Body, Direction, DropReason, Envelope, Header, MessageCounters, Mess
 use tokio::sync::{Notify, watch};
 use zenoh::Session;
 
-use super::learner::{Learner, Progress};
+use crate::learner::{Learner, Progress};
 
 /// Messages of this run, and the advice round trips.
 #[derive(Clone, Debug, Default)]

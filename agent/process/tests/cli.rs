@@ -5,14 +5,15 @@ mod support;
 use std::net::TcpListener;
 use std::time::Duration;
 
-use support::{Guard, free_port};
+use node::net::free_port;
+use support::Guard;
 
 #[test]
 fn bad_input_gives_one_line_and_exit_code_2() {
     let busy = TcpListener::bind("127.0.0.1:0").unwrap();
     let busy_port = busy.local_addr().unwrap().port();
     let listen_busy = format!("tcp/127.0.0.1:{busy_port}");
-    let nobody = format!("tcp/127.0.0.1:{}", free_port());
+    let nobody = format!("tcp/127.0.0.1:{}", free_port().unwrap());
     let ok = ["--experiment", "e", "--id", "0", "--team-size", "2"];
     let cases: Vec<(Vec<&str>, String)> = vec![
         (

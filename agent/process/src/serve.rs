@@ -1,30 +1,15 @@
-//! The `agent` process: the agent library behind zenoh (docs/protocol.md).
-//!
-//! Tasks: the stream task ([`frames`]) processes observations and shared
-//! episodes in order and asks for advice ([`ask`]) without holding the
-//! learner; [`advise`] answers other agents' requests meanwhile; [`control`]
-//! answers the coordinator; [`alive`] follows liveliness tokens.
-
-mod advise;
-mod alive;
-mod ask;
-mod control;
-mod frames;
-mod learner;
-mod node;
-mod order;
-mod session;
-mod shares;
+//! Joining the network: every declaration of the agent, its tasks, and
+//! leaving once stopped.
 
 use std::sync::Arc;
 use std::time::Duration;
 
 use anyhow::{Result, anyhow};
+use node::net::{NetConfig, describe};
 use proto::keys::{Keys, Role};
-use proto::net::NetConfig;
 
-pub use node::Exit;
-use node::Node;
+use crate::context::{Exit, Node};
+use crate::{advise, alive, control, frames, unique};
 
 /// Who this agent is and how it joins the network.
 #[derive(Clone, Debug)]
@@ -56,10 +41,9 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         advice_timeout,
         exit_with_coordinator,
     } = settings;
-    let session = session::open(&net).await?;
-    session::ensure_unique(&session, &keys, &name, id).await?;
-    let declare =
-        |what: &str, e: zenoh::Error| anyhow!("cannot declare {what}: {}", session::describe(&e));
+    let session = node::net::open(&net).await?;
+    unique::ensure_unique(&session, &keys, &name, id).await?;
+    let declare = |what: &str, e: zenoh::Error| anyhow!("cannot declare {what}: {}", describe(&e));
     let tokens = session
         .liveliness()
         .declare_subscriber(keys.alive_all())
@@ -108,11 +92,9 @@ pub async fn run(settings: Settings) -> Result<Exit> {
     let exit = node.stopped().await;
     tracing::info!(?exit, "stopping");
     drop(token);
-    session.close().await.map_err(|e| {
-        anyhow!(
-            "cannot leave the zenoh network cleanly: {}",
-            session::describe(&e)
-        )
-    })?;
+    session
+        .close()
+        .await
+        .map_err(|e| anyhow!("cannot leave the zenoh network cleanly: {}", describe(&e)))?;
     Ok(exit)
 }

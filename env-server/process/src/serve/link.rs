@@ -7,8 +7,9 @@
 
 use super::Options;
 use anyhow::{Result, anyhow};
+use node::alive::CoordinatorPresence;
+use node::net::describe;
 use proto::keys::{Keys, Role};
-use proto::net::NetConfig;
 use tokio::sync::mpsc::{UnboundedReceiver, unbounded_channel};
 use zenoh::Session;
 use zenoh::liveliness::LivelinessToken;
@@ -46,23 +47,8 @@ impl Link {
     /// last, the liveliness token (so a process that sees the token finds
     /// the rest declared).
     pub async fn open(options: &Options, keys: Keys) -> Result<(Self, Inbox)> {
-        let net = NetConfig {
-            listen: vec![options.listen.clone()],
-            connect: options.connect.clone(),
-            mode: "peer".to_owned(),
-        };
-        let config = zenoh::Config::from_json5(&net.to_json5())
-            .map_err(|e| anyhow!("invalid zenoh endpoint: {}", one_line(&e.to_string())))?;
-        let mut place = format!("listening on {}", options.listen);
-        if !options.connect.is_empty() {
-            place += &format!(" and connecting to {}", options.connect.join(", "));
-        }
-        let session = zenoh::open(config).await.map_err(|e| {
-            anyhow!(
-                "cannot open the zenoh session {place}: {}",
-                one_line(&e.to_string())
-            )
-        })?;
+        let connection = &options.connection;
+        let session = node::net::open(&connection.net()).await?;
         let control_key = keys.control(Role::Server);
         let (query_tx, queries) = unbounded_channel();
         let queryable = session
@@ -82,19 +68,17 @@ impl Link {
             .await
             .map_err(|e| zenoh_error("subscribe to the actions", &e))?;
         let (gone_tx, coordinator_gone) = unbounded_channel();
-        let watch = match options.exit_with_coordinator {
+        let watch = match connection.exit_with_coordinator {
             false => None,
             true => {
-                let seen = std::sync::atomic::AtomicBool::new(false);
+                let coordinator = CoordinatorPresence::default();
                 let watch = session
                     .liveliness()
                     .declare_subscriber(keys.alive(Role::Coordinator))
                     .history(true)
                     .callback(move |sample| {
-                        use std::sync::atomic::Ordering::Relaxed;
-                        if sample.kind() == zenoh::sample::SampleKind::Put {
-                            seen.store(true, Relaxed);
-                        } else if seen.load(Relaxed) {
+                        let present = sample.kind() == zenoh::sample::SampleKind::Put;
+                        if coordinator.left(present) {
                             let _ = gone_tx.send(());
                         }
                     })
@@ -111,7 +95,7 @@ impl Link {
         let link = Link {
             session,
             keys,
-            experiment: proto::experiment_id(&options.experiment),
+            experiment: proto::experiment_id(&connection.experiment),
             control_key,
             publishers: Vec::new(),
             _queryable: queryable,
@@ -186,46 +170,5 @@ impl Link {
 
 /// A zenoh failure while doing `what`, on one line.
 fn zenoh_error(what: &str, error: &zenoh::Error) -> anyhow::Error {
-    anyhow!("cannot {what}: {}", one_line(&error.to_string()))
-}
-
-/// zenoh's error text on one line, without the source locations
-/// (" at path/file.rs:123.") it appends to every cause.
-pub fn one_line(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(at) = rest.find(" at ") {
-        out.push_str(&rest[..at]);
-        let after = &rest[at + 4..];
-        let end = after.find(".rs:").and_then(|rs| {
-            let digits = after[rs + 4..].find(|c: char| !c.is_ascii_digit())?;
-            let stop = rs + 4 + digits;
-            after[stop..].starts_with('.').then_some(stop + 1)
-        });
-        match end {
-            Some(end) => rest = &after[end..],
-            None => {
-                out.push_str(" at ");
-                rest = after;
-            }
-        }
-    }
-    out.push_str(rest);
-    out.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::one_line;
-
-    #[test]
-    fn source_locations_and_line_breaks_go() {
-        let text = "Can not create a new TCP listener bound to tcp/127.0.0.1:7447: \
-                    Address in use at /r/zenoh-link-tcp/src/unicast.rs:412.\n - Caused by x at a.rs:3.";
-        assert_eq!(
-            one_line(text),
-            "Can not create a new TCP listener bound to tcp/127.0.0.1:7447: Address in use - Caused by x"
-        );
-        assert_eq!(one_line("look at me"), "look at me");
-    }
+    anyhow!("cannot {what}: {}", describe(error))
 }

@@ -3,12 +3,13 @@
 
 use std::sync::Arc;
 
+use node::alive::CoordinatorPresence;
 use proto::keys::Role;
 use zenoh::handlers::FifoChannelHandler;
 use zenoh::pubsub::Subscriber;
 use zenoh::sample::{Sample, SampleKind};
 
-use super::node::{Exit, Node};
+use crate::context::{Exit, Node};
 
 /// Follows the experiment's liveliness tokens until the session closes:
 /// agents come and go from the live set; with `exit_with_coordinator`,
@@ -19,15 +20,14 @@ pub async fn track(
     tokens: Subscriber<FifoChannelHandler<Sample>>,
     exit_with_coordinator: bool,
 ) {
-    let mut coordinator_seen = false;
+    let coordinator = CoordinatorPresence::default();
     while let Ok(sample) = tokens.recv_async().await {
         let present = sample.kind() == SampleKind::Put;
         let role = node.keys.role_of_alive(sample.key_expr().as_str());
         tracing::debug!(?role, present, "liveliness");
         match role {
             Some(Role::Agent(j)) => node.set_alive(j, present),
-            Some(Role::Coordinator) if present => coordinator_seen = true,
-            Some(Role::Coordinator) if coordinator_seen && exit_with_coordinator => {
+            Some(Role::Coordinator) if coordinator.left(present) && exit_with_coordinator => {
                 node.stop(Exit::CoordinatorGone)
             }
             _ => {}

@@ -19,11 +19,12 @@ pub struct Simulators {
 }
 
 impl Simulators {
-    /// The simulators of a run with settings `config` (`EnvConfig` JSON),
-    /// the training one seeded with `seed`; the error is one line.
-    pub fn new(config: &str, seed: u64) -> Result<Self, String> {
+    /// The simulators of a run with settings `config` (an `EnvConfig`
+    /// encoded with `proto::encode_settings`), the training one seeded with
+    /// `seed`; the error is one line.
+    pub fn new(config: &[u8], seed: u64) -> Result<Self, String> {
         let config: EnvConfig =
-            serde_json::from_str(config).map_err(|e| format!("invalid env config: {e}"))?;
+            proto::decode_settings(config).map_err(|e| format!("invalid env config: {e}"))?;
         let training =
             Env::new(config.clone(), seed).map_err(|e| format!("invalid env config: {e}"))?;
         Ok(Simulators {
@@ -319,15 +320,32 @@ mod tests {
         assert_eq!(obs.reward, direct.outcome().reward());
     }
 
+    fn settings(config: &EnvConfig) -> Vec<u8> {
+        proto::encode_settings(config).unwrap()
+    }
+
     #[test]
     fn evaluation_needs_a_seed_first() {
-        let mut s = Simulators::new("{}", 1).unwrap();
+        let mut s = Simulators::new(&settings(&EnvConfig::default()), 1).unwrap();
         assert!(s.prepare(Mode::Evaluation, None).is_err());
         assert!(s.prepare(Mode::Training, None).is_ok());
         assert!(s.prepare(Mode::Evaluation, Some(4)).is_ok());
         assert!(s.prepare(Mode::Evaluation, None).is_ok());
-        assert!(Simulators::new(r#"{"offense": 9}"#, 1).is_err());
-        assert!(Simulators::new("{", 1).is_err());
-        assert!(Simulators::new(r#"{"bogus": 1}"#, 1).is_err());
+    }
+
+    #[test]
+    fn bad_settings_are_refused() {
+        let nine = EnvConfig {
+            offense: 9,
+            ..EnvConfig::default()
+        };
+        let e = Simulators::new(&settings(&nine), 1).unwrap_err();
+        assert!(e.contains("offense"), "{e}");
+        let mut long = settings(&EnvConfig::default());
+        long.push(1);
+        for bytes in [&b"{"[..], &long] {
+            let e = Simulators::new(bytes, 1).unwrap_err();
+            assert!(e.starts_with("invalid env config: "), "{e}");
+        }
     }
 }

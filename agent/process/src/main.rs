@@ -1,0 +1,92 @@
+//! `agent`: one learning agent as a process, talking to env-server, its
+//! teammates and the coordinator over zenoh (docs/protocol.md).
+//!
+//! Tasks: the stream task ([`frames`]) processes observations and shared
+//! episodes in order and asks for advice ([`ask`]) without holding the
+//! learner; [`advise`] answers other agents' requests meanwhile; [`control`]
+//! answers the coordinator; [`alive`] follows liveliness tokens. They share
+//! one [`context::Node`]; [`serve`] declares everything and waits for the end.
+
+mod advise;
+mod alive;
+mod ask;
+mod context;
+mod control;
+mod frames;
+mod learner;
+mod order;
+mod serve;
+mod shares;
+mod unique;
+
+use std::time::Duration;
+
+use anyhow::{Result, bail};
+use clap::Parser;
+use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
+
+use context::Exit;
+use serve::Settings;
+
+#[derive(Parser)]
+#[command(
+    version,
+    about = "One ad hoc advising agent: learns from env-server's observations, asks and gives advice over zenoh"
+)]
+struct Cli {
+    #[command(flatten)]
+    connection: ConnectionArgs,
+    /// This agent's id, below the team size.
+    #[arg(long, value_name = "I")]
+    id: u8,
+    /// Agents in the team.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..))]
+    team_size: u8,
+    /// How long to wait for advice after asking, in milliseconds.
+    #[arg(long, value_name = "MS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
+    advice_timeout_ms: u64,
+}
+
+fn main() {
+    init_tracing("off");
+    let cli: Cli = parse_or_exit();
+    let code = match run(cli) {
+        Ok(Exit::Stopped) => 0,
+        Ok(Exit::CoordinatorGone) => {
+            eprintln!("error: the coordinator left the experiment; stopping");
+            1
+        }
+        Err(e) => exit_with_error(format_args!("{e:#}")),
+    };
+    // Exit at once: zenoh's background threads need no orderly shutdown
+    // once the session is closed.
+    std::process::exit(code)
+}
+
+/// Checks the settings and runs the agent until it stops.
+fn run(cli: Cli) -> Result<Exit> {
+    let keys = cli.connection.keys()?;
+    if cli.id >= cli.team_size {
+        bail!(
+            "agent id {} is not below the team size {}",
+            cli.id,
+            cli.team_size
+        );
+    }
+    let settings = Settings {
+        net: cli.connection.net(),
+        name: cli.connection.experiment,
+        keys,
+        id: cli.id,
+        team_size: cli.team_size,
+        advice_timeout: Duration::from_millis(cli.advice_timeout_ms),
+        exit_with_coordinator: cli.connection.exit_with_coordinator,
+    };
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()?;
+    let exit = runtime.block_on(serve::run(settings));
+    // Tasks still waiting on the closed session are dropped unawaited.
+    runtime.shutdown_background();
+    exit
+}

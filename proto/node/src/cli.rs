@@ -1,0 +1,136 @@
+//! The command line every process shares: the connection arguments, the
+//! one-line errors with exit code 2, and quiet-by-default logging.
+
+use std::fmt::Display;
+
+use clap::Parser;
+use proto::keys::{InvalidExperiment, Keys};
+
+use crate::net::NetConfig;
+
+/// How a process started for an experiment joins it; flattened into the
+/// `agent` and `env-server serve` command lines (the coordinator starts
+/// them with these flags).
+#[derive(Clone, Debug, PartialEq, Eq, clap::Args)]
+pub struct ConnectionArgs {
+    /// Experiment name (letters, digits, '-', '_'), shared by all its
+    /// processes; every key lives under adv/NAME.
+    #[arg(long, value_name = "NAME")]
+    pub experiment: String,
+    /// zenoh endpoint to listen on (port 0: any free port).
+    #[arg(long, value_name = "ENDPOINT", default_value = "tcp/127.0.0.1:0")]
+    pub listen: String,
+    /// zenoh endpoint to connect to: the coordinator's, or a router's (repeatable).
+    #[arg(long, value_name = "ENDPOINT")]
+    pub connect: Vec<String>,
+    /// Exit when the coordinator that was seen leaves (for processes a
+    /// coordinator starts itself; services keep running).
+    #[arg(long)]
+    pub exit_with_coordinator: bool,
+}
+
+impl ConnectionArgs {
+    /// The experiment's keys; fails on a bad experiment name.
+    pub fn keys(&self) -> Result<Keys, InvalidExperiment> {
+        Keys::new(&self.experiment)
+    }
+
+    /// The zenoh settings: a peer on these endpoints.
+    pub fn net(&self) -> NetConfig {
+        NetConfig::peer(vec![self.listen.clone()], self.connect.clone())
+    }
+}
+
+/// Folds a multi-line message into one line, without clap's usage hints.
+pub fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage:")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// Parses the command line: `--help` and `--version` print and exit 0; a
+/// bad command line prints clap's message on one line and exits 2.
+pub fn parse_or_exit<P: Parser>() -> P {
+    match P::try_parse() {
+        Ok(parsed) => parsed,
+        Err(e) if !e.use_stderr() => {
+            // Nothing more to do if stdout is gone.
+            let _ = e.print();
+            std::process::exit(0)
+        }
+        Err(e) => {
+            eprintln!("{}", one_line(&e.to_string()));
+            std::process::exit(2)
+        }
+    }
+}
+
+/// Prints `error: <message>` on one line to standard error and exits 2.
+pub fn exit_with_error(message: impl Display) -> ! {
+    eprintln!("error: {}", one_line(&message.to_string()));
+    std::process::exit(2)
+}
+
+/// Logs to standard error, filtered by `RUST_LOG`, or by `default_filter`
+/// (e.g. `"off"`, `"error"`) when it is unset or invalid.
+pub fn init_tracing(default_filter: &str) {
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(default_filter));
+    tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .init();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        connection: ConnectionArgs,
+    }
+
+    #[test]
+    fn connection_flags_keep_their_names() {
+        let cli = Cli::try_parse_from([
+            "x",
+            "--experiment",
+            "e1",
+            "--connect",
+            "tcp/127.0.0.1:1",
+            "--connect",
+            "tcp/127.0.0.1:2",
+            "--exit-with-coordinator",
+        ])
+        .unwrap();
+        let c = cli.connection;
+        assert!(c.exit_with_coordinator);
+        assert_eq!(c.keys().unwrap(), Keys::new("e1").unwrap());
+        assert_eq!(
+            c.net(),
+            NetConfig::peer(
+                vec!["tcp/127.0.0.1:0".into()],
+                vec!["tcp/127.0.0.1:1".into(), "tcp/127.0.0.1:2".into()]
+            )
+        );
+        let bad = Cli::try_parse_from(["x", "--experiment", "a/b"]).unwrap();
+        assert!(bad.connection.keys().is_err());
+        assert!(Cli::try_parse_from(["x"]).is_err());
+    }
+
+    #[test]
+    fn clap_messages_fold_to_one_line() {
+        let text = "error: unexpected argument '--x' found\n\n  tip: to pass '--x' as a value, use '-- --x'\n\nUsage: agent [OPTIONS]\n\nFor more information, try '--help'.\n";
+        assert_eq!(
+            one_line(text),
+            "error: unexpected argument '--x' found tip: to pass '--x' as a value, use '-- --x'"
+        );
+    }
+}

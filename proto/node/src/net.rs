@@ -1,0 +1,191 @@
+//! Joining the zenoh network: the session settings, opening a session with
+//! a one-line error, and free loopback ports.
+
+use std::fmt::Display;
+
+use zenoh::Session;
+
+/// How a process joins the zenoh network.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct NetConfig {
+    /// Endpoints to listen on, e.g. `tcp/127.0.0.1:7447` (`:0` picks a free port).
+    pub listen: Vec<String>,
+    /// Endpoints to connect to (a router, or a peer that listens).
+    pub connect: Vec<String>,
+    /// `"peer"` (default) or `"client"` (behind a router).
+    pub mode: String,
+}
+
+impl NetConfig {
+    /// A peer listening on `listen` and connecting to `connect`.
+    pub fn peer(listen: Vec<String>, connect: Vec<String>) -> Self {
+        NetConfig {
+            listen,
+            connect,
+            mode: "peer".to_owned(),
+        }
+    }
+
+    /// A loopback peer listening on `127.0.0.1:<port>` (0: any free port)
+    /// and connecting to `connect`.
+    pub fn loopback_peer(port: u16, connect: Vec<String>) -> Self {
+        Self::peer(vec![format!("tcp/127.0.0.1:{port}")], connect)
+    }
+
+    /// The zenoh configuration: multicast scouting off, gossip on (peers
+    /// learn each other's listeners through the ones they connect to), and
+    /// opening fails after 5 s if a configured endpoint cannot be reached.
+    pub fn to_json5(&self) -> String {
+        let list = |v: &[String]| {
+            v.iter()
+                .map(|e| format!("{e:?}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        format!(
+            r#"{{ mode: {mode:?}, listen: {{ endpoints: [{listen}] }}, connect: {{ endpoints: [{connect}], timeout_ms: 5000, exit_on_failure: true }}, scouting: {{ multicast: {{ enabled: false }}, gossip: {{ enabled: true }} }} }}"#,
+            mode = self.mode,
+            listen = list(&self.listen),
+            connect = list(&self.connect),
+        )
+    }
+
+    /// The endpoints for messages: `listen A, B; connect C` (`none` for an empty list).
+    pub fn endpoints(&self) -> String {
+        let list = |v: &[String]| match v {
+            [] => "none".to_owned(),
+            v => v.join(", "),
+        };
+        format!(
+            "listen {}; connect {}",
+            list(&self.listen),
+            list(&self.connect)
+        )
+    }
+}
+
+/// Why a process could not join the zenoh network; displays as one line.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct JoinError(String);
+
+/// Opens a zenoh session with `net`'s settings; the error names the
+/// endpoints and says what went wrong, on one line.
+pub async fn open(net: &NetConfig) -> Result<Session, JoinError> {
+    let config = zenoh::Config::from_json5(&net.to_json5()).map_err(|e| {
+        JoinError(format!(
+            "invalid network settings ({}): {}",
+            net.endpoints(),
+            describe(&e)
+        ))
+    })?;
+    zenoh::open(config).await.map_err(|e| {
+        JoinError(format!(
+            "cannot join the zenoh network ({}): {}",
+            net.endpoints(),
+            describe(&e)
+        ))
+    })
+}
+
+/// A zenoh error's text on one line, without the source locations zenoh
+/// appends to every cause (` at /path/to/file.rs:123.`).
+pub fn describe(error: &dyn Display) -> String {
+    let text = error.to_string();
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text.as_str();
+    while let Some(at) = rest.find(" at ") {
+        out.push_str(&rest[..at]);
+        let tail = &rest[at + 4..];
+        match location_len(tail) {
+            Some(n) => rest = &tail[n..],
+            None => {
+                out.push_str(" at ");
+                rest = tail;
+            }
+        }
+    }
+    out.push_str(rest);
+    out.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The length of a leading `path.rs:123` (and a following `.`), if any.
+fn location_len(s: &str) -> Option<usize> {
+    let word = s.find(char::is_whitespace).unwrap_or(s.len());
+    let (path, line) = s[..word].split_once(".rs:")?;
+    let digits = line.bytes().take_while(u8::is_ascii_digit).count();
+    if path.is_empty() || digits == 0 {
+        return None;
+    }
+    let end = path.len() + 4 + digits;
+    Some(end + usize::from(s[end..].starts_with('.')))
+}
+
+/// A loopback TCP port that was free a moment ago (bound, read, released).
+pub fn free_port() -> std::io::Result<u16> {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0")?;
+    Ok(listener.local_addr()?.port())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json5_lists_endpoints() {
+        let c = NetConfig::loopback_peer(7447, vec!["tcp/127.0.0.1:7000".into()]);
+        let j = c.to_json5();
+        assert!(
+            j.contains(r#"listen: { endpoints: ["tcp/127.0.0.1:7447"] }"#),
+            "{j}"
+        );
+        assert!(
+            j.contains(r#"connect: { endpoints: ["tcp/127.0.0.1:7000"],"#),
+            "{j}"
+        );
+        assert!(j.contains("multicast: { enabled: false }"));
+        assert_eq!(
+            c.endpoints(),
+            "listen tcp/127.0.0.1:7447; connect tcp/127.0.0.1:7000"
+        );
+        assert_eq!(
+            NetConfig::peer(Vec::new(), Vec::new()).endpoints(),
+            "listen none; connect none"
+        );
+    }
+
+    #[test]
+    fn source_locations_and_line_breaks_are_left_out() {
+        let e = "Can not bind tcp/127.0.0.1:1: [Address in use (os error 98) at /x/zenoh-link-commons-1.10.2/src/tcp.rs:61.] at /y/unicast.rs:338.";
+        assert_eq!(
+            describe(&e),
+            "Can not bind tcp/127.0.0.1:1: [Address in use (os error 98)]"
+        );
+        let text = "Can not create a new TCP listener bound to tcp/127.0.0.1:7447: \
+                    Address in use at /r/zenoh-link-tcp/src/unicast.rs:412.\n - Caused by x at a.rs:3.";
+        assert_eq!(
+            describe(&text),
+            "Can not create a new TCP listener bound to tcp/127.0.0.1:7447: Address in use - Caused by x"
+        );
+        assert_eq!(describe(&"look at this"), "look at this");
+        assert_eq!(describe(&"at /a.rs:1"), "at /a.rs:1");
+    }
+
+    #[test]
+    fn free_ports_can_be_bound() {
+        let port = free_port().unwrap();
+        assert_ne!(port, 0);
+        std::net::TcpListener::bind(("127.0.0.1", port)).unwrap();
+    }
+
+    #[tokio::test(flavor = "multi_thread")]
+    async fn bad_settings_are_one_line_errors() {
+        let net = NetConfig::peer(vec!["foo".into()], Vec::new());
+        let e = open(&net).await.unwrap_err().to_string();
+        assert!(
+            e.starts_with("invalid network settings (listen foo; connect none): "),
+            "{e}"
+        );
+        assert!(!e.contains(".rs:") && !e.contains('\n'), "{e}");
+    }
+}
