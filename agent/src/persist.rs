@@ -1,13 +1,8 @@
-//! Saving and loading an agent's learned state: a versioned binary file,
-//! written atomically, and a stable digest.
+//! An agent's learned state as bytes (the snapshot file format, written and
+//! read by the caller) and a stable digest.
 //!
 //! Layout: magic `ADVQTAB\0` | format version (u16 LE) | body length (u64 LE)
 //! | postcard body | FNV-1a 64 of the body (u64 LE).
-
-use std::fs::{self, File};
-use std::io::{self, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use serde::{Deserialize, Serialize};
 
@@ -23,17 +18,9 @@ pub const FORMAT_VERSION: u16 = 1;
 const HEADER: usize = MAGIC.len() + 2 + 8;
 const CHECKSUM: usize = 8;
 
-/// Why a snapshot could not be saved, loaded or restored.
+/// Why a snapshot could not be encoded, decoded or restored.
 #[derive(Debug, thiserror::Error)]
 pub enum PersistError {
-    /// Reading or writing the file failed.
-    #[error("cannot access {path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        source: io::Error,
-    },
     /// The file does not start with the snapshot magic.
     #[error("not an agent snapshot (bad magic header)")]
     NotASnapshot,
@@ -204,64 +191,11 @@ impl Snapshot {
         snapshot.check()?;
         Ok(snapshot)
     }
-
-    /// Writes the file atomically: a temporary file in the same directory,
-    /// fsynced, then renamed over `path`.
-    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
-        let bytes = self.encode()?;
-        let io_err = |source| PersistError::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        let name = path
-            .file_name()
-            .ok_or_else(|| io_err(io::Error::from(io::ErrorKind::InvalidInput)))?;
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        static UNIQUE: AtomicU64 = AtomicU64::new(0);
-        let tmp = dir.join(format!(
-            ".{}.tmp-{}-{}",
-            name.to_string_lossy(),
-            std::process::id(),
-            UNIQUE.fetch_add(1, Ordering::Relaxed)
-        ));
-        let written = File::create(&tmp)
-            .and_then(|mut f| f.write_all(&bytes).and_then(|()| f.sync_all()))
-            .and_then(|()| fs::rename(&tmp, path));
-        if let Err(e) = written {
-            // Best effort: the temporary file may not exist.
-            let _ = fs::remove_file(&tmp);
-            return Err(io_err(e));
-        }
-        sync_dir(dir).map_err(io_err)
-    }
-
-    /// Reads and decodes a file written by [`save`](Self::save).
-    pub fn load(path: &Path) -> Result<Self, PersistError> {
-        let bytes = fs::read(path).map_err(|source| PersistError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        Self::decode(&bytes)
-    }
 }
 
 /// `N` bytes at `at`, if present.
 fn read_array<const N: usize>(bytes: &[u8], at: usize) -> Option<[u8; N]> {
     bytes.get(at..at.checked_add(N)?)?.try_into().ok()
-}
-
-/// Makes the rename durable.
-#[cfg(unix)]
-fn sync_dir(dir: &Path) -> io::Result<()> {
-    File::open(dir)?.sync_all()
-}
-
-#[cfg(not(unix))]
-fn sync_dir(_: &Path) -> io::Result<()> {
-    Ok(())
 }
 
 #[cfg(test)]
@@ -287,30 +221,12 @@ mod tests {
         }
     }
 
-    fn temp_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("agent-persist-{}-{name}", std::process::id()));
-        let _ = fs::remove_dir_all(&dir);
-        fs::create_dir_all(&dir).unwrap();
-        dir
-    }
-
     #[test]
-    fn save_load_round_trip_leaves_no_temporary_file() {
-        let dir = temp_dir("round-trip");
-        let path = dir.join("agent.qtable");
+    fn encode_decode_round_trip() {
         let s = sample();
-        s.save(&path).unwrap();
-        // Overwriting goes through the same atomic rename.
-        s.save(&path).unwrap();
-        let loaded = Snapshot::load(&path).unwrap();
+        let loaded = Snapshot::decode(&s.encode().unwrap()).unwrap();
         assert_eq!(loaded, s);
         assert_eq!(loaded.digest(), s.digest());
-        let names: Vec<_> = fs::read_dir(&dir)
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        assert_eq!(names, vec![std::ffi::OsString::from("agent.qtable")]);
-        fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
@@ -360,14 +276,6 @@ mod tests {
             Snapshot::decode(&[]),
             Err(PersistError::Length { .. })
         ));
-
-        let missing = Snapshot::load(Path::new("/nonexistent/dir/agent.qtable")).unwrap_err();
-        assert!(
-            missing
-                .to_string()
-                .contains("/nonexistent/dir/agent.qtable"),
-            "{missing}"
-        );
     }
 
     #[test]

@@ -32,7 +32,7 @@ pub enum Error {
     #[error(transparent)]
     Config(#[from] ConfigError),
     /// An agent's snapshot could not be loaded or does not fit the agent.
-    #[error("cannot load agent {agent} from {}: {}", path.display(), persist_reason(source))]
+    #[error("cannot load agent {agent} from {}: {source}", path.display())]
     Snapshot {
         /// The agent's id.
         agent: usize,
@@ -98,13 +98,5 @@ impl Error {
             path: path.into(),
             source,
         }
-    }
-}
-
-/// A snapshot error without the path repeated.
-fn persist_reason(e: &PersistError) -> String {
-    match e {
-        PersistError::Io { source, .. } => source.to_string(),
-        other => other.to_string(),
     }
 }

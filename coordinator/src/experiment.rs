@@ -52,12 +52,12 @@ impl Experiment {
                 snapshots.push(None);
                 continue;
             };
-            let fail = |source| Error::Snapshot {
+            let bytes = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+            let mut snapshot = Snapshot::decode(&bytes).map_err(|source| Error::Snapshot {
                 agent: id,
                 path: path.clone(),
                 source,
-            };
-            let mut snapshot = Snapshot::load(path).map_err(fail)?;
+            })?;
             if !spec.keep_counters {
                 snapshot.counters = Counters::default();
             }

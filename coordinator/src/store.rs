@@ -9,10 +9,10 @@
 //! `run-<k>.json` when a run is complete and `summary.json` at the end.
 
 use std::fs::{self, File};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use agent::Snapshot;
+use node::files::TEMP_PREFIX;
 use serde::Serialize;
 use serde_json::Value;
 
@@ -24,10 +24,6 @@ use crate::schedule::{EvalPoint, RunResult};
 pub const CONFIG_FILE: &str = "config.json";
 /// Name of the summary in an experiment directory.
 pub const SUMMARY_FILE: &str = "summary.json";
-
-/// Prefix of the temporary files of [`write_atomically`]; a leftover one
-/// (a crash before its rename) never blocks a directory.
-const TEMP_PREFIX: &str = ".adv-tmp-";
 
 /// The file name of run `run`'s CSV.
 pub fn run_file_name(run: u64) -> String {
@@ -44,23 +40,10 @@ pub fn agent_file_name(run: u64, agent: usize) -> String {
     format!("run-{run}-agent-{agent}.qtable")
 }
 
-/// Writes `bytes` to `path` atomically and durably: a temporary file in the
-/// same directory, synced, then renamed over `path`.
+/// Writes `bytes` to `path` atomically and durably (see
+/// [`node::files::write_atomically`]).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let fail = |e: std::io::Error| Error::io("write", path, e);
-    let mut tmp = tempfile::Builder::new()
-        .prefix(TEMP_PREFIX)
-        .tempfile_in(dir)
-        .map_err(fail)?;
-    tmp.write_all(bytes)
-        .and_then(|()| tmp.as_file().sync_all())
-        .map_err(fail)?;
-    tmp.persist(path).map_err(|e| fail(e.error))?;
-    Ok(())
+    node::files::write_atomically(path, bytes).map_err(|e| Error::io("write", path, e))
 }
 
 /// Writes `value` as pretty JSON with a final newline, atomically.

@@ -301,16 +301,15 @@ mod tests {
 
     #[test]
     fn every_strategy_crosses_the_wire() {
-        for strategy in [
-            "no-advice",
-            "ad-hoc-visit",
-            "ad-hoc-td",
-            "torrey",
-            "episode-sharing",
-            "random",
-        ] {
-            let json = format!(r#"{{"strategy": "{strategy}", "reachable": {{"agents": [1]}}}}"#);
-            let sent: AgentConfig = serde_json::from_str(&json).unwrap();
+        for name in agent::StrategyName::ALL {
+            let mut strategy = agent::Strategy::from(name);
+            if let agent::Strategy::AdHoc(ad_hoc) = &mut strategy {
+                ad_hoc.reachable = agent::Reachable::Agents(vec![1]);
+            }
+            let sent = AgentConfig {
+                strategy,
+                ..AgentConfig::default()
+            };
             let bytes = proto::encode_settings(&sent).unwrap();
             assert_eq!(proto::decode_settings::<AgentConfig>(&bytes), Ok(sent));
             Learner::new(0, 2).reset(0, 1, &bytes).unwrap();

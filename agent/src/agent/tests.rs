@@ -635,12 +635,9 @@ fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
     let mut t = team(StrategyName::AdHocTd, 5);
     play(&mut t, &mut AgentRng::seed_from_u64(9), 30, Mode::Training);
     let trained = &t.agents()[2];
-    let dir = std::env::temp_dir().join(format!("agent-restore-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("expert.qtable");
-    trained.snapshot().save(&path).unwrap();
+    let bytes = trained.snapshot().encode().unwrap();
     let mut fresh = agent(2, 3, config(StrategyName::AdHocTd));
-    fresh.restore(Snapshot::load(&path).unwrap()).unwrap();
+    fresh.restore(Snapshot::decode(&bytes).unwrap()).unwrap();
     assert_eq!(fresh.digest(), trained.digest());
     assert_eq!(
         fresh.table().sorted_entries(),
@@ -652,10 +649,9 @@ fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
         ..AgentConfig::default()
     };
     let err = agent(0, 1, five)
-        .restore(Snapshot::load(&path).unwrap())
+        .restore(Snapshot::decode(&bytes).unwrap())
         .unwrap_err();
     assert!(matches!(err, PersistError::Incompatible { .. }), "{err}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

@@ -4,18 +4,36 @@
 use std::io::{self, Write};
 use std::path::Path;
 
-/// Writes `bytes` to `path` atomically: a temporary file in the same
-/// directory, written and synced, then renamed over `path`. Readers see the
-/// old file or the new one, never a part; on error the temporary file goes.
+/// Prefix of [`write_atomically`]'s temporary files: a leftover one (a
+/// crash before its rename) can be recognised and ignored.
+pub const TEMP_PREFIX: &str = ".adv-tmp-";
+
+/// Writes `bytes` to `path` atomically and durably: a temporary file in the
+/// same directory, written and synced, renamed over `path`, then the
+/// directory synced. Readers see the old file or the new one, never a part;
+/// on error the temporary file goes.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut file = tempfile::NamedTempFile::new_in(dir)?;
+    let mut file = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)?;
     file.write_all(bytes)?;
     file.as_file().sync_all()?;
     file.persist(path).map_err(|e| e.error)?;
+    sync_dir(dir)
+}
+
+/// Makes a rename in `dir` durable.
+#[cfg(unix)]
+fn sync_dir(dir: &Path) -> io::Result<()> {
+    std::fs::File::open(dir)?.sync_all()
+}
+
+#[cfg(not(unix))]
+fn sync_dir(_: &Path) -> io::Result<()> {
     Ok(())
 }
 
