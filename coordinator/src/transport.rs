@@ -128,7 +128,7 @@ impl Transport {
         t
     }
 
-    /// Rejects timeouts of zero.
+    /// Rejects timeouts outside 1 ms to [`proto::MAX_WAIT_MS`].
     pub fn validate(&self) -> Result<(), ConfigError> {
         let Transport::Zenoh(z) = self else {
             return Ok(());
@@ -137,10 +137,10 @@ impl Transport {
             ("advice_timeout_ms", z.advice_timeout_ms),
             ("step_timeout_ms", z.step_timeout_ms),
         ] {
-            if value == 0 {
+            if !(1..=proto::MAX_WAIT_MS).contains(&value) {
                 return Err(ConfigError::new(
                     format!("transport.zenoh.{key}"),
-                    "must be at least 1 ms, got 0",
+                    format!("must be 1 to {} ms, got {value}", proto::MAX_WAIT_MS),
                 ));
             }
         }

@@ -158,8 +158,13 @@ mod tests {
                         })
                         .collect()
                 })),
-            (any::<u64>(), prop::collection::vec(any::<u8>(), 0..40))
-                .prop_map(|(seed, config)| Body::Control(Control::Reset { seed, config })),
+            (any::<u64>(), prop::collection::vec(any::<u8>(), 0..40)).prop_map(|(seed, config)| {
+                Body::Control(Control::Reset {
+                    seed,
+                    config,
+                    wait_ms: seed % 1000,
+                })
+            }),
             prop::collection::vec(any::<u8>(), 0..100)
                 .prop_map(|snapshot| Body::Control(Control::Load { snapshot })),
             (mode(), prop::option::of(any::<u64>()))

@@ -148,18 +148,26 @@ pub struct SharedEpisode {
     pub transitions: Vec<SharedTransition>,
 }
 
+/// The longest wait a [`Control::Reset`] may set (ms): a minute.
+pub const MAX_WAIT_MS: u64 = 60_000;
+
 /// A coordinator's command to env-server or an agent. Its `Debug` form
 /// gives the size of byte payloads, not the bytes.
 #[derive(Clone, PartialEq, Serialize, Deserialize)]
 pub enum Control {
     /// Start run `header.run` afresh: new learner (agents) or simulator (env-server)
-    /// from `config` and `seed`.
+    /// from `config` and `seed`, waiting `wait_ms` for others.
     Reset {
         /// Seed of the process's random stream for this run.
         seed: u64,
         /// The process's settings (`AgentConfig` or `EnvConfig`), encoded
         /// with [`encode_settings`](crate::encode_settings).
         config: Vec<u8>,
+        /// How long the process waits for others in this run (ms): an agent
+        /// for advice after asking, env-server for a kicker's action before
+        /// Move. Part of the experiment's recorded settings; 1 to
+        /// [`MAX_WAIT_MS`].
+        wait_ms: u64,
     },
     /// env-server: play episode `header.episode` in `mode` and report its result.
     PlayEpisode {
@@ -184,10 +192,15 @@ pub enum Control {
 impl fmt::Debug for Control {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Control::Reset { seed, config } => f
+            Control::Reset {
+                seed,
+                config,
+                wait_ms,
+            } => f
                 .debug_struct("Reset")
                 .field("seed", seed)
                 .field("config", &ByteCount(config.len()))
+                .field("wait_ms", wait_ms)
                 .finish(),
             Control::PlayEpisode { mode, seed } => f
                 .debug_struct("PlayEpisode")
@@ -298,8 +311,12 @@ mod tests {
         let reset = Control::Reset {
             seed: 3,
             config: vec![1, 2],
+            wait_ms: 5,
         };
-        assert_eq!(format!("{reset:?}"), "Reset { seed: 3, config: <2 bytes> }");
+        assert_eq!(
+            format!("{reset:?}"),
+            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5 }"
+        );
         let load = Control::Load {
             snapshot: vec![0; 1000],
         };

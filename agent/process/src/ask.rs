@@ -63,7 +63,8 @@ type Arrival = (u8, Vec<u8>, Duration);
 /// Sends `ask` (for the frame of `header`) to its advisors and collects
 /// their replies.
 pub async fn ask(node: &Node, header: Header, ask: &Ask) -> Collector {
-    let deadline = tokio::time::Instant::now() + node.advice_timeout;
+    let timeout = node.advice_timeout();
+    let deadline = tokio::time::Instant::now() + timeout;
     let (tx, mut rx) = mpsc::unbounded_channel::<Arrival>();
     let mut collector = Collector::new(&[]);
     for &j in &ask.to {
@@ -76,7 +77,7 @@ pub async fn ask(node: &Node, header: Header, ask: &Ask) -> Collector {
             .payload(bytes)
             .consolidation(ConsolidationMode::None)
             .target(QueryTarget::All)
-            .timeout(node.advice_timeout)
+            .timeout(timeout)
             .callback(move |reply| {
                 if let Ok(sample) = reply.result() {
                     // The receiver is gone once the request is settled.

@@ -43,8 +43,8 @@ pub struct Node {
     pub experiment: u64,
     /// This agent's id.
     pub id: u8,
-    /// How long to wait for advice.
-    pub advice_timeout: Duration,
+    /// How long to wait for advice in the current run (set by its reset).
+    advice_timeout: Mutex<Duration>,
     learner: Mutex<Learner>,
     traffic: Mutex<Traffic>,
     alive: Mutex<BTreeSet<u8>>,
@@ -60,20 +60,13 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 
 impl Node {
     /// The context of agent `id` of a team of `team_size` in experiment `name`.
-    pub fn new(
-        session: Session,
-        name: &str,
-        keys: Keys,
-        id: u8,
-        team_size: u8,
-        advice_timeout: Duration,
-    ) -> Self {
+    pub fn new(session: Session, name: &str, keys: Keys, id: u8, team_size: u8) -> Self {
         Self {
             session,
             keys,
             experiment: proto::experiment_id(name),
             id,
-            advice_timeout,
+            advice_timeout: Mutex::new(Duration::ZERO),
             learner: Mutex::new(Learner::new(id, team_size)),
             traffic: Mutex::new(Traffic::default()),
             alive: Mutex::new(BTreeSet::new()),
@@ -81,6 +74,16 @@ impl Node {
             exit: Mutex::new(None),
             stop: Notify::new(),
         }
+    }
+
+    /// How long to wait for advice in the current run.
+    pub fn advice_timeout(&self) -> Duration {
+        *lock(&self.advice_timeout)
+    }
+
+    /// Sets the advice timeout of the run that starts.
+    pub fn set_advice_timeout(&self, timeout: Duration) {
+        *lock(&self.advice_timeout) = timeout;
     }
 
     /// The learner, locked: never hold it across an `.await`.

@@ -59,9 +59,22 @@ async fn answer(node: Arc<Node>, query: Query) {
 async fn execute(node: &Node, header: Header, control: Control) -> ControlReply {
     let done = |r: Result<(), String>| r.map_or_else(ControlReply::Error, |()| ControlReply::Ok);
     match control {
-        Control::Reset { seed, config } => {
+        Control::Reset {
+            seed,
+            config,
+            wait_ms,
+        } => {
+            if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
+                return ControlReply::Error(format!(
+                    "the advice timeout must be 1 to {} ms, got {wait_ms}",
+                    proto::MAX_WAIT_MS
+                ));
+            }
             let mut learner = node.learner();
             let result = learner.reset(header.run, seed, &config);
+            if result.is_ok() {
+                node.set_advice_timeout(Duration::from_millis(wait_ms));
+            }
             node.publish_progress(&learner);
             done(result)
         }

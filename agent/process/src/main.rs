@@ -19,8 +19,6 @@ mod serve;
 mod shares;
 mod unique;
 
-use std::time::Duration;
-
 use anyhow::{Result, bail};
 use clap::Parser;
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
@@ -42,9 +40,6 @@ struct Cli {
     /// Agents in the team.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..))]
     team_size: u8,
-    /// How long to wait for advice after asking, in milliseconds.
-    #[arg(long, value_name = "MS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
-    advice_timeout_ms: u64,
 }
 
 fn main() {
@@ -79,7 +74,6 @@ fn run(cli: Cli) -> Result<Exit> {
         keys,
         id: cli.id,
         team_size: cli.team_size,
-        advice_timeout: Duration::from_millis(cli.advice_timeout_ms),
         exit_with_coordinator: cli.connection.exit_with_coordinator,
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()

@@ -2,7 +2,6 @@
 //! leaving once stopped.
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use anyhow::{Result, anyhow};
 use node::net::{NetConfig, describe};
@@ -24,8 +23,6 @@ pub struct Settings {
     pub team_size: u8,
     /// zenoh endpoints.
     pub net: NetConfig,
-    /// How long to wait for advice.
-    pub advice_timeout: Duration,
     /// Exit once the coordinator that was seen is gone.
     pub exit_with_coordinator: bool,
 }
@@ -38,7 +35,6 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         id,
         team_size,
         net,
-        advice_timeout,
         exit_with_coordinator,
     } = settings;
     let session = node::net::open(&net).await?;
@@ -70,14 +66,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         .declare_publisher(keys.action(id))
         .await
         .map_err(|e| declare("the action publisher", e))?;
-    let node = Arc::new(Node::new(
-        session.clone(),
-        &name,
-        keys,
-        id,
-        team_size,
-        advice_timeout,
-    ));
+    let node = Arc::new(Node::new(session.clone(), &name, keys, id, team_size));
     tokio::spawn(alive::track(node.clone(), tokens, exit_with_coordinator));
     tokio::spawn(frames::run(node.clone(), observations, shares, actions));
     tokio::spawn(advise::serve(node.clone(), advice));

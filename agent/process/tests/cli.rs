@@ -42,8 +42,8 @@ fn bad_input_gives_one_line_and_exit_code_2() {
         ),
         (vec!["--id", "0", "--team-size", "2"], "--experiment".into()),
         (
-            [&ok[..], &["--advice-timeout-ms", "soon"]].concat(),
-            "--advice-timeout-ms".into(),
+            vec!["--experiment", "e", "--id", "first", "--team-size", "2"],
+            "--id".into(),
         ),
     ];
     // All at once: the unreachable endpoint takes the connect timeout (5 s).

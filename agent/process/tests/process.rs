@@ -29,15 +29,7 @@ fn spawn_agent(name: &str, id: u8, coordinator: u16) -> Guard {
     let connect = format!("tcp/127.0.0.1:{coordinator}");
     let args = ["--experiment", name, "--id", &id, "--team-size", "2"];
     let network = ["--listen", &listen, "--connect", &connect];
-    // Generous, for a loaded test machine.
-    Guard::agent(
-        &[
-            &args[..],
-            &network,
-            &["--advice-timeout-ms", "200", "--exit-with-coordinator"],
-        ]
-        .concat(),
-    )
+    Guard::agent(&[&args[..], &network, &["--exit-with-coordinator"]].concat())
 }
 
 /// The in-test coordinator and env-server.
@@ -125,6 +117,8 @@ impl Fake {
                 Control::Reset {
                     seed: 7 + u64::from(id),
                     config,
+                    // Generous, for a loaded test machine.
+                    wait_ms: 200,
                 },
             )
             .await;

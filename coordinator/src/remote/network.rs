@@ -20,6 +20,7 @@ use crate::transport::{Endpoints, ZenohSettings};
 
 /// The joined network and the processes of the experiment.
 pub struct Network {
+    settings: ZenohSettings,
     runtime: tokio::runtime::Runtime,
     session: zenoh::Session,
     keys: Keys,
@@ -114,6 +115,7 @@ impl Network {
             })
             .map_err(|e| net_error(format!("cannot declare liveliness: {e}")))?;
         let network = Network {
+            settings: settings.clone(),
             runtime,
             session,
             experiment: proto::experiment_id(&options.experiment),
@@ -136,15 +138,15 @@ impl Network {
                 )));
             }
             let connect = format!("tcp/127.0.0.1:{}", port.unwrap_or_default());
-            network.launch(settings, agents, &connect)?;
+            network.launch(agents, &connect)?;
         }
         network.wait_for_everyone(options)?;
         network.stop_on_ctrl_c();
         Ok(network)
     }
 
-    fn launch(&self, settings: &ZenohSettings, agents: usize, connect: &str) -> Result<(), Error> {
-        let options = &settings.endpoints;
+    fn launch(&self, agents: usize, connect: &str) -> Result<(), Error> {
+        let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
         let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
         let common = |extra: &[String]| {
@@ -161,12 +163,7 @@ impl Network {
         children.spawn(
             "env-server",
             &server,
-            &common(&[
-                "serve".into(),
-                "--step-timeout-ms".into(),
-                settings.step_timeout_ms.to_string(),
-                "--exit-with-coordinator".into(),
-            ]),
+            &common(&["serve".into(), "--exit-with-coordinator".into()]),
         )?;
         for i in 0..agents {
             children.spawn(
@@ -177,8 +174,6 @@ impl Network {
                     i.to_string(),
                     "--team-size".into(),
                     agents.to_string(),
-                    "--advice-timeout-ms".into(),
-                    settings.advice_timeout_ms.to_string(),
                     "--exit-with-coordinator".into(),
                 ]),
             )?;
@@ -232,6 +227,11 @@ impl Network {
                 std::process::exit(130);
             }
         });
+    }
+
+    /// The settings it was started with.
+    pub fn settings(&self) -> &ZenohSettings {
+        &self.settings
     }
 
     /// Whether `role`'s liveliness token is currently seen.

@@ -51,6 +51,7 @@ impl<'a> RemoteBackend<'a> {
             Control::Reset {
                 seed: seeds.simulator,
                 config: env,
+                wait_ms: network.settings().step_timeout_ms,
             },
         )?;
         for (i, spec) in config.team.iter().enumerate() {
@@ -62,6 +63,7 @@ impl<'a> RemoteBackend<'a> {
                 Control::Reset {
                     seed: seeds.agents[i],
                     config: agent,
+                    wait_ms: network.settings().advice_timeout_ms,
                 },
             )?;
             if let Some(snapshot) = experiment.snapshot(i) {

@@ -7,7 +7,6 @@ use clap::{Parser, Subcommand};
 use env_server::{BaselinePolicy, EnvConfig, render, rollout};
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
-use std::time::Duration;
 
 mod picture;
 mod serve;
@@ -71,9 +70,6 @@ enum Command {
     Serve {
         #[command(flatten)]
         connection: ConnectionArgs,
-        /// Milliseconds to wait for a kicker's action before it falls back to Move.
-        #[arg(long, default_value_t = 1000, value_parser = at_least_one)]
-        step_timeout_ms: u64,
     },
 }
 
@@ -137,13 +133,7 @@ fn run(cli: Cli) -> Result<()> {
             picture::write_picture(&trace, &out)?;
             println!("wrote {}: {}", out.display(), trace.summary());
         }
-        Command::Serve {
-            connection,
-            step_timeout_ms,
-        } => serve::run(serve::Options {
-            connection,
-            step_timeout: Duration::from_millis(step_timeout_ms),
-        })?,
+        Command::Serve { connection } => serve::run(connection)?,
     }
     Ok(())
 }

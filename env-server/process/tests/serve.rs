@@ -88,13 +88,16 @@ struct Harness {
     keys: Keys,
     experiment: u64,
     seen: Vec<Arc<Mutex<Seen>>>,
+    /// The step timeout every reset sets (ms).
+    step_timeout_ms: u64,
 }
 
 impl Harness {
-    /// Starts a server and joins it with fake agents behaving `behaviour`.
-    async fn new(name: &str, behaviour: Behaviour, extra: &[&str]) -> Self {
+    /// Starts a server and joins it with fake agents behaving `behaviour`;
+    /// every run waits `step_timeout_ms` for a kicker's action.
+    async fn new(name: &str, behaviour: Behaviour, step_timeout_ms: u64) -> Self {
         let port = free_port().expect("a free port");
-        let server = start(name, port, extra);
+        let server = start(name, port, &[]);
         let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
         let session = node::net::open(&net).await.expect("open the test session");
         let keys = Keys::new(name).expect("keys");
@@ -116,6 +119,7 @@ impl Harness {
             .expect("the server's liveliness token within 15 s")
             .expect("liveliness sample");
         Harness {
+            step_timeout_ms,
             server,
             session,
             keys,
@@ -157,7 +161,12 @@ impl Harness {
 
     async fn reset(&self, run: u32, seed: u64) {
         let config = proto::encode_settings(&EnvConfig::default()).expect("settings");
-        let reply = self.control(run, 0, Control::Reset { seed, config }).await;
+        let reset = Control::Reset {
+            seed,
+            config,
+            wait_ms: self.step_timeout_ms,
+        };
+        let reply = self.control(run, 0, reset).await;
         assert_eq!(reply, ControlReply::Ok);
     }
 
@@ -360,12 +369,7 @@ fn check_observations(seen: &[Vec<Observation>], result: EpisodeResult, mode: Mo
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn episodes_match_the_simulator_and_reach_every_agent() {
-    let h = Harness::new(
-        "serve-episodes",
-        Behaviour::Shoot,
-        &["--step-timeout-ms", "10000"],
-    )
-    .await;
+    let h = Harness::new("serve-episodes", Behaviour::Shoot, 10000).await;
     let config = EnvConfig::default();
     let mut training = Env::new(config.clone(), 7).expect("env");
     let mut evaluation = Env::new(config.clone(), 99).expect("env");
@@ -408,12 +412,7 @@ async fn episodes_match_the_simulator_and_reach_every_agent() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn silent_agents_fall_back_to_move() {
-    let h = Harness::new(
-        "serve-silent",
-        Behaviour::Silent,
-        &["--step-timeout-ms", "20"],
-    )
-    .await;
+    let h = Harness::new("serve-silent", Behaviour::Silent, 20).await;
     h.reset(0, 5).await;
     let result = h.play(0, 0, Mode::Training, None).await;
     let mut env = Env::new(EnvConfig::default(), 5).expect("env");
@@ -427,12 +426,7 @@ async fn silent_agents_fall_back_to_move() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn noise_on_act_is_dropped_and_counted() {
-    let h = Harness::new(
-        "serve-noise",
-        Behaviour::ShootAfterNoise,
-        &["--step-timeout-ms", "10000"],
-    )
-    .await;
+    let h = Harness::new("serve-noise", Behaviour::ShootAfterNoise, 10000).await;
     h.reset(0, 21).await;
     let mut env = Env::new(EnvConfig::default(), 21).expect("env");
     let mut kicks = 0;
@@ -456,12 +450,7 @@ async fn noise_on_act_is_dropped_and_counted() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_commands_get_errors_and_change_nothing() {
-    let h = Harness::new(
-        "serve-control",
-        Behaviour::Shoot,
-        &["--step-timeout-ms", "10000"],
-    )
-    .await;
+    let h = Harness::new("serve-control", Behaviour::Shoot, 10000).await;
     let error = |reply: ControlReply| match reply {
         ControlReply::Error(text) => text,
         other => panic!("expected an error, got {other:?}"),
@@ -472,6 +461,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
     let reset = |config: &[u8]| Control::Reset {
         seed: 1,
         config: config.to_owned(),
+        wait_ms: 10_000,
     };
     let nine = EnvConfig {
         offense: 9,
@@ -480,6 +470,15 @@ async fn bad_commands_get_errors_and_change_nothing() {
     let nine = proto::encode_settings(&nine).expect("settings");
     assert!(error(h.control(0, 0, reset(&nine)).await).contains("offense"));
     assert!(error(h.control(0, 0, reset(b"{")).await).contains("invalid env config"));
+    let good = proto::encode_settings(&EnvConfig::default()).expect("settings");
+    for wait_ms in [0, proto::MAX_WAIT_MS + 1] {
+        let unbounded = Control::Reset {
+            seed: 1,
+            config: good.clone(),
+            wait_ms,
+        };
+        assert!(error(h.control(0, 0, unbounded).await).contains("step timeout"));
+    }
     h.reset(1, 4).await;
     assert!(error(play(0, 0, Mode::Training, None).await).contains("run"));
     assert!(error(play(1, 0, Mode::Evaluation, None).await).contains("evaluation"));
@@ -515,7 +514,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn stop_exits_zero() {
-    let mut h = Harness::new("serve-stop", Behaviour::Shoot, &[]).await;
+    let mut h = Harness::new("serve-stop", Behaviour::Shoot, 10_000).await;
     h.reset(0, 1).await;
     assert_eq!(h.control(0, 0, Control::Stop).await, ControlReply::Ok);
     let status = h.server.wait_exit(Duration::from_secs(10));
@@ -577,7 +576,7 @@ fn bad_input_is_one_line_and_exit_2() {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 #[ignore = "measurement"]
 async fn frames_per_second() {
-    let h = Harness::new("serve-speed", Behaviour::Shoot, &[]).await;
+    let h = Harness::new("serve-speed", Behaviour::Shoot, 1000).await;
     h.reset(0, 3).await;
     let episodes = 300;
     let start = Instant::now();

@@ -5,9 +5,9 @@
 //! fed by zenoh callbacks, so the event loop can wait on both (and on the
 //! step deadline) without ever blocking one behind the other.
 
-use super::Options;
 use anyhow::{Result, anyhow};
 use node::alive::CoordinatorPresence;
+use node::cli::ConnectionArgs;
 use node::net::describe;
 use proto::keys::{Keys, Role};
 use tokio::sync::mpsc::{UnboundedReceiver, unbounded_channel};
@@ -46,8 +46,7 @@ impl Link {
     /// Opens the session and declares the queryable, the subscriber and,
     /// last, the liveliness token (so a process that sees the token finds
     /// the rest declared).
-    pub async fn open(options: &Options, keys: Keys) -> Result<(Self, Inbox)> {
-        let connection = &options.connection;
+    pub async fn open(connection: &ConnectionArgs, keys: Keys) -> Result<(Self, Inbox)> {
         let session = node::net::open(&connection.net()).await?;
         let control_key = keys.control(Role::Server);
         let (query_tx, queries) = unbounded_channel();

@@ -61,13 +61,14 @@ pub struct Server {
 }
 
 impl Server {
-    /// A server on `link`, waiting `step_timeout` for each frame's actions.
-    pub fn new(link: Link, step_timeout: Duration) -> Self {
+    /// A server on `link`; each run's reset sets how long it waits for a
+    /// frame's actions.
+    pub fn new(link: Link) -> Self {
         let experiment = link.experiment();
         Server {
             link,
             experiment,
-            step_timeout,
+            step_timeout: Duration::ZERO,
             run: None,
             play: None,
             slot: ObservationSlot::new(experiment),
@@ -159,9 +160,14 @@ impl Server {
         }
         self.received(size);
         let (reply, flow) = match control {
-            Control::Reset { seed, config } => {
-                (self.reset(header, seed, &config).await?, Flow::Continue)
-            }
+            Control::Reset {
+                seed,
+                config,
+                wait_ms,
+            } => (
+                self.reset(header, seed, &config, wait_ms).await?,
+                Flow::Continue,
+            ),
             Control::Report => (
                 ControlReply::Server(Box::new(self.report())),
                 Flow::Continue,
@@ -182,11 +188,24 @@ impl Server {
     /// Starts run `header.run` with a training simulator seeded with
     /// `seed`; an in-progress episode is abandoned. A bad config changes
     /// nothing.
-    async fn reset(&mut self, header: Header, seed: u64, config: &[u8]) -> Result<ControlReply> {
+    async fn reset(
+        &mut self,
+        header: Header,
+        seed: u64,
+        config: &[u8],
+        wait_ms: u64,
+    ) -> Result<ControlReply> {
+        if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
+            return Ok(ControlReply::Error(format!(
+                "the step timeout must be 1 to {} ms, got {wait_ms}",
+                proto::MAX_WAIT_MS
+            )));
+        }
         let simulators = match Simulators::new(config, seed) {
             Ok(s) => s,
             Err(text) => return Ok(ControlReply::Error(text)),
         };
+        self.step_timeout = Duration::from_millis(wait_ms);
         self.abandon("its run was reset").await;
         self.link.set_team(simulators.offense()).await?;
         self.run = Some(Run {
