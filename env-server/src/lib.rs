@@ -11,6 +11,7 @@
 pub mod analysis;
 pub mod behaviour;
 pub mod config;
+pub mod decisions;
 pub mod env;
 pub mod features;
 pub mod formation;

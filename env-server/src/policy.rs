@@ -16,6 +16,8 @@ pub enum BaselinePolicy {
     Dribble,
     /// Pass whenever able to kick.
     Pass,
+    /// With the ball, uniformly one of Shoot, Dribble, PassNear, PassFar.
+    Uniform,
 }
 
 /// The paper's random draw for an agent with the ball.
@@ -30,14 +32,15 @@ const RANDOM_KICKS: [Action; 6] = [
 
 impl BaselinePolicy {
     /// Every policy, in the order of [`BaselinePolicy::NAMES`].
-    pub const ALL: [BaselinePolicy; 4] = [
+    pub const ALL: [BaselinePolicy; 5] = [
         BaselinePolicy::Random,
         BaselinePolicy::Shoot,
         BaselinePolicy::Dribble,
         BaselinePolicy::Pass,
+        BaselinePolicy::Uniform,
     ];
     /// Accepted names.
-    pub const NAMES: [&'static str; 4] = ["random", "shoot", "dribble", "pass"];
+    pub const NAMES: [&'static str; 5] = ["random", "shoot", "dribble", "pass", "uniform"];
 
     /// The action of an agent; `Move` whenever it cannot kick.
     pub fn choose(self, can_kick: bool, rng: &mut impl Rng) -> Action {
@@ -49,6 +52,7 @@ impl BaselinePolicy {
             BaselinePolicy::Shoot => Action::Shoot,
             BaselinePolicy::Dribble => Action::Dribble,
             BaselinePolicy::Pass => Action::PassNear,
+            BaselinePolicy::Uniform => Action::KICK_TIE_ORDER[rng.random_range(0..4)],
         }
     }
 
@@ -66,7 +70,7 @@ impl fmt::Display for BaselinePolicy {
 
 /// An unknown policy name.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown policy '{0}' (expected one of: random, shoot, dribble, pass)")]
+#[error("unknown policy '{0}' (expected one of: random, shoot, dribble, pass, uniform)")]
 pub struct UnknownPolicy(String);
 
 impl FromStr for BaselinePolicy {

@@ -295,10 +295,10 @@ pub fn record_episode(
     let mut env = Env::new(config, seed)?;
     let mut rng = policy_rng(seed);
     for _ in 1..episode {
-        play_episode(&mut env, policy, &mut rng, |_| {});
+        play_episode(&mut env, policy, &mut rng, |_, _| {});
     }
     let mut trace = Trace::new(policy, seed, episode, offense);
-    let (outcome, frames) = play_episode(&mut env, policy, &mut rng, |env| trace.observe(env));
+    let (outcome, frames) = play_episode(&mut env, policy, &mut rng, |env, _| trace.observe(env));
     trace.outcome = outcome;
     trace.frames = frames;
     Ok(trace)

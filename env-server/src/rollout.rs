@@ -1,6 +1,7 @@
 //! Running episodes under a baseline policy and summarising them.
 
 use crate::config::{ConfigError, EnvConfig};
+use crate::decisions::{DecisionRecorder, DecisionStats};
 use crate::env::Env;
 use crate::policy::BaselinePolicy;
 use crate::referee::Outcome;
@@ -39,6 +40,8 @@ impl OutcomeCounts {
 /// Summary of a rollout.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RolloutSummary {
+    /// Which simulator played (`ours`; the real-HFO oracle writes `hfo`).
+    pub simulator: &'static str,
     /// Policy name.
     pub policy: String,
     /// Offense agents.
@@ -55,6 +58,8 @@ pub struct RolloutSummary {
     pub mean_frames_to_goal: f64,
     /// Outcome counts.
     pub outcomes: OutcomeCounts,
+    /// Per-decision statistics.
+    pub decisions: DecisionStats,
     /// Total agent decisions.
     pub frames: u64,
     /// Decisions per second of wall time (simulator and policy).
@@ -67,15 +72,16 @@ pub fn policy_rng(seed: u64) -> Xoshiro256PlusPlus {
 }
 
 /// Plays one episode of `env` under `policy`; `observe` sees the env after
-/// the reset and after every step. Returns the outcome and frame count.
+/// the reset (with no actions) and after every step (with the actions it
+/// applied). Returns the outcome and frame count.
 pub fn play_episode(
     env: &mut Env,
     policy: BaselinePolicy,
     rng: &mut Xoshiro256PlusPlus,
-    mut observe: impl FnMut(&Env),
+    mut observe: impl FnMut(&Env, &[Action]),
 ) -> (Outcome, u32) {
     env.reset();
-    observe(env);
+    observe(env, &[]);
     let mut actions = [Action::Move; crate::analysis::MAX_OFFENSE];
     let n = env.offense();
     loop {
@@ -83,7 +89,7 @@ pub fn play_episode(
             *a = policy.choose(env.can_kick(i), rng);
         }
         let outcome = env.step(&actions[..n]);
-        observe(env);
+        observe(env, &actions[..n]);
         if outcome.is_terminal() {
             return (outcome, env.frame());
         }
@@ -101,10 +107,13 @@ pub fn rollout(
     let mut env = Env::new(config, seed)?;
     let mut rng = policy_rng(seed);
     let mut outcomes = OutcomeCounts::default();
+    let mut decisions = DecisionRecorder::default();
     let (mut frames, mut goal_frames) = (0u64, 0u64);
     let start = Instant::now();
     for _ in 0..episodes {
-        let (outcome, n) = play_episode(&mut env, policy, &mut rng, |_| {});
+        let (outcome, n) = play_episode(&mut env, policy, &mut rng, |env, actions| {
+            decisions.observe(env, actions)
+        });
         outcomes.add(outcome);
         frames += u64::from(n);
         if outcome == Outcome::Goal {
@@ -114,6 +123,7 @@ pub fn rollout(
     let secs = start.elapsed().as_secs_f64();
     let ratio = |a: u64, b: u64| if b == 0 { 0.0 } else { a as f64 / b as f64 };
     Ok(RolloutSummary {
+        simulator: "ours",
         policy: policy.name().to_owned(),
         offense,
         seed,
@@ -122,6 +132,7 @@ pub fn rollout(
         mean_frames: ratio(frames, episodes),
         mean_frames_to_goal: ratio(goal_frames, outcomes.goal),
         outcomes,
+        decisions: decisions.stats(),
         frames,
         frames_per_sec: if secs > 0.0 {
             frames as f64 / secs

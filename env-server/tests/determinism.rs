@@ -10,7 +10,7 @@ fn trace(seed: u64) -> (Vec<(Outcome, u32)>, Vec<Vec<f64>>) {
     let mut outcomes = Vec::new();
     let mut features = Vec::new();
     for _ in 0..20 {
-        let result = play_episode(&mut env, BaselinePolicy::Random, &mut rng, |env| {
+        let result = play_episode(&mut env, BaselinePolicy::Random, &mut rng, |env, _| {
             for agent in 0..env.offense() {
                 features.push(env.features(agent));
             }

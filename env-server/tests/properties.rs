@@ -23,13 +23,13 @@ proptest! {
 
     /// Every normalised feature of every agent stays in [-1, 1] (uniform numbers are raw, as in HFO).
     #[test]
-    fn features_stay_in_range(seed in any::<u64>(), policy in 0..4usize, offense in 1..=4usize) {
+    fn features_stay_in_range(seed in any::<u64>(), policy in 0..5usize, offense in 1..=4usize) {
         let mut env = env(seed, offense);
         let mut rng = policy_rng(seed);
         let raw: Vec<usize> = unum_feature_indices(offense).collect();
         let mut bad = None;
         for _ in 0..3 {
-            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env| {
+            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
                 for agent in 0..env.offense() {
                     for (i, f) in env.features(agent).into_iter().enumerate() {
                         if !raw.contains(&i) && !(-1.0..=1.0).contains(&f) {
@@ -47,13 +47,13 @@ proptest! {
 
     /// Episodes end by the frame limit, and speeds never exceed the server limits.
     #[test]
-    fn limits_hold(seed in any::<u64>(), policy in 0..4usize, offense in 1..=4usize) {
+    fn limits_hold(seed in any::<u64>(), policy in 0..5usize, offense in 1..=4usize) {
         let mut env = env(seed, offense);
         let mut rng = policy_rng(seed);
         let mut fastest_ball: f64 = 0.0;
         let mut fastest_player: f64 = 0.0;
         for _ in 0..3 {
-            let (outcome, frames) = play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env| {
+            let (outcome, frames) = play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
                 let w = env.world();
                 fastest_ball = fastest_ball.max(w.ball.vel.length());
                 for p in w.players() {
@@ -74,7 +74,7 @@ proptest! {
         let mut rng = policy_rng(seed);
         for _ in 0..10 {
             let mut path: Vec<DVec2> = Vec::new();
-            let (outcome, _) = play_episode(&mut env, BaselinePolicy::Random, &mut rng, |env| {
+            let (outcome, _) = play_episode(&mut env, BaselinePolicy::Random, &mut rng, |env, _| {
                 path.push(env.world().ball.pos);
             });
             if outcome == Outcome::Goal {

@@ -25,7 +25,7 @@ struct Cli {
 enum Command {
     /// Play episodes under a baseline policy and summarise them.
     Rollout {
-        /// Policy: random, shoot, dribble or pass.
+        /// Policy: random, shoot, dribble, pass or uniform.
         #[arg(long, default_value = "random")]
         policy: BaselinePolicy,
         /// Number of episodes (at least 1).
@@ -46,7 +46,7 @@ enum Command {
     },
     /// Play one episode of a rollout and draw it as an SVG or PNG picture.
     Render {
-        /// Policy: random, shoot, dribble or pass.
+        /// Policy: random, shoot, dribble, pass or uniform.
         #[arg(long, default_value = "random")]
         policy: BaselinePolicy,
         /// Seed of the rollout the episode belongs to.
@@ -113,6 +113,16 @@ fn run(cli: Cli) -> Result<()> {
                 println!("  out of bounds  {:6.2} %", pct(s.outcomes.out_of_bounds));
                 println!("  out of time    {:6.2} %", pct(s.outcomes.out_of_time));
                 println!("  mean frames    {:6.1}", s.mean_frames);
+                let shots: Vec<String> = s
+                    .decisions
+                    .shots
+                    .iter()
+                    .map(|b| match b.to_m {
+                        Some(to) => format!("{}-{to} m {}/{}", b.from_m, b.goals, b.released),
+                        None => format!(">={} m {}/{}", b.from_m, b.goals, b.released),
+                    })
+                    .collect();
+                println!("  shots scored   {}", shots.join(", "));
                 println!("  speed          {:.0} frames/s", s.frames_per_sec);
             }
         }

@@ -45,7 +45,7 @@ fn bad_input_is_one_line_and_exit_code_2() {
     let cases: [(&[&str], &str); 5] = [
         (
             &["rollout", "--policy", "juggle"],
-            "random, shoot, dribble, pass",
+            "random, shoot, dribble, pass, uniform",
         ),
         (&["rollout", "--episodes", "0"], "at least 1"),
         (&["rollout", "--offense", "5"], "1..=4"),
