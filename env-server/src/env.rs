@@ -180,6 +180,7 @@ impl Env {
         let analysis = Analysis::new(&self.world);
         for agent in 0..n {
             self.commands[agent] = match actions {
+                _ if self.world.offense[agent].tackle_freeze > 0 => Command::None,
                 None => Command::None,
                 Some(a) => offense_command(
                     &Situation {
@@ -192,7 +193,11 @@ impl Env {
                 ),
             };
         }
-        self.commands[n] = keeper::command(&self.world, &analysis, &self.keeper_memory);
+        self.commands[n] = if self.world.keeper.tackle_freeze > 0 {
+            Command::None
+        } else {
+            keeper::command(&self.world, &analysis, &self.keeper_memory)
+        };
         let accels = self.apply_commands();
         self.move_objects(&accels);
         physics::resolve_collisions(&mut self.world, &mut self.rng);
@@ -204,27 +209,53 @@ impl Env {
             .chain([&mut self.world.keeper])
         {
             physics::update_stamina(p);
+            p.tackle_freeze = p.tackle_freeze.saturating_sub(1);
         }
         self.world.catch_ban = self.world.catch_ban.saturating_sub(1);
     }
 
-    /// Executes the commands (spec 2.1 step 2): kicks and the catch act on the
-    /// current positions first, then dashes and turns. Returns the pending
-    /// accelerations: the ball's, then every player's (offense, keeper).
+    /// Executes the commands (spec 2.1 step 2): kicks, tackles and the catch
+    /// act on the current positions first, then dashes and turns. Returns the
+    /// pending accelerations: the ball's, then every player's (offense, keeper).
     fn apply_commands(&mut self) -> [DVec2; MAX_OFFENSE + 2] {
         let n = self.config.offense;
         let mut accels = [DVec2::ZERO; MAX_OFFENSE + 2];
         for (i, command) in self.commands[..=n].iter().enumerate() {
-            if let Command::Kick { power, dir } = *command {
-                let p = self.world.players().nth(i).expect("player index");
-                physics::kick(
-                    p,
-                    &self.world.ball,
-                    &mut accels[0],
-                    power,
-                    dir,
-                    &mut self.rng,
-                );
+            match *command {
+                Command::Kick { power, dir } => {
+                    let p = self.world.players().nth(i).expect("player index");
+                    physics::kick(
+                        p,
+                        &self.world.ball,
+                        &mut accels[0],
+                        power,
+                        dir,
+                        &mut self.rng,
+                    );
+                }
+                Command::Tackle { dir, foul } => {
+                    // The server's foul needs an opponent that can kick the ball.
+                    let opponent_kickable = if i < n {
+                        self.world.keeper.pos.distance(self.world.ball.pos) <= KICKABLE_AREA
+                    } else {
+                        self.world.any_attacker_kickable()
+                    };
+                    let ball = self.world.ball;
+                    let p = if i < n {
+                        &mut self.world.offense[i]
+                    } else {
+                        &mut self.world.keeper
+                    };
+                    physics::tackle(
+                        p,
+                        &ball,
+                        &mut accels[0],
+                        (dir, foul),
+                        opponent_kickable,
+                        &mut self.rng,
+                    );
+                }
+                _ => {}
             }
         }
         self.keeper_memory.since_catch = self.keeper_memory.since_catch.saturating_add(1);
@@ -260,5 +291,29 @@ impl Env {
         for (p, accel) in players.zip(&accels[1..]) {
             physics::move_object(&mut p.pos, &mut p.vel, *accel, PLAYER_BODY, rng);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// After its tackle's own cycle the server ignores a player for 9 more
+    /// cycles (`tackle_cycles = 10`); the keeper, who always commands
+    /// something, is silent exactly that long.
+    #[test]
+    fn tackle_freeze_silences_the_keeper_for_nine_cycles() {
+        let mut env = Env::new(EnvConfig::default(), 1).expect("valid config");
+        env.reset();
+        let n = env.offense();
+        let moves = vec![Action::Move; n];
+        // The state right after a tackle's cycle.
+        env.world.keeper.tackle_freeze = TACKLE_CYCLES - 1;
+        for _ in 0..9 {
+            assert_eq!(env.step(&moves), Outcome::InGame);
+            assert_eq!(env.last_commands()[n], Command::None);
+        }
+        env.step(&moves);
+        assert_ne!(env.last_commands()[n], Command::None);
     }
 }

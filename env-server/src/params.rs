@@ -91,6 +91,27 @@ pub const CATCH_BAN_CYCLES: u32 = 5;
 /// agent2d's "catchable area" used for the keeper's reach inside its box.
 pub const KEEPER_CONTROL_AREA: f64 = 1.3;
 
+/// Tackle reach in front of the body (rcssserver `tackle_dist`).
+pub const TACKLE_DIST: f64 = 2.0;
+/// Tackle reach behind the body (`tackle_back_dist`; 0: no tackle backwards).
+pub const TACKLE_BACK_DIST: f64 = 0.0;
+/// Tackle half width across the body (`tackle_width`).
+pub const TACKLE_WIDTH: f64 = 1.25;
+/// Exponent of the tackle failure probability (`tackle_exponent`).
+pub const TACKLE_EXPONENT: f64 = 6.0;
+/// Exponent of a foul tackle's failure probability (`foul_exponent`).
+pub const FOUL_EXPONENT: f64 = 10.0;
+/// Cycles a tackle freezes its player (`tackle_cycles`), the tackle's own included.
+pub const TACKLE_CYCLES: u32 = 10;
+/// Tackle power to acceleration rate (`tackle_power_rate`).
+pub const TACKLE_POWER_RATE: f64 = 0.027;
+/// Tackle power straight ahead (`max_tackle_power`).
+pub const MAX_TACKLE_POWER: f64 = 100.0;
+/// Tackle power straight backwards (`max_back_tackle_power`).
+pub const MAX_BACK_TACKLE_POWER: f64 = 0.0;
+/// Tackle noise relative to kick noise (`tackle_rand_factor`).
+pub const TACKLE_RAND_FACTOR: f64 = 2.0;
+
 /// Stamina at the start of every episode.
 pub const STAMINA_MAX: f64 = 8000.0;
 /// Stamina recovered per cycle at full recovery.

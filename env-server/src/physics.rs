@@ -1,6 +1,6 @@
 //! The server's command models and movement step (spec sections 2 and 3).
 
-use crate::geom::{angle_diff, direction, normalize_angle, polar, polar_noise, uniform};
+use crate::geom::{angle_diff, direction, normalize_angle, polar, polar_noise, uniform, unit};
 use crate::params::*;
 use crate::world::{Ball, Player, World};
 use glam::DVec2;
@@ -21,6 +21,9 @@ pub enum Command {
     Kick { power: f64, dir: f64 },
     /// Goalkeeper catch aimed at the ball.
     Catch,
+    /// Tackle towards `dir` (radians, relative to the body); `foul` asks for
+    /// the server's foul tackle (spec 3.5).
+    Tackle { dir: f64, foul: bool },
 }
 
 /// Effective kick power per unit of power for `player` and the ball at `ball` (spec 3.1).
@@ -71,6 +74,64 @@ pub fn kick(
     let speed_rate = 0.5 + 0.5 * ball.vel.length() / (BALL_SPEED_MAX * BALL_DECAY);
     let max_rand = KICK_RAND * (power.abs() / MAX_KICK_POWER) * (pos_rate + speed_rate);
     *accel += polar(eff, player.body + dir) + polar_noise(rng, max_rand);
+}
+
+/// Success probability of a tackle by `player` on the ball at `ball` with the
+/// failure exponent `exponent` (rcssserver `Player::tackle`, spec 3.5):
+/// `1 - (bx/2)^e - (|by|/1.25)^e` with the ball in body coordinates, 0 behind.
+pub fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
+    let rel = (ball - player.pos).rotate(unit(-player.body));
+    let reach = if rel.x > 0.0 {
+        TACKLE_DIST
+    } else {
+        TACKLE_BACK_DIST
+    };
+    if reach <= 1e-5 {
+        return 0.0;
+    }
+    let fail = (rel.x.abs() / reach).powf(exponent) + (rel.y.abs() / TACKLE_WIDTH).powf(exponent);
+    (1.0 - fail).max(0.0)
+}
+
+/// Noise-free ball acceleration of a successful tackle towards `dir`
+/// (relative to the body): the protocol v14 model of `Player::tackle` (spec 3.5).
+pub fn tackle_accel(player: &Player, ball: DVec2, dir: f64) -> DVec2 {
+    let dir = normalize_angle(dir);
+    let power =
+        MAX_BACK_TACKLE_POWER + (MAX_TACKLE_POWER - MAX_BACK_TACKLE_POWER) * (1.0 - dir.abs() / PI);
+    let ball_angle = angle_diff(direction(ball - player.pos), player.body);
+    let eff = power * TACKLE_POWER_RATE * (1.0 - 0.5 * ball_angle / PI);
+    polar(eff, player.body + dir)
+}
+
+/// Executes `player`'s tackle towards `dir` (rcssserver `Player::tackle`, spec 3.5):
+/// freezes the player for [`TACKLE_CYCLES`] and, with the success probability,
+/// adds the push and its noise to the ball's pending acceleration. A `foul`
+/// tackle uses [`FOUL_EXPONENT`] and leaves the player free if an opponent
+/// (`opponent_kickable`) can kick the ball. Returns whether the ball was hit.
+pub fn tackle(
+    player: &mut Player,
+    ball: &Ball,
+    accel: &mut DVec2,
+    (dir, foul): (f64, bool),
+    opponent_kickable: bool,
+    rng: &mut impl Rng,
+) -> bool {
+    player.tackle_freeze = TACKLE_CYCLES;
+    let foul = foul && opponent_kickable;
+    let exponent = if foul { FOUL_EXPONENT } else { TACKLE_EXPONENT };
+    let success = tackle_probability(player, ball.pos, exponent);
+    if success <= 0.0 || uniform(rng, 0.0, 1.0) >= success {
+        return false;
+    }
+    if foul {
+        player.tackle_freeze = 0;
+    }
+    let pos_rate = 0.5 + 0.5 * success;
+    let speed_rate = 0.5 + 0.5 * ball.vel.length() / (BALL_SPEED_MAX * BALL_DECAY);
+    let max_rand = KICK_RAND * TACKLE_RAND_FACTOR * (pos_rate + speed_rate);
+    *accel += tackle_accel(player, ball.pos, dir) + polar_noise(rng, max_rand);
+    true
 }
 
 /// Applies a dash: spends stamina and adds to the player's pending acceleration (spec 3.2).
@@ -342,6 +403,88 @@ mod tests {
         let mut side = DVec2::ZERO;
         dash(&mut p, &mut side, 100.0, FRAC_PI_2);
         assert!((side.y - 0.6 * SIDE_DASH_RATE).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tackle_probability_has_exponent_six_both_ways_and_no_back_tackle() {
+        let p = Player::new(DVec2::ZERO, FRAC_PI_2);
+        let at = |x: f64, y: f64| p.pos + DVec2::new(x, y).rotate(unit(p.body));
+        let prob = |x, y| tackle_probability(&p, at(x, y), TACKLE_EXPONENT);
+        assert!((prob(1.0, 0.0) - (1.0 - 0.5f64.powi(6))).abs() < 1e-12);
+        assert!((prob(0.2, 0.625) - (1.0 - 0.1f64.powi(6) - 0.5f64.powi(6))).abs() < 1e-12);
+        assert!((prob(1.0, 0.625) - (1.0 - 2.0 * 0.5f64.powi(6))).abs() < 1e-12);
+        assert_eq!(prob(2.0, 0.0), 0.0);
+        assert_eq!(prob(-0.5, 0.0), 0.0);
+        let foul = tackle_probability(&p, at(1.0, 0.0), FOUL_EXPONENT);
+        assert!((foul - (1.0 - 0.5f64.powi(10))).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tackle_push_shrinks_with_direction_and_ball_angle() {
+        let p = Player::new(DVec2::ZERO, 0.0);
+        let ahead = DVec2::new(1.0, 0.0);
+        assert!((tackle_accel(&p, ahead, 0.0) - DVec2::new(2.7, 0.0)).length() < 1e-12);
+        let side = tackle_accel(&p, ahead, FRAC_PI_2);
+        assert!((side - DVec2::new(0.0, 1.35)).length() < 1e-12);
+        assert!(tackle_accel(&p, ahead, PI).length() < 1e-12);
+        // Ball 90° off the body: three quarters of the push.
+        let beside = DVec2::new(0.0, 1.0);
+        assert!((tackle_accel(&p, beside, 0.0).x - 2.025).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tackle_freezes_its_player_unless_a_foul_succeeds() {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        let ball = Ball {
+            pos: DVec2::new(0.5, 0.0),
+            vel: DVec2::ZERO,
+        };
+        let mut p = Player::new(DVec2::ZERO, 0.0);
+        let mut accel = DVec2::ZERO;
+        assert!(tackle(
+            &mut p,
+            &ball,
+            &mut accel,
+            (0.0, false),
+            true,
+            &mut rng
+        ));
+        assert_eq!(p.tackle_freeze, TACKLE_CYCLES);
+        // Noise at most 0.1·2·(pos_rate + speed_rate) around the 2.7 push.
+        assert!((accel - DVec2::new(2.7, 0.0)).length() <= 0.2 * (1.0 + 0.5) + 1e-9);
+        let behind = Ball {
+            pos: DVec2::new(-0.5, 0.0),
+            ..ball
+        };
+        let mut q = Player::new(DVec2::ZERO, 0.0);
+        let mut none = DVec2::ZERO;
+        assert!(!tackle(
+            &mut q,
+            &behind,
+            &mut none,
+            (0.0, false),
+            true,
+            &mut rng
+        ));
+        assert_eq!((q.tackle_freeze, none), (TACKLE_CYCLES, DVec2::ZERO));
+        assert!(tackle(
+            &mut q,
+            &ball,
+            &mut none,
+            (0.0, true),
+            true,
+            &mut rng
+        ));
+        assert_eq!(q.tackle_freeze, 0);
+        assert!(tackle(
+            &mut q,
+            &ball,
+            &mut none,
+            (0.0, true),
+            false,
+            &mut rng
+        ));
+        assert_eq!(q.tackle_freeze, TACKLE_CYCLES);
     }
 
     #[test]

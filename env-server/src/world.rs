@@ -30,6 +30,9 @@ pub struct Player {
     pub recovery: f64,
     /// agent2d's positioning "recover mode" flag (spec 6.1.4).
     pub recover_mode: bool,
+    /// Cycles left during which the server ignores this player's commands
+    /// after a tackle (rcssserver `Player::tackle`, spec 3.5).
+    pub tackle_freeze: u32,
 }
 
 impl Player {
@@ -43,6 +46,7 @@ impl Player {
             effort: 1.0,
             recovery: 1.0,
             recover_mode: false,
+            tackle_freeze: 0,
         }
     }
 

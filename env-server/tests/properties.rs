@@ -2,6 +2,7 @@
 
 use env_server::features::unum_feature_indices;
 use env_server::params::*;
+use env_server::physics::Command;
 use env_server::rollout::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
 use glam::DVec2;
@@ -65,6 +66,40 @@ proptest! {
         }
         prop_assert!(fastest_ball <= BALL_SPEED_MAX, "ball at {}", fastest_ball);
         prop_assert!(fastest_player <= PLAYER_SPEED_MAX, "player at {}", fastest_player);
+    }
+
+    /// A tackle freezes its player: the tackle's cycle and the next nine issue
+    /// no command (a successful foul frees it at once), spec 3.5.
+    #[test]
+    fn tackles_freeze_their_player(seed in any::<u64>(), policy in 0..4usize) {
+        let mut env = env(seed, 3);
+        let mut rng = policy_rng(seed);
+        let mut bad = None;
+        for _ in 0..5 {
+            let mut before: Option<Vec<u32>> = None;
+            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env| {
+                let now: Vec<u32> = env.world().players().map(|p| p.tackle_freeze).collect();
+                if let Some(before) = &before {
+                    for (i, command) in env.last_commands().iter().enumerate() {
+                        let ok = match command {
+                            Command::Tackle { foul, .. } => {
+                                before[i] == 0
+                                    && (now[i] == TACKLE_CYCLES - 1 || (*foul && now[i] == 0))
+                            }
+                            _ => {
+                                now[i] == before[i].saturating_sub(1)
+                                    && (before[i] == 0 || *command == Command::None)
+                            }
+                        };
+                        if !ok {
+                            bad.get_or_insert((i, before[i], now[i], *command));
+                        }
+                    }
+                }
+                before = Some(now);
+            });
+        }
+        prop_assert_eq!(bad, None);
     }
 
     /// A goal is only ever scored through the goal mouth.

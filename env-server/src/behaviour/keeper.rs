@@ -2,6 +2,7 @@
 //! the line x = 49.8 between the ball and a point behind the goal.
 
 use super::body::{BackDash, go_to_point, intercept, stop_dash, turn_to_direction, turn_to_point};
+use super::tackle::{self, Tackler};
 use crate::analysis::{Analysis, reach_cycle};
 use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
@@ -35,6 +36,10 @@ pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Com
         && ball.y.abs() <= PENALTY_AREA_HALF_WIDTH - 1.0;
     if memory.since_catch > 5 && ball_dist < KEEPER_CONTROL_AREA - 0.05 && catchable_spot {
         return Command::Catch;
+    }
+    // Bhv_GoalieChaseBall and Bhv_GoalieBasicMove both begin with Bhv_BasicTackle.
+    if let Some(cmd) = tackle::command(world, analysis, Tackler::Keeper) {
+        return cmd;
     }
     let view = View::new(world, analysis);
     if view.is_chase_situation() {
@@ -159,7 +164,7 @@ impl<'a> View<'a> {
         )
     }
 
-    /// `Bhv_GoalieChaseBall::execute` (spec 7.3, without the tackle).
+    /// `Bhv_GoalieChaseBall::execute` after its tackle (spec 7.3).
     fn chase(&self) -> Command {
         let i = self.intercept_point;
         let inside = i.x > PENALTY_AREA_X + self.pen_thr
@@ -271,7 +276,7 @@ impl<'a> View<'a> {
         }
     }
 
-    /// `Bhv_GoalieBasicMove` (spec 7.4, without the tackle).
+    /// `Bhv_GoalieBasicMove` after its tackle (spec 7.4).
     fn basic_move(&self) -> Command {
         let k = self.keeper;
         let ball = self.world.ball.pos;

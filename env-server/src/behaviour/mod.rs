@@ -8,6 +8,7 @@ pub mod keeper;
 mod movement;
 mod pass;
 mod shoot;
+pub mod tackle;
 
 use crate::analysis::Analysis;
 use crate::config::EnvConfig;

@@ -1,8 +1,9 @@
-//! MOVE (spec 6.1): chase the ball if this agent gets there first, otherwise
-//! go to the formation position.
+//! MOVE (spec 6.1): tackle if agent2d would, chase the ball if this agent
+//! gets there first, otherwise go to the formation position.
 
 use super::Situation;
 use super::body::{BackDash, go_to_point, intercept, turn_to_point};
+use super::tackle::{self, Tackler};
 use crate::params::*;
 use crate::physics::Command;
 use glam::DVec2;
@@ -14,6 +15,9 @@ pub fn forward_point(y: f64) -> DVec2 {
 
 /// The MOVE command of offense agent `s.agent`.
 pub fn command(s: &Situation) -> Command {
+    if let Some(cmd) = tackle::command(s.world, s.analysis, Tackler::Attacker(s.agent)) {
+        return cmd;
+    }
     let me = s.me();
     if s.world.agent_kickable(s.agent) {
         return turn_to_point(me, forward_point(me.pos.y));
