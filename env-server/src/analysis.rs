@@ -153,27 +153,31 @@ pub(crate) const DRIFT: [f64; CACHE_LEN] = {
 /// cos(12°): the smallest turn threshold of the reach estimate.
 const COS_12_DEG: f64 = 0.978_147_600_733_805_6;
 
+/// Vector from where player `p` drifts to after `t` cycles to the ball at
+/// `b`, and the control area there (spec 6.1.2).
+fn reach_vector(p: &Player, t: usize, b: DVec2, keeper_control: Option<f64>) -> (DVec2, f64) {
+    let control = match keeper_control {
+        Some(c) if in_penalty_area(b) => c,
+        _ => KICKABLE_AREA,
+    };
+    (b - (p.pos + p.vel * DRIFT[t.min(CACHE_LEN - 1)]), control)
+}
+
+/// Turns (0 or 1) before dashing: one unless the body (or its back, for a
+/// ball less than 5 m away) points at the ball within max(12°, asin(c/d)).
+fn turn_count(facing: DVec2, rel: DVec2, d: f64, control: f64) -> usize {
+    let mut cos = rel.dot(facing) / d;
+    if d < 5.0 {
+        cos = cos.abs(); // a short backward dash needs no turn
+    }
+    let ratio = control / d;
+    usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
+}
+
 /// Reach cycle of player `p` for the ball path `path` (spec 6.1.2);
 /// `keeper_control` is the keeper's control area inside its penalty area.
 pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
     let facing = unit(p.body);
-    // Vector from where the player drifts to after t cycles to the ball, and the control area.
-    let reach_vector = |t: usize, b: DVec2| {
-        let control = match keeper_control {
-            Some(c) if in_penalty_area(b) => c,
-            _ => KICKABLE_AREA,
-        };
-        (b - (p.pos + p.vel * DRIFT[t.min(CACHE_LEN - 1)]), control)
-    };
-    // One turn is needed unless the body points at the ball within max(12°, asin(c/d)).
-    let turns = |rel: DVec2, d: f64, control: f64| {
-        let mut cos = rel.dot(facing) / d;
-        if d < 5.0 {
-            cos = cos.abs(); // a short backward dash needs no turn
-        }
-        let ratio = control / d;
-        usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
-    };
     // Per cycle the gap closes by at most the ball's and the player's initial
     // speeds plus one metre of dashing (plus the keeper's larger area once):
     // far out of reach, the cycles that cannot qualify are skipped.
@@ -186,7 +190,7 @@ pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> u
     let slack = keeper_control.map_or(0.0, |c| (c - KICKABLE_AREA).max(0.0));
     let mut t = 0;
     while t < path.len() {
-        let (rel, control) = reach_vector(t, path[t]);
+        let (rel, control) = reach_vector(p, t, path[t], keeper_control);
         let reach = control + dash_distance(t);
         if rel.length_squared() > reach * reach {
             let excess = rel.length() - reach - slack;
@@ -198,20 +202,95 @@ pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> u
         if gap <= 0.0 {
             return t;
         }
-        let n_turn = turns(rel, d, control);
+        let n_turn = turn_count(facing, rel, d, control);
         if t >= n_turn && gap <= dash_distance(t - n_turn) {
             return t;
         }
         t += 1;
     }
     let last = path.len() - 1;
-    let (rel, control) = reach_vector(last, path[last]);
+    let (rel, control) = reach_vector(p, last, path[last], keeper_control);
     let d = rel.length();
     let gap = d - control;
     if gap <= 0.0 {
         return path.len();
     }
-    path.len().max(turns(rel, d, control) + dash_cycles(gap))
+    path.len()
+        .max(turn_count(facing, rel, d, control) + dash_cycles(gap))
+}
+
+/// One way for a player to get the ball at a given cycle (librcsc
+/// `InterceptInfo`, one entry of the self-interception cache).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interception {
+    /// Cycle at which the ball is reached.
+    pub cycle: usize,
+    /// Turns before the dashes (0 or 1).
+    pub turns: usize,
+    /// Dashes after the turn.
+    pub dashes: usize,
+    /// Whether the dashes go backwards.
+    pub back: bool,
+    /// Distance from the player's final position to the ball
+    /// (`InterceptInfo::ballDist`).
+    pub ball_dist: f64,
+}
+
+/// How player `p` gets the ball at cycle `t` of `path`, if it can by the
+/// rule of spec 6.1.2; beyond the path, how it reaches the ball's resting
+/// point (librcsc `SelfInterceptV13::predictFinal`).
+///
+/// As librcsc's `canReachAfterDash`, the player dashes along its body (or
+/// along the line to the ball after a turn): if the dashes carry it past the
+/// ball (within 0.1 m) it stops on that line, and `ball_dist` is the ball's
+/// distance from the line; otherwise it is the distance left after the dashes.
+pub fn interception(
+    p: &Player,
+    path: &[DVec2],
+    t: usize,
+    keeper_control: Option<f64>,
+) -> Option<Interception> {
+    let final_point = t >= path.len();
+    let i = t.min(path.len() - 1);
+    let (rel, control) = reach_vector(p, i, path[i], keeper_control);
+    let d = rel.length();
+    let gap = d - control;
+    let facing = unit(p.body);
+    let turns = if gap > 0.0 {
+        turn_count(facing, rel, d, control)
+    } else {
+        0
+    };
+    if !final_point && gap > 0.0 && (t < turns || gap > dash_distance(t - turns)) {
+        return None;
+    }
+    let dashes = if final_point {
+        dash_cycles(gap)
+    } else {
+        t - turns
+    };
+    let back = turns == 0 && rel.dot(facing) < 0.0;
+    let line = match (turns, back) {
+        (0, false) => facing,
+        (0, true) => -facing,
+        _ => rel / d,
+    };
+    let along = rel.dot(line);
+    let run = dash_distance(dashes);
+    let ball_dist = if dashes == 0 {
+        d
+    } else if along - 0.1 <= run {
+        rel.perp_dot(line).abs()
+    } else {
+        (rel - line * run).length()
+    };
+    Some(Interception {
+        cycle: t.max(turns + dashes),
+        turns,
+        dashes,
+        back,
+        ball_dist,
+    })
 }
 
 #[cfg(test)]

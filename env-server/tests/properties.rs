@@ -77,7 +77,7 @@ proptest! {
         let mut bad = None;
         for _ in 0..5 {
             let mut before: Option<Vec<u32>> = None;
-            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env| {
+            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
                 let now: Vec<u32> = env.world().players().map(|p| p.tackle_freeze).collect();
                 if let Some(before) = &before {
                     for (i, command) in env.last_commands().iter().enumerate() {

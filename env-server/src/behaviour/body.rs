@@ -60,15 +60,6 @@ pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) ->
     })
 }
 
-/// How far behind its back a player still intercepts by dashing backwards.
-#[derive(Clone, Copy, Debug)]
-pub enum BackDash {
-    /// Field players: only for a point less than 5 m away.
-    Short,
-    /// The keeper, body parallel to its line, back-pedals wherever the point is.
-    Any,
-}
-
 /// Body_Intercept (spec 6.1.3) for a player with reach cycle `reach`;
 /// `no_dash_turn` is where to face when the ball comes to the player.
 pub fn intercept(
@@ -76,7 +67,7 @@ pub fn intercept(
     world: &World,
     analysis: &Analysis,
     reach: usize,
-    (control, back_dash): (f64, BackDash),
+    control: f64,
     no_dash_turn: DVec2,
 ) -> Command {
     if reach > 100 {
@@ -91,7 +82,7 @@ pub fn intercept(
         return turn_to_point(p, no_dash_turn);
     }
     let mut e = angle_diff(direction(rel), p.body);
-    let back = e > FRAC_PI_2 && (d < 5.0 || matches!(back_dash, BackDash::Any));
+    let back = e > FRAC_PI_2 && d < 5.0;
     if back {
         e = PI - e;
     }

@@ -1,9 +1,9 @@
 //! agent2d's base goalkeeper (spec section 7): catch, chase, or position on
 //! the line x = 49.8 between the ball and a point behind the goal.
 
-use super::body::{BackDash, go_to_point, intercept, stop_dash, turn_to_direction, turn_to_point};
+use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::analysis::{Analysis, reach_cycle};
+use crate::analysis::{Analysis, Interception, interception};
 use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
@@ -11,14 +11,8 @@ use crate::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-/// How close to the ball's path the keeper aims when it intercepts (m).
-///
-/// agent2d scores several interception candidates; our simplification
-/// (spec 6.1.3) aims to put the ball within this distance, tighter than the
-/// 1.3 m catchable area because a fast ball passes a keeper who catches at
-/// arm's length (the catch does not stop the ball in HFO). Calibrated, see
-/// docs/calibration.md.
-const INTERCEPT_AIM: f64 = 0.6;
+/// The keeper's command when it has nothing to do.
+const IDLE: Command = Command::Turn { moment: 0.0 };
 
 /// What the keeper remembers between cycles.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -112,16 +106,6 @@ impl<'a> View<'a> {
             .any(|a| a.pos.distance(i) < keeper_to_i - 2.0)
     }
 
-    /// Whether the ball, left alone, crosses the goal line near the goal.
-    fn ball_heads_for_goal(&self) -> bool {
-        let ball = &self.world.ball;
-        if ball.vel.x <= 0.0 || self.world.ball_final().x <= 50.5 {
-            return false;
-        }
-        let y_at_line = ball.pos.y + ball.vel.y * (PITCH_HALF_LENGTH - ball.pos.x) / ball.vel.x;
-        y_at_line.abs() < 9.01
-    }
-
     /// `is_ball_shoot_moving` (spec 7.2 step 2).
     fn is_shot_on_goal(&self) -> bool {
         let ball = &self.world.ball;
@@ -142,26 +126,123 @@ impl<'a> View<'a> {
         y_at_line.abs() < 9.01 && self.world.ball_final().x > 50.5
     }
 
-    fn intercept(&self) -> Command {
-        let path = self.analysis.path();
-        let mut reach = reach_cycle(self.keeper, path, Some(INTERCEPT_AIM));
-        if self.ball_heads_for_goal() && reach < path.len() {
-            // Against a ball heading for goal, wait on its path as close to the
-            // goal line as possible instead of running out to meet it.
-            let last_in_front = path
+    /// librcsc `Body_Intercept2009::execute` for the keeper (spec 7.3.1);
+    /// `save_recovery` keeps its stamina above the recovery threshold.
+    fn intercept(&self, save_recovery: bool) -> Command {
+        let k = self.keeper;
+        let ball = self.world.ball.pos;
+        // `doKickableOpponentCheck`: step into an attacker on the ball that
+        // stands farther from the goal than the keeper.
+        if self.ball_dist < 2.0 && self.attacker_kickable {
+            let att = self
+                .world
+                .offense
                 .iter()
-                .rposition(|b| b.x < PITCH_HALF_LENGTH - 1.0)
-                .unwrap_or(reach);
-            reach = reach.max(last_in_front);
+                .min_by(|a, b| a.pos.distance(ball).total_cmp(&b.pos.distance(ball)));
+            if let Some(att) = att {
+                let attack = att.pos + att.vel;
+                let me = k.pos + k.vel;
+                if attack.distance_squared(GOAL_CENTER) > me.distance_squared(GOAL_CENTER) {
+                    return go_to_point(k, attack, 0.1, MAX_DASH_POWER).unwrap_or(IDLE);
+                }
+            }
         }
-        intercept(
-            self.keeper,
-            self.world,
-            self.analysis,
-            reach,
-            (INTERCEPT_AIM, BackDash::Any),
-            self.world.ball.pos,
-        )
+        if self.self_min > 100 {
+            return go_to_point(k, self.world.ball_final(), 2.0, MAX_DASH_POWER).unwrap_or(IDLE);
+        }
+        let best = self.best_interception();
+        let target = self.analysis.ball_at(best.cycle);
+        // agent2d's face point (50.5, 0.75·y) in the keeper's own frame.
+        let face = DVec2::new(-50.5, 0.75 * k.pos.y);
+        if best.dashes == 0 {
+            return turn_to_point(k, face);
+        }
+        if best.turns > 0 {
+            return turn_to_direction(k, direction(target - k.drift(best.cycle as u32)));
+        }
+        let full = if best.back {
+            -MAX_DASH_POWER
+        } else {
+            MAX_DASH_POWER
+        };
+        let consumed = if best.back { -2.0 * full } else { full };
+        if save_recovery && k.stamina - consumed < 0.3 * STAMINA_MAX + 1.0 {
+            return IDLE;
+        }
+        self.inertia_dash(target, best, full)
+            .unwrap_or_else(|| turn_to_point(k, face))
+    }
+
+    /// The keeper's interception (librcsc `Body_Intercept2009::getBestIntercept`,
+    /// goalie mode, spec 7.3.1): among the cycles its self-interception cache
+    /// holds, the one that meets the ball farthest out, else the earliest.
+    fn best_interception(&self) -> Interception {
+        let path = self.analysis.path();
+        let first = self.self_min;
+        // librcsc's cache: every cycle up to 5, then from the first reachable
+        // one after cycle 5 on for 10 cycles.
+        let end = path.len().min(first.max(6) + 10);
+        let mut goalie: Option<(f64, Interception)> = None;
+        let mut aggressive: Option<(f64, Interception)> = None;
+        for t in first..end {
+            let b = path[t];
+            if b.x.abs() > PITCH_HALF_LENGTH - 1.0 || b.y.abs() > PITCH_HALF_WIDTH - 1.0 {
+                continue;
+            }
+            let Some(c) = interception(self.keeper, path, t, Some(KEEPER_CONTROL_AREA)) else {
+                continue;
+            };
+            // The ball reached on the keeper's running line without a turn,
+            // or exactly on it after one.
+            let on_line =
+                |area: f64| (c.turns == 0 && c.ball_dist < 0.5 * area) || c.ball_dist < 0.01;
+            let deep = b.x > PENALTY_AREA_X + 1.0 && b.y.abs() < PENALTY_AREA_HALF_WIDTH - 1.0;
+            let shallow = b.x < PENALTY_AREA_X + 1.0 || b.y.abs() > PENALTY_AREA_HALF_WIDTH - 1.0;
+            // Deep in the area, two cycles before the attackers: the point
+            // farthest from the goal.
+            if deep && t + 1 < self.opp_min && on_line(KEEPER_CONTROL_AREA) {
+                let score = b.distance_squared(GOAL_CENTER);
+                if goalie.is_none_or(|(s, _)| score > s) {
+                    goalie = Some((score, c));
+                }
+            }
+            // Near or beyond the area's edge, five cycles before the attackers
+            // (the keeper has no teammates): the point farthest up the field.
+            if shallow && t + 5 < self.opp_min && on_line(KICKABLE_AREA) {
+                let score = -b.x;
+                if aggressive.is_none_or(|(s, _)| score > s) {
+                    aggressive = Some((score, c));
+                }
+            }
+        }
+        aggressive
+            .or(goalie)
+            .map(|(_, c)| c)
+            .or_else(|| interception(self.keeper, path, first, Some(KEEPER_CONTROL_AREA)))
+            .expect("the keeper gets the ball at its reach cycle")
+    }
+
+    /// librcsc `Body_Intercept2009::doInertiaDash` for the keeper: dash
+    /// towards `target` at `full` power, or with just the power that arrives
+    /// in time when the ball is slow and near; `None` (look at the field)
+    /// when from cycle 4 on it is already there along its body.
+    fn inertia_dash(&self, target: DVec2, best: Interception, full: f64) -> Option<Command> {
+        let k = self.keeper;
+        let forward = unit(k.body);
+        let along = (target - k.pos).dot(forward);
+        let ball_speed = self.world.ball.vel.length() * BALL_DECAY.powi(best.cycle as i32);
+        let accel_max = DASH_POWER_RATE * k.effort * MAX_DASH_POWER;
+        let mut power = full;
+        if ball_speed < 1.5 * KICKABLE_AREA && along.abs() < KICKABLE_AREA + 0.8 * accel_max {
+            let first_speed = (along / decay_sum(PLAYER_DECAY, best.cycle as u32))
+                .clamp(-PLAYER_SPEED_MAX, PLAYER_SPEED_MAX);
+            power = ((first_speed - k.vel.dot(forward)) / (DASH_POWER_RATE * k.effort))
+                .clamp(-MAX_DASH_POWER, MAX_DASH_POWER);
+        }
+        if best.cycle >= 4 && (along.abs() < 0.5 || power.abs() < 5.0) {
+            return None;
+        }
+        Some(Command::Dash { power, dir: 0.0 })
     }
 
     /// `Bhv_GoalieChaseBall::execute` after its tackle (spec 7.3).
@@ -170,36 +251,40 @@ impl<'a> View<'a> {
         let inside = i.x > PENALTY_AREA_X + self.pen_thr
             && i.x < PITCH_HALF_LENGTH + 1.0
             && i.y.abs() < PENALTY_AREA_HALF_WIDTH - self.pen_thr;
-        if inside {
-            return self.intercept();
-        }
         let ball = &self.world.ball;
         let k = self.keeper.pos;
+        // Distance from the keeper to the ball's line (none for a ball at rest).
+        let line_dist = if ball.vel.length() > 1e-6 {
+            (k - ball.pos).perp_dot(ball.vel.normalize()).abs()
+        } else {
+            f64::INFINITY
+        };
+        if inside {
+            return self.intercept(line_dist < KEEPER_CONTROL_AREA);
+        }
         let line_point = (ball.vel.x.abs() > 1e-6).then(|| {
             let t = (k.x - ball.pos.x) / ball.vel.x;
             DVec2::new(k.x, ball.pos.y + ball.vel.y * t)
         });
-        let passes_close = ball.vel.length() > 1e-6 && {
-            let u = ball.vel.normalize();
-            (k - ball.pos).perp_dot(u).abs() < 1.04
-        };
+        let passes_close = line_dist < 0.8 * KEEPER_CONTROL_AREA;
         let crossing = match line_point {
             Some(x) if !passes_close && x.y.abs() <= 10.01 => x,
             _ => {
                 if self.attacker_kickable {
                     return self.basic_move();
                 }
-                if self.self_min <= self.opp_min + 2 && i.x < PITCH_HALF_LENGTH + 2.0 {
-                    return self.intercept();
+                let in_area = i.x > PENALTY_AREA_X + self.pen_thr
+                    && i.x < PITCH_HALF_LENGTH + 2.0
+                    && i.y.abs() < PENALTY_AREA_HALF_WIDTH - self.pen_thr;
+                if self.self_min <= self.opp_min + 2 && in_area {
+                    return self.intercept(false);
                 }
                 return go_to_catch_point(self.keeper, ball.pos);
             }
         };
+        // Body_Intercept without stamina saving always acts.
         if crossing.x.abs() > 53.8 || crossing.x < 37.3 || crossing.y.abs() > 18.86 {
-            if self.self_min <= self.opp_min {
-                return self.intercept();
-            }
-            return self.basic_move();
+            return self.intercept(false);
         }
         if self.keeper.final_drift().distance(crossing) < (0.2 + 0.1 * self.ball_dist).max(0.5) {
             return stop_dash(self.keeper);
@@ -384,5 +469,93 @@ fn go_to_catch_point(k: &Player, target: DVec2) -> Command {
         turn_to_direction(k, k.body + e)
     } else {
         turn_to_direction(k, k.body + e - PI.copysign(e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A keeper at `keeper` facing `body`, the ball at `ball` moving at
+    /// `vel`, and three attackers far from the play.
+    fn scene(keeper: DVec2, body: f64, ball: DVec2, vel: DVec2) -> (World, Analysis) {
+        let mut w = World::new(3);
+        for (i, a) in w.offense.iter_mut().enumerate() {
+            a.place(DVec2::new(5.0, -20.0 + 20.0 * i as f64));
+        }
+        w.keeper = Player::new(keeper, body);
+        w.ball.pos = ball;
+        w.ball.vel = vel;
+        let a = Analysis::new(&w);
+        (w, a)
+    }
+
+    /// The cache entries the goalie rule of `getBestIntercept` accepts.
+    fn goalie_candidates(view: &View) -> Vec<Interception> {
+        let path = view.analysis.path();
+        (view.self_min..path.len().min(view.self_min.max(6) + 10))
+            .filter_map(|t| interception(view.keeper, path, t, Some(KEEPER_CONTROL_AREA)))
+            .filter(|c| (c.turns == 0 && c.ball_dist < 0.65) || c.ball_dist < 0.01)
+            .collect()
+    }
+
+    #[test]
+    fn keeper_meets_a_ball_moving_away_as_far_out_as_it_can() {
+        // A loose ball rolling out of the goal mouth: the keeper reaches it at
+        // once but takes it where it is farthest from the goal.
+        let (w, a) = scene(
+            DVec2::new(50.0, 0.0),
+            PI,
+            DVec2::new(49.0, 0.3),
+            DVec2::new(-1.0, 0.0),
+        );
+        let view = View::new(&w, &a);
+        let best = view.best_interception();
+        let candidates = goalie_candidates(&view);
+        assert!(
+            best.cycle > view.self_min + 5,
+            "{best:?} vs {}",
+            view.self_min
+        );
+        let dist = |c: &Interception| a.ball_at(c.cycle).distance(GOAL_CENTER);
+        assert!(candidates.iter().all(|c| dist(c) <= dist(&best)));
+        assert!(a.ball_at(best.cycle).x > PENALTY_AREA_X + 1.0);
+    }
+
+    #[test]
+    fn keeper_meets_a_shot_where_it_runs_onto_its_line() {
+        // A shot across the keeper: its first reach needs a turn and leaves
+        // the ball 0.4 m short; one cycle later the turned keeper runs onto
+        // the ball's line.
+        let (w, a) = scene(
+            DVec2::new(49.8, 0.0),
+            PI,
+            DVec2::new(36.0, 2.0),
+            DVec2::new(2.4, 0.0),
+        );
+        let view = View::new(&w, &a);
+        let best = view.best_interception();
+        assert_eq!(view.self_min, 5);
+        assert_eq!((best.cycle, best.turns), (6, 1));
+        assert!(best.ball_dist < 0.01);
+        // It turns towards that point first.
+        assert!(matches!(view.intercept(false), Command::Turn { .. }));
+    }
+
+    #[test]
+    fn keeper_takes_its_earliest_reach_when_an_attacker_is_close() {
+        // Same loose ball with an attacker one step from its path: no point is
+        // two cycles ahead of it, so the keeper takes its earliest reach.
+        let (mut w, _) = scene(
+            DVec2::new(50.0, 0.0),
+            PI,
+            DVec2::new(49.0, 0.3),
+            DVec2::new(-1.0, 0.0),
+        );
+        w.offense[0].place(DVec2::new(44.0, 1.8));
+        let a = Analysis::new(&w);
+        let view = View::new(&w, &a);
+        assert!(view.opp_min <= view.self_min + 4);
+        assert_eq!(view.best_interception().cycle, view.self_min);
     }
 }

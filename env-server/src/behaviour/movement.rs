@@ -2,7 +2,7 @@
 //! gets there first, otherwise go to the formation position.
 
 use super::Situation;
-use super::body::{BackDash, go_to_point, intercept, turn_to_point};
+use super::body::{go_to_point, intercept, turn_to_point};
 use super::tackle::{self, Tackler};
 use crate::params::*;
 use crate::physics::Command;
@@ -32,7 +32,7 @@ pub fn command(s: &Situation) -> Command {
             s.world,
             s.analysis,
             self_min,
-            (KICKABLE_AREA, BackDash::Short),
+            KICKABLE_AREA,
             forward_point(me.pos.y),
         );
     }
