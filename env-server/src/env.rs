@@ -178,9 +178,10 @@ impl Env {
             }
         }
         let analysis = Analysis::new(&self.world);
+        let mut searched = [None; MAX_OFFENSE];
         for agent in 0..n {
-            self.commands[agent] = match actions {
-                None => Command::None,
+            (self.commands[agent], searched[agent]) = match actions {
+                None => (Command::None, None),
                 Some(a) => offense_command(
                     &Situation {
                         world: &self.world,
@@ -191,6 +192,11 @@ impl Env {
                     a[agent],
                 ),
             };
+        }
+        for (memory, course) in self.world.last_shot.iter_mut().zip(searched) {
+            if course.is_some() {
+                *memory = course;
+            }
         }
         self.commands[n] = keeper::command(&self.world, &analysis, &self.keeper_memory);
         let accels = self.apply_commands();
@@ -260,5 +266,30 @@ impl Env {
         for (p, accel) in players.zip(&accels[1..]) {
             physics::move_object(&mut p.pos, &mut p.vel, *accel, PLAYER_BODY, rng);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::world::Player;
+
+    #[test]
+    fn shot_searches_refresh_the_stale_course_across_episodes() {
+        let config = EnvConfig {
+            offense: 1,
+            ..EnvConfig::default()
+        };
+        let mut env = Env::new(config, 1).expect("valid config");
+        env.reset();
+        assert_eq!(env.world.last_shot, vec![None]);
+        env.world.offense[0] = Player::new(DVec2::new(40.0, 0.0), 0.0);
+        env.world.ball.pos = DVec2::new(40.6, 0.0);
+        env.world.ball.vel = DVec2::ZERO;
+        env.step(&[Action::Dribble]);
+        let remembered = env.world.last_shot[0];
+        assert!(remembered.is_some(), "DRIBBLE's check within 30 m");
+        env.reset();
+        assert_eq!(env.world.last_shot[0], remembered);
     }
 }
