@@ -178,10 +178,11 @@ impl Env {
             }
         }
         let analysis = Analysis::new(&self.world);
+        let mut searched = [None; MAX_OFFENSE];
         for agent in 0..n {
-            self.commands[agent] = match actions {
-                _ if self.world.offense[agent].tackle_freeze > 0 => Command::None,
-                None => Command::None,
+            (self.commands[agent], searched[agent]) = match actions {
+                _ if self.world.offense[agent].tackle_freeze > 0 => (Command::None, None),
+                None => (Command::None, None),
                 Some(a) => offense_command(
                     &Situation {
                         world: &self.world,
@@ -192,6 +193,11 @@ impl Env {
                     a[agent],
                 ),
             };
+        }
+        for (memory, course) in self.world.last_shot.iter_mut().zip(searched) {
+            if course.is_some() {
+                *memory = course;
+            }
         }
         self.commands[n] = if self.world.keeper.tackle_freeze > 0 {
             Command::None
@@ -297,6 +303,7 @@ impl Env {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::world::Player;
 
     /// After its tackle's own cycle the server ignores a player for 9 more
     /// cycles (`tackle_cycles = 10`); the keeper, who always commands
@@ -315,5 +322,24 @@ mod tests {
         }
         env.step(&moves);
         assert_ne!(env.last_commands()[n], Command::None);
+    }
+
+    #[test]
+    fn shot_searches_refresh_the_stale_course_across_episodes() {
+        let config = EnvConfig {
+            offense: 1,
+            ..EnvConfig::default()
+        };
+        let mut env = Env::new(config, 1).expect("valid config");
+        env.reset();
+        assert_eq!(env.world.last_shot, vec![None]);
+        env.world.offense[0] = Player::new(DVec2::new(40.0, 0.0), 0.0);
+        env.world.ball.pos = DVec2::new(40.6, 0.0);
+        env.world.ball.vel = DVec2::ZERO;
+        env.step(&[Action::Dribble]);
+        let remembered = env.world.last_shot[0];
+        assert!(remembered.is_some(), "DRIBBLE's check within 30 m");
+        env.reset();
+        assert_eq!(env.world.last_shot[0], remembered);
     }
 }

@@ -66,7 +66,16 @@ impl Player {
     }
 }
 
-/// Everything that moves on the field.
+/// One shot course: a goal-mouth target and the ball's first speed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShotCourse {
+    /// Aim point on (or just behind) the goal line.
+    pub target: DVec2,
+    /// First ball speed (m/cycle).
+    pub speed: f64,
+}
+
+/// Everything that moves on the field, and what the agents carry between cycles.
 #[derive(Clone, Debug, PartialEq)]
 pub struct World {
     /// The ball.
@@ -79,6 +88,10 @@ pub struct World {
     pub catch_ban: u32,
     /// agent2d's offside line as the attackers see it (spec 6.1.1).
     pub offside_line: f64,
+    /// Per offense agent: the first course of its most recent non-empty shot
+    /// search (spec 6.2.2). Like HFO's per-agent `ShootGenerator` storage it
+    /// survives episode resets; `None` until the agent's first such search.
+    pub last_shot: Vec<Option<ShotCourse>>,
 }
 
 impl World {
@@ -93,6 +106,7 @@ impl World {
             keeper: Player::new(GOAL_CENTER, std::f64::consts::PI),
             catch_ban: 0,
             offside_line: 0.0,
+            last_shot: vec![None; offense],
         }
     }
 

@@ -1,9 +1,10 @@
 //! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5, 6.2.3 and 6.3.4 allow.
 
+use super::kick_table;
 use crate::analysis::Analysis;
 use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
 use crate::params::*;
-use crate::physics::{Command, kick_for_accel, kick_rate, max_kick_accel};
+use crate::physics::{Command, kick_for_accel};
 use crate::world::{Ball, Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -125,61 +126,13 @@ pub fn kick_to_velocity(p: &Player, ball: &Ball, vel: DVec2) -> Option<Command> 
     kick_for_accel(p, ball, vel - ball.vel)
 }
 
-/// Body_SmartKick (spec 6.2.3): first kick of a one- or two-kick plan that
-/// sends the ball towards `target` at `speed` (at least `min_speed`), else
-/// hold the ball.
+/// Body_SmartKick (spec 6.2.3): the first kick of the KickTable's best plan
+/// of up to three kicks sending the ball towards `target` at `speed`, if it
+/// reaches at least `min_speed`; else hold the ball.
 pub fn smart_kick(p: &Player, world: &World, target: DVec2, speed: f64, min_speed: f64) -> Command {
-    let ball = &world.ball;
-    let dir = direction(target - ball.pos);
-    let one = max_one_kick_speed(dir, ball.vel, max_kick_accel(p, ball.pos));
-    if one >= min_speed {
-        let vel = polar(speed.min(one), dir);
-        if let Some(cmd) = kick_to_velocity(p, ball, vel) {
-            return cmd;
-        }
-    }
-    match prepare_kick(p, world, target, min_speed) {
-        Some(cmd) => cmd,
-        None => hold_ball(p, world),
-    }
-}
-
-/// First kick of a two-kick plan: moves the ball to the spot around the
-/// kicker's next position from which one more kick reaches the highest speed
-/// towards `target`, if that speed reaches `min_speed`.
-fn prepare_kick(p: &Player, world: &World, target: DVec2, min_speed: f64) -> Option<Command> {
-    let ball = &world.ball;
-    let next_self = Player {
-        pos: p.pos + p.vel,
-        vel: p.vel * PLAYER_DECAY,
-        ..*p
-    };
-    let keeper_next = world.keeper.pos + world.keeper.vel;
-    let max_accel = max_kick_accel(p, ball.pos);
-    let mut best: Option<(f64, DVec2)> = None;
-    for radius in [0.6, 0.75, 0.9] {
-        for k in 0..16 {
-            let spot = next_self.pos + polar(radius, p.body + k as f64 * PI / 8.0);
-            let vel = spot - ball.pos;
-            if (vel - ball.vel).length() > max_accel || vel.length() > BALL_SPEED_MAX {
-                continue;
-            }
-            if spot.distance(keeper_next) < KICKABLE_AREA {
-                continue;
-            }
-            let dir = direction(target - spot);
-            let rate_accel = (MAX_KICK_POWER * kick_rate(&next_self, spot)).min(BALL_ACCEL_MAX);
-            let speed = max_one_kick_speed(dir, vel * BALL_DECAY, rate_accel);
-            if best.is_none_or(|(s, _)| speed > s) {
-                best = Some((speed, vel));
-            }
-        }
-    }
-    let (speed, vel) = best?;
-    if speed < min_speed {
-        return None;
-    }
-    kick_to_velocity(p, ball, vel)
+    kick_table::plan(p, world, target, speed, min_speed)
+        .and_then(|first| kick_to_velocity(p, &world.ball, first - world.ball.pos))
+        .unwrap_or_else(|| hold_ball(p, world))
 }
 
 /// Body_HoldBall (spec 6.3.4), simplified: with the keeper near, keep the

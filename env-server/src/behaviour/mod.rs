@@ -1,10 +1,12 @@
 //! The behaviours that turn high-level actions into one body command per
 //! cycle (spec sections 6 and 7). Every behaviour re-plans from scratch on
-//! the current state; nothing is carried between cycles.
+//! the current state; the only thing carried between cycles is each agent's
+//! last shot course (spec 6.2.2), which the environment stores.
 
 mod body;
 mod dribble;
 pub mod keeper;
+mod kick_table;
 mod movement;
 mod pass;
 mod shoot;
@@ -12,8 +14,9 @@ pub mod tackle;
 
 use crate::analysis::Analysis;
 use crate::config::EnvConfig;
+use crate::params::KICKABLE_AREA;
 use crate::physics::Command;
-use crate::world::{Player, World};
+use crate::world::{Player, ShotCourse, World};
 use proto::Action;
 
 /// What an offense behaviour sees: the state, its analysis and who is acting.
@@ -47,23 +50,35 @@ impl Situation<'_> {
     }
 }
 
-/// The body command that `action` produces for the acting agent this cycle.
+/// The body command that `action` produces for the acting agent this cycle,
+/// and the first course of a non-empty shot search it ran (spec 6.2.2).
 /// Kick actions issue nothing when the agent cannot kick (spec 6.0).
-pub fn offense_command(s: &Situation, action: Action) -> Command {
+pub fn offense_command(s: &Situation, action: Action) -> (Command, Option<ShotCourse>) {
     if action != Action::Move && !s.world.agent_kickable(s.agent) {
-        return Command::None;
+        return (Command::None, None);
     }
     match action {
-        Action::Move => movement::command(s),
+        Action::Move => (movement::command(s), move_shot_check(s)),
         Action::Shoot => shoot::command(s),
-        Action::Dribble => dribble::command(s),
+        // `doPreprocess`'s Bhv_StrictCheckShoot; its kick is overridden (spec 6.0).
+        Action::Dribble => (dribble::command(s), shoot::check(s)),
         Action::PassNear | Action::PassFar => {
             let receiver = s
                 .config
                 .pass_to_named_receiver
                 .then(|| s.teammate_by_distance(action == Action::PassFar))
                 .flatten();
-            pass::command(s, receiver)
+            (pass::command(s, receiver), None)
         }
     }
+}
+
+/// MOVE's shot search: Bhv_BasicMove intercepts with Neck_OffensiveInterceptNeck,
+/// which looks for a shot when the agent reaches the ball within a cycle and
+/// neither a teammate nor the keeper can kick it.
+fn move_shot_check(s: &Situation) -> Option<ShotCourse> {
+    let keeper_kickable = s.world.keeper.pos.distance(s.world.ball.pos) <= KICKABLE_AREA;
+    (s.analysis.reach[s.agent] <= 1 && !s.world.teammate_kickable(s.agent) && !keeper_kickable)
+        .then(|| shoot::check(s))
+        .flatten()
 }

@@ -1,5 +1,5 @@
-//! SHOOT (spec 6.2): the best goal-mouth course the keeper cannot reach, or
-//! the calibrated long-range stand-in when there is none.
+//! SHOOT (spec 6.2): the best goal-mouth course the keeper cannot reach;
+//! with none, the course the agent's last non-empty search found first (6.2.2).
 
 use super::Situation;
 use super::body::{max_one_kick_speed, smart_kick};
@@ -7,12 +7,16 @@ use crate::analysis::DRIFT;
 use crate::geom::{angle_diff, asin_clamped, direction};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel};
-use crate::world::Player;
+use crate::world::{Player, ShotCourse};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Number of targets along the goal mouth.
 const TARGETS: usize = 25;
+
+/// How far from the goal centre (m) the shot searches outside SHOOT look
+/// (`ShootGenerator::generate` with `consider_shot_distance`).
+const CHECK_DISTANCE: f64 = 30.0;
 
 /// One candidate shot.
 #[derive(Clone, Copy, Debug)]
@@ -23,28 +27,81 @@ struct Course {
     keeper_never_reaches: bool,
 }
 
-/// The SHOOT command of a kickable agent.
-pub fn command(s: &Situation) -> Command {
+impl Course {
+    fn shot(&self) -> ShotCourse {
+        ShotCourse {
+            target: self.target,
+            speed: self.speed,
+        }
+    }
+}
+
+/// One `ShootGenerator::generate` run: the first course it listed (what HFO's
+/// course storage keeps) and the best by `evaluateCourses`.
+struct Search {
+    first: Option<Course>,
+    best: Option<Course>,
+}
+
+/// The SHOOT command of a kickable agent, and the first course of this
+/// cycle's search if it found any (`Agent::doSmartKick`). With no feasible
+/// course HFO reads the first element of its emptied course vector: the
+/// agent's last non-empty search's first course (spec 6.2.2).
+pub fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
+    let search = search(s);
+    let first = search.first.map(|c| c.shot());
+    let command = match (search.best, s.world.last_shot[s.agent]) {
+        (Some(c), _) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
+        (None, Some(c)) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
+        (None, None) => long_shot(s),
+    };
+    (command, first)
+}
+
+/// The shot searches outside SHOOT (`Bhv_StrictCheckShoot` in DRIBBLE's
+/// `doPreprocess`, `Neck_OffensiveInterceptNeck` in MOVE): nothing beyond
+/// 30 m from the goal centre; else the first course found, if any.
+pub fn check(s: &Situation) -> Option<ShotCourse> {
+    if s.me().pos.distance(GOAL_CENTER) > CHECK_DISTANCE {
+        return None;
+    }
+    search(s).first.map(|c| c.shot())
+}
+
+/// `ShootGenerator::generate` (spec 6.2.1). A non-kickable agent (reach 1)
+/// shoots from the ball's next position with a 0.1 one-kick limit.
+fn search(s: &Situation) -> Search {
     let me = s.me();
-    let ball = s.world.ball.pos;
+    let kickable = s.world.agent_kickable(s.agent);
+    let ball = if kickable {
+        s.world.ball.pos
+    } else {
+        s.world.ball.pos + s.world.ball.vel
+    };
     let keeper_dir = direction(s.world.keeper.pos - ball);
+    let mut first = None;
     let mut best: Option<(f64, Course)> = None;
     for target in targets(me, ball) {
         let dir = direction(target - ball);
-        let s1 = max_one_kick_speed(dir, s.world.ball.vel, max_kick_accel(me, ball));
+        let s1 = if kickable {
+            max_one_kick_speed(dir, s.world.ball.vel, max_kick_accel(me, ball))
+        } else {
+            0.1
+        };
         let mut speed = (0.06 * (target.distance(ball) + 5.0)).max(s1).max(1.5);
         loop {
             let last = speed > 2.999;
             if last {
                 speed = BALL_SPEED_MAX;
             }
-            if let Some(never) = keeper_verdict(s, target, speed) {
+            if let Some(never) = keeper_verdict(s, ball, target, speed) {
                 let course = Course {
                     target,
                     speed,
                     one_kick: speed <= s1 + 0.001,
                     keeper_never_reaches: never,
                 };
+                first.get_or_insert(course);
                 let score = score(&course, ball, keeper_dir, if never { 1.0 } else { 10.0 });
                 if best.is_none_or(|(b, _)| score > b) {
                     best = Some((score, course));
@@ -59,17 +116,19 @@ pub fn command(s: &Situation) -> Command {
             speed += 0.3;
         }
     }
-    match best {
-        Some((_, c)) => smart_kick(me, s.world, c.target, c.speed, 0.99 * c.speed),
-        None => long_shot(s, keeper_dir),
+    Search {
+        first,
+        best: best.map(|(_, c)| c),
     }
 }
 
-/// The calibrated stand-in for HFO's undefined empty-course case (spec 6.2.2):
-/// the goal-mouth target farthest in angle from the keeper, at a fixed speed.
-fn long_shot(s: &Situation, keeper_dir: f64) -> Command {
+/// The stand-in for an agent that never found a course, whose stale course
+/// HFO reads from uninitialised storage (spec 6.2.2): the goal-mouth target
+/// farthest in angle from the keeper, at the configured speed.
+fn long_shot(s: &Situation) -> Command {
     let me = s.me();
     let ball = s.world.ball.pos;
+    let keeper_dir = direction(s.world.keeper.pos - ball);
     let cfg = &s.config.long_shot;
     let target = targets(me, ball)
         .max_by(|a, b| {
@@ -130,10 +189,9 @@ fn score(c: &Course, ball: DVec2, keeper_dir: f64, sigma_deg: f64) -> f64 {
     score
 }
 
-/// The keeper test of a course (spec 6.2.1 step 3): `None` if the keeper
+/// The keeper test of a course from `ball` (spec 6.2.1 step 3): `None` if the keeper
 /// catches the ball, else whether it never even gets close.
-fn keeper_verdict(s: &Situation, target: DVec2, speed: f64) -> Option<bool> {
-    let ball = s.world.ball.pos;
+fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Option<bool> {
     let rel = target - ball;
     let length = rel.length();
     let ratio = 0.06 * length / speed;
@@ -226,4 +284,71 @@ fn turn_cycles(keeper: &Player, rel: DVec2, dist: f64, control: f64) -> usize {
         n += 1;
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Analysis;
+    use crate::config::EnvConfig;
+    use crate::world::World;
+
+    /// One attacker at `x` on the axis with the ball at its feet, the keeper at `keeper`.
+    fn world(x: f64, keeper: DVec2) -> World {
+        let mut w = World::new(1);
+        w.offense[0] = Player::new(DVec2::new(x, 0.0), 0.0);
+        w.ball.pos = DVec2::new(x + 0.6, 0.0);
+        w.keeper.pos = keeper;
+        w
+    }
+
+    fn situation<'a>(w: &'a World, a: &'a Analysis, config: &'a EnvConfig) -> Situation<'a> {
+        Situation {
+            world: w,
+            analysis: a,
+            config,
+            agent: 0,
+        }
+    }
+
+    #[test]
+    fn without_a_course_shoot_kicks_to_the_stale_course() {
+        let config = EnvConfig::default();
+        let mut w = world(5.0, GOAL_CENTER);
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config);
+        assert!(
+            search(&s).first.is_none(),
+            "the keeper reaches every course"
+        );
+        assert_eq!(command(&s), (long_shot(&s), None), "the stand-in");
+        let stale = ShotCourse {
+            target: DVec2::new(PITCH_HALF_LENGTH, -5.5),
+            speed: 2.2,
+        };
+        w.last_shot[0] = Some(stale);
+        let s = situation(&w, &a, &config);
+        let kick = smart_kick(s.me(), &w, stale.target, stale.speed, 0.99 * stale.speed);
+        assert_eq!(command(&s), (kick, None));
+        assert_ne!(kick, long_shot(&s));
+    }
+
+    #[test]
+    fn searches_report_their_first_course() {
+        let config = EnvConfig::default();
+        let w = world(40.0, GOAL_CENTER);
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config);
+        let (_, first) = command(&s);
+        let first = first.expect("a course from 12 m");
+        // HFO lists courses from the left post, slowest first.
+        assert!(first.target.y < 0.0);
+        assert_eq!(check(&s), Some(first));
+        // Beyond 30 m only SHOOT's own search looks (the keeper is out of play).
+        let w = world(20.0, DVec2::new(0.0, 30.0));
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config);
+        assert!(command(&s).1.is_some());
+        assert_eq!(check(&s), None);
+    }
 }
