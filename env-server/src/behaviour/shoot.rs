@@ -181,7 +181,7 @@ fn keeper_verdict(s: &Situation, target: DVec2, speed: f64) -> Option<bool> {
         let k = keeper.pos + keeper.vel * DRIFT[c.min(DRIFT.len() - 1)];
         let margin = if in_area { 0.02 * keeper_shooter } else { 0.0 };
         // Beyond this the keeper neither catches nor comes close (the tests below).
-        let far = (dash_distance(c + 1) + 0.9 * control) / 0.999 + margin;
+        let far = (dash_distance(c) + 0.9 * control) / 0.999 + margin;
         let dist_sq = b.distance_squared(k);
         if dist_sq > far * far {
             continue;
@@ -195,7 +195,7 @@ fn keeper_verdict(s: &Situation, target: DVec2, speed: f64) -> Option<bool> {
             dash_dist *= 0.999;
         }
         let n_dash = dash_cycles(dash_dist);
-        if n_dash > c + 1 {
+        if n_dash > c {
             continue; // too far even without turning: neither caught nor close
         }
         let n_turn = turn_cycles(keeper, b - k, dist, control);
@@ -226,4 +226,37 @@ fn turn_cycles(keeper: &Player, rel: DVec2, dist: f64, control: f64) -> usize {
         n += 1;
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Analysis;
+    use crate::config::EnvConfig;
+    use crate::world::World;
+
+    #[test]
+    fn keeper_needing_one_dash_too_many_never_reaches() {
+        // agent2d maybeGoalieCatch skips a cycle c once the keeper needs more
+        // than c dashes: here it needs c + 1 at best, so the course stays
+        // "never reaches" (it would not if c + 1 dashes counted).
+        let mut world = World::new(3);
+        world.offense[0] = Player::new(DVec2::new(38.0, 0.0), 0.0);
+        world.offense[1].pos = DVec2::new(10.0, 15.0);
+        world.offense[2].pos = DVec2::new(10.0, -15.0);
+        world.ball.pos = DVec2::new(38.6, 0.0);
+        let k = DVec2::new(41.5, 3.0);
+        world.keeper = Player::new(k, direction(world.ball.pos - k));
+        let analysis = Analysis::new(&world);
+        let config = EnvConfig::default();
+        let s = Situation {
+            world: &world,
+            analysis: &analysis,
+            config: &config,
+            agent: 0,
+        };
+        for speed in [2.1, 2.7, 3.0] {
+            assert_eq!(keeper_verdict(&s, DVec2::new(52.5, 5.0), speed), Some(true));
+        }
+    }
 }
