@@ -1,19 +1,25 @@
-//! DRIBBLE (spec 6.3): turn to face forward if badly oriented, else the best
-//! short dribble by agent2d's field evaluator, else hold the ball.
+//! DRIBBLE (spec 6.3): turn to face forward if badly oriented, else the
+//! short dribble that agent2d's field evaluator rates above the current
+//! state, else hold the ball. HFO never shoots here: the chain action's
+//! command replaces any shot `doPreprocess` queued.
 
 use super::Situation;
 use super::body::{hold_ball, kick_to_velocity, turn_to_point};
 use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
 use crate::params::*;
-use crate::physics::{Command, max_kick_accel};
+use crate::physics::{Command, max_kick_accel, update_stamina};
 use crate::world::Player;
 use glam::DVec2;
 use std::f64::consts::PI;
 
-/// A short-dribble candidate: the first command and where the ball ends up.
+/// Stamina a planned dribble dash keeps in reserve (`recover_dec_thr`·8000 + 300,
+/// agent2d ShortDribbleGenerator::createSelfCache).
+const DASH_STAMINA_RESERVE: f64 = 0.3 * STAMINA_MAX + 300.0;
+
+/// A short-dribble candidate: the kick's first ball velocity and the trap point.
 #[derive(Clone, Copy, Debug)]
 struct Candidate {
-    command: Command,
+    first_vel: DVec2,
     ball_end: DVec2,
 }
 
@@ -32,50 +38,83 @@ pub fn command(s: &Situation) -> Command {
         }
         return hold_ball(me, s.world);
     }
-    let mut best = evaluate(s, ball.pos);
+    let mut candidates: Vec<Candidate> = (0..16).flat_map(|a| kick_candidates(s, me, a)).collect();
+    // ShortDribbleGenerator sorts by distance to the goal; the first of equals wins.
+    candidates.sort_by(|a, b| {
+        let d = |c: &Candidate| c.ball_end.distance(GOAL_CENTER);
+        d(a).total_cmp(&d(b))
+    });
+    let (holder, holder_is_me) = current_holder(s);
+    let mut best = evaluate(s, ball.pos, holder, holder_is_me);
     let mut choice = None;
-    let kicks = (0..16).flat_map(|a| kick_candidates(s, me, a));
-    for c in kicks.chain(dash_candidates(s)) {
-        let value = evaluate(s, c.ball_end);
+    for c in candidates {
+        let value = evaluate(s, c.ball_end, c.ball_end, true);
         if value > best {
             best = value;
-            choice = Some(c.command);
+            choice = Some(c);
         }
     }
-    choice.unwrap_or_else(|| hold_ball(me, s.world))
+    choice
+        .and_then(|c| kick_to_velocity(me, ball, c.first_vel))
+        .unwrap_or_else(|| hold_ball(me, s.world))
 }
 
-/// agent2d's SampleFieldEvaluator for the ball at `ball` held by this agent (spec 6.3.2).
-fn evaluate(s: &Situation, ball: DVec2) -> f64 {
+/// The ball holder of the current state (agent2d PredictState::init): the
+/// teammate nearest to the ball if strictly nearer than this agent, else this
+/// agent. Returns its position and whether it is this agent.
+fn current_holder(s: &Situation) -> (DVec2, bool) {
+    let me = s.me().pos;
+    let ball = s.world.ball.pos;
+    let mate = (0..s.world.offense.len())
+        .filter(|&j| j != s.agent)
+        .map(|j| s.world.offense[j].pos)
+        .min_by(|a, b| {
+            a.distance_squared(ball)
+                .total_cmp(&b.distance_squared(ball))
+        });
+    match mate {
+        Some(p) if p.distance_squared(ball) < me.distance_squared(ball) => (p, false),
+        _ => (me, true),
+    }
+}
+
+/// agent2d's SampleFieldEvaluator (spec 6.3.2) for the ball at `ball` and its
+/// holder at `holder`.
+fn evaluate(s: &Situation, ball: DVec2, holder: DVec2, holder_is_me: bool) -> f64 {
+    if ball.x > PITCH_HALF_LENGTH - 0.1 && ball.y.abs() < GOAL_HALF_WIDTH + 2.0 {
+        return 1e7;
+    }
     if ball.x.abs() > PITCH_HALF_LENGTH || ball.y.abs() > PITCH_HALF_WIDTH {
         return f64::NEG_INFINITY;
     }
-    if ball.x > 52.4 && ball.y.abs() < 9.01 {
-        return 1e7;
-    }
     let mut value = ball.x + (40.0 - ball.distance(GOAL_CENTER)).max(0.0);
-    if can_shoot_from(ball, s.world.keeper.pos) {
-        value += 1.5e6;
+    if can_shoot_from(holder, &s.world.keeper) {
+        value += if holder_is_me { 1.5e6 } else { 1e6 };
     }
     value
 }
 
-/// `FieldAnalyzer::can_shoot_from` for this agent (20° clearance) (spec 6.3.2).
-pub fn can_shoot_from(from: DVec2, keeper: DVec2) -> bool {
+/// `FieldAnalyzer::can_shoot_from` (20° clearance) (spec 6.3.2): some
+/// direction into the goal clears the keeper's inertia point by 20° plus its
+/// hide angle; a keeper more than 20 m away does not count.
+fn can_shoot_from(from: DVec2, keeper: &Player) -> bool {
     if from.distance(GOAL_CENTER) > 17.0 {
         return false;
     }
-    let left = direction(DVec2::new(PITCH_HALF_LENGTH, -6.51) - from);
-    let right = direction(DVec2::new(PITCH_HALF_LENGTH, 6.51) - from);
-    let width = (right - left).abs();
+    if keeper.pos.distance(from) > 20.0 {
+        return true;
+    }
+    let minus = direction(DVec2::new(PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH + 0.5) - from);
+    let plus = direction(DVec2::new(PITCH_HALF_LENGTH, GOAL_HALF_WIDTH - 0.5) - from);
+    let width = angle_diff(plus, minus);
     let step = (width / 10.0).max(2f64.to_radians());
-    let keeper_dist = keeper.distance(from);
-    let keeper_dir = direction(keeper - from);
-    let hide = asin_clamped(1.2 / keeper_dist.max(1e-6));
+    let inertia = keeper.final_drift();
+    let keeper_dir = direction(inertia - from);
+    let hide = asin_clamped(CATCH_AREA_LENGTH / inertia.distance(from));
     let threshold = 20f64.to_radians();
-    let mut a = left.min(right);
-    while a <= left.max(right) + 1e-9 {
-        if angle_diff(a, keeper_dir) - hide >= threshold {
+    let mut a = 0.0;
+    while a < width + 0.001f64.to_radians() {
+        if angle_diff(minus + a, keeper_dir) - hide >= threshold {
             return true;
         }
         a += step;
@@ -83,99 +122,105 @@ pub fn can_shoot_from(from: DVec2, keeper: DVec2) -> bool {
     false
 }
 
-/// Turns needed to rotate by `angle` from speed `speed`, and the leftover angle.
-fn turns_for(mut angle: f64, mut speed: f64) -> (usize, f64) {
-    let mut n = 0;
-    speed *= PLAYER_DECAY; // the first cycle is the kick
-    while angle > 10f64.to_radians() {
-        angle = (angle - max_turn(speed)).max(0.0);
-        speed *= PLAYER_DECAY;
-        n += 1;
-        if n >= 3 {
-            break;
-        }
-    }
-    (n, angle)
-}
-
-/// Kick-then-run candidates along body + 22.5°·a for 4, 3 and 2 dashes.
+/// Kick-turns-dashes candidates along body + 22.5°·a for 4, 3 and 2 dashes
+/// (agent2d ShortDribbleGenerator::createCourses, spec 6.3.1).
 fn kick_candidates<'a>(
     s: &'a Situation<'a>,
     me: &'a Player,
     a: usize,
 ) -> impl Iterator<Item = Candidate> + 'a {
     let rel_angle = a as f64 * PI / 8.0;
-    let folded = if rel_angle > PI {
-        2.0 * PI - rel_angle
+    let raw_dir = me.body + rel_angle;
+    let backward = me.pos.x < 16.0 && normalize_angle(raw_dir).abs() > 100f64.to_radians();
+    let mut left = normalize_angle(rel_angle).abs();
+    let mut speed = me.vel.length() * PLAYER_DECAY; // the first cycle is the kick
+    let mut n_turn = 0;
+    while left > 10f64.to_radians() && n_turn < 3 {
+        left = (left - max_turn(speed)).max(0.0);
+        speed *= PLAYER_DECAY;
+        n_turn += 1;
+    }
+    let dir = if rel_angle < PI {
+        raw_dir - left
     } else {
-        rel_angle
+        raw_dir + left
     };
-    let sign = if rel_angle > PI { -1.0 } else { 1.0 };
-    let (n_turn, left) = turns_for(folded, me.vel.length());
-    let dir = me.body + sign * (folded - left);
-    let backward = me.pos.x < 16.0 && normalize_angle(dir).abs() > 100f64.to_radians();
     let ok = n_turn < 3 && !backward;
+    let cache = if ok {
+        self_cache(me, dir, n_turn)
+    } else {
+        Vec::new()
+    };
     [4usize, 3, 2]
         .into_iter()
         .filter(move |_| ok)
-        .filter_map(move |n_dash| kick_candidate(s, me, dir, n_turn, n_dash))
+        .filter_map(move |n_dash| kick_candidate(s, me, dir, n_turn, n_dash, &cache))
 }
 
+/// The kicker's positions after the kick cycle, each turn and each of 4
+/// stamina-safe full dashes along `dir` (agent2d ShortDribbleGenerator::createSelfCache).
+fn self_cache(me: &Player, dir: f64, n_turn: usize) -> Vec<DVec2> {
+    let mut stamina = *me;
+    let mut pos = me.pos;
+    let mut vel = me.vel;
+    let mut cache = Vec::with_capacity(1 + n_turn + 4);
+    for _ in 0..=n_turn {
+        pos += vel;
+        vel *= PLAYER_DECAY;
+        cache.push(pos);
+        update_stamina(&mut stamina);
+    }
+    for _ in 0..4 {
+        let power = (stamina.stamina - DASH_STAMINA_RESERVE).clamp(0.0, MAX_DASH_POWER);
+        vel += polar(power * DASH_POWER_RATE * stamina.effort, dir);
+        pos += vel;
+        vel *= PLAYER_DECAY;
+        cache.push(pos);
+        stamina.stamina = (stamina.stamina - power).max(0.0);
+        update_stamina(&mut stamina);
+    }
+    cache
+}
+
+/// One course of ShortDribbleGenerator::simulateKickTurnsDashes, if feasible.
 fn kick_candidate(
     s: &Situation,
     me: &Player,
     dir: f64,
     n_turn: usize,
     n_dash: usize,
+    cache: &[DVec2],
 ) -> Option<Candidate> {
     let ball = &s.world.ball;
-    // Kicker after the kick cycle, the turns and the dashes.
-    let mut pos = me.pos + me.vel;
-    let mut vel = me.vel * PLAYER_DECAY;
-    for _ in 0..n_turn {
-        pos += vel;
-        vel *= PLAYER_DECAY;
-    }
-    let self_next = me.pos + me.vel;
-    let accel = polar(me.effort * MAX_DASH_POWER * DASH_POWER_RATE, dir);
-    for _ in 0..n_dash {
-        vel = (vel + accel).clamp_length_max(PLAYER_SPEED_MAX);
-        pos += vel;
-        vel *= PLAYER_DECAY;
-    }
-    let trap = pos + polar(PLAYER_SIZE + 0.2 * KICKABLE_MARGIN + BALL_SIZE, dir);
-    if trap.x.abs() > 51.5 || trap.y.abs() > 33.0 {
+    let trap = cache[n_turn + n_dash] + polar(PLAYER_SIZE + 0.2 * KICKABLE_MARGIN + BALL_SIZE, dir);
+    if trap.x.abs() > PITCH_HALF_LENGTH - 1.0 || trap.y.abs() > PITCH_HALF_WIDTH - 1.0 {
         return None;
     }
     let cycles = 1 + n_turn + n_dash;
-    let first = (trap - ball.pos) / decay_sum(BALL_DECAY, cycles as u32);
-    if first.length() > BALL_SPEED_MAX || (first - ball.vel).length() > max_kick_accel(me, ball.pos)
+    let first_vel = (trap - ball.pos) / decay_sum(BALL_DECAY, cycles as u32);
+    if first_vel.length() > BALL_SPEED_MAX
+        || (first_vel - ball.vel).length() > max_kick_accel(me, ball.pos)
     {
         return None;
     }
-    if (ball.pos + first).distance(self_next) < PLAYER_SIZE + BALL_SIZE + 0.1 {
+    if (ball.pos + first_vel).distance(cache[0]) < PLAYER_SIZE + BALL_SIZE + 0.1 {
         return None;
     }
-    if keeper_gets_there_first(s, me, trap, dir, cycles) {
+    if keeper_gets_there_first(s, me, trap, cycles) {
         return None;
     }
     Some(Candidate {
-        command: kick_to_velocity(me, ball, first)?,
+        first_vel,
         ball_end: trap,
     })
 }
 
-/// Whether the keeper reaches the dribble's end point in time (spec 6.3.1).
-fn keeper_gets_there_first(
-    s: &Situation,
-    me: &Player,
-    trap: DVec2,
-    dir: f64,
-    cycles: usize,
-) -> bool {
+/// Whether the keeper reaches the trap point in time
+/// (agent2d ShortDribbleGenerator::checkOpponent, spec 6.3.1).
+fn keeper_gets_there_first(s: &Situation, me: &Player, trap: DVec2, cycles: usize) -> bool {
     let keeper = &s.world.keeper;
     let ball = s.world.ball.pos;
-    let behind = (keeper.pos - ball).dot(unit(dir)) < -4.0;
+    let behind = (keeper.pos - ball).dot(unit(direction(trap - ball))) < -4.0;
     if keeper.pos.distance(me.pos) > 20.0 || behind {
         return false;
     }
@@ -186,63 +231,114 @@ fn keeper_gets_there_first(
     };
     let drift = keeper.drift(cycles as u32);
     let dist = drift.distance(trap);
-    if dist < control {
+    if dist - control < 0.001 {
         return true;
     }
-    let turn = usize::from(angle_diff(direction(trap - drift), keeper.body) > 15f64.to_radians());
-    let steps = dash_cycles(dist - 0.5 * control - 0.2) + 2 * turn;
-    let bonus = usize::from(trap.x < 30.0);
+    let n_dash = dash_cycles(dist - 0.5 * control - 0.2);
+    let n_turn = turn_cycles(keeper, direction(trap - drift), dist, control);
+    let steps = if n_turn == 0 {
+        n_dash
+    } else {
+        n_turn + n_dash + 1
+    };
+    let bonus = usize::from(trap.x < 30.0) + usize::from(trap.x < 0.0);
     steps <= cycles + bonus
 }
 
-/// Dash-only carries along the body while the moving ball stays in reach (spec 6.3.1).
-fn dash_candidates(s: &Situation) -> impl Iterator<Item = Candidate> + use<> {
-    let me = *s.me();
-    let ball = s.world.ball;
-    let keeper_reach = s.analysis.keeper_reach;
-    let mut found: Vec<Candidate> = Vec::new();
-    if keeper_reach >= 2 && ball.vel.length() > 0.1 {
-        let mut pos = me.pos;
-        let mut vel = me.vel;
-        let (mut bpos, mut bvel) = (ball.pos, ball.vel);
-        let facing = unit(me.body);
-        for n in 1..=20usize.min(keeper_reach) {
-            bpos += bvel;
-            bvel *= BALL_DECAY;
-            let near = (0.585 - 0.1 * n as f64).max(PLAYER_SIZE + BALL_SIZE);
-            let far = KICKABLE_AREA - 0.15;
-            // The largest dash (in 0.05 accel steps) that keeps the ball in the band.
-            let max_accel = MAX_DASH_POWER * DASH_POWER_RATE * me.effort;
-            let fits = (0..=12)
-                .rev()
-                .map(|k| k as f64 * 0.05)
-                .filter(|&a| a <= max_accel)
-                .find_map(|acc| {
-                    let v = (vel + facing * acc).clamp_length_max(PLAYER_SPEED_MAX);
-                    let d = (pos + v).distance(bpos);
-                    (d >= near && d <= far).then_some((acc, v))
-                });
-            let Some((acc, v)) = fits else { break };
-            if bpos.x.abs() > 52.0 || bpos.y.abs() > 33.5 {
-                break;
-            }
-            pos += v;
-            vel = v * PLAYER_DECAY;
-            if n == 1 {
-                found.push(Candidate {
-                    command: Command::Dash {
-                        power: acc / (DASH_POWER_RATE * me.effort),
-                        dir: 0.0,
-                    },
-                    ball_end: bpos,
-                });
-            } else if let Some(first) = found.first().copied() {
-                found.push(Candidate {
-                    ball_end: bpos,
-                    ..first
-                });
+/// agent2d's `FieldAnalyzer::predict_player_turn_cycle` with back dashes
+/// allowed, for `player` to face `target_dir` at `dist` within `control`.
+fn turn_cycles(player: &Player, target_dir: f64, dist: f64, control: f64) -> usize {
+    let mut angle = angle_diff(target_dir, player.body);
+    if dist < 5.0 && angle > PI / 2.0 {
+        angle = PI - angle;
+    }
+    let margin = if control < dist {
+        15f64.to_radians().max(asin_clamped(control / dist))
+    } else {
+        PI
+    };
+    let mut speed = player.vel.length();
+    let mut n = 0;
+    while angle > margin {
+        angle -= max_turn(speed);
+        speed *= PLAYER_DECAY;
+        n += 1;
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Analysis;
+    use crate::config::EnvConfig;
+    use crate::world::World;
+
+    fn with_situation<T>(world: &World, f: impl FnOnce(&Situation) -> T) -> T {
+        let analysis = Analysis::new(world);
+        let config = EnvConfig::default();
+        f(&Situation {
+            world,
+            analysis: &analysis,
+            config: &config,
+            agent: 0,
+        })
+    }
+
+    #[test]
+    fn dribble_never_dashes() {
+        // HFO compiles the dash-only candidates out: a rolling ball ahead of
+        // the dribbler is kicked, held or turned with, never chased by a dash.
+        let mut world = World::new(3);
+        world.offense[1].pos = DVec2::new(10.0, 15.0);
+        world.offense[2].pos = DVec2::new(10.0, -15.0);
+        for i in 0..12 {
+            for j in 0..6 {
+                let me = DVec2::new(15.0 + 2.0 * i as f64, -6.0 + 2.0 * j as f64);
+                world.offense[0] = Player::new(me, 0.0);
+                world.offense[0].vel = DVec2::new(0.6, 0.0);
+                world.ball.pos = me + DVec2::new(0.7, 0.0);
+                world.ball.vel = DVec2::new(0.2 + 0.1 * j as f64, 0.0);
+                let cmd = with_situation(&world, command);
+                assert!(!matches!(cmd, Command::Dash { .. }), "{me}: {cmd:?}");
             }
         }
     }
-    found.into_iter()
+
+    #[test]
+    fn can_shoot_from_looks_at_the_keeper_inertia_point() {
+        let from = DVec2::new(36.0, 0.0);
+        let mut keeper = Player::new(DVec2::new(50.0, 0.0), PI);
+        assert!(!can_shoot_from(from, &keeper));
+        // Drifting 1.67 m sideways opens the far half of the goal.
+        keeper.vel = DVec2::new(0.0, 1.0);
+        assert!(can_shoot_from(from, &keeper));
+        // A keeper more than 20 m away never blocks.
+        let far = Player::new(DVec2::new(52.0, 20.0), PI);
+        assert!(can_shoot_from(DVec2::new(35.7, 0.0), &far));
+    }
+
+    #[test]
+    fn current_state_is_rated_at_the_holder() {
+        let mut world = World::new(3);
+        world.keeper = Player::new(DVec2::new(52.0, 20.0), PI);
+        world.offense[0].pos = DVec2::new(35.7, 0.0); // 16.8 m from the goal
+        world.ball.pos = DVec2::new(34.9, 0.0); // 17.6 m: no shot from the ball
+        world.offense[1].pos = DVec2::new(10.0, 15.0);
+        world.offense[2].pos = DVec2::new(10.0, -15.0);
+        let ball = world.ball.pos;
+        let base = ball.x + 40.0 - ball.distance(GOAL_CENTER);
+        with_situation(&world, |s| {
+            let (holder, mine) = current_holder(s);
+            assert!(mine && holder == s.me().pos);
+            assert!((evaluate(s, ball, holder, mine) - base - 1.5e6).abs() < 1e-6);
+        });
+        // A teammate nearer to the ball holds it: the bonus drops to 1e6.
+        world.offense[2].pos = DVec2::new(35.6, 0.3);
+        with_situation(&world, |s| {
+            let (holder, mine) = current_holder(s);
+            assert!(!mine && holder == DVec2::new(35.6, 0.3));
+            assert!((evaluate(s, ball, holder, mine) - base - 1e6).abs() < 1e-6);
+        });
+    }
 }

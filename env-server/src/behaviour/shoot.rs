@@ -239,7 +239,7 @@ fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Opti
         let k = keeper.pos + keeper.vel * DRIFT[c.min(DRIFT.len() - 1)];
         let margin = if in_area { 0.02 * keeper_shooter } else { 0.0 };
         // Beyond this the keeper neither catches nor comes close (the tests below).
-        let far = (dash_distance(c + 1) + 0.9 * control) / 0.999 + margin;
+        let far = (dash_distance(c) + 0.9 * control) / 0.999 + margin;
         let dist_sq = b.distance_squared(k);
         if dist_sq > far * far {
             continue;
@@ -253,7 +253,7 @@ fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Opti
             dash_dist *= 0.999;
         }
         let n_dash = dash_cycles(dash_dist);
-        if n_dash > c + 1 {
+        if n_dash > c {
             continue; // too far even without turning: neither caught nor close
         }
         let n_turn = turn_cycles(keeper, b - k, dist, control);
@@ -350,5 +350,33 @@ mod tests {
         let s = situation(&w, &a, &config);
         assert!(command(&s).1.is_some());
         assert_eq!(check(&s), None);
+    }
+
+    #[test]
+    fn keeper_needing_one_dash_too_many_never_reaches() {
+        // agent2d maybeGoalieCatch skips a cycle c once the keeper needs more
+        // than c dashes: here it needs c + 1 at best, so the course stays
+        // "never reaches" (it would not if c + 1 dashes counted).
+        let mut world = World::new(3);
+        world.offense[0] = Player::new(DVec2::new(38.0, 0.0), 0.0);
+        world.offense[1].pos = DVec2::new(10.0, 15.0);
+        world.offense[2].pos = DVec2::new(10.0, -15.0);
+        world.ball.pos = DVec2::new(38.6, 0.0);
+        let k = DVec2::new(41.5, 3.0);
+        world.keeper = Player::new(k, direction(world.ball.pos - k));
+        let analysis = Analysis::new(&world);
+        let config = EnvConfig::default();
+        let s = Situation {
+            world: &world,
+            analysis: &analysis,
+            config: &config,
+            agent: 0,
+        };
+        for speed in [2.1, 2.7, 3.0] {
+            assert_eq!(
+                keeper_verdict(&s, world.ball.pos, DVec2::new(52.5, 5.0), speed),
+                Some(true)
+            );
+        }
     }
 }
