@@ -17,6 +17,7 @@ use crate::env::Env;
 use crate::params::{GOAL_CENTER, KICKABLE_AREA};
 use crate::physics::Command;
 use crate::referee::Outcome;
+use crate::rollout::Moments;
 
 /// Lower edges of the shot-distance bins (m); the last bin is open.
 const SHOT_BINS: [f64; 6] = [0.0, 10.0, 15.0, 20.0, 25.0, 30.0];
@@ -93,6 +94,10 @@ pub struct DecisionRecorder {
     after_dribble: Aftermath,
     possessions: u64,
     episodes: u64,
+    /// Possessions of each finished episode.
+    per_episode: Moments,
+    /// Possessions of the episode in play.
+    current: u64,
     /// At the start of the coming cycle: the ball, and who has it in reach.
     ball: DVec2,
     in_reach: [bool; MAX_OFFENSE],
@@ -119,6 +124,8 @@ impl Default for DecisionRecorder {
             after_dribble: Aftermath::default(),
             possessions: 0,
             episodes: 0,
+            per_episode: Moments::default(),
+            current: 0,
             ball: DVec2::ZERO,
             in_reach: [false; MAX_OFFENSE],
             shot: None,
@@ -135,6 +142,7 @@ impl DecisionRecorder {
         if actions.is_empty() {
             self.episodes += 1;
             (self.shot, self.open, self.last_kicker) = (None, None, None);
+            self.current = 0;
         }
         let world = env.world();
         let commands = env.last_commands();
@@ -167,6 +175,7 @@ impl DecisionRecorder {
         self.shot = None;
         if self.last_kicker != Some(kicker) {
             self.possessions += 1;
+            self.current += 1;
             self.last_kicker = Some(kicker);
         }
         match action {
@@ -199,12 +208,18 @@ impl DecisionRecorder {
     }
 
     fn end(&mut self, outcome: Outcome) {
+        self.per_episode.add(self.current as f64);
         if let Some(open) = self.open.take() {
             self.aftermath(open.pass).ended(outcome);
         }
         if let (Some(bin), Outcome::Goal) = (self.shot.take(), outcome) {
             self.shots[bin].goals += 1;
         }
+    }
+
+    /// The sample standard deviation of the possessions per episode.
+    pub fn possessions_sd(&self) -> f64 {
+        self.per_episode.sd()
     }
 
     /// The statistics so far.

@@ -60,10 +60,51 @@ pub struct RolloutSummary {
     pub outcomes: OutcomeCounts,
     /// Per-decision statistics.
     pub decisions: DecisionStats,
+    /// Standard deviations of the means above, for their intervals.
+    pub sd: Spread,
     /// Total agent decisions.
     pub frames: u64,
     /// Decisions per second of wall time (simulator and policy).
     pub frames_per_sec: f64,
+}
+
+/// Sample standard deviations of a rollout's per-episode means.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Spread {
+    /// Of the frames per episode.
+    pub frames: f64,
+    /// Of the frames of the goal episodes.
+    pub frames_to_goal: f64,
+    /// Of the possessions per episode.
+    pub possessions_per_episode: f64,
+}
+
+/// Running sum and sum of squares of a sample.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Moments {
+    n: u64,
+    sum: f64,
+    squares: f64,
+}
+
+impl Moments {
+    /// Adds one value.
+    pub(crate) fn add(&mut self, x: f64) {
+        self.n += 1;
+        self.sum += x;
+        self.squares += x * x;
+    }
+
+    /// The sample standard deviation (0 below two values).
+    pub(crate) fn sd(&self) -> f64 {
+        if self.n < 2 {
+            return 0.0;
+        }
+        let n = self.n as f64;
+        ((self.squares - self.sum * self.sum / n) / (n - 1.0))
+            .max(0.0)
+            .sqrt()
+    }
 }
 
 /// The random stream of a policy, derived from the rollout seed.
@@ -109,6 +150,7 @@ pub fn rollout(
     let mut outcomes = OutcomeCounts::default();
     let mut decisions = DecisionRecorder::default();
     let (mut frames, mut goal_frames) = (0u64, 0u64);
+    let (mut frame_moments, mut goal_moments) = (Moments::default(), Moments::default());
     let start = Instant::now();
     for _ in 0..episodes {
         let (outcome, n) = play_episode(&mut env, policy, &mut rng, |env, actions| {
@@ -116,8 +158,10 @@ pub fn rollout(
         });
         outcomes.add(outcome);
         frames += u64::from(n);
+        frame_moments.add(f64::from(n));
         if outcome == Outcome::Goal {
             goal_frames += u64::from(n);
+            goal_moments.add(f64::from(n));
         }
     }
     let secs = start.elapsed().as_secs_f64();
@@ -133,6 +177,11 @@ pub fn rollout(
         mean_frames_to_goal: ratio(goal_frames, outcomes.goal),
         outcomes,
         decisions: decisions.stats(),
+        sd: Spread {
+            frames: frame_moments.sd(),
+            frames_to_goal: goal_moments.sd(),
+            possessions_per_episode: decisions.possessions_sd(),
+        },
         frames,
         frames_per_sec: if secs > 0.0 {
             frames as f64 / secs
