@@ -81,7 +81,9 @@ impl EnvConfig {
     }
 }
 
-/// How SHOOT kicks when no course is feasible (spec 6.2.2, calibrated in docs/calibration.md).
+/// How SHOOT kicks when no course is feasible and the agent never had one to
+/// remember (spec 6.2.2); its defaults were calibrated on the first
+/// simulator's always-SHOOT rollouts.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LongShot {
