@@ -80,7 +80,11 @@ pub fn kick(
 /// failure exponent `exponent` (rcssserver `Player::tackle`, spec 3.5):
 /// `1 - (bx/2)^e - (|by|/1.25)^e` with the ball in body coordinates, 0 behind.
 pub fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
-    let rel = (ball - player.pos).rotate(unit(-player.body));
+    tackle_probability_at((ball - player.pos).rotate(unit(-player.body)), exponent)
+}
+
+/// [`tackle_probability`] of a ball at `rel` in the tackler's body coordinates.
+pub fn tackle_probability_at(rel: DVec2, exponent: f64) -> f64 {
     let reach = if rel.x > 0.0 {
         TACKLE_DIST
     } else {
@@ -89,7 +93,8 @@ pub fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
     if reach <= 1e-5 {
         return 0.0;
     }
-    let fail = (rel.x.abs() / reach).powf(exponent) + (rel.y.abs() / TACKLE_WIDTH).powf(exponent);
+    let fail =
+        libm::pow(rel.x.abs() / reach, exponent) + libm::pow(rel.y.abs() / TACKLE_WIDTH, exponent);
     (1.0 - fail).max(0.0)
 }
 

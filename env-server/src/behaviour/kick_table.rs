@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 use std::sync::OnceLock;
 
 use super::body::max_one_kick_speed;
+use crate::physics::tackle_probability_at;
 
 /// Ring radii (`calc_near_dist`, `calc_mid_dist`, `calc_far_dist`) and spots per ring.
 const RINGS: [(f64, usize); 3] = [
@@ -22,11 +23,6 @@ const SPOTS: usize = 35;
 const DIRECTIONS: usize = 72;
 /// Paths kept per direction (`MAX_TABLE_SIZE`).
 const TABLE_SIZE: usize = 256;
-/// rcssserver's tackle geometry (`tackle_dist`, `tackle_back_dist`, `tackle_width`, `tackle_exponent`).
-const TACKLE_DIST: f64 = 2.0;
-const TACKLE_BACK_DIST: f64 = 0.0;
-const TACKLE_WIDTH: f64 = 1.25;
-const TACKLE_EXPONENT: f64 = 6.0;
 
 /// A spot's interference flags (`checkInterfereAt`).
 const OUT_OF_PITCH: u8 = 1;
@@ -395,17 +391,8 @@ fn interference(world: &World, at: DVec2) -> u8 {
     }
     let rel = (at - next).rotate(polar(1.0, -keeper.body));
     let mut flag = 0;
-    let tackle_dist = if rel.x > 0.0 {
-        TACKLE_DIST
-    } else {
-        TACKLE_BACK_DIST
-    };
-    if tackle_dist > 1e-5 {
-        let fail = libm::pow(rel.x.abs() / tackle_dist, TACKLE_EXPONENT)
-            + libm::pow(rel.y.abs() / TACKLE_WIDTH, TACKLE_EXPONENT);
-        if fail < 1.0 && 1.0 - fail > 0.7 {
-            flag |= TACKLABLE;
-        }
+    if tackle_probability_at(rel, TACKLE_EXPONENT) > 0.7 {
+        flag |= TACKLABLE;
     }
     let dash = MAX_DASH_POWER * DASH_POWER_RATE;
     let step = DVec2::new(dash, 0.0);
