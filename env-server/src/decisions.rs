@@ -17,7 +17,7 @@ use crate::env::Env;
 use crate::params::{GOAL_CENTER, KICKABLE_AREA};
 use crate::physics::Command;
 use crate::referee::Outcome;
-use crate::rollout::Moments;
+use crate::rollout::{Moments, OutcomeCounts};
 
 /// Lower edges of the shot-distance bins (m); the last bin is open.
 const SHOT_BINS: [f64; 6] = [0.0, 10.0, 15.0, 20.0, 25.0, 30.0];
@@ -43,26 +43,9 @@ pub struct Aftermath {
     pub teammate: u64,
     /// The same player kicked next.
     pub same: u64,
-    /// The keeper captured the ball.
-    pub captured: u64,
-    /// The ball went out of bounds.
-    pub out_of_bounds: u64,
-    /// A goal.
-    pub goal: u64,
-    /// The episode ran out of time.
-    pub out_of_time: u64,
-}
-
-impl Aftermath {
-    fn ended(&mut self, outcome: Outcome) {
-        match outcome {
-            Outcome::Goal => self.goal += 1,
-            Outcome::Captured => self.captured += 1,
-            Outcome::OutOfBounds => self.out_of_bounds += 1,
-            Outcome::OutOfTime => self.out_of_time += 1,
-            Outcome::InGame => {}
-        }
-    }
+    /// The episode ended first, by outcome.
+    #[serde(flatten)]
+    pub ended: OutcomeCounts,
 }
 
 /// The per-decision statistics of a rollout.
@@ -210,7 +193,7 @@ impl DecisionRecorder {
     fn end(&mut self, outcome: Outcome) {
         self.per_episode.add(self.current as f64);
         if let Some(open) = self.open.take() {
-            self.aftermath(open.pass).ended(outcome);
+            self.aftermath(open.pass).ended.add(outcome);
         }
         if let (Some(bin), Outcome::Goal) = (self.shot.take(), outcome) {
             self.shots[bin].goals += 1;
@@ -274,7 +257,8 @@ mod tests {
     fn every_pass_and_dribble_has_one_aftermath() {
         let (stats, _) = recorded(BaselinePolicy::Random, 300);
         let total = |a: &Aftermath| {
-            a.teammate + a.same + a.captured + a.out_of_bounds + a.goal + a.out_of_time
+            let e = &a.ended;
+            a.teammate + a.same + e.captured + e.out_of_bounds + e.goal + e.out_of_time
         };
         assert!(total(&stats.after_pass) > 0);
         assert!(total(&stats.after_dribble) > 0);
@@ -301,6 +285,6 @@ mod tests {
             r.shots[1].goals, 0,
             "a later kick makes the shot not the scorer"
         );
-        assert_eq!(r.after_dribble.goal, 1);
+        assert_eq!(r.after_dribble.ended.goal, 1);
     }
 }

@@ -163,6 +163,28 @@ pub fn hold_ball(p: &Player, world: &World) -> Command {
     })
 }
 
+/// agent2d's `FieldAnalyzer::predict_player_turn_cycle` with back dashes
+/// allowed, for `player` to face `target_dir` at `dist` within `control`.
+pub fn predict_turn_cycles(player: &Player, target_dir: f64, dist: f64, control: f64) -> usize {
+    let mut angle = angle_diff(target_dir, player.body);
+    if dist < 5.0 && angle > PI / 2.0 {
+        angle = PI - angle;
+    }
+    let margin = if control < dist {
+        15f64.to_radians().max(asin_clamped(control / dist))
+    } else {
+        PI
+    };
+    let mut speed = player.vel.length();
+    let mut n = 0;
+    while angle > margin {
+        angle -= max_turn(speed);
+        speed *= PLAYER_DECAY;
+        n += 1;
+    }
+    n
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

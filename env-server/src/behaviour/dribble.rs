@@ -4,7 +4,7 @@
 //! command replaces any shot `doPreprocess` queued.
 
 use super::Situation;
-use super::body::{hold_ball, kick_to_velocity, turn_to_point};
+use super::body::{hold_ball, kick_to_velocity, predict_turn_cycles, turn_to_point};
 use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel, update_stamina};
@@ -235,7 +235,7 @@ fn keeper_gets_there_first(s: &Situation, me: &Player, trap: DVec2, cycles: usiz
         return true;
     }
     let n_dash = dash_cycles(dist - 0.5 * control - 0.2);
-    let n_turn = turn_cycles(keeper, direction(trap - drift), dist, control);
+    let n_turn = predict_turn_cycles(keeper, direction(trap - drift), dist, control);
     let steps = if n_turn == 0 {
         n_dash
     } else {
@@ -243,28 +243,6 @@ fn keeper_gets_there_first(s: &Situation, me: &Player, trap: DVec2, cycles: usiz
     };
     let bonus = usize::from(trap.x < 30.0) + usize::from(trap.x < 0.0);
     steps <= cycles + bonus
-}
-
-/// agent2d's `FieldAnalyzer::predict_player_turn_cycle` with back dashes
-/// allowed, for `player` to face `target_dir` at `dist` within `control`.
-fn turn_cycles(player: &Player, target_dir: f64, dist: f64, control: f64) -> usize {
-    let mut angle = angle_diff(target_dir, player.body);
-    if dist < 5.0 && angle > PI / 2.0 {
-        angle = PI - angle;
-    }
-    let margin = if control < dist {
-        15f64.to_radians().max(asin_clamped(control / dist))
-    } else {
-        PI
-    };
-    let mut speed = player.vel.length();
-    let mut n = 0;
-    while angle > margin {
-        angle -= max_turn(speed);
-        speed *= PLAYER_DECAY;
-        n += 1;
-    }
-    n
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 //! `Bhv_BasicTackle` (src/bhv_basic_tackle.cpp, protocol v14) with the
 //! direction of its `TackleGenerator` (src/chain_action/tackle_generator.cpp).
 
+use super::body::predict_turn_cycles;
 use crate::analysis::{Analysis, NO_REACH};
-use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, unit};
+use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::{Command, tackle_accel, tackle_probability};
 use crate::world::{Player, World};
@@ -244,7 +245,7 @@ fn opponent_reach_step(o: &Player, pos: DVec2, vel: DVec2, max_cycle: usize) -> 
         if n_dash > cycle {
             continue;
         }
-        let n_turn = turn_cycles(o, dist, direction(ball - at));
+        let n_turn = predict_turn_cycles(o, direction(ball - at), dist, KICKABLE_AREA);
         let mut n_step = if n_turn == 0 {
             n_dash
         } else {
@@ -258,28 +259,6 @@ fn opponent_reach_step(o: &Player, pos: DVec2, vel: DVec2, max_cycle: usize) -> 
         }
     }
     1000
-}
-
-/// `FieldAnalyzer::predict_player_turn_cycle` with back dashes allowed and
-/// the kickable area as the distance threshold.
-fn turn_cycles(o: &Player, dist: f64, target_angle: f64) -> usize {
-    let mut diff = angle_diff(target_angle, o.body);
-    if dist < 5.0 && diff > PI / 2.0 {
-        diff = (diff - PI).abs();
-    }
-    let margin = if KICKABLE_AREA < dist {
-        asin_clamped(KICKABLE_AREA / dist).max(15f64.to_radians())
-    } else {
-        PI
-    };
-    let mut speed = o.vel.length();
-    let mut n = 0;
-    while diff > margin {
-        diff -= max_turn(speed);
-        speed *= PLAYER_DECAY;
-        n += 1;
-    }
-    n
 }
 
 #[cfg(test)]
