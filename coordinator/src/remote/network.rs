@@ -9,6 +9,7 @@ use proto::keys::{Keys, Role};
 use proto::{
     Body, Control, ControlReply, Direction, Envelope, Header, MessageCounters, MessageKind,
 };
+use tokio::sync::watch;
 use zenoh::liveliness::LivelinessToken;
 use zenoh::pubsub::Subscriber;
 use zenoh::query::{ConsolidationMode, QueryTarget};
@@ -27,7 +28,8 @@ pub struct Network {
     experiment: u64,
     roles: Vec<Role>,
     alive: Arc<Mutex<HashSet<Role>>>,
-    lost: Arc<Mutex<Option<Role>>>,
+    /// The first process whose token disappeared; control waits watch it.
+    lost: Arc<watch::Sender<Option<Role>>>,
     children: Arc<Mutex<Children>>,
     counters: Mutex<MessageCounters>,
     _token: LivelinessToken,
@@ -80,7 +82,7 @@ impl Network {
             .chain((0..agents).map(|i| Role::Agent(i as u8)))
             .collect();
         let alive = Arc::new(Mutex::new(HashSet::new()));
-        let lost = Arc::new(Mutex::new(None));
+        let lost = Arc::new(watch::Sender::new(None));
         let watch = {
             let (alive, lost, keys) = (alive.clone(), lost.clone(), keys.clone());
             let key = keys.alive_all();
@@ -99,7 +101,9 @@ impl Network {
                                 alive.insert(role);
                             } else if alive.remove(&role) {
                                 tracing::warn!(%role, "lost");
-                                lost.lock().expect("lost role").get_or_insert(role);
+                                lost.send_if_modified(|first| {
+                                    first.is_none() && first.replace(role).is_none()
+                                });
                             }
                         })
                         .await
@@ -193,7 +197,7 @@ impl Network {
             if missing.is_empty() {
                 // Declarations propagate asynchronously: let queryables settle.
                 std::thread::sleep(Duration::from_millis(100));
-                *self.lost.lock().expect("lost role") = None;
+                self.lost.send_replace(None);
                 return Ok(());
             }
             if let Some(exited) = self.children.lock().expect("children").exited() {
@@ -241,7 +245,7 @@ impl Network {
 
     /// The first process whose token disappeared after everyone joined.
     pub fn lost(&self) -> Option<Role> {
-        *self.lost.lock().expect("lost role")
+        *self.lost.borrow()
     }
 
     /// Experiment id carried in every header.
@@ -249,7 +253,8 @@ impl Network {
         self.experiment
     }
 
-    /// Sends `control` to `role` and returns its reply.
+    /// Sends `control` to `role` and returns its reply; gives up at once when
+    /// a process of the experiment is lost meanwhile.
     pub fn control(
         &self,
         role: Role,
@@ -264,6 +269,11 @@ impl Network {
         });
         self.count(Direction::Sent, MessageKind::Control, bytes.len());
         let key = self.keys.control(role);
+        let mut lost = self.lost.subscribe();
+        let gone = |role: Role| format!("{role} is gone (its liveliness token disappeared)");
+        if let Some(gone_role) = *lost.borrow_and_update() {
+            return Err(gone(gone_role));
+        }
         let reply = self.runtime.block_on(async {
             let replies = self
                 .session
@@ -274,7 +284,17 @@ impl Network {
                 .timeout(timeout)
                 .await
                 .map_err(|e| format!("cannot send {what} to {role}: {e}"))?;
-            while let Ok(reply) = replies.recv_async().await {
+            loop {
+                let reply = tokio::select! {
+                    reply = replies.recv_async() => match reply {
+                        Ok(reply) => reply,
+                        Err(_) => break,
+                    },
+                    Ok(()) = lost.changed() => match *lost.borrow_and_update() {
+                        Some(gone_role) => return Err(gone(gone_role)),
+                        None => continue,
+                    },
+                };
                 let Ok(sample) = reply.result() else { continue };
                 let payload = sample.payload().to_bytes();
                 match proto::decode(&payload, self.experiment) {
@@ -318,6 +338,8 @@ impl Network {
         if children.is_empty() {
             return;
         }
+        // The stop goes to every process still there, whoever was lost.
+        self.lost.send_replace(None);
         for role in &self.roles {
             if self.is_alive(*role) {
                 let _ = self.control(
