@@ -59,6 +59,60 @@ struct Sequence {
     flag: u8,
 }
 
+/// The last kick of a plan of `kicks` kicks, from the spot `from` where the
+/// ball arrives with velocity `vel` (already decayed).
+struct LastKick<'a> {
+    first: DVec2,
+    kicks: usize,
+    from: &'a State,
+    vel: DVec2,
+    flag: u8,
+    miss: u8,
+}
+
+impl LastKick<'_> {
+    /// Adds the plan to `out` if its last kick reaches `speed` towards
+    /// `target` and says so; otherwise, with `effort` allowed, keeps the
+    /// fastest such plan in librcsc's single best-effort slot.
+    fn finish(
+        &self,
+        target: DVec2,
+        speed: f64,
+        effort: bool,
+        best_effort: &mut f64,
+        out: &mut Vec<Sequence>,
+    ) -> bool {
+        let dir = direction(target - self.from.pos);
+        let last = (polar(speed, dir) - self.vel).length();
+        let limit = max_accel(self.from.rate);
+        if last <= limit {
+            out.push(Sequence {
+                first: self.first,
+                kicks: self.kicks,
+                speed,
+                power: last / self.from.rate,
+                flag: self.flag | self.miss,
+            });
+            return true;
+        }
+        let top = max_one_kick_speed(dir, self.vel, limit);
+        if effort && top > *best_effort {
+            if *best_effort == 0.0 {
+                out.push(Sequence::default());
+            }
+            *best_effort = top;
+            *out.last_mut().expect("pushed") = Sequence {
+                first: self.first,
+                kicks: self.kicks,
+                speed: top,
+                power: (polar(top, dir) - self.vel).length() / self.from.rate,
+                flag: self.flag,
+            };
+        }
+        false
+    }
+}
+
 /// The first kick's ball position (after this cycle's move) of the best plan
 /// that sends the ball towards `target` at `speed`, if the plan reaches at
 /// least `min_speed` (`KickTable::simulate` with `max_step = 3`, then
@@ -281,34 +335,15 @@ impl<'a> Planner<'a> {
             }
             let miss = self.miss(vel, accel, state);
             vel *= BALL_DECAY;
-            let dir = direction(target - state.pos);
-            let want = polar(speed, dir);
-            let last = (want - vel).length();
-            let flag = self.current | state.flag;
-            if last > max_accel(state.rate) {
-                let top = max_one_kick_speed(dir, vel, max_accel(state.rate));
-                if top > best_effort {
-                    if best_effort == 0.0 {
-                        out.push(Sequence::default());
-                    }
-                    best_effort = top;
-                    *out.last_mut().expect("pushed") = Sequence {
-                        first: state.pos,
-                        kicks: 2,
-                        speed: top,
-                        power: (polar(top, dir) - vel).length() / state.rate,
-                        flag,
-                    };
-                }
-                continue;
-            }
-            out.push(Sequence {
+            let last = LastKick {
                 first: state.pos,
                 kicks: 2,
-                speed,
-                power: last / state.rate,
-                flag: flag | miss,
-            });
+                from: state,
+                vel,
+                flag: self.current | state.flag,
+                miss,
+            };
+            last.finish(target, speed, true, &mut best_effort, out);
         }
     }
 
@@ -339,37 +374,17 @@ impl<'a> Planner<'a> {
                 continue;
             }
             vel2 *= BALL_DECAY;
-            let dir = direction(target - second.pos);
-            let want = polar(speed, dir);
-            let last = (want - vel2).length();
-            let flag = self.current | first.flag | second.flag;
-            if last > max_accel(second.rate) {
-                if successes == 0 {
-                    let top = max_one_kick_speed(dir, vel2, max_accel(second.rate));
-                    if top > best_effort {
-                        if best_effort == 0.0 {
-                            out.push(Sequence::default());
-                        }
-                        best_effort = top;
-                        *out.last_mut().expect("pushed") = Sequence {
-                            first: first.pos,
-                            kicks: 3,
-                            speed: top,
-                            power: (polar(top, dir) - vel2).length() / second.rate,
-                            flag,
-                        };
-                    }
-                }
-                continue;
-            }
-            out.push(Sequence {
+            let last = LastKick {
                 first: first.pos,
                 kicks: 3,
-                speed,
-                power: last / second.rate,
-                flag: flag | miss,
-            });
-            successes += 1;
+                from: second,
+                vel: vel2,
+                flag: self.current | first.flag | second.flag,
+                miss,
+            };
+            if last.finish(target, speed, successes == 0, &mut best_effort, out) {
+                successes += 1;
+            }
         }
     }
 }
