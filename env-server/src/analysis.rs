@@ -28,10 +28,14 @@ pub struct Analysis {
     pub ball_path: [DVec2; CACHE_LEN],
     /// Number of valid entries of `ball_path`.
     pub path_len: usize,
-    /// Reach cycle of each offense agent.
+    /// Reach cycle of each offense agent as the other players estimate it.
     pub reach: [usize; MAX_OFFENSE],
-    /// Reach cycle of the goalkeeper.
+    /// Reach cycle of each offense agent as it estimates its own (`self_min`).
+    pub own_reach: [usize; MAX_OFFENSE],
+    /// Reach cycle of the goalkeeper as the attackers estimate it.
     pub keeper_reach: usize,
+    /// Reach cycle of the goalkeeper as it estimates its own (`self_min`).
+    pub keeper_own_reach: usize,
     /// Formation target of each offense agent after the offside clip.
     pub home: [DVec2; MAX_OFFENSE],
 }
@@ -43,15 +47,20 @@ impl Analysis {
         let path = &ball_path[..path_len];
         let n = world.offense.len();
         let mut reach = [NO_REACH; MAX_OFFENSE];
-        for (r, p) in reach.iter_mut().zip(&world.offense) {
-            *r = reach_cycle(p, path, None);
+        let mut own_reach = [NO_REACH; MAX_OFFENSE];
+        for ((r, o), p) in reach.iter_mut().zip(&mut own_reach).zip(&world.offense) {
+            *r = reach_cycle(p, path, None, Estimate::Other);
+            *o = reach_cycle(p, path, None, Estimate::Own);
         }
-        let keeper_reach = reach_cycle(&world.keeper, path, Some(KEEPER_CONTROL_AREA));
+        let keeper = Some(KEEPER_CONTROL_AREA);
+        let keeper_reach = reach_cycle(&world.keeper, path, keeper, Estimate::Other);
         let mut analysis = Analysis {
             ball_path,
             path_len,
             reach,
+            own_reach,
             keeper_reach,
+            keeper_own_reach: reach_cycle(&world.keeper, path, keeper, Estimate::Own),
             home: [DVec2::ZERO; MAX_OFFENSE],
         };
         let ball_step = reach[..n]
@@ -174,9 +183,37 @@ fn turn_count(facing: DVec2, rel: DVec2, d: f64, control: f64) -> usize {
     usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
 }
 
+/// Whose estimate of a reach cycle (spec 6.1.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Estimate {
+    /// Another player's (librcsc `PlayerIntercept`): the full control area.
+    Other,
+    /// The player's own (librcsc `SelfInterceptV13`): once it must move, the
+    /// ball has to come 0.15 m inside the control area within 5 cycles
+    /// (`control_area_buf`), 0.2 m later (its long-step buffer).
+    Own,
+}
+
+impl Estimate {
+    /// Margin inside the control area for a reach at cycle `t`.
+    fn buffer(self, t: usize) -> f64 {
+        match self {
+            Estimate::Other => 0.0,
+            Estimate::Own if t <= 5 => 0.15,
+            Estimate::Own => 0.2,
+        }
+    }
+}
+
 /// Reach cycle of player `p` for the ball path `path` (spec 6.1.2);
 /// `keeper_control` is the keeper's control area inside its penalty area.
-pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
+/// A ball already under control is reached at once by either estimate.
+pub fn reach_cycle(
+    p: &Player,
+    path: &[DVec2],
+    keeper_control: Option<f64>,
+    estimate: Estimate,
+) -> usize {
     let facing = unit(p.body);
     // Per cycle the gap closes by at most the ball's and the player's initial
     // speeds plus one metre of dashing (plus the keeper's larger area once):
@@ -198,7 +235,10 @@ pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> u
             continue; // out of reach even without turning
         }
         let d = rel.length();
-        let gap = d - control;
+        if d <= control && (t == 0 || estimate == Estimate::Other) {
+            return t;
+        }
+        let gap = d - control + estimate.buffer(t);
         if gap <= 0.0 {
             return t;
         }
@@ -211,7 +251,7 @@ pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> u
     let last = path.len() - 1;
     let (rel, control) = reach_vector(p, last, path[last], keeper_control);
     let d = rel.length();
-    let gap = d - control;
+    let gap = d - control + estimate.buffer(last.max(6));
     if gap <= 0.0 {
         return path.len();
     }
@@ -296,6 +336,7 @@ pub fn interception(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     #[test]
     fn reach_of_a_resting_ball_follows_the_dash_table() {
@@ -311,12 +352,32 @@ mod tests {
     }
 
     #[test]
+    fn own_estimate_needs_the_ball_inside_the_control_area() {
+        // librcsc's SelfInterceptV13 wants the ball 0.15 m inside the
+        // kickable area; PlayerIntercept, the others' view, does not.
+        let mut w = World::new(1);
+        w.offense[0] = Player::new(DVec2::ZERO, 0.0);
+        w.ball.pos = DVec2::new(KICKABLE_AREA + dash_distance(2) - 0.1, 0.0);
+        let a = Analysis::new(&w);
+        assert_eq!((a.reach[0], a.own_reach[0]), (2, 3));
+        // Beyond 5 cycles the margin is 0.2 m.
+        w.ball.pos = DVec2::new(KICKABLE_AREA + dash_distance(7) - 0.17, 0.0);
+        let a = Analysis::new(&w);
+        assert_eq!((a.reach[0], a.own_reach[0]), (7, 8));
+        // The keeper's own estimate too.
+        w.keeper = Player::new(DVec2::new(50.0, 0.0), PI);
+        w.ball.pos = DVec2::new(50.0 - KEEPER_CONTROL_AREA - dash_distance(2) + 0.1, 0.0);
+        let a = Analysis::new(&w);
+        assert_eq!((a.keeper_reach, a.keeper_own_reach), (2, 3));
+    }
+
+    #[test]
     fn kickable_player_reaches_at_once() {
         let mut w = World::new(3);
         w.ball.pos = DVec2::new(20.0, 0.0);
         w.offense[1].pos = DVec2::new(19.2, 0.0);
         let a = Analysis::new(&w);
-        assert_eq!(a.reach[1], 0);
+        assert_eq!((a.reach[1], a.own_reach[1]), (0, 0));
         assert_eq!(a.mate_reach(0), 0);
     }
 }

@@ -241,8 +241,17 @@ fn keeper_gets_there_first(s: &Situation, me: &Player, trap: DVec2, cycles: usiz
     } else {
         n_turn + n_dash + 1
     };
-    let bonus = usize::from(trap.x < 30.0) + usize::from(trap.x < 0.0);
-    steps <= cycles + bonus
+    steps as i64 <= cycles as i64 + opponent_bonus(keeper, trap)
+}
+
+/// Cycles a dribble may take beyond the keeper's reach estimate: +1 for a
+/// trap point at x < 30, +1 more at x < 0; a keeper frozen by its tackle
+/// counts as 5 cycles slower instead (ShortDribbleGenerator::checkOpponent).
+fn opponent_bonus(keeper: &Player, trap: DVec2) -> i64 {
+    if keeper.tackle_freeze > 0 {
+        return -5;
+    }
+    i64::from(trap.x < 30.0) + i64::from(trap.x < 0.0)
 }
 
 #[cfg(test)]
@@ -281,6 +290,30 @@ mod tests {
                 assert!(!matches!(cmd, Command::Dash { .. }), "{me}: {cmd:?}");
             }
         }
+    }
+
+    #[test]
+    fn a_tackling_keeper_counts_five_cycles_slower() {
+        let mut world = World::new(3);
+        world.offense[0] = Player::new(DVec2::new(40.0, 0.0), 0.0);
+        world.ball.pos = DVec2::new(40.7, 0.0);
+        world.keeper = Player::new(DVec2::new(47.0, 0.0), PI);
+        let trap = DVec2::new(44.0, 0.0);
+        // Three dashes bring the keeper within reach of a 5-cycle dribble.
+        assert!(with_situation(&world, |s| keeper_gets_there_first(
+            s,
+            s.me(),
+            trap,
+            5
+        )));
+        // Frozen by its tackle, it would need 3 + 5 > 5 cycles.
+        world.keeper.tackle_freeze = 4;
+        assert!(!with_situation(&world, |s| keeper_gets_there_first(
+            s,
+            s.me(),
+            trap,
+            5
+        )));
     }
 
     #[test]

@@ -70,9 +70,9 @@ impl<'a> View<'a> {
             keeper,
             ball_dist,
             ball_next: world.ball.pos + world.ball.vel,
-            self_min: analysis.keeper_reach,
+            self_min: analysis.keeper_own_reach,
             opp_min: analysis.attacker_reach(),
-            intercept_point: analysis.ball_at(analysis.keeper_reach),
+            intercept_point: analysis.ball_at(analysis.keeper_own_reach),
             pen_thr: (0.1 * ball_dist + 1.0).max(1.0),
             attacker_kickable: world.any_attacker_kickable(),
         }

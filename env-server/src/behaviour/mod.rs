@@ -78,7 +78,7 @@ pub fn offense_command(s: &Situation, action: Action) -> (Command, Option<ShotCo
 /// neither a teammate nor the keeper can kick it.
 fn move_shot_check(s: &Situation) -> Option<ShotCourse> {
     let keeper_kickable = s.world.keeper.pos.distance(s.world.ball.pos) <= KICKABLE_AREA;
-    (s.analysis.reach[s.agent] <= 1 && !s.world.teammate_kickable(s.agent) && !keeper_kickable)
+    (s.analysis.own_reach[s.agent] <= 1 && !s.world.teammate_kickable(s.agent) && !keeper_kickable)
         .then(|| shoot::check(s))
         .flatten()
 }

@@ -22,7 +22,7 @@ pub fn command(s: &Situation) -> Command {
     if s.world.agent_kickable(s.agent) {
         return turn_to_point(me, forward_point(me.pos.y));
     }
-    let self_min = s.analysis.reach[s.agent];
+    let self_min = s.analysis.own_reach[s.agent];
     let mate_min = s.analysis.mate_reach(s.agent);
     let opp_min = s.analysis.keeper_reach;
     let chase = self_min <= 3 || (self_min <= mate_min && self_min < opp_min + 3);
@@ -47,7 +47,7 @@ fn dash_power(s: &Situation) -> f64 {
     let me = s.me();
     let ball = &s.world.ball;
     let inc = STAMINA_INC_MAX * me.recovery;
-    let self_min = s.analysis.reach[s.agent];
+    let self_min = s.analysis.own_reach[s.agent];
     let mate_min = s.analysis.mate_reach(s.agent);
     let opp_min = s.analysis.keeper_reach;
     if me.recover_mode {

@@ -44,34 +44,30 @@ pub fn command(s: &Situation, receiver: Option<usize>) -> Command {
     }
 }
 
-/// Cycles a ball kicked at `speed` needs to travel `dist` (infinite if it stops short).
-fn ball_cycles(dist: f64, speed: f64) -> f64 {
-    let ratio = 0.06 * dist / speed;
-    if ratio >= 1.0 {
-        f64::INFINITY
-    } else {
-        (1.0 - ratio).ln() / BALL_DECAY.ln()
-    }
+/// Cycles a ball moving at `speed` needs to travel `dist`, or `None` if it
+/// stops short (librcsc `calc_length_geom_series`).
+fn ball_cycles(dist: f64, speed: f64) -> Option<f64> {
+    let ratio = 1.0 - (1.0 - BALL_DECAY) * dist / speed;
+    (ratio > 0.0).then(|| ratio.ln() / BALL_DECAY.ln())
 }
 
-/// Whether the keeper can cut the ball's path to `target` (`verify_direct_pass` path test).
+/// Whether the keeper can cut the ball's path to `target` kicked at `speed`
+/// (the path test of `verify_direct_pass` and `verify_through_pass`): in
+/// coordinates along the pass from the ball's next position, a keeper
+/// between it and the target's distance must be farther from the line than
+/// the kickable area plus 0.1 m, and need more cycles at 1 m/cycle to cover
+/// that than the ball (at its next speed) needs to pass it.
 fn keeper_near_path(s: &Situation, target: DVec2, speed: f64) -> bool {
     let ball = s.world.ball.pos;
-    let keeper = s.world.keeper.pos;
     let dir = direction(target - ball);
-    if angle_diff(direction(keeper - ball), dir) > 100f64.to_radians() {
-        return false;
-    }
-    let origin = ball + polar(speed, dir);
     let u = unit(dir);
-    let rel = keeper - origin;
+    let rel = s.world.keeper.pos - ball - u * speed;
     let along = rel.dot(u);
-    let length = target.distance(origin);
-    if along <= 0.0 || along >= length {
+    if along <= 0.0 || along >= target.distance(ball) {
         return false;
     }
     let across = rel.perp_dot(u).abs() - KICKABLE_AREA - 0.1;
-    across < 0.0 || across <= ball_cycles(along + speed, speed)
+    across < 0.0 || ball_cycles(along, speed * BALL_DECAY).is_none_or(|n| across < n)
 }
 
 /// `create_direct_pass` (spec 6.4 step 2).
@@ -96,7 +92,9 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
             return;
         }
     }
-    let receive = mate.final_drift();
+    // The receiver's position one cycle of velocity ahead, divided by the
+    // player decay (`create_direct_pass` with a velocity seen this cycle).
+    let receive = r + mate.vel / PLAYER_DECAY;
     let dist = receive.distance(ball);
     let Some(speed) = (0..=6)
         .map(|k| 1.5 - 0.1 * k as f64)
@@ -105,10 +103,6 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
     else {
         return;
     };
-    let keeper = s.world.keeper.pos;
-    if keeper.distance(receive) < 3.0 {
-        return;
-    }
     let spread = KICKABLE_AREA / dist;
     let base = direction(receive - ball);
     let aims = [
@@ -118,10 +112,22 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
     ];
     for (offset, v0) in aims {
         let target = ball + polar(dist, base + offset);
-        if !keeper_near_path(s, target, v0) {
+        if direct_pass_safe(s, target, v0) {
             consider(Route { target, speed: v0 });
         }
     }
+}
+
+/// `verify_direct_pass`: a keeper more than 100° off the pass direction (seen
+/// from the passer) is ignored; otherwise it must be at least 3 m from the
+/// target and off the ball's path.
+fn direct_pass_safe(s: &Situation, target: DVec2, speed: f64) -> bool {
+    let keeper = s.world.keeper.pos;
+    let pass_dir = direction(target - s.world.ball.pos);
+    if angle_diff(direction(keeper - s.me().pos), pass_dir) > 100f64.to_radians() {
+        return true;
+    }
+    keeper.distance(target) >= 3.0 && !keeper_near_path(s, target, speed)
 }
 
 /// `create_lead_pass` (spec 6.4 step 3).
@@ -150,11 +156,7 @@ fn lead_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)) {
         };
         for sign in [-1.0, 1.0] {
             let target = ball + polar(dist, base + sign * k as f64 * step);
-            let behind_self_or_mate = target.x < me.pos.x.min(r.x);
-            if !inside_shrunk_pitch(target)
-                || target.x < r.x - 6.0
-                || (target.x < 0.0 && behind_self_or_mate)
-            {
+            if !inside_shrunk_pitch(target) || lead_back_pass(target, me.pos.x, r.x) {
                 continue;
             }
             if through_pass_safe(s, mate, target, speed) {
@@ -162,6 +164,13 @@ fn lead_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)) {
             }
         }
     }
+}
+
+/// `create_lead_pass` ignores back passes: 6 m behind the receiver, or, at
+/// x < 0, behind the passer or 3 m behind the receiver.
+fn lead_back_pass(target: DVec2, passer_x: f64, receiver_x: f64) -> bool {
+    target.x < receiver_x - 6.0
+        || (target.x < 0.0 && (target.x < passer_x || target.x < receiver_x - 3.0))
 }
 
 /// `create_through_pass` (spec 6.4 step 4).
@@ -190,7 +199,10 @@ fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)
             let speed = (0..4)
                 .map(|i| 0.81 - 0.1 * i as f64)
                 .map(|end| end + 0.0638 * dist)
-                .find(|&v0| v0 <= BALL_SPEED_MAX && receiver_cycles <= ball_cycles(dist, v0));
+                .find(|&v0| {
+                    v0 <= BALL_SPEED_MAX
+                        && ball_cycles(dist, v0).is_some_and(|n| receiver_cycles <= n)
+                });
             if let Some(speed) = speed
                 && through_pass_safe(s, mate, target, speed)
             {
@@ -243,4 +255,90 @@ fn score(s: &Situation, route: Route) -> f64 {
         score *= 1.2;
     }
     score
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Analysis;
+    use crate::config::EnvConfig;
+    use crate::world::World;
+
+    /// Passer 0 at (10, 0) with the ball at its feet, teammate 1 at `mate`,
+    /// the keeper at `keeper`.
+    fn world(mate: DVec2, keeper: DVec2) -> World {
+        let mut w = World::new(2);
+        w.offense[0] = Player::new(DVec2::new(10.0, 0.0), 0.0);
+        w.offense[1] = Player::new(mate, 0.0);
+        w.ball.pos = DVec2::new(10.6, 0.0);
+        w.keeper.pos = keeper;
+        w.offside_line = 40.0;
+        w
+    }
+
+    fn direct_routes(w: &World) -> Vec<Route> {
+        let (a, config) = (Analysis::new(w), EnvConfig::default());
+        let s = Situation {
+            world: w,
+            analysis: &a,
+            config: &config,
+            agent: 0,
+        };
+        let mut routes = Vec::new();
+        direct_passes(&s, &w.offense[1], &mut |r| routes.push(r));
+        routes
+    }
+
+    #[test]
+    fn a_direct_pass_aims_at_the_receiver_plus_its_velocity_over_the_decay() {
+        let mut w = world(DVec2::new(20.0, 12.0), DVec2::new(50.0, 0.0));
+        w.offense[1].vel = DVec2::new(0.3, -0.2);
+        let routes = direct_routes(&w);
+        let aim = DVec2::new(20.75, 11.5);
+        assert!(routes[0].target.distance(aim) < 1e-9, "{routes:?}");
+    }
+
+    #[test]
+    fn the_keeper_rejects_each_direct_target_within_3_m_of_it() {
+        // Receive point (30.6, 0), the keeper just beyond it, off the path:
+        // 3.4 m from it, but 2.9 m from the candidate one kickable area to
+        // its left.
+        let w = world(DVec2::new(30.6, 0.0), DVec2::new(33.4, 1.9));
+        let routes = direct_routes(&w);
+        assert_eq!(routes.len(), 2, "{routes:?}");
+        assert!(
+            routes
+                .iter()
+                .all(|r| r.target.distance(w.keeper.pos) >= 3.0)
+        );
+    }
+
+    #[test]
+    fn the_keeper_cuts_a_pass_it_reaches_before_the_ball_passes() {
+        // Ball at (10.6, 0) to (30.6, 0) at 2.0: 10 m along from the ball's
+        // next position the ball needs 6.2 cycles, the keeper |y| - 1.185.
+        let keeper_at = |y: f64| world(DVec2::new(30.6, 0.0), DVec2::new(22.6, y));
+        let near = |w: &World| {
+            let (a, config) = (Analysis::new(w), EnvConfig::default());
+            let s = Situation {
+                world: w,
+                analysis: &a,
+                config: &config,
+                agent: 0,
+            };
+            keeper_near_path(&s, DVec2::new(30.6, 0.0), 2.0)
+        };
+        assert!(near(&keeper_at(7.0)));
+        assert!(!near(&keeper_at(8.0)));
+        assert!(!near(&keeper_at(-8.0)));
+    }
+
+    #[test]
+    fn lead_passes_never_go_back_over_x_0_behind_the_passer() {
+        assert!(lead_back_pass(DVec2::new(-0.5, 5.0), 2.0, -1.0));
+        assert!(lead_back_pass(DVec2::new(-0.5, 5.0), -1.0, 3.0));
+        assert!(!lead_back_pass(DVec2::new(-0.5, 5.0), -1.0, 2.0));
+        assert!(lead_back_pass(DVec2::new(10.0, 5.0), 0.0, 16.5));
+        assert!(!lead_back_pass(DVec2::new(10.0, 5.0), 20.0, 15.0));
+    }
 }

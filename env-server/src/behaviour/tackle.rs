@@ -36,7 +36,7 @@ pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<C
         Tackler::Attacker(i) => (
             &world.offense[i],
             1.0,
-            analysis.reach[i],
+            analysis.own_reach[i],
             analysis.mate_reach(i),
             analysis.keeper_reach,
             world.keeper.pos.distance(ball.pos) <= KICKABLE_AREA,
@@ -44,7 +44,7 @@ pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<C
         Tackler::Keeper => (
             &world.keeper,
             -1.0,
-            analysis.keeper_reach,
+            analysis.keeper_own_reach,
             NO_REACH,
             analysis.attacker_reach(),
             world.any_attacker_kickable(),
