@@ -10,11 +10,13 @@ use crate::config::AgentConfig;
 use crate::config_error::ConfigError;
 use crate::counters::Counters;
 use crate::exchange::{AdviceExchange, Transition};
+use crate::fidelity::{AdvisorTies, SharedBootstrap, TorreyIntent};
 use crate::persist::{PersistError, Snapshot};
-use crate::policy::{AgentRng, RANDOM_DRAW, epsilon_greedy, greedy_first, majority};
+use crate::policy::{AgentRng, RANDOM_DRAW, epsilon_greedy, greedy_first, greedy_random, majority};
 use crate::qtable::{ACTIONS, EntryId, QTable};
 use crate::sarsa::Sarsa;
 use crate::strategy::AskContext;
+use crate::strategy::Strategy;
 use crate::tiles::{Tiling, TilingParams};
 
 /// What an agent sees in one simulator frame.
@@ -288,7 +290,7 @@ impl Agent {
                     .config
                     .strategy
                     .mistake_correcting()
-                    .then(|| self.explore_in(entry));
+                    .then(|| self.intent(entry));
                 self.counters.requests_sent += 1;
                 self.in_flight = Some(InFlight {
                     key,
@@ -319,7 +321,7 @@ impl Agent {
         let Some(f) = self.in_flight.take() else {
             return Action::Move;
         };
-        let action = match majority(answers, &mut self.rng) {
+        let action = match majority(answers, self.config.fidelity.vote_ties, &mut self.rng) {
             Some(advice) => {
                 self.counters.advice_received += answers.len() as u64;
                 self.counters.advised_steps += 1;
@@ -397,19 +399,33 @@ impl Agent {
     }
 
     /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
-    /// advisee's `state`, or `None`. With `intended` (Mistake Correcting) it
-    /// answers, and spends budget, only when its action differs.
+    /// advisee's `state`, or `None`. The answer is its greedy kick action,
+    /// ties broken as its fidelity says. With `intended` (Mistake Correcting)
+    /// it answers, and spends budget, only when its action differs.
     pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
         if !self.training() {
             return None;
         }
-        let entry = *self.table.get(self.tiling.key(state))?;
-        let confident = self
-            .config
-            .strategy
-            .confident(&entry, &self.counters, &mut self.rng);
-        let answer = greedy_first(&entry.q);
-        if !confident || intended == Some(answer) {
+        let fidelity = self.config.fidelity;
+        let entry = self
+            .table
+            .get(self.tiling.key(state))
+            .copied()
+            .unwrap_or_default();
+        let confident = self.config.strategy.confident(
+            &entry,
+            &self.counters,
+            fidelity.torrey_unknown_state,
+            &mut self.rng,
+        );
+        if !confident {
+            return None;
+        }
+        let answer = match fidelity.advisor_ties {
+            AdvisorTies::First => greedy_first(&entry.q),
+            AdvisorTies::Random => greedy_random(&entry.q, &mut self.rng),
+        };
+        if intended == Some(answer) {
             return None;
         }
         self.counters.advice_given += 1;
@@ -417,18 +433,24 @@ impl Agent {
     }
 
     /// Replays a received goal episode as SARSA(lambda) updates with a fresh
-    /// trace (separate from the agent's own), using the sharer's next actions.
+    /// trace (separate from the agent's own), bootstrapping on the sharer's
+    /// next actions or on Move, as its fidelity says.
     pub fn receive_shared(&mut self, transitions: &[Transition]) {
         if !self.training() {
             return;
         }
         self.counters.shared_received += transitions.len() as u64;
         self.replay.clear();
+        let bootstrap = self.config.fidelity.shared_bootstrap;
         for t in transitions {
             let from = self.table.id_or_insert(self.tiling.key(&t.state));
-            let next = t
-                .next
-                .map(|(s, a)| (self.table.id_or_insert(self.tiling.key(&s)), a));
+            let next = t.next.map(|(s, a)| {
+                let a = match bootstrap {
+                    SharedBootstrap::SharerAction => a,
+                    SharedBootstrap::Move => Action::Move,
+                };
+                (self.table.id_or_insert(self.tiling.key(&s)), a)
+            });
             self.replay
                 .update(&mut self.table, (from, t.action), t.reward, next);
         }
@@ -454,6 +476,18 @@ impl Agent {
             .strategy
             .advisors(self.id, self.team_size, positions, &mut self.reach);
         self.reach.retain(|&j| reachable(j));
+    }
+
+    /// The intended action a Mistake Correcting advisee sends along:
+    /// epsilon-greedy, or greedy for a Torrey student whose fidelity says so.
+    fn intent(&mut self, entry: EntryId) -> Action {
+        let greedy = matches!(self.config.strategy, Strategy::Torrey(_))
+            && self.config.fidelity.torrey_intent == TorreyIntent::Greedy;
+        if greedy {
+            greedy_random(&self.table.entry(entry).q, &mut self.rng)
+        } else {
+            self.explore_in(entry)
+        }
     }
 
     /// Epsilon-greedy over the Q values of a table entry.

@@ -7,6 +7,7 @@ mod table;
 use proto::STATE_FEATURES;
 
 use crate::config_error::{ConfigError, require, require_unit};
+use crate::fidelity::Fidelity;
 use crate::strategy::Strategy;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
@@ -18,9 +19,12 @@ pub const TILE_ORIGIN: f64 = -1.0;
 /// keys below, `strategy` (a [`StrategyName`](crate::StrategyName)) and the
 /// keys of that strategy, named as the fields of [`Strategy`]'s variants
 /// (`v_a`, `v_g`, `ask_budget`, `give_budget`, `mistake_correcting`,
-/// `reachable`, `importance_threshold`, `sharing_budget`). Missing keys take
-/// their defaults; an unknown key, or a key of another strategy, is an error
-/// naming it. Binary formats (postcard) see the plain structure.
+/// `reachable`, `importance_threshold`, `sharing_budget`), then `profile` and
+/// the [`Fidelity`] settings (named as its fields; they apply to every
+/// strategy). Missing keys take their defaults, the fidelity settings and
+/// AdHocVisit's `v_g` those of `profile`; an unknown key, or a key of another
+/// strategy, is an error naming it. Binary formats (postcard) see the plain
+/// structure.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AgentConfig {
     /// Learning rate alpha, in (0, 1].
@@ -41,6 +45,8 @@ pub struct AgentConfig {
     pub trace_threshold: f64,
     /// The advising strategy and its constants.
     pub strategy: Strategy,
+    /// The rules where the paper and the authors' code differ.
+    pub fidelity: Fidelity,
 }
 
 impl Default for AgentConfig {
@@ -55,6 +61,7 @@ impl Default for AgentConfig {
             tile_step: 0.2,
             trace_threshold: 1e-4,
             strategy: Strategy::NoAdvice,
+            fidelity: Fidelity::default(),
         }
     }
 }

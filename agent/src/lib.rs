@@ -44,6 +44,7 @@ mod config;
 mod config_error;
 mod counters;
 mod exchange;
+mod fidelity;
 mod persist;
 mod policy;
 mod qtable;
@@ -59,6 +60,9 @@ pub use config::AgentConfig;
 pub use config_error::ConfigError;
 pub use counters::Counters;
 pub use exchange::{AdviceExchange, Isolated, Transition};
+pub use fidelity::{
+    AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
+};
 pub use persist::{FORMAT_VERSION, PersistError, Snapshot};
 pub use qtable::{Entry, QTable};
 pub use strategy::{AdHoc, Confidence, Strategy, StrategyName, Torrey, UnknownStrategy};

@@ -5,6 +5,7 @@ use proto::Action::{self, Dribble, PassFar, PassNear, Shoot};
 use rand::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
+use crate::fidelity::VoteTies;
 use crate::qtable::ACTIONS;
 
 /// Every agent's own random generator.
@@ -66,9 +67,12 @@ pub fn epsilon_greedy(q: &[f64; ACTIONS], epsilon: f64, rng: &mut AgentRng) -> A
     }
 }
 
-/// Gamma(advice): the most frequent action, ties broken uniformly at random;
-/// `None` without votes.
-pub fn majority(votes: &[Action], rng: &mut AgentRng) -> Option<Action> {
+/// The authors' majority-vote tie order (see [`VoteTies::Fixed`]).
+pub const VOTE_TIE_ORDER: [Action; 4] = [PassFar, Shoot, Dribble, PassNear];
+
+/// Gamma(advice): the most frequent action, ties broken by `ties`; `None`
+/// without votes.
+pub fn majority(votes: &[Action], ties: VoteTies, rng: &mut AgentRng) -> Option<Action> {
     let mut counts = [0usize; ACTIONS];
     for a in votes {
         counts[a.index()] += 1;
@@ -77,18 +81,22 @@ pub fn majority(votes: &[Action], rng: &mut AgentRng) -> Option<Action> {
     if top == 0 {
         return None;
     }
-    let mut ties = [Shoot; ACTIONS];
+    let tied = |a: &Action| counts[a.index()] == top;
+    if ties == VoteTies::Fixed
+        && let Some(&first) = VOTE_TIE_ORDER.iter().find(|a| tied(a))
+    {
+        return Some(first);
+    }
+    let mut best = [Shoot; ACTIONS];
     let mut n = 0;
-    for a in Action::ALL {
-        if counts[a.index()] == top {
-            ties[n] = a;
-            n += 1;
-        }
+    for a in Action::ALL.iter().filter(|a| tied(a)) {
+        best[n] = *a;
+        n += 1;
     }
     Some(if n == 1 {
-        ties[0]
+        best[0]
     } else {
-        ties[rng.random_range(0..n)]
+        best[rng.random_range(0..n)]
     })
 }
 
@@ -146,18 +154,34 @@ mod tests {
     fn majority_vote_with_a_tie() {
         // Clear majority: Dribble 2 votes vs Shoot 1.
         let mut rng = AgentRng::seed_from_u64(0);
-        assert_eq!(
-            majority(&[Dribble, Shoot, Dribble], &mut rng),
-            Some(Dribble)
-        );
-        assert_eq!(majority(&[], &mut rng), None);
+        for ties in [VoteTies::Random, VoteTies::Fixed] {
+            let clear = majority(&[Dribble, Shoot, Dribble], ties, &mut rng);
+            assert_eq!(clear, Some(Dribble));
+            assert_eq!(majority(&[], ties, &mut rng), None);
+        }
         // Tie Shoot 1 - PassFar 1: the seed decides, the same seed the same way.
         let tie = [PassFar, Shoot];
-        let pick = |seed| majority(&tie, &mut AgentRng::seed_from_u64(seed)).unwrap();
+        let pick =
+            |seed| majority(&tie, VoteTies::Random, &mut AgentRng::seed_from_u64(seed)).unwrap();
         let outcomes: Vec<Action> = (0..32).map(pick).collect();
         assert!(outcomes.contains(&Shoot) && outcomes.contains(&PassFar));
         assert!(outcomes.iter().all(|a| tie.contains(a)));
         assert_eq!(outcomes, (0..32).map(pick).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn fixed_vote_ties_follow_the_authors_order_without_drawing() {
+        let mut rng = AgentRng::seed_from_u64(5);
+        let before = rng.clone();
+        let vote = |votes: &[Action], rng: &mut AgentRng| majority(votes, VoteTies::Fixed, rng);
+        assert_eq!(vote(&[Shoot, PassFar], &mut rng), Some(PassFar));
+        assert_eq!(vote(&[PassNear, Shoot], &mut rng), Some(Shoot));
+        assert_eq!(vote(&[PassNear, Dribble], &mut rng), Some(Dribble));
+        assert_eq!(
+            vote(&[Dribble, PassNear, PassNear], &mut rng),
+            Some(PassNear)
+        );
+        assert_eq!(rng, before);
     }
 
     #[test]

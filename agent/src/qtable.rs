@@ -28,6 +28,11 @@ impl Entry {
         self.tried & (1 << a.index()) != 0
     }
 
+    /// Whether any kick action has an entry.
+    pub fn any_kick_tried(&self) -> bool {
+        Action::KICK_TIE_ORDER.iter().any(|&a| self.is_tried(a))
+    }
+
     /// `max_a Q - min_a Q` over the kick actions that have an entry; 0 with
     /// fewer than two (the authors' rule, shared by AdHocTD and Torrey).
     pub fn kick_spread(&self) -> f64 {

@@ -16,6 +16,7 @@ pub use name::{StrategyName, UnknownStrategy};
 
 use crate::advice::Reachable;
 use crate::config_error::{ConfigError, require_non_negative};
+use crate::fidelity::Profile;
 
 /// The paper's budget of every advising and sharing side.
 const PAPER_BUDGET: u64 = 1000;
@@ -37,7 +38,7 @@ pub struct AdHoc {
     /// Scaling v_a of P_ask, finite and >= 0 (default 0.5).
     pub v_a: f64,
     /// Scaling v_g of P_give, finite and >= 0 (default 0.5 for `adhoc-visit`,
-    /// 1.5 for `adhoc-td`).
+    /// 0.4 under the authors' profile, 1.5 for `adhoc-td`).
     pub v_g: f64,
     /// Advisee budget b_ask: steps acted on advice (default 1000).
     pub ask_budget: u64,
@@ -125,9 +126,19 @@ pub enum Strategy {
 impl From<StrategyName> for Strategy {
     /// The strategy `name` with the paper's constants.
     fn from(name: StrategyName) -> Self {
+        Strategy::of(name, Profile::Paper)
+    }
+}
+
+impl Strategy {
+    /// The strategy `name` with the constants of `profile`.
+    pub fn of(name: StrategyName, profile: Profile) -> Self {
         match name {
             StrategyName::NoAdvice => Strategy::NoAdvice,
-            StrategyName::AdHocVisit => Strategy::AdHoc(AdHoc::visit()),
+            StrategyName::AdHocVisit => Strategy::AdHoc(AdHoc {
+                v_g: profile.visit_v_g(),
+                ..AdHoc::visit()
+            }),
             StrategyName::AdHocTd => Strategy::AdHoc(AdHoc::td()),
             StrategyName::Torrey => Strategy::Torrey(Torrey::default()),
             StrategyName::EpisodeSharing => Strategy::EpisodeSharing {
@@ -136,9 +147,7 @@ impl From<StrategyName> for Strategy {
             StrategyName::Random => Strategy::Random,
         }
     }
-}
 
-impl Strategy {
     /// Its name.
     pub fn name(&self) -> StrategyName {
         match self {

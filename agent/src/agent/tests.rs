@@ -1,6 +1,7 @@
 use super::*;
 use crate::advice::Reachable;
 use crate::exchange::Isolated;
+use crate::fidelity::{Fidelity, Profile};
 use crate::qtable::Entry;
 use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
 use crate::team::{Team, TeamError};
@@ -861,4 +862,172 @@ fn an_abandoned_ask_completes_to_nothing() {
     assert_eq!(a.digest(), after_end);
     assert_eq!(a.counters().advised_steps, 0);
     assert_ne!(before, after_end, "the episode count moved on");
+}
+
+/// `strategy` under the authors' profile.
+fn authors(strategy: Strategy) -> AgentConfig {
+    AgentConfig {
+        fidelity: Fidelity::of(Profile::Authors),
+        ..with(strategy)
+    }
+}
+
+#[test]
+fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
+    let paper = with(Strategy::Torrey(Torrey::default()));
+    let mut t = agent(1, 3, paper.clone());
+    teach(&mut t, &[]);
+    assert_eq!(t.advise(&kick_state(0), None), None);
+    // The authors': unseen states and states without a kick entry are
+    // advised, each answer a uniformly random kick, one budget unit each.
+    let mut t = agent(1, 3, authors(Strategy::Torrey(Torrey::default())));
+    let only_move = Entry {
+        tried: 0b00001,
+        ..Entry::default()
+    };
+    let one_kick = Entry {
+        tried: 0b00010,
+        ..Entry::default()
+    };
+    teach(
+        &mut t,
+        &[(kick_state(1), only_move), (kick_state(2), one_kick)],
+    );
+    let mut seen = [0u32; ACTIONS];
+    for _ in 0..200 {
+        for s in [kick_state(0), kick_state(1)] {
+            seen[t.advise(&s, None).expect("advised").index()] += 1;
+        }
+    }
+    assert_eq!(seen[Move.index()], 0);
+    assert!(
+        Action::KICK_TIE_ORDER.iter().all(|a| seen[a.index()] > 50),
+        "{seen:?}"
+    );
+    assert_eq!(t.counters().advice_given, 400);
+    // One tried kick action: spread 0, no advice.
+    assert_eq!(t.advise(&kick_state(2), None), None);
+}
+
+#[test]
+fn an_authors_torrey_student_intends_its_greedy_action() {
+    let torrey = Strategy::Torrey(Torrey {
+        mistake_correcting: true,
+        ..Torrey::default()
+    });
+    // epsilon 1: an epsilon-greedy intent would be a random draw; the greedy
+    // one is always the best value, Dribble.
+    let intents = |config: AgentConfig| {
+        let mut a = agent(
+            0,
+            3,
+            AgentConfig {
+                epsilon: 1.0,
+                ..config
+            },
+        );
+        teach(
+            &mut a,
+            &[(kick_state(0), known([0.0, 0.0, 0.7, 0.0, 0.0], 1))],
+        );
+        let mut intents = Vec::new();
+        for _ in 0..50 {
+            a.begin_episode(Mode::Training);
+            let mut silent = script(&[]);
+            let played = a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
+            let intended = silent.asked[0].2.expect("an intent");
+            assert_eq!(played, intended, "played without advice");
+            intents.push(intended);
+        }
+        intents
+    };
+    assert_eq!(intents(authors(torrey.clone())), vec![Dribble; 50]);
+    assert!(intents(with(torrey)).iter().any(|&a| a != Dribble));
+    // The ad hoc advisees keep their epsilon-greedy intent.
+    let ad_hoc = Strategy::AdHoc(AdHoc {
+        mistake_correcting: true,
+        ..AdHoc::td()
+    });
+    let intents: Vec<Action> = (0..50)
+        .map(|seed| {
+            let config = AgentConfig {
+                epsilon: 1.0,
+                ..authors(ad_hoc.clone())
+            };
+            let mut a = Agent::new(0, 3, config, seed).unwrap();
+            teach(
+                &mut a,
+                &[(kick_state(0), known([0.0, 0.0, 0.7, 0.0, 0.0], 0))],
+            );
+            let mut silent = script(&[]);
+            a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
+            silent.asked[0].2.expect("an intent")
+        })
+        .collect();
+    assert!(intents.iter().any(|&a| a != Dribble));
+}
+
+#[test]
+fn an_authors_advisor_breaks_ties_at_random() {
+    // Shoot and PassNear tie at 0.5; Torrey's spread 0.5 is above t.
+    let q = [0.0, 0.5, 0.0, 0.5, 0.0];
+    let answers = |config: AgentConfig| {
+        let mut t = agent(1, 3, config);
+        teach(&mut t, &[(kick_state(0), known(q, 1))]);
+        (0..100)
+            .map(|_| t.advise(&kick_state(0), None).expect("advised"))
+            .collect::<Vec<_>>()
+    };
+    let torrey = Strategy::Torrey(Torrey::default());
+    assert_eq!(answers(with(torrey.clone())), vec![Shoot; 100]);
+    let random = answers(authors(torrey));
+    assert!(random.contains(&Shoot) && random.contains(&PassNear));
+    assert!(random.iter().all(|a| [Shoot, PassNear].contains(a)));
+}
+
+#[test]
+fn an_authors_advisee_breaks_vote_ties_in_their_order() {
+    // A fresh advisee asks about an unvisited state for sure (P_ask = 1).
+    let vote = |config: &AgentConfig, seed: u64, votes: &[Action]| {
+        let mut a = Agent::new(0, 3, config.clone(), seed).unwrap();
+        finish_one_episode(&mut a);
+        let mut ex = script(votes);
+        let played = a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+        assert_eq!(ex.asked.len(), 1);
+        played
+    };
+    let visit = Strategy::AdHoc(AdHoc::visit());
+    let fixed = authors(visit.clone());
+    for seed in 0..10 {
+        assert_eq!(vote(&fixed, seed, &[Shoot, PassFar]), PassFar);
+        assert_eq!(vote(&fixed, seed, &[PassNear, Shoot]), Shoot);
+        assert_eq!(vote(&fixed, seed, &[PassNear, Dribble]), Dribble);
+    }
+    // The paper's rule: at random, both sides of a tie come up.
+    let random = with(visit);
+    let winners: Vec<Action> = (0..40)
+        .map(|seed| vote(&random, seed, &[PassNear, Shoot]))
+        .collect();
+    assert!(winners.contains(&PassNear) && winners.contains(&Shoot));
+}
+
+#[test]
+fn an_authors_episode_sharing_receiver_bootstraps_on_move() {
+    let (s0, s1) = (kick_state(0), kick_state(1));
+    let replay = |config: AgentConfig| {
+        let mut a = agent(1, 3, config);
+        // Q(s1, Dribble) = 1, Q(s1, Move) = 0.
+        teach(&mut a, &[(s1, known([0.0, 0.0, 1.0, 0.0, 0.0], 1))]);
+        a.receive_shared(&[Transition {
+            state: s0,
+            action: Shoot,
+            reward: 0.0,
+            next: Some((s1, Dribble)),
+        }]);
+        a.table().get(a.key(&s0)).unwrap().q[Shoot.index()]
+    };
+    let sharing = Strategy::from(StrategyName::EpisodeSharing);
+    // delta = 0 + 0.9 * Q(s1, next) - 0, times alpha 0.1 and trace 1.
+    assert!((replay(with(sharing.clone())) - 0.09).abs() < 1e-12);
+    assert_eq!(replay(authors(sharing)), 0.0);
 }

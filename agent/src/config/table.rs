@@ -7,6 +7,9 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::AgentConfig;
 use crate::advice::Reachable;
+use crate::fidelity::{
+    AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
+};
 use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
 
 impl Serialize for AgentConfig {
@@ -44,6 +47,7 @@ struct Plain {
     tile_step: f64,
     trace_threshold: f64,
     strategy: Strategy,
+    fidelity: Fidelity,
 }
 
 /// The flat table: the learner's keys, `strategy`, and the keys of that
@@ -76,11 +80,30 @@ struct Table {
     sharing_budget: Option<u64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     reachable: Option<Reachable>,
+    profile: Profile,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    torrey_unknown_state: Option<TorreyUnknownState>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    torrey_intent: Option<TorreyIntent>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    advisor_ties: Option<AdvisorTies>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    vote_ties: Option<VoteTies>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shared_bootstrap: Option<SharedBootstrap>,
 }
 
 impl Default for Table {
+    /// The learner's defaults; no strategy or fidelity key given.
     fn default() -> Self {
-        Table::from(&AgentConfig::default())
+        Table {
+            torrey_unknown_state: None,
+            torrey_intent: None,
+            advisor_ties: None,
+            vote_ties: None,
+            shared_bootstrap: None,
+            ..Table::from(&AgentConfig::default())
+        }
     }
 }
 
@@ -104,6 +127,12 @@ impl From<&AgentConfig> for Table {
             importance_threshold: None,
             sharing_budget: None,
             reachable: None,
+            profile: c.fidelity.profile,
+            torrey_unknown_state: Some(c.fidelity.torrey_unknown_state),
+            torrey_intent: Some(c.fidelity.torrey_intent),
+            advisor_ties: Some(c.fidelity.advisor_ties),
+            vote_ties: Some(c.fidelity.vote_ties),
+            shared_bootstrap: Some(c.fidelity.shared_bootstrap),
         };
         match &c.strategy {
             Strategy::AdHoc(a) => {
@@ -136,10 +165,20 @@ fn take<T>(key: &mut Option<T>, field: &mut T) {
 }
 
 impl Table {
-    /// The configuration, with the paper's constants for the strategy keys
-    /// left out; a key the strategy does not have is an error naming it.
+    /// The configuration, with the profile's constants for the strategy and
+    /// fidelity keys left out; a key the strategy does not have is an error
+    /// naming it.
     fn into_config(mut self) -> Result<AgentConfig, String> {
-        let mut strategy = Strategy::from(self.strategy);
+        let mut strategy = Strategy::of(self.strategy, self.profile);
+        let mut fidelity = Fidelity::of(self.profile);
+        take(
+            &mut self.torrey_unknown_state,
+            &mut fidelity.torrey_unknown_state,
+        );
+        take(&mut self.torrey_intent, &mut fidelity.torrey_intent);
+        take(&mut self.advisor_ties, &mut fidelity.advisor_ties);
+        take(&mut self.vote_ties, &mut fidelity.vote_ties);
+        take(&mut self.shared_bootstrap, &mut fidelity.shared_bootstrap);
         match &mut strategy {
             Strategy::AdHoc(AdHoc {
                 confidence: _,
@@ -196,6 +235,7 @@ impl Table {
             tile_step: self.tile_step,
             trace_threshold: self.trace_threshold,
             strategy,
+            fidelity,
         })
     }
 
@@ -261,6 +301,13 @@ mod tests {
             })),
             with(Strategy::EpisodeSharing { sharing_budget: 9 }),
             with(Strategy::Random),
+            AgentConfig {
+                fidelity: Fidelity {
+                    vote_ties: VoteTies::Random,
+                    ..Fidelity::of(Profile::Authors)
+                },
+                ..with(Strategy::of(StrategyName::AdHocVisit, Profile::Authors))
+            },
         ]
     }
 
@@ -303,6 +350,12 @@ mod tests {
                 "tile_step",
                 "trace_threshold",
                 "strategy",
+                "profile",
+                "torrey_unknown_state",
+                "torrey_intent",
+                "advisor_ties",
+                "vote_ties",
+                "shared_bootstrap",
             ];
             let mut own: Vec<String> = map
                 .keys()
@@ -350,6 +403,30 @@ mod tests {
                 ..AgentConfig::default()
             }
         );
+    }
+
+    #[test]
+    fn the_profile_sets_the_defaults_and_keys_override_it() {
+        let c: AgentConfig =
+            toml::from_str("strategy = \"adhoc-visit\"\nprofile = \"authors\"\n").unwrap();
+        assert_eq!(c.fidelity, Fidelity::of(Profile::Authors));
+        let Strategy::AdHoc(a) = &c.strategy else {
+            panic!("ad hoc expected");
+        };
+        assert_eq!(a.v_g, 0.4);
+        let text = "strategy = \"adhoc-visit\"\nprofile = \"authors\"\nv_g = 0.5\n\
+                    advisor_ties = \"first\"\n";
+        let c: AgentConfig = toml::from_str(text).unwrap();
+        assert_eq!(c.fidelity.advisor_ties, AdvisorTies::First);
+        assert_eq!(c.fidelity.vote_ties, VoteTies::Fixed);
+        assert_eq!(c.strategy, Strategy::AdHoc(AdHoc::visit()));
+        // Without a profile: the paper's.
+        let c: AgentConfig = toml::from_str("strategy = \"adhoc-visit\"\n").unwrap();
+        assert_eq!(c.fidelity, Fidelity::of(Profile::Paper));
+        let e = toml::from_str::<AgentConfig>("vote_ties = \"alphabetical\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("random") && e.contains("fixed"), "{e}");
     }
 
     #[test]

@@ -6,6 +6,7 @@
 use super::{AdHoc, Confidence, Strategy, Torrey};
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::counters::Counters;
+use crate::fidelity::TorreyUnknownState;
 use crate::policy::{AgentRng, chance};
 use crate::qtable::Entry;
 
@@ -65,10 +66,18 @@ impl Strategy {
         }
     }
 
-    /// Advisor side: whether it is confident enough about a state it knows
-    /// (`entry`) to answer (Algorithm 2, or Torrey's importance). Draws only
-    /// for an ad hoc advisor with budget left and a visited state.
-    pub(crate) fn confident(&self, entry: &Entry, counters: &Counters, rng: &mut AgentRng) -> bool {
+    /// Advisor side: whether it is confident enough about a state (`entry`,
+    /// all zero when it never saw the state) to answer (Algorithm 2, or
+    /// Torrey's importance; `unknown` says what Torrey's teacher does where
+    /// it has no kick entry). Draws only for an ad hoc advisor with budget
+    /// left and a visited state.
+    pub(crate) fn confident(
+        &self,
+        entry: &Entry,
+        counters: &Counters,
+        unknown: TorreyUnknownState,
+        rng: &mut AgentRng,
+    ) -> bool {
         match self {
             Strategy::AdHoc(AdHoc {
                 confidence,
@@ -89,7 +98,11 @@ impl Strategy {
                 give_budget,
                 ..
             }) => {
-                counters.advice_given < *give_budget && entry.kick_spread() > *importance_threshold
+                let importance = match unknown {
+                    TorreyUnknownState::Advise if !entry.any_kick_tried() => f64::INFINITY,
+                    _ => entry.kick_spread(),
+                };
+                counters.advice_given < *give_budget && importance > *importance_threshold
             }
             Strategy::NoAdvice | Strategy::EpisodeSharing { .. } | Strategy::Random => false,
         }

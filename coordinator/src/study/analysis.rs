@@ -79,7 +79,7 @@ pub fn compare(a: &EntryResults, b: &EntryResults, alpha: f64) -> Comparison {
 
 /// Every pair of the study's experiments, in entry order.
 pub fn compare_all(study: &StudyConfig, entries: &[EntryResults]) -> Vec<Comparison> {
-    let alpha = 1.0 - study.ci_level;
+    let alpha = 1.0 - study.ci_level();
     let mut out = Vec::new();
     for (i, a) in entries.iter().enumerate() {
         for b in &entries[i + 1..] {

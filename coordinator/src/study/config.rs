@@ -2,15 +2,18 @@
 
 use std::path::Path;
 
-use agent::{Strategy, StrategyName};
+use agent::{
+    AdvisorTies, Fidelity, Profile, SharedBootstrap, Strategy, StrategyName, TorreyIntent,
+    TorreyUnknownState, VoteTies,
+};
 use serde::{Deserialize, Serialize};
 
-use crate::config::{AgentSpec, DEFAULT_CI_LEVEL, ExperimentConfig};
+use crate::config::{AgentSpec, EPISODES, ExperimentConfig, check_range};
 use crate::error::ConfigError;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 4] = [
+pub const PRESETS: [(&str, &str); 5] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -23,6 +26,10 @@ pub const PRESETS: [(&str, &str); 4] = [
     (
         "paper-expert",
         include_str!("../../presets/paper-expert.toml"),
+    ),
+    (
+        "fidelity-sensitivity",
+        include_str!("../../presets/fidelity-sensitivity.toml"),
     ),
 ];
 
@@ -49,9 +56,13 @@ pub struct StudyConfig {
     /// Where agents and simulator live.
     #[serde(default)]
     pub transport: Transport,
-    /// Confidence level of intervals and tests.
-    #[serde(default = "default_ci_level")]
-    pub ci_level: f64,
+    /// The fidelity profile of every agent (entries may change single
+    /// settings) and the default confidence level.
+    #[serde(default)]
+    pub profile: Profile,
+    /// Confidence level of intervals and tests (default: the profile's).
+    #[serde(default)]
+    pub ci_level: Option<f64>,
     /// The entry every other is compared with in the report.
     #[serde(default)]
     pub baseline: Option<String>,
@@ -65,10 +76,6 @@ pub struct StudyConfig {
 
 fn default_seed() -> u64 {
     1
-}
-
-fn default_ci_level() -> f64 {
-    DEFAULT_CI_LEVEL
 }
 
 /// Pretraining: one run of a homogeneous team whose agent `expert` is saved.
@@ -98,6 +105,24 @@ pub struct Entry {
     /// from the expert's tables and never asks.
     #[serde(default)]
     pub expert: bool,
+    /// AdHocVisit's or AdHocTD's v_g, instead of the profile's.
+    #[serde(default)]
+    pub v_g: Option<f64>,
+    /// Single fidelity settings, instead of the study profile's.
+    #[serde(default)]
+    pub torrey_unknown_state: Option<TorreyUnknownState>,
+    /// See [`Fidelity::torrey_intent`].
+    #[serde(default)]
+    pub torrey_intent: Option<TorreyIntent>,
+    /// See [`Fidelity::advisor_ties`].
+    #[serde(default)]
+    pub advisor_ties: Option<AdvisorTies>,
+    /// See [`Fidelity::vote_ties`].
+    #[serde(default)]
+    pub vote_ties: Option<VoteTies>,
+    /// See [`Fidelity::shared_bootstrap`].
+    #[serde(default)]
+    pub shared_bootstrap: Option<SharedBootstrap>,
 }
 
 /// Team size of every study (the paper's 3 offense agents).
@@ -128,9 +153,15 @@ impl StudyConfig {
     }
 
     fn parse(text: &str, origin: &str) -> Result<Self, ConfigError> {
-        let config: Self = toml::from_str(text)
+        let mut config: Self = toml::from_str(text)
             .map_err(|e| ConfigError::new("config", format!("{origin}: {}", e.message())))?;
+        config.ci_level = Some(config.ci_level());
         Ok(config)
+    }
+
+    /// The confidence level: as given, else the profile's.
+    pub fn ci_level(&self) -> f64 {
+        self.ci_level.unwrap_or(self.profile.ci_level())
     }
 
     /// Checks every setting and every experiment, naming the first bad key.
@@ -170,7 +201,7 @@ impl StudyConfig {
                     "use letters, digits, '-' and '_'",
                 ));
             }
-            e.strategy()
+            e.strategy(self.profile)
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
             if e.expert && self.pretrain.is_none() {
                 return Err(ConfigError::new(
@@ -197,20 +228,19 @@ impl StudyConfig {
                     format!("must be below the team size {TEAM}, got {}", p.expert),
                 ));
             }
-            if p.episodes == 0 {
-                return Err(ConfigError::new("pretrain.episodes", "must be at least 1"));
-            }
+            check_range("pretrain.episodes", p.episodes, 1..=*EPISODES.end())?;
         }
         Ok(())
     }
 
     /// The experiment of `entry`; `expert` is the pretrained snapshot when it has one.
     pub fn experiment(&self, entry: &Entry, expert: Option<&Path>) -> ExperimentConfig {
-        let mut spec = AgentSpec::of(entry.algorithm);
-        // `validate` rejects Mistake Correcting where the strategy has no such mode.
-        if let Ok(strategy) = entry.strategy() {
+        let mut spec = AgentSpec::of(entry.algorithm, self.profile);
+        // `validate` rejects the keys the strategy does not have.
+        if let Ok(strategy) = entry.strategy(self.profile) {
             spec.config.strategy = strategy;
         }
+        spec.config.fidelity = entry.fidelity(self.profile);
         let mut team = vec![spec; TEAM];
         if let (true, Some(p)) = (entry.expert, &self.pretrain) {
             let agent = &mut team[p.expert];
@@ -227,7 +257,7 @@ impl StudyConfig {
             eval_every: self.eval_every,
             eval_episodes: self.eval_episodes,
             seed: self.seed,
-            ci_level: self.ci_level,
+            ci_level: self.ci_level(),
             transport: self.transport.clone(),
             team,
             ..ExperimentConfig::default()
@@ -242,21 +272,47 @@ impl StudyConfig {
             eval_every: p.episodes,
             eval_episodes: self.eval_episodes,
             seed: self.seed,
-            ci_level: self.ci_level,
+            ci_level: self.ci_level(),
             transport: self.transport.clone(),
-            team: vec![AgentSpec::of(p.algorithm); TEAM],
+            team: vec![AgentSpec::of(p.algorithm, self.profile); TEAM],
             ..ExperimentConfig::default()
         }
     }
 }
 
 impl Entry {
-    /// The team's strategy: the paper's constants, with Mistake Correcting
-    /// when asked for (an error for a strategy without that mode).
-    pub fn strategy(&self) -> Result<Strategy, agent::ConfigError> {
-        let mut strategy = Strategy::from(self.algorithm);
+    /// The team's strategy: the constants of `profile`, with Mistake
+    /// Correcting and v_g when asked for (an error for a strategy without
+    /// that mode or constant).
+    pub fn strategy(&self, profile: Profile) -> Result<Strategy, agent::ConfigError> {
+        let mut strategy = Strategy::of(self.algorithm, profile);
         strategy.set_mistake_correcting(self.mistake_correcting)?;
+        if let Some(v_g) = self.v_g {
+            let Strategy::AdHoc(a) = &mut strategy else {
+                return Err(agent::ConfigError {
+                    key: "v_g",
+                    reason: format!("only for adhoc-visit and adhoc-td, not {}", self.algorithm),
+                });
+            };
+            a.v_g = v_g;
+        }
         Ok(strategy)
+    }
+
+    /// The team's fidelity settings: those of `profile`, with the entry's own.
+    pub fn fidelity(&self, profile: Profile) -> Fidelity {
+        fn set<T: Copy>(field: &mut T, value: Option<T>) {
+            if let Some(v) = value {
+                *field = v;
+            }
+        }
+        let mut f = Fidelity::of(profile);
+        set(&mut f.torrey_unknown_state, self.torrey_unknown_state);
+        set(&mut f.torrey_intent, self.torrey_intent);
+        set(&mut f.advisor_ties, self.advisor_ties);
+        set(&mut f.vote_ties, self.vote_ties);
+        set(&mut f.shared_bootstrap, self.shared_bootstrap);
+        f
     }
 }
 
@@ -282,6 +338,37 @@ mod tests {
             (50, 5000, 20, 100)
         );
         assert_eq!(paper.entries.len(), 6);
+    }
+
+    #[test]
+    fn the_profile_reaches_every_agent_and_entries_change_single_settings() {
+        let study = StudyConfig::preset("fidelity-sensitivity").unwrap();
+        assert_eq!((study.profile, study.ci_level()), (Profile::Authors, 0.9));
+        let team = |name: &str| {
+            let entry = study.entries.iter().find(|e| e.name == name).unwrap();
+            study.experiment(entry, None).team
+        };
+        let torrey = &team("torrey")[0].config;
+        assert_eq!(torrey.fidelity, Fidelity::of(Profile::Authors));
+        let silent = &team("torrey-unknown-silent")[2].config;
+        assert_eq!(
+            silent.fidelity,
+            Fidelity {
+                torrey_unknown_state: TorreyUnknownState::Silent,
+                ..Fidelity::of(Profile::Authors)
+            }
+        );
+        let v_g = |name: &str| match &team(name)[1].config.strategy {
+            Strategy::AdHoc(a) => a.v_g,
+            other => panic!("ad hoc expected, got {other:?}"),
+        };
+        assert_eq!((v_g("adhoc-visit"), v_g("adhoc-visit-vg-0-5")), (0.4, 0.5));
+        // The paper presets follow the authors; the quick one the paper.
+        for name in ["paper-scratch", "paper-mistake-correcting", "paper-expert"] {
+            assert_eq!(StudyConfig::preset(name).unwrap().profile, Profile::Authors);
+        }
+        let quick = StudyConfig::preset("quick").unwrap();
+        assert_eq!((quick.profile, quick.ci_level()), (Profile::Paper, 0.95));
     }
 
     #[test]
@@ -324,6 +411,10 @@ mod tests {
             "{base}[[entry]]\nname = \"a\"\nalgorithm = \"no-advice\"\nmistake_correcting = true\n"
         ));
         assert!(mc.contains("entry[0].mistake_correcting"), "{mc}");
+        let v_g = err(&format!(
+            "{base}[[entry]]\nname = \"a\"\nalgorithm = \"torrey\"\nv_g = 0.5\n"
+        ));
+        assert!(v_g.contains("entry[0].v_g"), "{v_g}");
         assert!(
             err(&format!(
                 "{base}[[entry]]\nname = \"a\"\nalgorithm = \"ad-hoc-td\"\n\n[[entry]]\nname = \"a\"\nalgorithm = \"adhoc-td\"\n"

@@ -25,7 +25,7 @@ pub fn write_report(
     store::write_json(&out.join("significance.json"), &comparisons)?;
     let sets: Vec<SeriesSet> = entries
         .iter()
-        .map(|e| series_set(e, study.ci_level))
+        .map(|e| series_set(e, study.ci_level()))
         .collect();
     let figures = draw_figures(&sets)?;
     let figures_dir = out.join("figures");
@@ -36,7 +36,7 @@ pub fn write_report(
         }
     }
 
-    let level = study.ci_level;
+    let level = study.ci_level();
     let pct = 100.0 * level;
     let points = entries[0].results[0].points.len();
     let mut md = String::new();
@@ -47,8 +47,8 @@ pub fn write_report(
     let _ = writeln!(
         md,
         "{} runs x {} training episodes per algorithm; an evaluation of {} episodes with every agent \
-         frozen before training and every {} episodes ({points} points); seed {}; transport {}. \
-         Intervals: {pct}% Student's t over runs. Tests: Wilcoxon signed-rank on goal percentage, \
+         frozen before training and every {} episodes ({points} points); seed {}; transport {}; \
+         fidelity profile {} (docs/fidelity.md). Intervals: {pct}% Student's t over runs. Tests: Wilcoxon signed-rank on goal percentage, \
          paired by run, two-sided, at the {pct}% level. Wall time of this invocation: {:.1} s.\n",
         study.runs,
         study.episodes,
@@ -56,6 +56,7 @@ pub fn write_report(
         study.eval_every,
         study.seed,
         study.transport.name(),
+        study.profile,
         wall.as_secs_f64(),
     );
     if let Some(p) = &study.pretrain {
