@@ -15,14 +15,19 @@ EXPERIMENT=${EXPERIMENT:-local-$$}
 BIN=${BIN:-target/release}
 [ -x "$BIN/coordinator" ] || cargo build --release --workspace
 pids=()
-cleanup() { kill "${pids[@]}" 2>/dev/null || true; wait 2>/dev/null || true; }
+# The experiment's secret, in a directory only this user can enter.
+secret_dir=$(mktemp -d)
+SECRET=$secret_dir/secret
+cleanup() { kill "${pids[@]}" 2>/dev/null || true; wait 2>/dev/null || true; rm -rf "$secret_dir"; }
 trap cleanup EXIT INT TERM
-"$BIN/env-server" serve --experiment "$EXPERIMENT" --listen "tcp/127.0.0.1:$PORT" &
+"$BIN/coordinator" secret "$SECRET"
+"$BIN/env-server" serve --experiment "$EXPERIMENT" --listen "tcp/127.0.0.1:$PORT" \
+    --secret-file "$SECRET" &
 pids+=($!)
 for ((i = 0; i < AGENTS; i++)); do
     "$BIN/agent" --experiment "$EXPERIMENT" --id "$i" --team-size "$AGENTS" \
-        --connect "tcp/127.0.0.1:$PORT" &
+        --connect "tcp/127.0.0.1:$PORT" --secret-file "$SECRET" &
     pids+=($!)
 done
 "$BIN/coordinator" run --transport zenoh --attach --experiment "$EXPERIMENT" \
-    --connect "tcp/127.0.0.1:$PORT" --offense "$AGENTS" "$@"
+    --connect "tcp/127.0.0.1:$PORT" --secret-file "$SECRET" --offense "$AGENTS" "$@"

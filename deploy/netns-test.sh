@@ -18,7 +18,9 @@
 # (agent 2 on adv-b got replies, all from adv-a, and agents 0 and 1 got more
 # replies than they sent requests, so agent 2 answered them); and both agents
 # on adv-a had a direct TCP connection to adv-b while the experiment ran
-# (advice goes agent to agent, not through env-server). It also prints which
+# (advice goes agent to agent, not through env-server); and an agent started
+# on adv-b without the experiment's secret is refused (exit 2, "cannot join
+# the zenoh network"). Every process gets --secret-file. It also prints which
 # processes are still running after the coordinator has finished.
 #
 #   sudo deploy/netns-test.sh [--skip-if-unavailable] [--keep] [--listen-any]
@@ -231,9 +233,13 @@ setup_network
 # every interface of its host, as in the README.
 listen_on() { if [ "$listen_any" = 1 ]; then echo "tcp/0.0.0.0:$2"; else echo "tcp/$1:$2"; fi; }
 
+# The experiment's secret: every process gets the file (on real hosts, a
+# copy of it, mode 600).
+"$BIN/coordinator" secret "$work/secret"
+
 say "env-server on $NS_SIM, listening on $(listen_on "$SIM_IP" "$PORT")"
 start env-server "$NS_SIM" "$BIN/env-server" serve --experiment "$EXPERIMENT" \
-    --listen "$(listen_on "$SIM_IP" "$PORT")"
+    --listen "$(listen_on "$SIM_IP" "$PORT")" --secret-file "$work/secret"
 for _ in $(seq 100); do
     [ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] && break
     kill -0 "$(pid_of env-server)" 2>/dev/null || fail "env-server exited (see $work/env-server.log)"
@@ -250,7 +256,7 @@ done
 say "agents 0, 1 on $NS_A and 2 on $NS_B, listening on $(listen_on "<host>" 0), connecting to $RENDEZVOUS"
 agent() { # ID NAMESPACE ADDRESS
     start "agent-$1" "$2" "$BIN/agent" --experiment "$EXPERIMENT" --id "$1" --team-size 3 \
-        --listen "$(listen_on "$3" 0)" --connect "$RENDEZVOUS"
+        --listen "$(listen_on "$3" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret"
 }
 agent 0 "$NS_A" "$A_IP"
 agent 1 "$NS_A" "$A_IP"
@@ -271,13 +277,25 @@ names+=(ss-sampler)
 
 say "coordinator on $NS_SIM: ${RUN_ARGS[*]}"
 start coordinator "$NS_SIM" timeout "$TIMEOUT" "$BIN/coordinator" run --transport zenoh --attach \
-    --experiment "$EXPERIMENT" --connect "$RENDEZVOUS" "${RUN_ARGS[@]}" --quiet --out "$work/out"
+    --experiment "$EXPERIMENT" --connect "$RENDEZVOUS" --listen "$(listen_on "$SIM_IP" 0)" \
+    --secret-file "$work/secret" \
+    "${RUN_ARGS[@]}" --quiet --out "$work/out"
 started=$SECONDS
 # `wait` in the background, so that Ctrl-C runs the cleanup at once.
 coordinator_rc=0
 wait "$(pid_of coordinator)" || coordinator_rc=$?
 say "coordinator exited $coordinator_rc after $((SECONDS - started)) s$([ "$coordinator_rc" != 124 ] || echo " (killed: TIMEOUT=$TIMEOUT s)")"
 kill "$(pid_of ss-sampler)" 2>/dev/null || true
+
+# A host without the secret cannot join: an agent on adv-b started without
+# it is refused by the rendezvous (exit 2, "cannot join").
+intruder_rc=0
+ip netns exec "$NS_B" timeout 30 "$BIN/agent" --experiment "$EXPERIMENT" --id 2 --team-size 3 \
+    --listen "$(listen_on "$B_IP" 0)" --connect "$RENDEZVOUS" --no-auth \
+    >"$work/intruder.log" 2>&1 || intruder_rc=$?
+grep -q "cannot join the zenoh network" "$work/intruder.log" && [ "$intruder_rc" = 2 ] ||
+    fail "a host without the secret was not refused (rc $intruder_rc, see $work/intruder.log)"
+say "a host without the secret is refused: $(cat "$work/intruder.log")"
 
 # The README says attached processes keep running for the next experiment:
 # report which ones did (a second later).

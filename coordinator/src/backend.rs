@@ -14,6 +14,9 @@ pub struct Episode {
     pub outcome: Outcome,
     /// Agent decisions taken (the authors' "frames").
     pub frames: u32,
+    /// Awaited actions that did not reach the simulator in time and were
+    /// played as Move (always 0 in process).
+    pub actions_timed_out: u32,
 }
 
 /// One agent's budgets and communication so far.
@@ -37,7 +40,8 @@ pub struct AgentStats {
     pub messages_received: u64,
     /// Bytes received (0 in process).
     pub bytes_received: u64,
-    /// Received messages dropped as malformed, foreign, stale or duplicate.
+    /// Received messages dropped as malformed, foreign, stale, duplicate or
+    /// unrequested advice.
     pub dropped: u64,
 }
 

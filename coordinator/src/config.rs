@@ -1,9 +1,10 @@
 //! What one experiment is: the protocol's numbers, the simulator's settings
 //! and one [`AgentSpec`] per agent, with validation that names the bad key.
 
+use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-use agent::{AgentConfig, StrategyName};
+use agent::{AgentConfig, Fidelity, Profile, Strategy, StrategyName};
 use env_server::EnvConfig;
 use serde::{Deserialize, Serialize};
 
@@ -73,11 +74,13 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
 }
 
 impl AgentSpec {
-    /// An agent running `strategy` from scratch with the paper's constants.
-    pub fn of(strategy: StrategyName) -> Self {
+    /// An agent running `strategy` from scratch with the constants and
+    /// fidelity settings of `profile`.
+    pub fn of(strategy: StrategyName, profile: Profile) -> Self {
         Self {
             config: AgentConfig {
-                strategy: strategy.into(),
+                strategy: Strategy::of(strategy, profile),
+                fidelity: Fidelity::of(profile),
                 ..AgentConfig::default()
             },
             ..Self::default()
@@ -90,6 +93,29 @@ pub const DEFAULT_CI_LEVEL: f64 = 0.95;
 
 fn default_ci_level() -> f64 {
     DEFAULT_CI_LEVEL
+}
+
+/// Accepted runs R.
+pub const RUNS: RangeInclusive<u64> = 1..=100_000;
+/// Accepted training episodes N per run.
+pub const EPISODES: RangeInclusive<u64> = 0..=100_000_000;
+/// Accepted evaluation intervals K.
+pub const EVAL_EVERY: RangeInclusive<u64> = 1..=100_000_000;
+/// Accepted episodes M per evaluation.
+pub const EVAL_EPISODES: RangeInclusive<u64> = 1..=1_000_000;
+/// At most this many evaluations per run.
+pub const MAX_EVAL_POINTS: u64 = 1_000_000;
+
+/// `Ok` when `value` lies in `range`, else an error naming `key` and the range.
+pub fn check_range(key: &str, value: u64, range: RangeInclusive<u64>) -> Result<(), ConfigError> {
+    if range.contains(&value) {
+        Ok(())
+    } else {
+        Err(ConfigError::new(
+            key,
+            format!("must be {} to {}, got {value}", range.start(), range.end()),
+        ))
+    }
 }
 
 /// One experiment: docs/algorithms.md section 4 for one configuration.
@@ -133,25 +159,32 @@ impl Default for ExperimentConfig {
             seed: 1,
             ci_level: DEFAULT_CI_LEVEL,
             transport: Transport::InProcess,
-            team: vec![AgentSpec::of(StrategyName::NoAdvice); env.offense],
+            team: vec![AgentSpec::of(StrategyName::NoAdvice, Profile::Paper); env.offense],
             env,
         }
     }
 }
 
 impl ExperimentConfig {
-    /// Returns the first invalid value, naming its key and what is accepted.
+    /// Returns the first invalid value, naming its key and what is accepted
+    /// ([`RUNS`], [`EPISODES`], [`EVAL_EVERY`], [`EVAL_EPISODES`],
+    /// [`MAX_EVAL_POINTS`]).
     pub fn validate(&self) -> Result<(), ConfigError> {
-        let at_least_one = |key: &str, value: u64| {
-            if value == 0 {
-                Err(ConfigError::new(key, "must be at least 1, got 0"))
-            } else {
-                Ok(())
-            }
-        };
-        at_least_one("runs", self.runs)?;
-        at_least_one("eval_every", self.eval_every)?;
-        at_least_one("eval_episodes", self.eval_episodes)?;
+        check_range("runs", self.runs, RUNS)?;
+        check_range("episodes", self.episodes, EPISODES)?;
+        check_range("eval_every", self.eval_every, EVAL_EVERY)?;
+        check_range("eval_episodes", self.eval_episodes, EVAL_EPISODES)?;
+        let points = self.episodes / self.eval_every + 2;
+        if points > MAX_EVAL_POINTS {
+            return Err(ConfigError::new(
+                "eval_every",
+                format!(
+                    "{} episodes evaluated every {} make {points} evaluations, at most \
+                     {MAX_EVAL_POINTS}: evaluate less often",
+                    self.episodes, self.eval_every
+                ),
+            ));
+        }
         if !(self.ci_level > 0.0 && self.ci_level < 1.0) {
             return Err(ConfigError::new(
                 "ci_level",
@@ -390,7 +423,7 @@ mod tests {
         c.team[2] = AgentSpec {
             load: Some("a/b.qtable".into()),
             keep_counters: true,
-            ..AgentSpec::of(StrategyName::Torrey)
+            ..AgentSpec::of(StrategyName::Torrey, Profile::Paper)
         };
         let json = serde_json::to_string(&c).unwrap();
         assert_eq!(serde_json::from_str::<ExperimentConfig>(&json).unwrap(), c);

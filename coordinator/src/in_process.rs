@@ -85,6 +85,7 @@ impl Backend for InProcess {
                 return Ok(Episode {
                     outcome,
                     frames: env.frame(),
+                    actions_timed_out: 0,
                 });
             }
             reward = outcome.reward();

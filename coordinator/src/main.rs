@@ -4,12 +4,12 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use agent::StrategyName;
+use agent::{Profile, StrategyName};
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use coordinator::study::{StudyConfig, StudyOptions};
-use coordinator::transport::TRANSPORT_NAMES;
+use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
     AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
     Transport, ZenohSettings, load_team_file, run_experiment,
@@ -33,12 +33,19 @@ enum Command {
     /// Run a study: every algorithm of a preset or study file, statistics,
     /// figures and REPORT.md; resumes in the same directory.
     Study(StudyArgs),
+    /// Write a new random experiment secret to FILE (mode 600), for
+    /// processes started by hand: give every one `--secret-file FILE`.
+    Secret {
+        /// Where to write it; must not exist.
+        file: PathBuf,
+    },
 }
 
 #[derive(Args)]
 #[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
 struct StudyArgs {
-    /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert.
+    /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
+    /// fidelity-sensitivity.
     #[arg(long, value_name = "NAME")]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).
@@ -53,8 +60,8 @@ struct StudyArgs {
     /// Override where agents and simulator live: in-process or zenoh.
     #[arg(long, value_parser = TRANSPORT_NAMES)]
     transport: Option<String>,
-    /// Worker threads for in-process runs (default: one per core).
-    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
+    /// Worker threads for in-process runs, 1 to 1024 (default: one per core).
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..=1024))]
     threads: Option<u64>,
     /// Output directory: one directory per experiment, figures, REPORT.md.
     #[arg(long, value_name = "DIR")]
@@ -96,14 +103,24 @@ struct RunArgs {
     /// Experiment seed; every run's seeds derive from it.
     #[arg(long, value_name = "S", default_value_t = 1)]
     seed: u64,
-    /// Confidence level of the summary's intervals.
-    #[arg(long, value_name = "LEVEL", default_value_t = coordinator::config::DEFAULT_CI_LEVEL)]
-    ci_level: f64,
+    /// Fidelity profile of the agents with --algorithm: the paper's text
+    /// (paper) or the authors' published code (authors); docs/fidelity.md.
+    #[arg(
+        long,
+        value_name = "PROFILE",
+        default_value = "paper",
+        conflicts_with = "team"
+    )]
+    profile: Profile,
+    /// Confidence level of the summary's intervals (default: the profile's,
+    /// 0.95 for paper, 0.90 for authors).
+    #[arg(long, value_name = "LEVEL")]
+    ci_level: Option<f64>,
     /// Offense agents (the paper: 3); with --team, the team's size.
     #[arg(long)]
     offense: Option<usize>,
-    /// Worker threads, one run each at a time (default: one per core).
-    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..))]
+    /// Worker threads, one run each at a time, 1 to 1024 (default: one per core).
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..=1024))]
     threads: Option<u64>,
     /// Where agents and simulator live: separate processes over zenoh, or
     /// library calls in this process (in-process: fast, bit-for-bit deterministic).
@@ -132,6 +149,15 @@ struct NetworkArgs {
     /// Loopback port this coordinator listens on for its processes (0: any free port).
     #[arg(long, default_value_t = 0)]
     port: u16,
+    /// With --attach: the endpoint this coordinator listens on, reachable
+    /// from every process's host (default: a free loopback port).
+    #[arg(
+        long,
+        value_name = "ENDPOINT",
+        requires = "attach",
+        conflicts_with = "port"
+    )]
+    listen: Option<String>,
     /// zenoh endpoint to connect to, e.g. a router (repeatable).
     #[arg(long, value_name = "ENDPOINT")]
     connect: Vec<String>,
@@ -142,14 +168,28 @@ struct NetworkArgs {
     /// Directory of the env-server and agent executables (default: next to this one).
     #[arg(long, value_name = "DIR")]
     bin_dir: Option<PathBuf>,
+    /// The experiment's secret file (one `user:password` line, mode 600);
+    /// needed with --attach. Default: a new secret in a private temporary
+    /// file, handed to the processes this coordinator starts.
+    #[arg(long, value_name = "FILE")]
+    secret_file: Option<PathBuf>,
+    /// Join and start processes without authentication: anyone who can
+    /// reach the endpoints can then read and send every message.
+    #[arg(long, conflicts_with = "secret_file")]
+    no_auth: bool,
     /// How long an agent waits for advice (ms; default 5).
     #[arg(long, value_name = "MS")]
     advice_timeout_ms: Option<u64>,
     /// How long env-server waits for a kicker's action before Move (ms; default 1000).
     #[arg(long, value_name = "MS")]
     step_timeout_ms: Option<u64>,
-    /// How long to wait for every process to join (s).
-    #[arg(long, value_name = "S", default_value_t = 30)]
+    /// How long a kicker may send no action, frame after frame, before the
+    /// run ends with an error (ms; default 10000).
+    #[arg(long, value_name = "MS")]
+    stall_limit_ms: Option<u64>,
+    /// How long to wait for every process to join (s, 1 to 3600).
+    #[arg(long, value_name = "S", default_value_t = 30,
+          value_parser = clap::value_parser!(u64).range(1..=3600))]
     startup_timeout: u64,
 }
 
@@ -167,12 +207,19 @@ impl NetworkArgs {
         ZenohSettings {
             advice_timeout_ms: self.advice_timeout_ms.unwrap_or(base.advice_timeout_ms),
             step_timeout_ms: self.step_timeout_ms.unwrap_or(base.step_timeout_ms),
+            stall_limit_ms: self.stall_limit_ms.unwrap_or(base.stall_limit_ms),
             endpoints: Endpoints {
                 experiment: self.experiment.clone().unwrap_or_else(unique),
                 port: self.port,
+                listen: self.listen.clone(),
                 connect: self.connect.clone(),
                 attach: self.attach,
                 bin_dir: self.bin_dir.clone(),
+                auth: match (&self.secret_file, self.no_auth) {
+                    (Some(file), _) => Auth::File(file.clone()),
+                    (None, true) => Auth::Off,
+                    (None, false) => Auth::Generated,
+                },
                 startup_timeout: std::time::Duration::from_secs(self.startup_timeout),
             },
         }
@@ -198,6 +245,10 @@ fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Run(args) => run_one(args),
         Command::Study(args) => run_study(args),
+        Command::Secret { file } => {
+            node::secret::Secret::create(&file)?;
+            Ok(())
+        }
     }
 }
 
@@ -243,7 +294,7 @@ fn run_one(args: RunArgs) -> Result<()> {
         (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
         (None, Some(algorithm)) => {
             let offense = args.offense.unwrap_or(3);
-            let mut spec = AgentSpec::of(algorithm);
+            let mut spec = AgentSpec::of(algorithm, args.profile);
             spec.config
                 .strategy
                 .set_mistake_correcting(args.mistake_correcting)?;
@@ -263,7 +314,7 @@ fn run_one(args: RunArgs) -> Result<()> {
         eval_every: args.eval_every,
         eval_episodes: args.eval_episodes,
         seed: args.seed,
-        ci_level: args.ci_level,
+        ci_level: args.ci_level.unwrap_or(args.profile.ci_level()),
         transport: args
             .network
             .transport(Some(&args.transport), &Transport::InProcess)?,

@@ -27,6 +27,10 @@ pub struct EvalPoint {
     pub agents: Vec<AgentStats>,
     /// The paper's spent budget: give budget spent, averaged over agents.
     pub spent_budget: f64,
+    /// Awaited actions played as Move because they missed the step timeout,
+    /// over the run so far (training and evaluation; 0 in process).
+    #[serde(default)]
+    pub actions_timed_out: u64,
 }
 
 /// Where the time of a run went (not part of any result: it varies).
@@ -102,10 +106,12 @@ pub fn play_run(
     let mut timing = Timing::default();
     let mut points = Vec::new();
     let mut trained = 0u64;
+    let mut timed_out = 0u64;
     for (index, at) in config.eval_points().into_iter().enumerate() {
         let start = Instant::now();
         while trained < at {
             let episode = backend.play_episode(Mode::Training)?;
+            timed_out += u64::from(episode.actions_timed_out);
             timing.training_frames += u64::from(episode.frames);
             trained += 1;
             progress(u64::from(episode.frames));
@@ -117,6 +123,7 @@ pub fn play_run(
         let (mut goals, mut goal_frames) = (0u64, 0u64);
         for _ in 0..config.eval_episodes {
             let episode = backend.play_episode(Mode::Evaluation)?;
+            timed_out += u64::from(episode.actions_timed_out);
             timing.evaluation_frames += u64::from(episode.frames);
             progress(u64::from(episode.frames));
             if episode.outcome == Outcome::Goal {
@@ -136,6 +143,7 @@ pub fn play_run(
             time_to_goal: (goals > 0).then(|| goal_frames as f64 / goals as f64),
             spent_budget: spent as f64 / agents.len().max(1) as f64,
             agents,
+            actions_timed_out: timed_out,
         };
         on_point(&point)?;
         points.push(point);

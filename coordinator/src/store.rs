@@ -200,7 +200,9 @@ fn first_difference(ours: &Value, theirs: &Value, at: &str) -> Option<String> {
 /// `advice_requests` and `advice_given` (team totals), `spent_budget` (the
 /// give budget spent, averaged over agents), then the team's communication
 /// so far: `advice_replies_received`, `messages_sent`, `bytes_sent`,
-/// `messages_received`, `bytes_received`, `messages_dropped` (0 in process).
+/// `messages_received`, `bytes_received`, `messages_dropped` (0 in process),
+/// and `actions_timed_out`: awaited actions that missed the step timeout
+/// and were played as Move, over the run so far (0 in process).
 #[derive(Debug)]
 pub struct RunWriter {
     path: PathBuf,
@@ -232,6 +234,7 @@ impl RunWriter {
                 "messages_received",
                 "bytes_received",
                 "messages_dropped",
+                "actions_timed_out",
             ]
             .map(String::from),
         );
@@ -266,6 +269,7 @@ impl RunWriter {
             total(|a| a.messages_received),
             total(|a| a.bytes_received),
             total(|a| a.dropped),
+            p.actions_timed_out.to_string(),
         ]);
         self.write_row(&row)
     }
@@ -286,6 +290,7 @@ impl RunWriter {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::schedule::Timing;
     use serde_json::json;
 
     #[test]
@@ -330,6 +335,7 @@ mod tests {
             time_to_goal: None,
             agents: vec![AgentStats::default(); 2],
             spent_budget: 0.0,
+            actions_timed_out: 4,
         })
         .unwrap();
         let csv = fs::read_to_string(dir.join("run-0.csv")).unwrap();
@@ -337,8 +343,8 @@ mod tests {
             csv,
             "episode,goal_pct,time_to_goal,give_spent_0,give_spent_1,ask_spent_0,ask_spent_1,\
              advice_requests,advice_given,spent_budget,advice_replies_received,messages_sent,\
-             bytes_sent,messages_received,bytes_received,messages_dropped\n\
-             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0\n"
+             bytes_sent,messages_received,bytes_received,messages_dropped,actions_timed_out\n\
+             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4\n"
         );
         ExperimentDir::check(&dir, &ours).unwrap();
         let theirs = json!({"format": 1, "config": {"runs": 3}});
@@ -350,6 +356,51 @@ mod tests {
         fs::remove_file(dir.join(CONFIG_FILE)).unwrap();
         let err = ExperimentDir::check(&dir, &ours).unwrap_err().to_string();
         assert!(err.contains("run-0.csv"), "{err}");
+    }
+
+    #[test]
+    fn a_finished_run_reads_back_bit_for_bit() {
+        let tmp = tempfile::tempdir().unwrap();
+        let out = ExperimentDir::check(tmp.path(), &json!({})).unwrap();
+        out.create().unwrap();
+        // Means whose shortest decimal form the default float parser of
+        // serde_json reads back one ulp off.
+        let awkward = [
+            1.271_006_919_926_564_1,
+            2.542_013_839_853_128_2,
+            7.887_090_078_870_901_5,
+            9.132_420_091_324_201,
+            10.377_750_103_777_501,
+        ];
+        let result = RunResult {
+            run: 3,
+            points: awkward
+                .iter()
+                .map(|&x| EvalPoint {
+                    episode: 20,
+                    episodes: 97,
+                    goals: 7,
+                    goal_pct: x,
+                    time_to_goal: Some(x * 3.3),
+                    agents: vec![AgentStats::default(); 2],
+                    spent_budget: x / 7.0,
+                    actions_timed_out: 0,
+                })
+                .collect(),
+            timing: Timing::default(),
+            advice_rtt_ms: vec![vec![0.1, 1.0 / 3.0, 2.7e-3]],
+        };
+        out.write_run_result(&result).unwrap();
+        let back = out.finished_run(3).expect("the run is finished");
+        for (a, b) in back.points.iter().zip(&result.points) {
+            assert_eq!(a.goal_pct.to_bits(), b.goal_pct.to_bits());
+            assert_eq!(
+                a.time_to_goal.map(f64::to_bits),
+                b.time_to_goal.map(f64::to_bits)
+            );
+            assert_eq!(a.spent_budget.to_bits(), b.spent_budget.to_bits());
+        }
+        assert_eq!(back.advice_rtt_ms, result.advice_rtt_ms);
     }
 
     #[test]

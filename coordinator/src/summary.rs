@@ -62,7 +62,8 @@ pub struct CommTotals {
     pub messages_received: f64,
     /// Bytes received, every kind.
     pub bytes_received: f64,
-    /// Received messages dropped (malformed, foreign, stale, duplicate).
+    /// Received messages dropped (malformed, foreign, stale, duplicate,
+    /// unrequested advice).
     pub messages_dropped: f64,
     /// Advice round-trip time (ms).
     pub advice_rtt_ms: Percentiles,
@@ -100,6 +101,9 @@ pub struct CommSummary {
     /// Totals over agents.
     #[serde(flatten)]
     pub team: CommTotals,
+    /// Awaited actions env-server played as Move because they missed the
+    /// step timeout, per run (mean over runs).
+    pub actions_timed_out: f64,
     /// The same per agent, by id.
     pub per_agent: Vec<CommTotals>,
 }
@@ -132,8 +136,14 @@ impl CommSummary {
             t.advice_rtt_ms = Percentiles::of(rtt);
             t
         };
+        let timed_out: u64 = results
+            .iter()
+            .filter_map(|r| r.points.last())
+            .map(|p| p.actions_timed_out)
+            .sum();
         Self {
             team: of_agents(&|_| true),
+            actions_timed_out: timed_out as f64 / results.len().max(1) as f64,
             per_agent: (0..agents).map(|i| of_agents(&|j| j == i)).collect(),
         }
     }

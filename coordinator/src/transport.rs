@@ -2,8 +2,8 @@
 //! `config.json` with everything that can change results.
 //!
 //! In a file: `transport = "in-process"`, `transport = "zenoh"` (default
-//! timeouts) or `[transport.zenoh]` with `advice_timeout_ms` and
-//! `step_timeout_ms`. How to reach the processes ([`Endpoints`]) changes no
+//! timeouts) or `[transport.zenoh]` with `advice_timeout_ms`,
+//! `step_timeout_ms` and `stall_limit_ms`. How to reach the processes ([`Endpoints`]) changes no
 //! result and is not recorded.
 
 use std::path::PathBuf;
@@ -34,6 +34,9 @@ pub struct ZenohSettings {
     pub advice_timeout_ms: u64,
     /// How long env-server waits for a kicker's action before Move (ms).
     pub step_timeout_ms: u64,
+    /// How long a kicker may send no action, frame after frame, before its
+    /// run ends with an error (ms).
+    pub stall_limit_ms: u64,
     /// How to reach the processes.
     #[serde(skip)]
     pub endpoints: Endpoints,
@@ -44,6 +47,7 @@ impl Default for ZenohSettings {
         Self {
             advice_timeout_ms: 5,
             step_timeout_ms: 1000,
+            stall_limit_ms: 10_000,
             endpoints: Endpoints::default(),
         }
     }
@@ -56,6 +60,11 @@ pub struct Endpoints {
     pub experiment: String,
     /// Loopback port the coordinator listens on (0: any free port).
     pub port: u16,
+    /// With `attach`, the endpoint the coordinator listens on instead of the
+    /// loopback port. Of two peers only one opens their link (see
+    /// `node::net::NetConfig::to_json5`), so every process must be able to
+    /// reach this endpoint.
+    pub listen: Option<String>,
     /// Endpoints to connect to (a zenoh router for multi-host setups).
     pub connect: Vec<String>,
     /// Drive processes already running instead of starting them.
@@ -63,6 +72,8 @@ pub struct Endpoints {
     /// Directory of the `env-server` and `agent` executables (default: next
     /// to the coordinator's).
     pub bin_dir: Option<PathBuf>,
+    /// How the processes authenticate each other.
+    pub auth: Auth,
     /// How long to wait for every process to join.
     pub startup_timeout: Duration,
 }
@@ -72,12 +83,27 @@ impl Default for Endpoints {
         Self {
             experiment: "adv".to_owned(),
             port: 0,
+            listen: None,
             connect: Vec::new(),
             attach: false,
             bin_dir: None,
+            auth: Auth::Generated,
             startup_timeout: Duration::from_secs(30),
         }
     }
+}
+
+/// How an experiment's processes authenticate each other (zenoh's
+/// user/password authentication with a shared secret file).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Auth {
+    /// A new secret in a private temporary file, handed to the processes the
+    /// coordinator starts (cannot drive attached processes).
+    Generated,
+    /// The secret in this file, shared with every process.
+    File(PathBuf),
+    /// None: anyone who can reach the endpoints can join.
+    Off,
 }
 
 /// The names `--transport` accepts.
@@ -133,14 +159,27 @@ impl Transport {
         let Transport::Zenoh(z) = self else {
             return Ok(());
         };
-        for (key, value) in [
-            ("advice_timeout_ms", z.advice_timeout_ms),
-            ("step_timeout_ms", z.step_timeout_ms),
+        for (key, value, range) in [
+            (
+                "advice_timeout_ms",
+                z.advice_timeout_ms,
+                1..=proto::MAX_WAIT_MS,
+            ),
+            ("step_timeout_ms", z.step_timeout_ms, 1..=proto::MAX_WAIT_MS),
+            (
+                "stall_limit_ms",
+                z.stall_limit_ms,
+                z.step_timeout_ms..=proto::MAX_STALL_MS,
+            ),
         ] {
-            if !(1..=proto::MAX_WAIT_MS).contains(&value) {
+            if !range.contains(&value) {
                 return Err(ConfigError::new(
                     format!("transport.zenoh.{key}"),
-                    format!("must be 1 to {} ms, got {value}", proto::MAX_WAIT_MS),
+                    format!(
+                        "must be {} to {} ms, got {value}",
+                        range.start(),
+                        range.end()
+                    ),
                 ));
             }
         }
@@ -207,7 +246,11 @@ mod tests {
         let json = serde_json::to_value(Transport::Zenoh(z)).unwrap();
         assert_eq!(
             json,
-            serde_json::json!({"zenoh": {"advice_timeout_ms": 5, "step_timeout_ms": 1000}})
+            serde_json::json!({"zenoh": {
+                "advice_timeout_ms": 5,
+                "step_timeout_ms": 1000,
+                "stall_limit_ms": 10000
+            }})
         );
         assert_eq!(
             serde_json::to_value(Transport::InProcess).unwrap(),

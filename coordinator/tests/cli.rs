@@ -123,12 +123,13 @@ fn writes_run_csvs_and_a_summary_of_the_right_shape() {
                 "bytes_sent",
                 "messages_received",
                 "bytes_received",
-                "messages_dropped"
+                "messages_dropped",
+                "actions_timed_out"
             ]
         );
         assert_eq!(rows.len(), 4, "header + evaluations at 0, 20, 40");
         for (row, episode) in rows[1..].iter().zip(["0", "20", "40"]) {
-            assert_eq!(row.len(), 18);
+            assert_eq!(row.len(), 19);
             assert_eq!(row[0], episode);
             let gp: f64 = row[1].parse().unwrap();
             assert!((0.0..=100.0).contains(&gp) && gp % 10.0 == 0.0, "{gp}");

@@ -163,6 +163,7 @@ mod tests {
                     seed,
                     config,
                     wait_ms: seed % 1000,
+                    stall_ms: seed % 7919,
                 })
             }),
             prop::collection::vec(any::<u8>(), 0..100)
@@ -174,7 +175,8 @@ mod tests {
             (any::<u32>()).prop_map(|frames| Body::ControlReply(ControlReply::Episode(
                 EpisodeResult {
                     outcome: EpisodeOutcome::Goal,
-                    frames
+                    frames,
+                    actions_timed_out: frames / 3,
                 }
             ))),
             (any::<u64>(), prop::collection::vec(0f32..100.0, 0..10)).prop_map(

@@ -83,6 +83,8 @@ pub enum DropReason {
     Stale,
     /// Already received.
     Duplicate,
+    /// An advice reply from an agent that was not asked for this request.
+    Unrequested,
 }
 
 /// Messages and bytes of one kind.
@@ -107,12 +109,20 @@ pub struct Dropped {
     pub stale: u64,
     /// Already received.
     pub duplicate: u64,
+    /// Advice replies from an agent not asked for that request.
+    #[serde(default)]
+    pub unrequested: u64,
 }
 
 impl Dropped {
     /// All dropped messages.
     pub fn total(&self) -> u64 {
-        self.malformed + self.version + self.foreign + self.stale + self.duplicate
+        self.malformed
+            + self.version
+            + self.foreign
+            + self.stale
+            + self.duplicate
+            + self.unrequested
     }
 }
 
@@ -148,6 +158,7 @@ impl MessageCounters {
             DropReason::Foreign => d.foreign += 1,
             DropReason::Stale => d.stale += 1,
             DropReason::Duplicate => d.duplicate += 1,
+            DropReason::Unrequested => d.unrequested += 1,
         }
     }
 
@@ -189,6 +200,7 @@ impl MessageCounters {
         d.foreign += o.foreign;
         d.stale += o.stale;
         d.duplicate += o.duplicate;
+        d.unrequested += o.unrequested;
     }
 }
 

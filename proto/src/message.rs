@@ -151,6 +151,9 @@ pub struct SharedEpisode {
 /// The longest wait a [`Control::Reset`] may set (ms): a minute.
 pub const MAX_WAIT_MS: u64 = 60_000;
 
+/// The longest stall limit a [`Control::Reset`] may set (ms): ten minutes.
+pub const MAX_STALL_MS: u64 = 600_000;
+
 /// A coordinator's command to env-server or an agent. Its `Debug` form
 /// gives the size of byte payloads, not the bytes.
 #[derive(Clone, PartialEq, Serialize, Deserialize)]
@@ -168,6 +171,10 @@ pub enum Control {
         /// Move. Part of the experiment's recorded settings; 1 to
         /// [`MAX_WAIT_MS`].
         wait_ms: u64,
+        /// env-server: how long a kicker may go on sending no action, frame
+        /// after frame, before the episode is abandoned (ms; `wait_ms` to
+        /// [`MAX_STALL_MS`]). Agents ignore it.
+        stall_ms: u64,
     },
     /// env-server: play episode `header.episode` in `mode` and report its result.
     PlayEpisode {
@@ -196,11 +203,13 @@ impl fmt::Debug for Control {
                 seed,
                 config,
                 wait_ms,
+                stall_ms,
             } => f
                 .debug_struct("Reset")
                 .field("seed", seed)
                 .field("config", &ByteCount(config.len()))
                 .field("wait_ms", wait_ms)
+                .field("stall_ms", stall_ms)
                 .finish(),
             Control::PlayEpisode { mode, seed } => f
                 .debug_struct("PlayEpisode")
@@ -264,6 +273,9 @@ pub struct EpisodeResult {
     pub outcome: EpisodeOutcome,
     /// Agent decisions taken.
     pub frames: u32,
+    /// Awaited actions that did not come within the step timeout (played as
+    /// Move).
+    pub actions_timed_out: u32,
 }
 
 /// An agent's counters and the digest of its learned state.
@@ -312,10 +324,11 @@ mod tests {
             seed: 3,
             config: vec![1, 2],
             wait_ms: 5,
+            stall_ms: 10,
         };
         assert_eq!(
             format!("{reset:?}"),
-            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5 }"
+            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5, stall_ms: 10 }"
         );
         let load = Control::Load {
             snapshot: vec![0; 1000],

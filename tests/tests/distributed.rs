@@ -3,19 +3,21 @@
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use agent::{Mode, StrategyName};
+use agent::{Mode, Profile, StrategyName};
+use coordinator::transport::Auth;
 use coordinator::{
     AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
     ZenohSettings,
 };
 use integration_tests::{bin, bin_dir, experiment_name};
 use node::net::{NetConfig, free_port};
+use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{Body, Control, ControlReply, Envelope, Header, experiment_id};
 use serde_json::Value;
 
 fn adhoc_td_experiment() -> Experiment {
-    let spec = AgentSpec::of(StrategyName::AdHocTd);
+    let spec = AgentSpec::of(StrategyName::AdHocTd, Profile::Paper);
     Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,
@@ -27,17 +29,20 @@ fn adhoc_td_experiment() -> Experiment {
     .expect("valid experiment")
 }
 
-fn network(tag: &str, port: u16) -> Network {
+fn network(tag: &str, port: u16, auth: Auth) -> Network {
     Network::start(
         &ZenohSettings {
             advice_timeout_ms: 20,
             step_timeout_ms: 2000,
+            stall_limit_ms: 10_000,
             endpoints: Endpoints {
                 experiment: experiment_name(tag),
                 port,
+                listen: None,
                 connect: Vec::new(),
                 attach: false,
                 bin_dir: Some(bin_dir()),
+                auth,
                 startup_timeout: Duration::from_secs(60),
             },
         },
@@ -105,7 +110,7 @@ fn adhoc_td_run_advises_across_processes() {
 #[test]
 fn evaluation_changes_no_learned_state() {
     let experiment = adhoc_td_experiment();
-    let net = network("frozen", 0);
+    let net = network("frozen", 0, Auth::Generated);
     let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
     for _ in 0..10 {
         backend.play_episode(Mode::Training).unwrap();
@@ -125,14 +130,17 @@ fn evaluation_changes_no_learned_state() {
 #[test]
 fn malformed_and_foreign_messages_change_nothing() {
     let experiment = adhoc_td_experiment();
+    // A teammate with the secret, sending garbage.
     let port = free_port().unwrap();
-    let net = network("intruder", port);
+    let tmp = tempfile::tempdir().unwrap();
+    let secret = Secret::create(&tmp.path().join("secret")).unwrap();
+    let net = network("garbage", port, Auth::File(secret.path().to_owned()));
     let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
     for _ in 0..3 {
         backend.play_episode(Mode::Training).unwrap();
     }
     let before = backend.reports().unwrap();
-    let name = experiment_name("intruder");
+    let name = experiment_name("garbage");
     let keys = Keys::new(&name).unwrap();
     let foreign = proto::encode(&Envelope {
         header: Header::new(experiment_id("someone-else"), 0, 3, 0),
@@ -146,7 +154,8 @@ fn malformed_and_foreign_messages_change_nothing() {
     let garbage = b"\x07not a message".to_vec();
     let runtime = tokio::runtime::Runtime::new().unwrap();
     runtime.block_on(async {
-        let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
+        let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")])
+            .with_secret(Some(secret));
         let session = node::net::open(&net).await.unwrap();
         tokio::time::sleep(Duration::from_millis(500)).await;
         for key in [keys.observation(0), keys.action(1), keys.share(2)] {

@@ -50,7 +50,24 @@ fn a_port_in_use_is_refused() {
 #[test]
 fn an_unreachable_router_is_refused() {
     let endpoint = format!("tcp/127.0.0.1:{}", free_port().unwrap());
-    refused(&["--attach", "--connect", &endpoint], &endpoint);
+    refused(
+        &["--attach", "--connect", &endpoint, "--no-auth"],
+        &endpoint,
+    );
+}
+
+#[test]
+fn attaching_without_a_secret_is_refused() {
+    let endpoint = format!("tcp/127.0.0.1:{}", free_port().unwrap());
+    refused(
+        &["--attach", "--connect", &endpoint],
+        "--attach needs --secret-file",
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let open = tmp.path().join("secret");
+    std::fs::write(&open, "adv:x\n").unwrap();
+    let open = open.display().to_string();
+    refused(&["--attach", "--secret-file", &open], "expected 600");
 }
 
 #[test]

@@ -15,6 +15,7 @@ use crate::learner::Ask;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Collector {
     waiting: Vec<u8>,
+    answered: Vec<u8>,
     /// The advice received (replies without advice add nothing).
     pub advice: Vec<Action>,
     /// Replies received, with or without advice.
@@ -34,7 +35,7 @@ impl Collector {
 
     /// Takes advisor `from`'s reply, received `rtt` after its request.
     /// Only kick actions count as advice. A reply from an advisor that was
-    /// not asked, or that already answered, is refused.
+    /// not asked is refused as unrequested, a second one as a duplicate.
     pub fn take(
         &mut self,
         from: u8,
@@ -42,8 +43,13 @@ impl Collector {
         rtt: Duration,
     ) -> Result<(), DropReason> {
         let Some(k) = self.waiting.iter().position(|&j| j == from) else {
-            return Err(DropReason::Duplicate);
+            return Err(if self.answered.contains(&from) {
+                DropReason::Duplicate
+            } else {
+                DropReason::Unrequested
+            });
         };
+        self.answered.push(from);
         self.waiting.swap_remove(k);
         self.replies += 1;
         self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
@@ -113,10 +119,10 @@ fn take_reply(
         return;
     };
     let result = match envelope.body {
-        Body::AdviceReply(r) if r.from == j && envelope.header == header => {
-            collector.take(j, r.advice, rtt)
-        }
-        Body::AdviceReply(_) => Err(DropReason::Stale),
+        Body::AdviceReply(_) if envelope.header != header => Err(DropReason::Stale),
+        // A reply on advisor j's key that names another sender.
+        Body::AdviceReply(r) if r.from != j => Err(DropReason::Unrequested),
+        Body::AdviceReply(r) => collector.take(j, r.advice, rtt),
         _ => Err(DropReason::Malformed),
     };
     match result {
@@ -139,7 +145,7 @@ mod tests {
         assert_eq!(c.take(0, Some(Dribble), ms(4)), Err(DropReason::Duplicate));
         assert_eq!(
             c.take(1, Some(Dribble), ms(4)),
-            Err(DropReason::Duplicate),
+            Err(DropReason::Unrequested),
             "not asked"
         );
         assert!(!c.done());

@@ -63,6 +63,7 @@ async fn execute(node: &Node, header: Header, control: Control) -> ControlReply 
             seed,
             config,
             wait_ms,
+            stall_ms: _,
         } => {
             if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
                 return ControlReply::Error(format!(

@@ -69,7 +69,7 @@ fn run(cli: Cli) -> Result<Exit> {
         );
     }
     let settings = Settings {
-        net: cli.connection.net(),
+        net: cli.connection.net()?,
         name: cli.connection.experiment,
         keys,
         id: cli.id,

@@ -9,7 +9,7 @@ use zenoh::Session;
 use zenoh::sample::SampleKind;
 
 /// How long to watch for another process holding this agent's token.
-const UNIQUE_WINDOW: Duration = Duration::from_millis(500);
+const UNIQUE_WINDOW: Duration = Duration::from_secs(1);
 
 /// Fails if another process already holds agent `id`'s liveliness token.
 ///

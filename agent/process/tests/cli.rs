@@ -14,7 +14,19 @@ fn bad_input_gives_one_line_and_exit_code_2() {
     let busy_port = busy.local_addr().unwrap().port();
     let listen_busy = format!("tcp/127.0.0.1:{busy_port}");
     let nobody = format!("tcp/127.0.0.1:{}", free_port().unwrap());
-    let ok = ["--experiment", "e", "--id", "0", "--team-size", "2"];
+    let ok = [
+        "--experiment",
+        "e",
+        "--id",
+        "0",
+        "--team-size",
+        "2",
+        "--no-auth",
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let open_secret = dir.path().join("secret");
+    std::fs::write(&open_secret, "adv:x\n").unwrap();
+    let open_secret = open_secret.display().to_string();
     let cases: Vec<(Vec<&str>, String)> = vec![
         (
             [&ok[..], &["--listen", &listen_busy]].concat(),
@@ -29,21 +41,61 @@ fn bad_input_gives_one_line_and_exit_code_2() {
             "invalid network settings (listen foo".into(),
         ),
         (
-            vec!["--experiment", "a/b", "--id", "0", "--team-size", "2"],
+            vec![
+                "--experiment",
+                "a/b",
+                "--id",
+                "0",
+                "--team-size",
+                "2",
+                "--no-auth",
+            ],
             "invalid experiment name 'a/b'".into(),
         ),
         (
-            vec!["--experiment", "e", "--id", "2", "--team-size", "2"],
+            vec![
+                "--experiment",
+                "e",
+                "--id",
+                "2",
+                "--team-size",
+                "2",
+                "--no-auth",
+            ],
             "agent id 2 is not below the team size 2".into(),
         ),
         (
-            vec!["--experiment", "e", "--id", "0", "--team-size", "0"],
+            vec![
+                "--experiment",
+                "e",
+                "--id",
+                "0",
+                "--team-size",
+                "0",
+                "--no-auth",
+            ],
             "--team-size".into(),
         ),
-        (vec!["--id", "0", "--team-size", "2"], "--experiment".into()),
         (
-            vec!["--experiment", "e", "--id", "first", "--team-size", "2"],
+            vec!["--id", "0", "--team-size", "2", "--no-auth"],
+            "--experiment".into(),
+        ),
+        (
+            vec![
+                "--experiment",
+                "e",
+                "--id",
+                "first",
+                "--team-size",
+                "2",
+                "--no-auth",
+            ],
             "--id".into(),
+        ),
+        (ok[..6].to_vec(), "--secret-file".into()),
+        (
+            [&ok[..6], &["--secret-file", &open_secret]].concat(),
+            "mode 644); expected 600".into(),
         ),
     ];
     // All at once: the unreachable endpoint takes the connect timeout (5 s).

@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 use agent::{AdHoc, Agent, AgentConfig, Isolated, Strategy, StrategyName};
 use node::net::NetConfig;
 use node::net::free_port;
+use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
     AgentReport, Body, Control, ControlReply, Envelope, Header, MessageKind, Mode, Observation,
@@ -20,15 +21,24 @@ use zenoh::pubsub::Subscriber;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 use zenoh::sample::{Sample, SampleKind};
 
-/// Starts agent `id` of a team of 2, connected to the coordinator's port.
-fn spawn_agent(name: &str, id: u8, coordinator: u16) -> Guard {
+/// Starts agent `id` of a team of 2, connected to the fake coordinator
+/// with its secret.
+fn spawn_agent(name: &str, id: u8, fake: &Fake) -> Guard {
     let (id, listen) = (
         id.to_string(),
         format!("tcp/127.0.0.1:{}", free_port().unwrap()),
     );
-    let connect = format!("tcp/127.0.0.1:{coordinator}");
+    let connect = format!("tcp/127.0.0.1:{}", fake.port);
+    let secret = fake.secret.path().display().to_string();
     let args = ["--experiment", name, "--id", &id, "--team-size", "2"];
-    let network = ["--listen", &listen, "--connect", &connect];
+    let network = [
+        "--listen",
+        &listen,
+        "--connect",
+        &connect,
+        "--secret-file",
+        &secret,
+    ];
     Guard::agent(&[&args[..], &network, &["--exit-with-coordinator"]].concat())
 }
 
@@ -39,14 +49,17 @@ struct Fake {
     experiment: u64,
     tokens: Subscriber<FifoChannelHandler<Sample>>,
     port: u16,
+    secret: Secret,
+    _secret_dir: tempfile::TempDir,
 }
 
 impl Fake {
     async fn open(name: &str) -> Self {
         let port = free_port().unwrap();
-        let session = node::net::open(&NetConfig::loopback_peer(port, Vec::new()))
-            .await
-            .unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let secret = Secret::create(&dir.path().join("secret")).unwrap();
+        let net = NetConfig::loopback_peer(port, Vec::new()).with_secret(Some(secret.clone()));
+        let session = node::net::open(&net).await.unwrap();
         let keys = Keys::new(name).unwrap();
         let tokens = session
             .liveliness()
@@ -60,6 +73,8 @@ impl Fake {
             keys,
             tokens,
             port,
+            secret,
+            _secret_dir: dir,
         }
     }
 
@@ -119,6 +134,7 @@ impl Fake {
                     config,
                     // Generous, for a loaded test machine.
                     wait_ms: 200,
+                    stall_ms: 10_000,
                 },
             )
             .await;
@@ -233,10 +249,7 @@ fn sent(r: &AgentReport, kind: MessageKind) -> u64 {
 async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     let name = format!("advise-{}", std::process::id());
     let fake = Fake::open(&name).await;
-    let mut agents = [
-        spawn_agent(&name, 0, fake.port),
-        spawn_agent(&name, 1, fake.port),
-    ];
+    let mut agents = [spawn_agent(&name, 0, &fake), spawn_agent(&name, 1, &fake)];
     fake.wait_for_agents(&[0, 1]).await;
     let actions = fake
         .session
@@ -351,10 +364,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
 async fn episode_sharing_travels_as_published_messages() {
     let name = format!("share-{}", std::process::id());
     let fake = Fake::open(&name).await;
-    let _agents = [
-        spawn_agent(&name, 0, fake.port),
-        spawn_agent(&name, 1, fake.port),
-    ];
+    let _agents = [spawn_agent(&name, 0, &fake), spawn_agent(&name, 1, &fake)];
     fake.wait_for_agents(&[0, 1]).await;
     let config = AgentConfig {
         strategy: Strategy::from(StrategyName::EpisodeSharing),
@@ -444,9 +454,9 @@ async fn a_second_agent_with_the_same_id_exits_2_and_a_lost_coordinator_stops_ag
         .declare_token(fake.keys.alive(Role::Coordinator))
         .await
         .unwrap();
-    let mut first = spawn_agent(&name, 0, fake.port);
+    let mut first = spawn_agent(&name, 0, &fake);
     fake.wait_for_agents(&[0]).await;
-    let mut second = spawn_agent(&name, 0, fake.port);
+    let mut second = spawn_agent(&name, 0, &fake);
     let status = second.wait_exit(Duration::from_secs(20));
     assert_eq!(status.map(|s| s.code()), Some(Some(2)));
     let stderr = second.stderr();

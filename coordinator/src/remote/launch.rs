@@ -13,11 +13,13 @@ pub struct Children {
 }
 
 impl Children {
-    /// Starts `program` with `args`, named `name` in messages.
+    /// Starts `program` with `args`, named `name` in messages. On Linux
+    /// the child is killed when this coordinator dies, however it dies.
     pub fn spawn(&mut self, name: &str, program: &Path, args: &[String]) -> Result<(), Error> {
-        let child = Command::new(program)
-            .args(args)
-            .stdin(Stdio::null())
+        let mut command = Command::new(program);
+        command.args(args).stdin(Stdio::null());
+        die_with_parent(&mut command);
+        let child = command
             .spawn()
             .map_err(|e| Error::io("start", program, e))?;
         tracing::debug!(name, pid = child.id(), "started");
@@ -30,6 +32,18 @@ impl Children {
         self.processes.is_empty()
     }
 
+    /// What became of the process named `name`: `Some(status)` once it
+    /// exited, `None` while it runs or when this coordinator did not start it.
+    pub fn exit_status(&mut self, name: &str) -> Option<std::process::ExitStatus> {
+        let (_, child) = self.processes.iter_mut().find(|(n, _)| n == name)?;
+        child.try_wait().ok().flatten()
+    }
+
+    /// Whether this coordinator started the process named `name`.
+    pub fn started(&self, name: &str) -> bool {
+        self.processes.iter().any(|(n, _)| n == name)
+    }
+
     /// The first process that has already exited, with its status.
     pub fn exited(&mut self) -> Option<String> {
         self.processes.iter_mut().find_map(|(name, child)| {
@@ -38,8 +52,12 @@ impl Children {
         })
     }
 
-    /// Waits up to `grace` for every process to exit, then kills the rest.
+    /// Asks every process to stop (SIGTERM), waits up to `grace` for them to
+    /// exit, then kills the rest.
     pub fn reap(&mut self, grace: Duration) {
+        for (_, child) in &mut self.processes {
+            terminate(child);
+        }
         let deadline = Instant::now() + grace;
         for (name, child) in &mut self.processes {
             while matches!(child.try_wait(), Ok(None)) && Instant::now() < deadline {
@@ -55,6 +73,22 @@ impl Children {
     }
 }
 
+/// Sends SIGTERM to a child that is still running.
+#[cfg(unix)]
+fn terminate(child: &mut Child) {
+    if matches!(child.try_wait(), Ok(None))
+        && let Ok(pid) = libc::pid_t::try_from(child.id())
+    {
+        // SAFETY: plain kill(2) on our own child, which has not been reaped.
+        unsafe {
+            libc::kill(pid, libc::SIGTERM);
+        }
+    }
+}
+
+#[cfg(not(unix))]
+fn terminate(_: &mut Child) {}
+
 impl Drop for Children {
     fn drop(&mut self) {
         for (_, child) in &mut self.processes {
@@ -63,6 +97,32 @@ impl Drop for Children {
         }
     }
 }
+
+/// Makes the child receive SIGKILL when the thread that started it ends
+/// (Linux `PR_SET_PDEATHSIG`), and exit at once if the parent already died
+/// before that was set. The coordinator starts its processes from the main
+/// thread, which lives as long as the coordinator.
+#[cfg(target_os = "linux")]
+fn die_with_parent(command: &mut Command) {
+    use std::os::unix::process::CommandExt;
+    // SAFETY: the closure runs in the child between fork and exec and only
+    // makes async-signal-safe calls (getppid, prctl, _exit).
+    let parent = unsafe { libc::getpid() };
+    unsafe {
+        command.pre_exec(move || {
+            if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            if libc::getppid() != parent {
+                libc::_exit(1);
+            }
+            Ok(())
+        });
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn die_with_parent(_: &mut Command) {}
 
 /// Where the `env-server` and `agent` executables are: `dir` if given, else
 /// next to this executable (or its parent, for test binaries in `deps/`).

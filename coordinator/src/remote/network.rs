@@ -5,6 +5,7 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use node::net::NetConfig;
+use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
     Body, Control, ControlReply, Direction, Envelope, Header, MessageCounters, MessageKind,
@@ -17,7 +18,7 @@ use zenoh::sample::SampleKind;
 
 use super::launch::{Children, find_binary};
 use crate::error::{ConfigError, Error};
-use crate::transport::{Endpoints, ZenohSettings};
+use crate::transport::{Auth, Endpoints, ZenohSettings};
 
 /// The joined network and the processes of the experiment.
 pub struct Network {
@@ -32,6 +33,9 @@ pub struct Network {
     lost: Arc<watch::Sender<Option<Role>>>,
     children: Arc<Mutex<Children>>,
     counters: Mutex<MessageCounters>,
+    secret: Option<Secret>,
+    /// The private directory of a generated secret, removed when dropped.
+    _secret_dir: Option<tempfile::TempDir>,
     _token: LivelinessToken,
     _watch: Subscriber<()>,
 }
@@ -49,6 +53,31 @@ fn net_error(message: impl Into<String>) -> Error {
     Error::Transport(message.into())
 }
 
+/// The experiment's secret, and the private directory of a generated one.
+fn secret(options: &Endpoints) -> Result<(Option<Secret>, Option<tempfile::TempDir>), Error> {
+    match &options.auth {
+        Auth::Off => Ok((None, None)),
+        Auth::File(path) => Ok((
+            Some(Secret::load(path).map_err(|e| ConfigError::new("secret_file", e.to_string()))?),
+            None,
+        )),
+        Auth::Generated if options.attach => Err(ConfigError::new(
+            "secret_file",
+            "--attach needs --secret-file, the secret the attached processes were started with (or --no-auth)",
+        )
+        .into()),
+        Auth::Generated => {
+            let dir = tempfile::Builder::new()
+                .prefix("adv-secret-")
+                .tempdir()
+                .map_err(|e| net_error(format!("cannot create a private directory for the secret: {e}")))?;
+            let secret = Secret::create(&dir.path().join("secret"))
+                .map_err(|e| net_error(e.to_string()))?;
+            Ok((Some(secret), Some(dir)))
+        }
+    }
+}
+
 impl Network {
     /// Joins the network of `settings.endpoints.experiment`, starts
     /// env-server and `agents` agent processes (unless attaching) and waits
@@ -62,19 +91,26 @@ impl Network {
             .enable_all()
             .build()
             .map_err(|e| net_error(format!("cannot start the async runtime: {e}")))?;
-        let port = match (options.attach, options.port) {
-            (false, 0) => {
-                Some(node::net::free_port().map_err(|e| Error::io("bind", "127.0.0.1:0", e))?)
-            }
-            (_, 0) => None,
-            (_, p) => Some(p),
+        // Always listen: a peer that cannot be reached is never linked to a
+        // peer that waits for it to open the link.
+        let port = match options.port {
+            0 => node::net::free_port().map_err(|e| Error::io("bind", "127.0.0.1:0", e))?,
+            p => p,
         };
-        let net = NetConfig::peer(
-            port.map(|p| format!("tcp/127.0.0.1:{p}"))
-                .into_iter()
-                .collect(),
-            options.connect.clone(),
-        );
+        let listen = match (&options.listen, options.attach) {
+            (Some(endpoint), true) => endpoint.clone(),
+            (Some(_), false) => {
+                return Err(ConfigError::new(
+                    "listen",
+                    "a listen endpoint is for --attach; the processes this coordinator starts use its loopback --port",
+                )
+                .into());
+            }
+            (None, _) => format!("tcp/127.0.0.1:{port}"),
+        };
+        let (secret, secret_dir) = secret(options)?;
+        let net =
+            NetConfig::peer(vec![listen], options.connect.clone()).with_secret(secret.clone());
         let session = runtime
             .block_on(node::net::open(&net))
             .map_err(|e| net_error(e.to_string()))?;
@@ -129,6 +165,8 @@ impl Network {
             lost,
             children: Arc::new(Mutex::new(Children::default())),
             counters: Mutex::new(MessageCounters::default()),
+            secret,
+            _secret_dir: secret_dir,
             _token: token,
             _watch: watch,
         };
@@ -141,11 +179,11 @@ impl Network {
                     options.experiment
                 )));
             }
-            let connect = format!("tcp/127.0.0.1:{}", port.unwrap_or_default());
+            let connect = format!("tcp/127.0.0.1:{port}");
+            network.stop_on_signals()?;
             network.launch(agents, &connect)?;
         }
         network.wait_for_everyone(options)?;
-        network.stop_on_ctrl_c();
         Ok(network)
     }
 
@@ -153,6 +191,10 @@ impl Network {
         let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
         let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
+        let auth: Vec<String> = match &self.secret {
+            Some(secret) => vec!["--secret-file".into(), secret.path().display().to_string()],
+            None => vec!["--no-auth".into()],
+        };
         let common = |extra: &[String]| {
             let mut args: Vec<String> = extra.to_vec();
             args.extend([
@@ -161,6 +203,7 @@ impl Network {
                 "--connect".into(),
                 connect.to_owned(),
             ]);
+            args.extend(auth.iter().cloned());
             args
         };
         let mut children = self.children.lock().expect("children");
@@ -218,19 +261,51 @@ impl Network {
         }
     }
 
-    /// On Ctrl-C: stop every process this coordinator started, then exit 130.
-    fn stop_on_ctrl_c(&self) {
+    /// On SIGINT (Ctrl-C) or SIGTERM: stop every process this coordinator
+    /// started, then exit 130 or 143. Installed before the first process
+    /// starts.
+    fn stop_on_signals(&self) -> Result<(), Error> {
+        use tokio::signal::unix::{SignalKind, signal};
+        let _guard = self.runtime.enter();
+        let listen =
+            |kind| signal(kind).map_err(|e| net_error(format!("cannot handle signals: {e}")));
+        let (mut interrupt, mut terminate) = (
+            listen(SignalKind::interrupt())?,
+            listen(SignalKind::terminate())?,
+        );
         let children = self.children.clone();
         self.runtime.spawn(async move {
-            if tokio::signal::ctrl_c().await.is_ok() {
-                eprintln!("interrupted: stopping the experiment's processes");
-                children
-                    .lock()
-                    .expect("children")
-                    .reap(Duration::from_millis(500));
-                std::process::exit(130);
-            }
+            let (name, code) = tokio::select! {
+                _ = interrupt.recv() => ("interrupted", 130),
+                _ = terminate.recv() => ("terminated", 143),
+            };
+            eprintln!("{name}: stopping the experiment's processes");
+            children
+                .lock()
+                .expect("children")
+                .reap(Duration::from_millis(500));
+            std::process::exit(code);
         });
+        Ok(())
+    }
+
+    /// Why `role` counts as lost: its process exited (with its status), or
+    /// its liveliness token expired while the process still runs.
+    pub fn loss(&self, role: Role) -> String {
+        let name = match role {
+            Role::Server => "env-server".to_owned(),
+            Role::Agent(i) => format!("agent {i}"),
+            Role::Coordinator => "coordinator".to_owned(),
+        };
+        let mut children = self.children.lock().expect("children");
+        match children.exit_status(&name) {
+            Some(status) => format!("{role} is gone: its process exited ({status})"),
+            None if children.started(&name) => format!(
+                "{role} stopped answering: its liveliness token expired while its process \
+                 still runs (stopped or overloaded?)"
+            ),
+            None => format!("{role} is gone (its liveliness token disappeared)"),
+        }
     }
 
     /// The settings it was started with.
@@ -270,7 +345,7 @@ impl Network {
         self.count(Direction::Sent, MessageKind::Control, bytes.len());
         let key = self.keys.control(role);
         let mut lost = self.lost.subscribe();
-        let gone = |role: Role| format!("{role} is gone (its liveliness token disappeared)");
+        let gone = |role: Role| self.loss(role);
         if let Some(gone_role) = *lost.borrow_and_update() {
             return Err(gone(gone_role));
         }
@@ -334,8 +409,8 @@ impl Network {
 
     /// Stops every process this coordinator started (attached ones keep running).
     pub fn stop(&self) {
-        let mut children = self.children.lock().expect("children");
-        if children.is_empty() {
+        // Not held across the stops below: describing a loss locks it too.
+        if self.children.lock().expect("children").is_empty() {
             return;
         }
         // The stop goes to every process still there, whoever was lost.
@@ -350,7 +425,10 @@ impl Network {
                 );
             }
         }
-        children.reap(Duration::from_secs(5));
+        self.children
+            .lock()
+            .expect("children")
+            .reap(Duration::from_secs(2));
     }
 }
 

@@ -52,6 +52,7 @@ impl<'a> RemoteBackend<'a> {
                 seed: seeds.simulator,
                 config: env,
                 wait_ms: network.settings().step_timeout_ms,
+                stall_ms: network.settings().stall_limit_ms,
             },
         )?;
         for (i, spec) in config.team.iter().enumerate() {
@@ -64,6 +65,7 @@ impl<'a> RemoteBackend<'a> {
                     seed: seeds.agents[i],
                     config: agent,
                     wait_ms: network.settings().advice_timeout_ms,
+                    stall_ms: network.settings().stall_limit_ms,
                 },
             )?;
             if let Some(snapshot) = experiment.snapshot(i) {
@@ -88,7 +90,8 @@ impl<'a> RemoteBackend<'a> {
     fn check_alive(&self) -> Result<(), Error> {
         match self.network.lost() {
             Some(role) => Err(self.error(format!(
-                "{role} is gone (its liveliness token disappeared); stopping the experiment"
+                "{}; stopping the experiment",
+                self.network.loss(role)
             ))),
             None => Ok(()),
         }
@@ -171,6 +174,7 @@ impl Backend for RemoteBackend<'_> {
                 EpisodeOutcome::OutOfTime => Outcome::OutOfTime,
             },
             frames: result.frames,
+            actions_timed_out: result.actions_timed_out,
         })
     }
 

@@ -1,6 +1,6 @@
 //! Running a study: pretraining, every experiment, then the analysis.
 
-use std::path::{Path, PathBuf};
+use std::path::{Component, Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use super::analysis::{EntryResults, compare_all};
@@ -29,6 +29,21 @@ pub struct StudyOutcome {
     pub wall: Duration,
 }
 
+/// `path` without `.` components and trailing slashes, so that `./out`,
+/// `out/` and `out` name one study (the expert's path is part of the
+/// experiments' identity).
+fn normalise(path: &Path) -> PathBuf {
+    let clean: PathBuf = path
+        .components()
+        .filter(|c| !matches!(c, Component::CurDir))
+        .collect();
+    if clean.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        clean
+    }
+}
+
 /// The study's own record in its directory.
 const STUDY_FILE: &str = "study.json";
 
@@ -39,6 +54,7 @@ pub fn run_study(
     options: &StudyOptions,
 ) -> Result<StudyOutcome, Error> {
     study.validate()?;
+    let out = &normalise(out);
     claim_directory(out, study)?;
     let start = Instant::now();
     let total: u64 = study
@@ -103,4 +119,23 @@ fn claim_directory(out: &Path, study: &StudyConfig) -> Result<(), Error> {
     let ours = serde_json::to_value(study).expect("a study serialises");
     store::check_claim(out, STUDY_FILE, &ours)?;
     store::claim(out, STUDY_FILE, &ours)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spellings_of_one_directory_normalise_alike() {
+        for spelling in ["out", "./out", "out/", "./out/."] {
+            assert_eq!(
+                normalise(Path::new(spelling)),
+                Path::new("out"),
+                "{spelling}"
+            );
+        }
+        assert_eq!(normalise(Path::new("/a/./b/")), Path::new("/a/b"));
+        assert_eq!(normalise(Path::new(".")), Path::new("."));
+        assert_eq!(normalise(Path::new("../x")), Path::new("../x"));
+    }
 }

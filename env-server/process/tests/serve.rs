@@ -4,6 +4,7 @@
 
 use env_server::{Env, EnvConfig, Outcome};
 use node::net::{NetConfig, free_port};
+use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
     Action, ActionChoice, Body, Control, ControlReply, Envelope, EpisodeOutcome, EpisodeResult,
@@ -90,6 +91,7 @@ struct Harness {
     seen: Vec<Arc<Mutex<Seen>>>,
     /// The step timeout every reset sets (ms).
     step_timeout_ms: u64,
+    _secret_dir: tempfile::TempDir,
 }
 
 impl Harness {
@@ -97,8 +99,12 @@ impl Harness {
     /// every run waits `step_timeout_ms` for a kicker's action.
     async fn new(name: &str, behaviour: Behaviour, step_timeout_ms: u64) -> Self {
         let port = free_port().expect("a free port");
-        let server = start(name, port, &[]);
-        let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let secret = Secret::create(&dir.path().join("secret")).expect("a secret");
+        let secret_file = secret.path().display().to_string();
+        let server = start(name, port, &["--secret-file", &secret_file]);
+        let net = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")])
+            .with_secret(Some(secret));
         let session = node::net::open(&net).await.expect("open the test session");
         let keys = Keys::new(name).expect("keys");
         let experiment = proto::experiment_id(name);
@@ -120,6 +126,7 @@ impl Harness {
             .expect("liveliness sample");
         Harness {
             step_timeout_ms,
+            _secret_dir: dir,
             server,
             session,
             keys,
@@ -165,6 +172,7 @@ impl Harness {
             seed,
             config,
             wait_ms: self.step_timeout_ms,
+            stall_ms: proto::MAX_STALL_MS,
         };
         let reply = self.control(run, 0, reset).await;
         assert_eq!(reply, ControlReply::Ok);
@@ -317,12 +325,18 @@ async fn send_noise(publisher: &Publisher<'static>, header: Header) {
 
 /// The episode the server should play: the same simulator stepped
 /// directly, kickers playing `kick` and the others moving.
-fn replay(env: &mut Env, kick: Action) -> EpisodeResult {
+/// The episode `env` plays when every kicker plays `kick`; `silent` kickers
+/// send nothing, so their actions time out and count.
+fn replay_with(env: &mut Env, kick: Action, silent: bool) -> EpisodeResult {
     env.reset();
+    let mut timed_out = 0;
     loop {
         let actions: Vec<Action> = (0..env.offense())
             .map(|i| if env.can_kick(i) { kick } else { Action::Move })
             .collect();
+        if silent {
+            timed_out += (0..env.offense()).filter(|&i| env.can_kick(i)).count() as u32;
+        }
         let outcome = env.step(&actions);
         let outcome = match outcome {
             Outcome::InGame => continue,
@@ -334,8 +348,13 @@ fn replay(env: &mut Env, kick: Action) -> EpisodeResult {
         return EpisodeResult {
             outcome,
             frames: env.frame(),
+            actions_timed_out: timed_out,
         };
     }
+}
+
+fn replay(env: &mut Env, kick: Action) -> EpisodeResult {
+    replay_with(env, kick, false)
 }
 
 fn reward(outcome: EpisodeOutcome) -> f64 {
@@ -416,12 +435,43 @@ async fn silent_agents_fall_back_to_move() {
     h.reset(0, 5).await;
     let result = h.play(0, 0, Mode::Training, None).await;
     let mut env = Env::new(EnvConfig::default(), 5).expect("env");
-    assert_eq!(result, replay(&mut env, Action::Move));
+    assert_eq!(result, replay_with(&mut env, Action::Move, true));
     let kicks = check_observations(&h.observations(0, 0).await, result, Mode::Training);
     let report = h.report(0).await;
     assert!(report.missing_actions > 0);
     assert_eq!(report.missing_actions, kicks);
+    assert_eq!(u64::from(result.actions_timed_out), kicks);
     assert_eq!(report.frames, u64::from(result.frames));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_agent_silent_for_the_stall_limit_ends_the_episode_with_an_error() {
+    let h = Harness::new("serve-stall", Behaviour::Silent, 20).await;
+    let config = proto::encode_settings(&EnvConfig::default()).expect("settings");
+    let reset = Control::Reset {
+        seed: 5,
+        config,
+        wait_ms: 20,
+        stall_ms: 100,
+    };
+    assert_eq!(h.control(0, 0, reset).await, ControlReply::Ok);
+    let reply = h
+        .control(
+            0,
+            0,
+            Control::PlayEpisode {
+                mode: Mode::Training,
+                seed: None,
+            },
+        )
+        .await;
+    let ControlReply::Error(text) = reply else {
+        panic!("expected the stall error, got {reply:?}");
+    };
+    assert!(
+        text.contains("stall limit") && text.contains("agent"),
+        "{text}"
+    );
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -462,6 +512,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
         seed: 1,
         config: config.to_owned(),
         wait_ms: 10_000,
+        stall_ms: proto::MAX_STALL_MS,
     };
     let nine = EnvConfig {
         offense: 9,
@@ -476,8 +527,18 @@ async fn bad_commands_get_errors_and_change_nothing() {
             seed: 1,
             config: good.clone(),
             wait_ms,
+            stall_ms: proto::MAX_STALL_MS,
         };
         assert!(error(h.control(0, 0, unbounded).await).contains("step timeout"));
+    }
+    for stall_ms in [999, proto::MAX_STALL_MS + 1] {
+        let unbounded = Control::Reset {
+            seed: 1,
+            config: good.clone(),
+            wait_ms: 1000,
+            stall_ms,
+        };
+        assert!(error(h.control(0, 0, unbounded).await).contains("stall limit"));
     }
     h.reset(1, 4).await;
     assert!(error(play(0, 0, Mode::Training, None).await).contains("run"));
@@ -540,14 +601,20 @@ fn fails(args: &[&str], within: Duration) -> String {
 #[test]
 fn second_server_on_the_same_port_exits_2() {
     let port = free_port().expect("a free port");
-    let _first = start("serve-port", port, &[]);
+    let _first = start("serve-port", port, &["--no-auth"]);
     let start = Instant::now();
     while TcpStream::connect(("127.0.0.1", port)).is_err() {
         assert!(start.elapsed() < Duration::from_secs(10), "first server");
         std::thread::sleep(Duration::from_millis(20));
     }
     let listen = format!("tcp/127.0.0.1:{port}");
-    let args = ["--experiment", "serve-port", "--listen", &listen];
+    let args = [
+        "--experiment",
+        "serve-port",
+        "--listen",
+        &listen,
+        "--no-auth",
+    ];
     let e = fails(&args, Duration::from_secs(10));
     assert!(e.contains("in use") && e.contains(&listen), "{e}");
 }
@@ -555,19 +622,37 @@ fn second_server_on_the_same_port_exits_2() {
 #[test]
 fn bad_input_is_one_line_and_exit_2() {
     let quick = Duration::from_secs(10);
-    assert!(fails(&["--experiment", "a/b"], quick).contains("experiment name"));
-    let e = fails(&["--experiment", "x", "--listen", "nonsense"], quick);
+    assert!(fails(&["--experiment", "a/b", "--no-auth"], quick).contains("experiment name"));
+    assert!(fails(&["--experiment", "x"], quick).contains("--secret-file"));
+    let e = fails(
+        &["--experiment", "x", "--secret-file", "/nonexistent/s"],
+        quick,
+    );
+    assert!(e.contains("secret file /nonexistent/s: cannot read"), "{e}");
+    let e = fails(
+        &["--experiment", "x", "--listen", "nonsense", "--no-auth"],
+        quick,
+    );
     assert!(
         e.contains("invalid network settings (listen nonsense;"),
         "{e}"
     );
     let e = fails(
-        &["--experiment", "x", "--listen", "tcp/127.0.0.1:99999"],
+        &[
+            "--experiment",
+            "x",
+            "--listen",
+            "tcp/127.0.0.1:99999",
+            "--no-auth",
+        ],
         quick,
     );
     assert!(e.contains("port"), "{e}");
     let nobody = format!("tcp/127.0.0.1:{}", free_port().expect("a free port"));
-    let e = fails(&["--experiment", "x", "--connect", &nobody], quick);
+    let e = fails(
+        &["--experiment", "x", "--connect", &nobody, "--no-auth"],
+        quick,
+    );
     assert!(e.contains(&nobody), "{e}");
 }
 

@@ -2,11 +2,13 @@
 //! one-line errors with exit code 2, and quiet-by-default logging.
 
 use std::fmt::Display;
+use std::path::PathBuf;
 
 use clap::Parser;
 use proto::keys::{InvalidExperiment, Keys};
 
 use crate::net::NetConfig;
+use crate::secret::{Secret, SecretError};
 
 /// How a process started for an experiment joins it; flattened into the
 /// `agent` and `env-server serve` command lines (the coordinator starts
@@ -27,6 +29,15 @@ pub struct ConnectionArgs {
     /// coordinator starts itself; services keep running).
     #[arg(long)]
     pub exit_with_coordinator: bool,
+    /// The experiment's secret: a file, readable by its owner only, holding
+    /// one `user:password` line; every process of the experiment uses the
+    /// same one, and peers without it are refused.
+    #[arg(long, value_name = "FILE", required_unless_present = "no_auth")]
+    pub secret_file: Option<PathBuf>,
+    /// Join without authentication: anyone who can reach the endpoints can
+    /// then read and send every message.
+    #[arg(long, conflicts_with = "secret_file")]
+    pub no_auth: bool,
 }
 
 impl ConnectionArgs {
@@ -35,9 +46,11 @@ impl ConnectionArgs {
         Keys::new(&self.experiment)
     }
 
-    /// The zenoh settings: a peer on these endpoints.
-    pub fn net(&self) -> NetConfig {
-        NetConfig::peer(vec![self.listen.clone()], self.connect.clone())
+    /// The zenoh settings: a peer on these endpoints, with the secret
+    /// unless `--no-auth`; fails on a secret file that cannot be used.
+    pub fn net(&self) -> Result<NetConfig, SecretError> {
+        let secret = self.secret_file.as_deref().map(Secret::load).transpose()?;
+        Ok(NetConfig::peer(vec![self.listen.clone()], self.connect.clone()).with_secret(secret))
     }
 }
 
@@ -108,21 +121,52 @@ mod tests {
             "--connect",
             "tcp/127.0.0.1:2",
             "--exit-with-coordinator",
+            "--no-auth",
         ])
         .unwrap();
         let c = cli.connection;
         assert!(c.exit_with_coordinator);
         assert_eq!(c.keys().unwrap(), Keys::new("e1").unwrap());
         assert_eq!(
-            c.net(),
+            c.net().unwrap(),
             NetConfig::peer(
                 vec!["tcp/127.0.0.1:0".into()],
                 vec!["tcp/127.0.0.1:1".into(), "tcp/127.0.0.1:2".into()]
             )
         );
-        let bad = Cli::try_parse_from(["x", "--experiment", "a/b"]).unwrap();
+        let bad = Cli::try_parse_from(["x", "--experiment", "a/b", "--no-auth"]).unwrap();
         assert!(bad.connection.keys().is_err());
         assert!(Cli::try_parse_from(["x"]).is_err());
+    }
+
+    #[test]
+    fn a_secret_is_required_unless_refused_explicitly() {
+        let error = |args: &[&str]| Cli::try_parse_from(args).err().map(|e| e.to_string());
+        let missing = error(&["x", "--experiment", "e"]).unwrap();
+        assert!(missing.contains("--secret-file"), "{missing}");
+        assert!(error(&["x", "--experiment", "e", "--secret-file", "s", "--no-auth"]).is_some());
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("secret");
+        let secret = Secret::create(&path).unwrap();
+        let cli = Cli::try_parse_from(
+            ["x", "--experiment", "e", "--secret-file"]
+                .map(str::to_owned)
+                .into_iter()
+                .chain([path.display().to_string()]),
+        )
+        .unwrap();
+        assert_eq!(cli.connection.net().unwrap().secret, Some(secret));
+        let missing_file =
+            Cli::try_parse_from(["x", "--experiment", "e", "--secret-file", "/nonexistent/s"])
+                .unwrap();
+        assert!(
+            missing_file
+                .connection
+                .net()
+                .unwrap_err()
+                .to_string()
+                .contains("/nonexistent/s")
+        );
     }
 
     #[test]

@@ -11,3 +11,4 @@ pub mod alive;
 pub mod cli;
 pub mod files;
 pub mod net;
+pub mod secret;

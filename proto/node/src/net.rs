@@ -5,6 +5,8 @@ use std::fmt::Display;
 
 use zenoh::Session;
 
+use crate::secret::Secret;
+
 /// How a process joins the zenoh network.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct NetConfig {
@@ -14,6 +16,8 @@ pub struct NetConfig {
     pub connect: Vec<String>,
     /// `"peer"` (default) or `"client"` (behind a router).
     pub mode: String,
+    /// The experiment's credentials; `None` joins without authentication.
+    pub secret: Option<Secret>,
 }
 
 impl NetConfig {
@@ -23,7 +27,13 @@ impl NetConfig {
             listen,
             connect,
             mode: "peer".to_owned(),
+            secret: None,
         }
+    }
+
+    /// These settings with `secret`'s authentication.
+    pub fn with_secret(self, secret: Option<Secret>) -> Self {
+        Self { secret, ..self }
     }
 
     /// A loopback peer listening on `127.0.0.1:<port>` (0: any free port)
@@ -33,8 +43,11 @@ impl NetConfig {
     }
 
     /// The zenoh configuration: multicast scouting off, gossip on (peers
-    /// learn each other's listeners through the ones they connect to), and
-    /// opening fails after 5 s if a configured endpoint cannot be reached.
+    /// learn each other's listeners through the ones they connect to; of two
+    /// peers only the one with the greater id opens their link, since two
+    /// authenticated handshakes crossing each other can kill both links),
+    /// opening fails after 5 s if a configured endpoint cannot be reached,
+    /// and with a secret, user/password authentication both ways.
     pub fn to_json5(&self) -> String {
         let list = |v: &[String]| {
             v.iter()
@@ -43,8 +56,12 @@ impl NetConfig {
                 .join(", ")
         };
         format!(
-            r#"{{ mode: {mode:?}, listen: {{ endpoints: [{listen}] }}, connect: {{ endpoints: [{connect}], timeout_ms: 5000, exit_on_failure: true }}, scouting: {{ multicast: {{ enabled: false }}, gossip: {{ enabled: true }} }} }}"#,
+            r#"{{ mode: {mode:?}, listen: {{ endpoints: [{listen}] }}, connect: {{ endpoints: [{connect}], timeout_ms: 5000, exit_on_failure: true }}, scouting: {{ multicast: {{ enabled: false }}, gossip: {{ enabled: true, autoconnect_strategy: "greater-zid" }} }}{auth} }}"#,
             mode = self.mode,
+            auth = self
+                .secret
+                .as_ref()
+                .map_or_else(String::new, |s| format!(", {}", s.to_json5())),
             listen = list(&self.listen),
             connect = list(&self.connect),
         )
@@ -176,6 +193,23 @@ mod tests {
         let port = free_port().unwrap();
         assert_ne!(port, 0);
         std::net::TcpListener::bind(("127.0.0.1", port)).unwrap();
+    }
+
+    #[tokio::test(flavor = "multi_thread")]
+    async fn only_peers_with_the_secret_can_join() {
+        let dir = tempfile::tempdir().unwrap();
+        let secret = Secret::create(&dir.path().join("secret")).unwrap();
+        let port = free_port().unwrap();
+        let host = NetConfig::loopback_peer(port, Vec::new()).with_secret(Some(secret.clone()));
+        let _host = open(&host).await.unwrap();
+        let guest = NetConfig::loopback_peer(0, vec![format!("tcp/127.0.0.1:{port}")]);
+        open(&guest.clone().with_secret(Some(secret)))
+            .await
+            .unwrap();
+        let e = open(&guest).await.unwrap_err().to_string();
+        assert!(e.starts_with("cannot join the zenoh network"), "{e}");
+        let other = Secret::create(&dir.path().join("other")).unwrap();
+        assert!(open(&guest.with_secret(Some(other))).await.is_err());
     }
 
     #[tokio::test(flavor = "multi_thread")]

@@ -89,6 +89,8 @@ pub struct Episode {
     /// Reward of the transition that led to the current frame.
     reward: f64,
     outcome: Outcome,
+    /// Awaited actions that did not come in time, over the episode.
+    timed_out: u32,
 }
 
 impl Episode {
@@ -104,6 +106,7 @@ impl Episode {
             actions: [Action::Move; MAX_OFFENSE],
             reward: 0.0,
             outcome: Outcome::InGame,
+            timed_out: 0,
         };
         episode.await_kickers(env);
         episode
@@ -127,6 +130,13 @@ impl Episode {
     /// The agents whose action has not arrived yet.
     pub fn missing(&self) -> impl Iterator<Item = usize> + '_ {
         (0..self.offense).filter(|i| self.awaited & (1 << i) != 0)
+    }
+
+    /// The step timeout passed: the missing actions count as timed out and
+    /// stay Move.
+    pub fn time_out(&mut self) {
+        self.timed_out += self.awaited.count_ones();
+        self.awaited = 0;
     }
 
     /// Writes agent `agent`'s observation of the current frame into `obs`.
@@ -189,6 +199,7 @@ impl Episode {
         Some(EpisodeResult {
             outcome,
             frames: self.header.frame,
+            actions_timed_out: self.timed_out,
         })
     }
 

@@ -47,7 +47,7 @@ impl Link {
     /// last, the liveliness token (so a process that sees the token finds
     /// the rest declared).
     pub async fn open(connection: &ConnectionArgs, keys: Keys) -> Result<(Self, Inbox)> {
-        let session = node::net::open(&connection.net()).await?;
+        let session = node::net::open(&connection.net()?).await?;
         let control_key = keys.control(Role::Server);
         let (query_tx, queries) = unbounded_channel();
         let queryable = session

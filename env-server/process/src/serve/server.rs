@@ -14,6 +14,7 @@
 use super::episode::{Episode, ObservationSlot, Offer, Simulators};
 use super::link::{Inbox, Link};
 use anyhow::{Result, bail};
+use env_server::analysis::MAX_OFFENSE;
 use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
     MessageCounters, MessageKind, Mode, ServerReport,
@@ -52,6 +53,11 @@ pub struct Server {
     link: Link,
     experiment: u64,
     step_timeout: Duration,
+    /// How long a kicker may stay silent, frame after frame.
+    stall_limit: Duration,
+    /// Since when each agent has sent no awaited action (None: it answered
+    /// its last decision).
+    silent_since: [Option<Instant>; MAX_OFFENSE],
     run: Option<Run>,
     play: Option<Play>,
     slot: ObservationSlot,
@@ -69,6 +75,8 @@ impl Server {
             link,
             experiment,
             step_timeout: Duration::ZERO,
+            stall_limit: Duration::ZERO,
+            silent_since: [None; MAX_OFFENSE],
             run: None,
             play: None,
             slot: ObservationSlot::new(experiment),
@@ -164,8 +172,9 @@ impl Server {
                 seed,
                 config,
                 wait_ms,
+                stall_ms,
             } => (
-                self.reset(header, seed, &config, wait_ms).await?,
+                self.reset(header, seed, &config, wait_ms, stall_ms).await?,
                 Flow::Continue,
             ),
             Control::Report => (
@@ -194,6 +203,7 @@ impl Server {
         seed: u64,
         config: &[u8],
         wait_ms: u64,
+        stall_ms: u64,
     ) -> Result<ControlReply> {
         if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
             return Ok(ControlReply::Error(format!(
@@ -201,11 +211,19 @@ impl Server {
                 proto::MAX_WAIT_MS
             )));
         }
+        if !(wait_ms..=proto::MAX_STALL_MS).contains(&stall_ms) {
+            return Ok(ControlReply::Error(format!(
+                "the stall limit must be {wait_ms} (the step timeout) to {} ms, got {stall_ms}",
+                proto::MAX_STALL_MS
+            )));
+        }
         let simulators = match Simulators::new(config, seed) {
             Ok(s) => s,
             Err(text) => return Ok(ControlReply::Error(text)),
         };
         self.step_timeout = Duration::from_millis(wait_ms);
+        self.stall_limit = Duration::from_millis(stall_ms);
+        self.silent_since = [None; MAX_OFFENSE];
         self.abandon("its run was reset").await;
         self.link.set_team(simulators.offense()).await?;
         self.run = Some(Run {
@@ -368,6 +386,11 @@ impl Server {
         };
         let reason = match offer {
             Offer::Accepted => {
+                if let Body::Action(choice) = &envelope.body
+                    && let Some(since) = self.silent_since.get_mut(usize::from(choice.agent))
+                {
+                    *since = None;
+                }
                 self.counters
                     .record(Direction::Received, MessageKind::Action, bytes.len());
                 let waiting = self.play.as_ref().is_some_and(|p| p.episode.is_waiting());
@@ -386,12 +409,15 @@ impl Server {
         Ok(())
     }
 
-    /// The step timeout passed: every missing kicker moves.
+    /// The step timeout passed: every missing kicker moves, and the episode
+    /// is abandoned if one of them has been silent for the stall limit.
     async fn on_timeout(&mut self) -> Result<()> {
-        let Some(play) = &self.play else {
+        let Some(play) = &mut self.play else {
             return Ok(());
         };
         let h = play.episode.header;
+        let now = Instant::now();
+        let mut stalled = None;
         for agent in play.episode.missing() {
             warn!(
                 run = h.run,
@@ -401,6 +427,21 @@ impl Server {
                 "no action within the step timeout: Move instead"
             );
             self.missing_actions += 1;
+            let since = *self.silent_since[agent].get_or_insert(now - self.step_timeout);
+            if now.duration_since(since) >= self.stall_limit {
+                stalled = Some((agent, now.duration_since(since)));
+            }
+        }
+        play.episode.time_out();
+        if let Some((agent, silent)) = stalled {
+            let why = format!(
+                "agent {agent} sent no action for {:.1} s, the stall limit {:?}: \
+                 is its process stopped or overloaded?",
+                silent.as_secs_f64(),
+                self.stall_limit
+            );
+            self.abandon(&why).await;
+            return Ok(());
         }
         self.proceed().await
     }

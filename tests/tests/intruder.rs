@@ -1,0 +1,166 @@
+//! An experiment's processes refuse a zenoh peer without the experiment's
+//! secret: it can neither join, nor see a liveliness token, nor read or
+//! send a message, even knowing every endpoint.
+
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use agent::{Mode, Profile, StrategyName};
+use coordinator::transport::Auth;
+use coordinator::{
+    AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
+    ZenohSettings,
+};
+use integration_tests::{bin, bin_dir, experiment_name};
+use node::net::{NetConfig, free_port};
+use node::secret::Secret;
+
+/// A process killed when dropped.
+struct Guard(Child);
+
+impl Drop for Guard {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn spawn(program: &str, args: &[String]) -> Guard {
+    Guard(
+        Command::new(bin(program))
+            .args(args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap(),
+    )
+}
+
+#[test]
+fn a_peer_without_the_secret_can_neither_join_nor_listen() {
+    let tmp = tempfile::tempdir().unwrap();
+    let secret = Secret::create(&tmp.path().join("secret")).unwrap();
+    let name = experiment_name("intruder-auth");
+    let endpoints: Vec<String> = (0..4)
+        .map(|_| format!("tcp/127.0.0.1:{}", free_port().unwrap()))
+        .collect();
+    // env-server and three agents as services on known endpoints, with the
+    // secret; the coordinator attaches to them.
+    let common = |listen: &str| {
+        let path = secret.path().display().to_string();
+        [
+            "--experiment",
+            &name,
+            "--listen",
+            listen,
+            "--secret-file",
+            &path,
+        ]
+        .map(str::to_owned)
+    };
+    let mut processes = vec![spawn(
+        "env-server",
+        &[&["serve".to_owned()][..], &common(&endpoints[0])].concat(),
+    )];
+    for (i, listen) in endpoints[1..].iter().enumerate() {
+        let id = ["--id", &i.to_string(), "--team-size", "3"].map(str::to_owned);
+        processes.push(spawn("agent", &[&id[..], &common(listen)].concat()));
+    }
+    let settings = ZenohSettings {
+        advice_timeout_ms: 20,
+        step_timeout_ms: 2000,
+        stall_limit_ms: 10_000,
+        endpoints: Endpoints {
+            experiment: name.clone(),
+            port: 0,
+            listen: None,
+            connect: endpoints.clone(),
+            attach: true,
+            bin_dir: Some(bin_dir()),
+            auth: Auth::File(secret.path().to_owned()),
+            startup_timeout: Duration::from_secs(60),
+        },
+    };
+    let net = Network::start(&settings, 3).expect("the attached processes join");
+    let experiment = Experiment::prepare(ExperimentConfig {
+        runs: 1,
+        episodes: 20,
+        team: vec![AgentSpec::of(StrategyName::AdHocTd, Profile::Paper); 3],
+        ..ExperimentConfig::default()
+    })
+    .unwrap();
+    let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
+    backend.play_episode(Mode::Training).unwrap();
+
+    let runtime = tokio::runtime::Runtime::new().unwrap();
+    runtime.block_on(async {
+        // Without credentials, or with others, no process opens a session
+        // (all tried at once: each refusal takes the 5 s connect timeout).
+        let other = Secret::create(&tmp.path().join("other")).unwrap();
+        let tries: Vec<_> = endpoints
+            .iter()
+            .flat_map(|endpoint| [None, Some(other.clone())].map(|s| (endpoint.clone(), s)))
+            .map(|(endpoint, secret)| {
+                tokio::spawn(async move {
+                    let guest = NetConfig::loopback_peer(0, vec![endpoint.clone()]);
+                    let result = node::net::open(&guest.with_secret(secret)).await;
+                    (endpoint, result.map(|_| ()))
+                })
+            })
+            .collect();
+        for attempt in tries {
+            let (endpoint, result) = attempt.await.unwrap();
+            let e = result.expect_err(&endpoint).to_string();
+            assert!(e.starts_with("cannot join the zenoh network"), "{e}");
+        }
+    });
+    // A lurker that keeps trying every endpoint while the run goes on
+    // sees no token and no message, and what it sends arrives nowhere.
+    let (lurker, tokens, messages, replies) = runtime.block_on(async {
+        let list = endpoints
+            .iter()
+            .map(|e| format!("{e:?}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let config = format!(
+            r#"{{ mode: "peer", connect: {{ endpoints: [{list}], timeout_ms: 1000, exit_on_failure: false }}, scouting: {{ multicast: {{ enabled: false }} }} }}"#
+        );
+        let lurker = zenoh::open(zenoh::Config::from_json5(&config).unwrap())
+            .await
+            .unwrap();
+        let tokens = lurker
+            .liveliness()
+            .declare_subscriber("adv/**")
+            .history(true)
+            .await
+            .unwrap();
+        let messages = lurker.declare_subscriber("adv/**").await.unwrap();
+        let stop = proto::encode(&proto::Envelope {
+            header: proto::Header::new(proto::experiment_id(&name), 0, 0, 0),
+            body: proto::Body::Control(proto::Control::Stop),
+        });
+        let replies = lurker
+            .get(format!("adv/{name}/**"))
+            .payload(stop)
+            .timeout(Duration::from_millis(500))
+            .await
+            .unwrap();
+        (lurker, tokens, messages, replies)
+    });
+    for _ in 0..5 {
+        backend.play_episode(Mode::Training).unwrap();
+    }
+    runtime.block_on(async {
+        tokio::time::sleep(Duration::from_secs(1)).await;
+        assert!(tokens.try_recv().unwrap().is_none(), "a token leaked");
+        assert!(messages.try_recv().unwrap().is_none(), "a message leaked");
+        assert!(
+            !matches!(replies.try_recv(), Ok(Some(_))),
+            "a query was answered"
+        );
+        lurker.close().await.unwrap();
+    });
+    drop(backend);
+    drop(net);
+    drop(processes);
+}
