@@ -36,3 +36,29 @@ pub fn bin(name: &str) -> PathBuf {
 pub fn experiment_name(tag: &str) -> String {
     format!("test-{tag}-{}", std::process::id())
 }
+
+/// The command line of process `pid`, arguments separated by NUL (Linux
+/// /proc; empty once it is gone).
+pub fn cmdline(pid: u32) -> String {
+    std::fs::read_to_string(format!("/proc/{pid}/cmdline")).unwrap_or_default()
+}
+
+/// Whether process `pid` runs (exists and is not a zombie).
+pub fn is_running(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat"))
+        .map(|s| !s.contains(") Z "))
+        .unwrap_or(false)
+}
+
+/// Running processes whose command line contains `needle`, e.g. an
+/// experiment name passed with `--experiment`.
+pub fn processes_with(needle: &str) -> Vec<u32> {
+    let Ok(entries) = std::fs::read_dir("/proc") else {
+        return Vec::new();
+    };
+    entries
+        .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .filter(|&pid| pid != std::process::id())
+        .filter(|&pid| cmdline(pid).contains(needle) && is_running(pid))
+        .collect()
+}

@@ -9,7 +9,7 @@ use coordinator::{
     AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
     ZenohSettings,
 };
-use integration_tests::{bin, bin_dir, experiment_name};
+use integration_tests::{bin, bin_dir, cmdline, experiment_name, is_running};
 use node::net::{NetConfig, free_port};
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
@@ -315,14 +315,4 @@ fn wait_for_children(parent: u32, n: usize) -> Vec<u32> {
         );
         std::thread::sleep(Duration::from_millis(50));
     }
-}
-
-fn cmdline(pid: u32) -> String {
-    std::fs::read_to_string(format!("/proc/{pid}/cmdline")).unwrap_or_default()
-}
-
-fn is_running(pid: u32) -> bool {
-    std::fs::read_to_string(format!("/proc/{pid}/stat"))
-        .map(|s| !s.contains(") Z "))
-        .unwrap_or(false)
 }

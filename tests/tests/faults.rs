@@ -1,0 +1,316 @@
+//! Fault injection into a real experiment over loopback zenoh: env-server,
+//! three agents and the coordinator as processes, and one fault per trial:
+//! an agent or env-server killed, or stopped and resumed; the coordinator
+//! killed, terminated or interrupted at a random moment from its start-up on.
+//!
+//! Every trial must end within a bound (no hang), leave no process of its
+//! experiment behind (no orphan) and leave only result files that parse (no
+//! corrupted file); a run that fails says why on its last line.
+//!
+//! CI plays one trial of each kind. The long mode plays N random trials:
+//!
+//! ```sh
+//! ADV_FAULTS=100 cargo test --release -p integration-tests --test faults -- --nocapture
+//! ```
+//!
+//! `ADV_FAULT_SEED` (default 1) picks the trials and their moments.
+
+use std::fs::File;
+use std::path::Path;
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::time::{Duration, Instant};
+
+use integration_tests::{bin, cmdline, processes_with};
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+/// The stall limit of every trial: a kicker silent this long ends the run.
+const STALL_LIMIT_MS: u64 = 3000;
+/// How long a trial may take to end once its fault is in place.
+const END_BOUND: Duration = Duration::from_secs(90);
+/// How long the processes of an ended experiment may take to exit.
+const ORPHAN_BOUND: Duration = Duration::from_secs(5);
+
+/// What happens to the experiment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Fault {
+    /// SIGKILL agent 1.
+    KillAgent,
+    /// SIGSTOP agent 1, then SIGCONT after the pause.
+    StopAgent,
+    /// SIGKILL env-server.
+    KillServer,
+    /// SIGSTOP env-server, then SIGCONT after the pause.
+    StopServer,
+    /// SIGKILL the coordinator.
+    KillCoordinator,
+    /// SIGTERM the coordinator.
+    TermCoordinator,
+    /// SIGINT the coordinator (Ctrl-C).
+    InterruptCoordinator,
+}
+
+const FAULTS: [Fault; 7] = [
+    Fault::KillAgent,
+    Fault::StopAgent,
+    Fault::KillServer,
+    Fault::StopServer,
+    Fault::KillCoordinator,
+    Fault::TermCoordinator,
+    Fault::InterruptCoordinator,
+];
+
+/// One trial: a fault, when it strikes and how long a stop lasts.
+#[derive(Clone, Copy, Debug)]
+struct Trial {
+    fault: Fault,
+    /// After the coordinator starts (its faults) or after the target
+    /// process appears (the others).
+    delay: Duration,
+    pause: Duration,
+}
+
+impl Trial {
+    fn random(fault: Fault, rng: &mut Xoshiro256PlusPlus) -> Self {
+        let delay = match fault {
+            // From the very start: before, during and after the spawns.
+            Fault::KillCoordinator | Fault::TermCoordinator | Fault::InterruptCoordinator => {
+                rng.random_range(0..3000)
+            }
+            _ => rng.random_range(0..1500),
+        };
+        Self {
+            fault,
+            delay: Duration::from_millis(delay),
+            // Within and beyond the stall limit.
+            pause: Duration::from_millis(rng.random_range(200..2 * STALL_LIMIT_MS)),
+        }
+    }
+}
+
+/// What a trial ended in; anything but `Ok` fails the suite.
+#[derive(Debug, PartialEq, Eq)]
+enum Verdict {
+    Ok(String),
+    Hang,
+    Orphans(Vec<String>),
+    Corrupted(String),
+    Unclear(String),
+}
+
+fn signal(pid: u32, name: &str) {
+    // The process may already be gone: that is not the suite's concern.
+    let _ = Command::new("kill")
+        .args([&format!("-{name}"), &pid.to_string()])
+        .stderr(Stdio::null())
+        .status();
+}
+
+/// The pid of the experiment's process whose command line holds `part`.
+fn find(experiment: &str, part: &str, deadline: Instant) -> Option<u32> {
+    while Instant::now() < deadline {
+        if let Some(pid) = processes_with(experiment)
+            .into_iter()
+            .find(|&pid| cmdline(pid).contains(part))
+        {
+            return Some(pid);
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    None
+}
+
+fn start(experiment: &str, out: &Path, stderr: File) -> Child {
+    Command::new(bin("coordinator"))
+        .args(["run", "--algorithm", "adhoc-td", "--runs", "1"])
+        .args([
+            "--episodes",
+            "200",
+            "--eval-every",
+            "100",
+            "--eval-episodes",
+            "10",
+        ])
+        .args(["--transport", "zenoh", "--experiment", experiment])
+        .args(["--stall-limit-ms", &STALL_LIMIT_MS.to_string(), "--quiet"])
+        .arg("--out")
+        .arg(out)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(stderr)
+        .spawn()
+        .expect("start the coordinator")
+}
+
+fn wait(child: &mut Child, bound: Duration) -> Option<ExitStatus> {
+    let deadline = Instant::now() + bound;
+    while Instant::now() < deadline {
+        if let Some(status) = child.try_wait().expect("wait for the coordinator") {
+            return Some(status);
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    None
+}
+
+/// Plays `trial` as experiment `name` in `dir`.
+fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
+    let out = dir.join("out");
+    let stderr_path = dir.join("stderr");
+    let mut coordinator = start(name, &out, File::create(&stderr_path).expect("stderr file"));
+    let started = Instant::now();
+    let target = match trial.fault {
+        Fault::KillAgent | Fault::StopAgent => Some("--id\u{0}1\u{0}"),
+        Fault::KillServer | Fault::StopServer => Some("serve\u{0}"),
+        _ => None,
+    };
+    match target {
+        None => {
+            std::thread::sleep(trial.delay);
+            let name = match trial.fault {
+                Fault::KillCoordinator => "KILL",
+                Fault::TermCoordinator => "TERM",
+                _ => "INT",
+            };
+            signal(coordinator.id(), name);
+        }
+        Some(part) => {
+            if let Some(pid) = find(name, part, started + Duration::from_secs(30)) {
+                std::thread::sleep(trial.delay);
+                if matches!(trial.fault, Fault::KillAgent | Fault::KillServer) {
+                    signal(pid, "KILL");
+                } else {
+                    signal(pid, "STOP");
+                    std::thread::sleep(trial.pause);
+                    signal(pid, "CONT");
+                }
+            }
+        }
+    }
+    let Some(status) = wait(&mut coordinator, END_BOUND) else {
+        let _ = coordinator.kill();
+        let _ = coordinator.wait();
+        kill_all(name);
+        return Verdict::Hang;
+    };
+    let deadline = Instant::now() + ORPHAN_BOUND;
+    while !processes_with(name).is_empty() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let left = processes_with(name);
+    if !left.is_empty() {
+        let names = left
+            .iter()
+            .map(|&p| cmdline(p).replace('\0', " "))
+            .collect();
+        kill_all(name);
+        return Verdict::Orphans(names);
+    }
+    if let Err(e) = check_files(&out) {
+        return Verdict::Corrupted(e);
+    }
+    let stderr = std::fs::read_to_string(&stderr_path).unwrap_or_default();
+    let last = stderr.lines().rev().find(|l| !l.trim().is_empty());
+    match (status.code(), last) {
+        (Some(0), _) => Verdict::Ok("finished".into()),
+        // A signal before the handlers are installed, i.e. before any spawn.
+        (None, _) if target.is_none() => Verdict::Ok(format!("{status}")),
+        (Some(code), Some(line)) if line.starts_with("error:") || line.contains("stopping") => {
+            Verdict::Ok(format!("exit {code}: {line}"))
+        }
+        _ => Verdict::Unclear(format!("{status}, stderr: {stderr}")),
+    }
+}
+
+fn kill_all(experiment: &str) {
+    for pid in processes_with(experiment) {
+        signal(pid, "KILL");
+    }
+}
+
+/// Every result file parses: JSON files as JSON, CSV files with one field
+/// count. Leftover temporary files are allowed (they never block a rerun).
+fn check_files(dir: &Path) -> Result<(), String> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries {
+        let path = entry.map_err(|e| e.to_string())?.path();
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        if name.starts_with(node::files::TEMP_PREFIX) {
+            continue;
+        }
+        if path.is_dir() {
+            check_files(&path)?;
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).map_err(|e| format!("{name}: {e}"))?;
+        let fail = |why: String| format!("{}: {why}", path.display());
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("json") => {
+                serde_json::from_str::<serde_json::Value>(&text)
+                    .map_err(|e| fail(e.to_string()))?;
+            }
+            Some("csv") => {
+                let fields = |line: &str| line.split(',').count();
+                let mut lines = text.lines();
+                let header = lines.next().map(fields).unwrap_or(0);
+                if !text.ends_with('\n') || lines.any(|l| fields(l) != header) {
+                    return Err(fail("a partial or ragged row".into()));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn every_fault_ends_bounded_without_orphans_or_corrupted_files() {
+    let count: usize = std::env::var("ADV_FAULTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(FAULTS.len());
+    let seed: u64 = std::env::var("ADV_FAULT_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1);
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let tmp = tempfile::tempdir().unwrap();
+    let mut failures = Vec::new();
+    // The short mode plays each fault once, the long mode draws them.
+    let faults: Vec<Fault> = if count == FAULTS.len() {
+        FAULTS.to_vec()
+    } else {
+        (0..count)
+            .map(|_| FAULTS[rng.random_range(0..FAULTS.len())])
+            .collect()
+    };
+    for (i, &fault) in faults.iter().enumerate() {
+        let trial = Trial::random(fault, &mut rng);
+        let dir = tmp.path().join(format!("trial-{i}"));
+        std::fs::create_dir_all(&dir).unwrap();
+        let name = format!("fault-{}-{i}", std::process::id());
+        let began = Instant::now();
+        let verdict = play(trial, &name, &dir);
+        eprintln!(
+            "trial {i}: {:?} after {:?} (pause {:?}): {verdict:?} in {:.1} s",
+            trial.fault,
+            trial.delay,
+            trial.pause,
+            began.elapsed().as_secs_f64()
+        );
+        if !matches!(verdict, Verdict::Ok(_)) {
+            failures.push((i, trial, verdict));
+        }
+    }
+    let count_of = |f: &dyn Fn(&Verdict) -> bool| failures.iter().filter(|(_, _, v)| f(v)).count();
+    eprintln!(
+        "{count} faults (seed {seed}): {} hangs, {} orphans, {} corrupted, {} unclear",
+        count_of(&|v| *v == Verdict::Hang),
+        count_of(&|v| matches!(v, Verdict::Orphans(_))),
+        count_of(&|v| matches!(v, Verdict::Corrupted(_))),
+        count_of(&|v| matches!(v, Verdict::Unclear(_))),
+    );
+    assert!(failures.is_empty(), "{failures:#?}");
+}
