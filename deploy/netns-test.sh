@@ -3,8 +3,9 @@
 # this one machine: three "hosts" are Linux network namespaces on a private
 # bridge, and the experiment runs across them exactly as the README says.
 #
-#   adv-sim  10.213.47.10   env-server (the rendezvous, tcp/10.213.47.10:7447)
-#                           and, once the agents are up, the coordinator
+#   adv-sim  10.213.47.10   a zenoh router (the rendezvous, tcp/10.213.47.10:7447,
+#                           `coordinator router`), env-server and, once the
+#                           agents are up, the coordinator
 #   adv-a    10.213.47.11   agents 0 and 1
 #   adv-b    10.213.47.12   agent 2
 #   adv-net  (no address)   the bridge adv-br joining the three veth pairs
@@ -20,8 +21,12 @@
 # on adv-a had a direct TCP connection to adv-b while the experiment ran
 # (advice goes agent to agent, not through env-server); and an agent started
 # on adv-b without the experiment's secret is refused (exit 2, "cannot join
-# the zenoh network"). Every process gets --secret-file. It also prints which
-# processes are still running after the coordinator has finished.
+# the zenoh network"). Every process gets --secret-file and connects only to
+# the router; the router is restarted while the experiment runs, and adv-b
+# drops 5% of the packets it receives (nftables, where `nft` is installed):
+# the run must still finish. It prints what the losses cost (advice requests
+# without replies, actions played as Move) and which processes are still
+# running after the coordinator has finished.
 #
 #   sudo deploy/netns-test.sh [--skip-if-unavailable] [--keep] [--listen-any]
 #
@@ -76,10 +81,11 @@ A_IP=10.213.47.11
 B_IP=10.213.47.12
 PORT=7447
 EXPERIMENT=netns
+LOSS_PERCENT=5
 RENDEZVOUS=tcp/$SIM_IP:$PORT
 
 # The experiment (small: about a minute at most).
-RUN_ARGS=(--algorithm adhoc-td --runs 1 --episodes 100 --eval-every 50 --eval-episodes 20)
+RUN_ARGS=(--algorithm adhoc-td --runs 1 --episodes 200 --eval-every 50 --eval-episodes 20)
 
 say() { printf '[netns-test] %s\n' "$*"; }
 
@@ -237,15 +243,23 @@ listen_on() { if [ "$listen_any" = 1 ]; then echo "tcp/0.0.0.0:$2"; else echo "t
 # copy of it, mode 600).
 "$BIN/coordinator" secret "$work/secret"
 
-say "env-server on $NS_SIM, listening on $(listen_on "$SIM_IP" "$PORT")"
+# router NAME: starts the router and waits until it listens.
+router() {
+    say "router ($1) on $NS_SIM, listening on $(listen_on "$SIM_IP" "$PORT")"
+    start "$1" "$NS_SIM" "$BIN/coordinator" router --listen "$(listen_on "$SIM_IP" "$PORT")" \
+        --secret-file "$work/secret"
+    for _ in $(seq 100); do
+        [ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] && return
+        kill -0 "$(pid_of "$1")" 2>/dev/null || fail "the router exited (see $work/$1.log)"
+        sleep 0.1
+    done
+    fail "the router does not listen on $RENDEZVOUS"
+}
+router router
+
+say "env-server on $NS_SIM, listening on $(listen_on "$SIM_IP" 0), connecting to $RENDEZVOUS"
 start env-server "$NS_SIM" "$BIN/env-server" serve --experiment "$EXPERIMENT" \
-    --listen "$(listen_on "$SIM_IP" "$PORT")" --secret-file "$work/secret"
-for _ in $(seq 100); do
-    [ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] && break
-    kill -0 "$(pid_of env-server)" 2>/dev/null || fail "env-server exited (see $work/env-server.log)"
-    sleep 0.1
-done
-[ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] || fail "env-server does not listen on $RENDEZVOUS"
+    --listen "$(listen_on "$SIM_IP" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret"
 # Both agent hosts reach the rendezvous over the bridge (a bare TCP connect,
 # closed at once; no ping needed).
 for ns in "$NS_A" "$NS_B"; do
@@ -275,17 +289,40 @@ connections() { ip netns exec "$1" ss -Htnp state established 2>/dev/null || tru
 pids+=("$!")
 names+=(ss-sampler)
 
+# adv-b loses packets: every one it receives is dropped with probability
+# LOSS_PERCENT % (nftables' random number; tc netem needs a kernel module
+# this test cannot count on).
+if command -v nft >/dev/null; then
+    printf 'table inet loss { chain input { type filter hook input priority 0; numgen random mod 100 < %s drop; }; }\n' \
+        "$LOSS_PERCENT" | ip netns exec "$NS_B" nft -f -
+    say "$NS_B drops $LOSS_PERCENT% of the packets it receives"
+else
+    say "nft is not installed: no packet loss on $NS_B (apt-get install nftables)"
+fi
+
 say "coordinator on $NS_SIM: ${RUN_ARGS[*]}"
 start coordinator "$NS_SIM" timeout "$TIMEOUT" "$BIN/coordinator" run --transport zenoh --attach \
     --experiment "$EXPERIMENT" --connect "$RENDEZVOUS" --listen "$(listen_on "$SIM_IP" 0)" \
     --secret-file "$work/secret" \
     "${RUN_ARGS[@]}" --quiet --out "$work/out"
 started=$SECONDS
+# The rendezvous goes away mid-run and comes back.
+sleep 2
+if kill -0 "$(pid_of coordinator)" 2>/dev/null; then
+    say "restarting the router mid-run"
+    kill -TERM "$(pid_of router)"
+    wait "$(pid_of router)" || true
+    sleep 1
+    router router-2
+else
+    say "the coordinator ended before the router restart"
+fi
 # `wait` in the background, so that Ctrl-C runs the cleanup at once.
 coordinator_rc=0
 wait "$(pid_of coordinator)" || coordinator_rc=$?
 say "coordinator exited $coordinator_rc after $((SECONDS - started)) s$([ "$coordinator_rc" != 124 ] || echo " (killed: TIMEOUT=$TIMEOUT s)")"
 kill "$(pid_of ss-sampler)" 2>/dev/null || true
+ip netns exec "$NS_B" nft delete table inet loss 2>/dev/null || true
 
 # A host without the secret cannot join: an agent on adv-b started without
 # it is refused by the rendezvous (exit 2, "cannot join").
@@ -341,11 +378,13 @@ b_given=$(num '.comm.per_agent[2].advice_given')
 a_requests=$(num '[.comm.per_agent[0,1].advice_requests_sent] | add')
 a_replies=$(num '[.comm.per_agent[0,1].advice_replies_received] | add')
 rtt=$(jq -r '.comm.advice_rtt_ms | "median \(.median) ms, p99 \(.p99) ms"' "$summary")
+timed_out=$(num .comm.actions_timed_out)
 gt0() { jq -en --argjson v "$1" '$v > 0' >/dev/null; }
 
 say "team: requests $requests, replies $replies, advice given $given; rtt $rtt"
 say "agents 0+1 ($NS_A): requests $a_requests, replies $a_replies (from each other and from $NS_B)"
 say "agent 2 ($NS_B): requests $b_requests, replies $b_replies (from $NS_A), advice given $b_given (to $NS_A)"
+say "losses: actions played as Move after the step timeout $timed_out; agent 2's requests without a reply from each advisor: $(jq -n --argjson q "$b_requests" --argjson r "$b_replies" '2 * $q - $r')"
 say "direct TCP $NS_A<->$NS_B: $a_b_links distinct connection(s) seen; agents on $NS_A in them: pids ${a_to_b:-none}" \
     "(agent 0 = $(pid_of agent-0), agent 1 = $(pid_of agent-1))"
 

@@ -39,6 +39,22 @@ enum Command {
         /// Where to write it; must not exist.
         file: PathBuf,
     },
+    /// Run a zenoh router, the rendezvous of processes on many hosts
+    /// (deploy/README.md), until Ctrl-C or SIGTERM.
+    Router(RouterArgs),
+}
+
+#[derive(Args)]
+struct RouterArgs {
+    /// zenoh endpoint to listen on (repeatable), e.g. tcp/0.0.0.0:7447.
+    #[arg(long, value_name = "ENDPOINT", required = true)]
+    listen: Vec<String>,
+    /// The experiment's secret file; peers without it are refused.
+    #[arg(long, value_name = "FILE", required_unless_present = "no_auth")]
+    secret_file: Option<PathBuf>,
+    /// Accept every peer that reaches the endpoints.
+    #[arg(long, conflicts_with = "secret_file")]
+    no_auth: bool,
 }
 
 #[derive(Args)]
@@ -249,7 +265,39 @@ fn run(cli: Cli) -> Result<()> {
             node::secret::Secret::create(&file)?;
             Ok(())
         }
+        Command::Router(args) => run_router(args),
     }
+}
+
+fn run_router(args: RouterArgs) -> Result<()> {
+    let secret = args
+        .secret_file
+        .as_deref()
+        .map(node::secret::Secret::load)
+        .transpose()?;
+    let net = node::net::NetConfig {
+        mode: "router".to_owned(),
+        ..node::net::NetConfig::peer(args.listen, Vec::new())
+    }
+    .with_secret(secret);
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()?;
+    runtime.block_on(async {
+        let session = node::net::open(&net).await?;
+        eprintln!("router {} on {}", session.zid(), net.endpoints());
+        let mut terminate =
+            tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())?;
+        tokio::select! {
+            _ = tokio::signal::ctrl_c() => {}
+            _ = terminate.recv() => {}
+        }
+        session
+            .close()
+            .await
+            .map_err(|e| anyhow::anyhow!("closing the router: {e}"))
+    })
 }
 
 fn run_study(args: StudyArgs) -> Result<()> {
