@@ -124,9 +124,15 @@ impl Snapshot {
         h.0
     }
 
-    /// Rejects impossible values (tried bits beyond the five actions,
-    /// non-finite Q values).
+    /// Rejects impossible values (a tiling without tiles or with a
+    /// non-finite or non-positive width or step, tried bits beyond the five
+    /// actions, non-finite Q values).
     pub fn check(&self) -> Result<(), PersistError> {
+        let t = self.tiling;
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        if t.tiles_per_feature == 0 || !positive(t.tile_width) || !positive(t.tile_step) {
+            return Err(PersistError::Invalid(format!("impossible tiling {t:?}")));
+        }
         for (key, e) in &self.entries {
             if e.tried >> ACTIONS != 0 || e.q.iter().any(|q| !q.is_finite()) {
                 return Err(PersistError::Invalid(format!(
@@ -227,6 +233,19 @@ mod tests {
         let loaded = Snapshot::decode(&s.encode().unwrap()).unwrap();
         assert_eq!(loaded, s);
         assert_eq!(loaded.digest(), s.digest());
+    }
+
+    #[test]
+    fn an_impossible_tiling_is_refused() {
+        // Found by the `snapshot` fuzz target: a NaN tile width decoded and
+        // passed the check.
+        for (width, step) in [(f64::NAN, 0.1), (0.5, 0.0), (f64::INFINITY, 0.1)] {
+            let mut s = sample();
+            s.tiling.tile_width = width;
+            s.tiling.tile_step = step;
+            assert!(s.check().unwrap_err().to_string().contains("tiling"));
+        }
+        assert!(sample().check().is_ok());
     }
 
     #[test]
