@@ -276,16 +276,22 @@ mod tests {
         w
     }
 
-    fn direct_routes(w: &World) -> Vec<Route> {
+    /// `f` applied to agent 0's situation in `w`.
+    fn in_situation<R>(w: &World, f: impl FnOnce(&Situation) -> R) -> R {
         let (a, config) = (Analysis::new(w), EnvConfig::default());
-        let s = Situation {
+        f(&Situation {
             world: w,
             analysis: &a,
             config: &config,
             agent: 0,
-        };
+        })
+    }
+
+    fn direct_routes(w: &World) -> Vec<Route> {
         let mut routes = Vec::new();
-        direct_passes(&s, &w.offense[1], &mut |r| routes.push(r));
+        in_situation(w, |s| {
+            direct_passes(s, &w.offense[1], &mut |r| routes.push(r))
+        });
         routes
     }
 
@@ -318,16 +324,7 @@ mod tests {
         // Ball at (10.6, 0) to (30.6, 0) at 2.0: 10 m along from the ball's
         // next position the ball needs 6.2 cycles, the keeper |y| - 1.185.
         let keeper_at = |y: f64| world(DVec2::new(30.6, 0.0), DVec2::new(22.6, y));
-        let near = |w: &World| {
-            let (a, config) = (Analysis::new(w), EnvConfig::default());
-            let s = Situation {
-                world: w,
-                analysis: &a,
-                config: &config,
-                agent: 0,
-            };
-            keeper_near_path(&s, DVec2::new(30.6, 0.0), 2.0)
-        };
+        let near = |w: &World| in_situation(w, |s| keeper_near_path(s, DVec2::new(30.6, 0.0), 2.0));
         assert!(near(&keeper_at(7.0)));
         assert!(!near(&keeper_at(8.0)));
         assert!(!near(&keeper_at(-8.0)));
