@@ -28,15 +28,23 @@
 # without replies, actions played as Move) and which processes are still
 # running after the coordinator has finished.
 #
-#   sudo deploy/netns-test.sh [--skip-if-unavailable] [--keep] [--listen-any]
+# With --tls, the deploy profile of deploy/tls/ on top: every process has its
+# own certificate (deploy/tls/make-credentials.sh), links are TLS with mutual
+# authentication and every process enforces zenoh's access control. Then a
+# host holding the secret but a certificate of another authority is refused,
+# and a coordinator started with an agent's own certificate cannot drive the
+# experiment (its control queries are denied: exit 2, "did not answer").
+#
+#   sudo deploy/netns-test.sh [--skip-if-unavailable] [--keep] [--listen-any] [--tls]
 #
 #   --skip-if-unavailable  not root / no `ip netns`: print "SKIP: <reason>"
 #                          and exit 0 (without it: exit 1)
 #   --keep                 keep the logs (one per process, and `ss` samples)
 #                          and results even on pass (always kept on failure)
-#   --listen-any           listen on tcp/0.0.0.0 (every interface) as the
+#   --listen-any           listen on 0.0.0.0 (every interface) as the
 #                          README's own commands do, instead of each host's
 #                          test address
+#   --tls                  TLS, certificates and access control (above)
 #
 # Environment: BIN (default target/release), RUST_LOG (default info, for
 # every process), TIMEOUT (coordinator time limit in s, default 300).
@@ -48,11 +56,13 @@ set -euo pipefail
 skip_ok=0
 keep=0
 listen_any=0
+tls=0
 for arg in "$@"; do
     case $arg in
         --skip-if-unavailable) skip_ok=1 ;;
         --keep) keep=1 ;;
         --listen-any) listen_any=1 ;;
+        --tls) tls=1 ;;
         -h | --help)
             sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
             exit 0
@@ -82,7 +92,9 @@ B_IP=10.213.47.12
 PORT=7447
 EXPERIMENT=netns
 LOSS_PERCENT=5
-RENDEZVOUS=tcp/$SIM_IP:$PORT
+SCHEME=tcp
+if [ "$tls" = 1 ]; then SCHEME=tls; fi
+RENDEZVOUS=$SCHEME/$SIM_IP:$PORT
 
 # The experiment (small: about a minute at most).
 RUN_ARGS=(--algorithm adhoc-td --runs 1 --episodes 200 --eval-every 50 --eval-episodes 20)
@@ -237,17 +249,27 @@ setup_network
 
 # What each process listens on: its host's test address, or (--listen-any)
 # every interface of its host, as in the README.
-listen_on() { if [ "$listen_any" = 1 ]; then echo "tcp/0.0.0.0:$2"; else echo "tcp/$1:$2"; fi; }
+listen_on() { if [ "$listen_any" = 1 ]; then echo "$SCHEME/0.0.0.0:$2"; else echo "$SCHEME/$1:$2"; fi; }
 
 # The experiment's secret: every process gets the file (on real hosts, a
 # copy of it, mode 600).
 "$BIN/coordinator" secret "$work/secret"
 
+# With --tls, every process's certificate and zenoh configuration, made as
+# deploy/README.md says; credentials NAME gives the flag that uses NAME's.
+if [ "$tls" = 1 ]; then
+    command -v openssl >/dev/null || fail "openssl is needed for --tls"
+    bash deploy/tls/make-credentials.sh "$work/tls" "$EXPERIMENT" router="$SIM_IP" \
+        env-server="$SIM_IP" coordinator="$SIM_IP" agent-0="$A_IP" agent-1="$A_IP" agent-2="$B_IP" >/dev/null
+    say "TLS with mutual authentication and access control: credentials in $work/tls"
+fi
+credentials() { if [ "$tls" = 1 ]; then echo "--zenoh-config $work/tls/$1/zenoh.json5"; fi; }
+
 # router NAME: starts the router and waits until it listens.
 router() {
     say "router ($1) on $NS_SIM, listening on $(listen_on "$SIM_IP" "$PORT")"
     start "$1" "$NS_SIM" "$BIN/coordinator" router --listen "$(listen_on "$SIM_IP" "$PORT")" \
-        --secret-file "$work/secret"
+        --secret-file "$work/secret" $(credentials router)
     for _ in $(seq 100); do
         [ -n "$(ip netns exec "$NS_SIM" ss -Htln "sport = :$PORT")" ] && return
         kill -0 "$(pid_of "$1")" 2>/dev/null || fail "the router exited (see $work/$1.log)"
@@ -259,7 +281,8 @@ router router
 
 say "env-server on $NS_SIM, listening on $(listen_on "$SIM_IP" 0), connecting to $RENDEZVOUS"
 start env-server "$NS_SIM" "$BIN/env-server" serve --experiment "$EXPERIMENT" \
-    --listen "$(listen_on "$SIM_IP" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret"
+    --listen "$(listen_on "$SIM_IP" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret" \
+    $(credentials env-server)
 # Both agent hosts reach the rendezvous over the bridge (a bare TCP connect,
 # closed at once; no ping needed).
 for ns in "$NS_A" "$NS_B"; do
@@ -270,7 +293,8 @@ done
 say "agents 0, 1 on $NS_A and 2 on $NS_B, listening on $(listen_on "<host>" 0), connecting to $RENDEZVOUS"
 agent() { # ID NAMESPACE ADDRESS
     start "agent-$1" "$2" "$BIN/agent" --experiment "$EXPERIMENT" --id "$1" --team-size 3 \
-        --listen "$(listen_on "$3" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret"
+        --listen "$(listen_on "$3" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret" \
+        $(credentials "agent-$1")
 }
 agent 0 "$NS_A" "$A_IP"
 agent 1 "$NS_A" "$A_IP"
@@ -303,7 +327,7 @@ fi
 say "coordinator on $NS_SIM: ${RUN_ARGS[*]}"
 start coordinator "$NS_SIM" timeout "$TIMEOUT" "$BIN/coordinator" run --transport zenoh --attach \
     --experiment "$EXPERIMENT" --connect "$RENDEZVOUS" --listen "$(listen_on "$SIM_IP" 0)" \
-    --secret-file "$work/secret" \
+    --secret-file "$work/secret" $(credentials coordinator) \
     "${RUN_ARGS[@]}" --quiet --out "$work/out"
 started=$SECONDS
 # The rendezvous goes away mid-run and comes back.
@@ -324,15 +348,38 @@ say "coordinator exited $coordinator_rc after $((SECONDS - started)) s$([ "$coor
 kill "$(pid_of ss-sampler)" 2>/dev/null || true
 ip netns exec "$NS_B" nft delete table inet loss 2>/dev/null || true
 
-# A host without the secret cannot join: an agent on adv-b started without
-# it is refused by the rendezvous (exit 2, "cannot join").
+# A host without the secret (and, with --tls, without a certificate)
+# cannot join: an agent on adv-b started without it is refused by the
+# rendezvous (exit 2, "cannot join").
 intruder_rc=0
 ip netns exec "$NS_B" timeout 30 "$BIN/agent" --experiment "$EXPERIMENT" --id 2 --team-size 3 \
-    --listen "$(listen_on "$B_IP" 0)" --connect "$RENDEZVOUS" --no-auth \
+    --listen "tcp/$B_IP:0" --connect "$RENDEZVOUS" --no-auth \
     >"$work/intruder.log" 2>&1 || intruder_rc=$?
 grep -q "cannot join the zenoh network" "$work/intruder.log" && [ "$intruder_rc" = 2 ] ||
     fail "a host without the secret was not refused (rc $intruder_rc, see $work/intruder.log)"
 say "a host without the secret is refused: $(cat "$work/intruder.log")"
+
+if [ "$tls" = 1 ]; then
+    # The secret, but a certificate of another authority: refused.
+    bash deploy/tls/make-credentials.sh "$work/foreign" "$EXPERIMENT" agent-2="$B_IP" >/dev/null
+    intruder_rc=0
+    ip netns exec "$NS_B" timeout 30 "$BIN/agent" --experiment "$EXPERIMENT" --id 2 --team-size 3 \
+        --listen "$(listen_on "$B_IP" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret" \
+        --zenoh-config "$work/foreign/agent-2/zenoh.json5" >"$work/foreign.log" 2>&1 || intruder_rc=$?
+    grep -q "cannot join the zenoh network" "$work/foreign.log" && [ "$intruder_rc" = 2 ] ||
+        fail "a certificate of another authority was not refused (rc $intruder_rc, see $work/foreign.log)"
+    say "a certificate of another authority is refused: $(cat "$work/foreign.log")"
+    # Agent 2's own credentials, used to drive the experiment: denied.
+    intruder_rc=0
+    ip netns exec "$NS_B" timeout 60 "$BIN/coordinator" run --transport zenoh --attach \
+        --experiment "$EXPERIMENT" --connect "$RENDEZVOUS" --listen "$(listen_on "$B_IP" 0)" \
+        --secret-file "$work/secret" $(credentials agent-2) --startup-timeout 10 \
+        --algorithm adhoc-td --runs 1 --episodes 5 --quiet --out "$work/out-intruder" \
+        >"$work/agent-as-coordinator.log" 2>&1 || intruder_rc=$?
+    grep -q "did not answer" "$work/agent-as-coordinator.log" && [ "$intruder_rc" = 2 ] ||
+        fail "an agent's certificate drove the experiment (rc $intruder_rc, see $work/agent-as-coordinator.log)"
+    say "an agent's certificate cannot drive the experiment: $(cat "$work/agent-as-coordinator.log")"
+fi
 
 # The README says attached processes keep running for the next experiment:
 # report which ones did (a second later).
@@ -406,4 +453,4 @@ numbers="requests=$requests replies=$replies given=$given agent2(replies=$b_repl
 if [ "${#problems[@]}" -gt 0 ]; then
     fail "$(IFS=';'; echo "${problems[*]}") [$numbers]"
 fi
-echo "PASS: netns multi-host adhoc-td, coordinator exit 0, $numbers"
+echo "PASS: netns multi-host adhoc-td over $SCHEME, coordinator exit 0, $numbers"

@@ -55,6 +55,10 @@ struct RouterArgs {
     /// Accept every peer that reaches the endpoints.
     #[arg(long, conflicts_with = "secret_file")]
     no_auth: bool,
+    /// A zenoh configuration file (JSON5) to start from, e.g. TLS
+    /// certificates and access control (deploy/tls/).
+    #[arg(long, value_name = "FILE")]
+    zenoh_config: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -193,6 +197,10 @@ struct NetworkArgs {
     /// reach the endpoints can then read and send every message.
     #[arg(long, conflicts_with = "secret_file")]
     no_auth: bool,
+    /// With --attach: a zenoh configuration file (JSON5) to start from, e.g.
+    /// TLS certificates and access control (deploy/tls/).
+    #[arg(long, value_name = "FILE", requires = "attach")]
+    zenoh_config: Option<PathBuf>,
     /// How long an agent waits for advice (ms; default 5).
     #[arg(long, value_name = "MS")]
     advice_timeout_ms: Option<u64>,
@@ -236,6 +244,7 @@ impl NetworkArgs {
                     (None, true) => Auth::Off,
                     (None, false) => Auth::Generated,
                 },
+                zenoh_config: self.zenoh_config.clone(),
                 startup_timeout: std::time::Duration::from_secs(self.startup_timeout),
             },
         }
@@ -279,7 +288,8 @@ fn run_router(args: RouterArgs) -> Result<()> {
         mode: "router".to_owned(),
         ..node::net::NetConfig::peer(args.listen, Vec::new())
     }
-    .with_secret(secret);
+    .with_secret(secret)
+    .with_base(args.zenoh_config);
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()

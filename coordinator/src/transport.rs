@@ -62,7 +62,7 @@ pub struct Endpoints {
     pub port: u16,
     /// With `attach`, the endpoint the coordinator listens on instead of the
     /// loopback port. Of two peers only one opens their link (see
-    /// `node::net::NetConfig::to_json5`), so every process must be able to
+    /// `node::net::NetConfig::settings`), so every process must be able to
     /// reach this endpoint.
     pub listen: Option<String>,
     /// Endpoints to connect to (a zenoh router for multi-host setups).
@@ -74,6 +74,9 @@ pub struct Endpoints {
     pub bin_dir: Option<PathBuf>,
     /// How the processes authenticate each other.
     pub auth: Auth,
+    /// With `attach`, a zenoh configuration file to start from (TLS,
+    /// access control: deploy/tls/).
+    pub zenoh_config: Option<PathBuf>,
     /// How long to wait for every process to join.
     pub startup_timeout: Duration,
 }
@@ -88,6 +91,7 @@ impl Default for Endpoints {
             attach: false,
             bin_dir: None,
             auth: Auth::Generated,
+            zenoh_config: None,
             startup_timeout: Duration::from_secs(30),
         }
     }

@@ -43,6 +43,7 @@ fn network(tag: &str, port: u16, auth: Auth) -> Network {
                 attach: false,
                 bin_dir: Some(bin_dir()),
                 auth,
+                zenoh_config: None,
                 startup_timeout: Duration::from_secs(60),
             },
         },

@@ -78,6 +78,7 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
             attach: true,
             bin_dir: Some(bin_dir()),
             auth: Auth::File(secret.path().to_owned()),
+            zenoh_config: None,
             startup_timeout: Duration::from_secs(60),
         },
     };

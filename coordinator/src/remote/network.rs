@@ -109,8 +109,9 @@ impl Network {
             (None, _) => format!("tcp/127.0.0.1:{port}"),
         };
         let (secret, secret_dir) = secret(options)?;
-        let net =
-            NetConfig::peer(vec![listen], options.connect.clone()).with_secret(secret.clone());
+        let net = NetConfig::peer(vec![listen], options.connect.clone())
+            .with_secret(secret.clone())
+            .with_base(options.zenoh_config.clone());
         let session = runtime
             .block_on(node::net::open(&net))
             .map_err(|e| net_error(e.to_string()))?;

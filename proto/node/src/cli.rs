@@ -38,6 +38,11 @@ pub struct ConnectionArgs {
     /// then read and send every message.
     #[arg(long, conflicts_with = "secret_file")]
     pub no_auth: bool,
+    /// A zenoh configuration file (JSON5) to start from, e.g. TLS
+    /// certificates and access control (deploy/tls/); the flags above are
+    /// set on top of it.
+    #[arg(long, value_name = "FILE")]
+    pub zenoh_config: Option<PathBuf>,
 }
 
 impl ConnectionArgs {
@@ -50,7 +55,11 @@ impl ConnectionArgs {
     /// unless `--no-auth`; fails on a secret file that cannot be used.
     pub fn net(&self) -> Result<NetConfig, SecretError> {
         let secret = self.secret_file.as_deref().map(Secret::load).transpose()?;
-        Ok(NetConfig::peer(vec![self.listen.clone()], self.connect.clone()).with_secret(secret))
+        Ok(
+            NetConfig::peer(vec![self.listen.clone()], self.connect.clone())
+                .with_secret(secret)
+                .with_base(self.zenoh_config.clone()),
+        )
     }
 }
 

@@ -2,6 +2,7 @@
 //! a one-line error, and free loopback ports.
 
 use std::fmt::Display;
+use std::path::PathBuf;
 
 use zenoh::Session;
 
@@ -18,6 +19,10 @@ pub struct NetConfig {
     pub mode: String,
     /// The experiment's credentials; `None` joins without authentication.
     pub secret: Option<Secret>,
+    /// A zenoh configuration file (JSON5) to start from, e.g. TLS
+    /// certificates and access control (deploy/tls/); the settings above
+    /// are set on top of it.
+    pub base: Option<PathBuf>,
 }
 
 impl NetConfig {
@@ -28,6 +33,7 @@ impl NetConfig {
             connect,
             mode: "peer".to_owned(),
             secret: None,
+            base: None,
         }
     }
 
@@ -36,35 +42,74 @@ impl NetConfig {
         Self { secret, ..self }
     }
 
+    /// These settings on top of the zenoh configuration file `base`.
+    pub fn with_base(self, base: Option<PathBuf>) -> Self {
+        Self { base, ..self }
+    }
+
     /// A loopback peer listening on `127.0.0.1:<port>` (0: any free port)
     /// and connecting to `connect`.
     pub fn loopback_peer(port: u16, connect: Vec<String>) -> Self {
         Self::peer(vec![format!("tcp/127.0.0.1:{port}")], connect)
     }
 
-    /// The zenoh configuration: multicast scouting off, gossip on (peers
-    /// learn each other's listeners through the ones they connect to; of two
-    /// peers only the one with the greater id opens their link, since two
-    /// authenticated handshakes crossing each other can kill both links),
-    /// opening fails after 5 s if a configured endpoint cannot be reached,
-    /// and with a secret, user/password authentication both ways.
-    pub fn to_json5(&self) -> String {
+    /// The zenoh settings, as (key, JSON5 value) pairs: multicast scouting
+    /// off, gossip on (peers learn each other's listeners through the ones
+    /// they connect to; of two peers only the one with the greater id opens
+    /// their link, since two authenticated handshakes crossing each other
+    /// can kill both links), opening fails after 5 s if a configured
+    /// endpoint cannot be reached, and with a secret, user/password
+    /// authentication both ways.
+    pub fn settings(&self) -> Vec<(&'static str, String)> {
         let list = |v: &[String]| {
-            v.iter()
-                .map(|e| format!("{e:?}"))
-                .collect::<Vec<_>>()
-                .join(", ")
+            let quoted: Vec<String> = v.iter().map(|e| format!("{e:?}")).collect();
+            format!("[{}]", quoted.join(", "))
         };
-        format!(
-            r#"{{ mode: {mode:?}, listen: {{ endpoints: [{listen}] }}, connect: {{ endpoints: [{connect}], timeout_ms: 5000, exit_on_failure: true }}, scouting: {{ multicast: {{ enabled: false }}, gossip: {{ enabled: true, autoconnect_strategy: "greater-zid" }} }}{auth} }}"#,
-            mode = self.mode,
-            auth = self
-                .secret
-                .as_ref()
-                .map_or_else(String::new, |s| format!(", {}", s.to_json5())),
-            listen = list(&self.listen),
-            connect = list(&self.connect),
-        )
+        let mut settings = vec![
+            ("mode", format!("{:?}", self.mode)),
+            ("listen/endpoints", list(&self.listen)),
+            ("connect/endpoints", list(&self.connect)),
+            ("connect/timeout_ms", "5000".to_owned()),
+            ("connect/exit_on_failure", "true".to_owned()),
+            ("scouting/multicast/enabled", "false".to_owned()),
+            ("scouting/gossip/enabled", "true".to_owned()),
+            (
+                "scouting/gossip/autoconnect_strategy",
+                r#""greater-zid""#.to_owned(),
+            ),
+        ];
+        if let Some(secret) = &self.secret {
+            settings.push(("transport/auth/usrpwd", secret.to_json5()));
+        }
+        settings
+    }
+
+    /// The zenoh configuration: the base file's, if any, with
+    /// [`settings`](Self::settings) on top.
+    pub fn to_config(&self) -> Result<zenoh::Config, JoinError> {
+        let invalid = |e: &dyn Display| {
+            JoinError(format!(
+                "invalid network settings ({}): {}",
+                self.endpoints(),
+                describe(e)
+            ))
+        };
+        let mut config = match &self.base {
+            Some(path) => zenoh::Config::from_file(path).map_err(|e| {
+                JoinError(format!(
+                    "invalid zenoh configuration file {}: {}",
+                    path.display(),
+                    describe(&e)
+                ))
+            })?,
+            None => zenoh::Config::default(),
+        };
+        for (key, value) in self.settings() {
+            config
+                .insert_json5(key, &value)
+                .map_err(|e| invalid(&format!("{key} = {value}: {e}")))?;
+        }
+        Ok(config)
     }
 
     /// The endpoints for messages: `listen A, B; connect C` (`none` for an empty list).
@@ -89,14 +134,7 @@ pub struct JoinError(String);
 /// Opens a zenoh session with `net`'s settings; the error names the
 /// endpoints and says what went wrong, on one line.
 pub async fn open(net: &NetConfig) -> Result<Session, JoinError> {
-    let config = zenoh::Config::from_json5(&net.to_json5()).map_err(|e| {
-        JoinError(format!(
-            "invalid network settings ({}): {}",
-            net.endpoints(),
-            describe(&e)
-        ))
-    })?;
-    zenoh::open(config).await.map_err(|e| {
+    zenoh::open(net.to_config()?).await.map_err(|e| {
         JoinError(format!(
             "cannot join the zenoh network ({}): {}",
             net.endpoints(),
@@ -149,18 +187,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn json5_lists_endpoints() {
+    fn settings_go_on_top_of_a_base_file() {
         let c = NetConfig::loopback_peer(7447, vec!["tcp/127.0.0.1:7000".into()]);
-        let j = c.to_json5();
-        assert!(
-            j.contains(r#"listen: { endpoints: ["tcp/127.0.0.1:7447"] }"#),
-            "{j}"
+        let config = c.to_config().unwrap();
+        let get = |config: &zenoh::Config, key| config.get_json(key).unwrap();
+        assert_eq!(
+            get(&config, "listen/endpoints"),
+            r#"["tcp/127.0.0.1:7447"]"#
         );
-        assert!(
-            j.contains(r#"connect: { endpoints: ["tcp/127.0.0.1:7000"],"#),
-            "{j}"
+        assert_eq!(
+            get(&config, "connect/endpoints"),
+            r#"["tcp/127.0.0.1:7000"]"#
         );
-        assert!(j.contains("multicast: { enabled: false }"));
+        assert_eq!(get(&config, "scouting/multicast/enabled"), "false");
         assert_eq!(
             c.endpoints(),
             "listen tcp/127.0.0.1:7447; connect tcp/127.0.0.1:7000"
@@ -168,6 +207,30 @@ mod tests {
         assert_eq!(
             NetConfig::peer(Vec::new(), Vec::new()).endpoints(),
             "listen none; connect none"
+        );
+
+        let dir = tempfile::tempdir().unwrap();
+        let base = dir.path().join("zenoh.json5");
+        std::fs::write(
+            &base,
+            r#"{ listen: { endpoints: ["tcp/127.0.0.1:1"] }, transport: { link: { tls: { enable_mtls: true } } } }"#,
+        )
+        .unwrap();
+        let config = c.clone().with_base(Some(base)).to_config().unwrap();
+        assert_eq!(
+            get(&config, "listen/endpoints"),
+            r#"["tcp/127.0.0.1:7447"]"#
+        );
+        assert_eq!(get(&config, "transport/link/tls/enable_mtls"), "true");
+
+        let missing = dir.path().join("missing.json5");
+        let e = c.with_base(Some(missing.clone())).to_config().unwrap_err();
+        assert!(
+            e.to_string().starts_with(&format!(
+                "invalid zenoh configuration file {}",
+                missing.display()
+            )),
+            "{e}"
         );
     }
 

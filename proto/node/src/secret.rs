@@ -128,11 +128,11 @@ impl Secret {
         &self.path
     }
 
-    /// zenoh's `transport` settings: present these credentials, accept
-    /// only peers that present them.
+    /// zenoh's `transport/auth/usrpwd` setting: present these credentials,
+    /// accept only peers that present them.
     pub(crate) fn to_json5(&self) -> String {
         format!(
-            "transport: {{ auth: {{ usrpwd: {{ user: {:?}, password: {:?}, dictionary_file: {:?} }} }} }}",
+            "{{ user: {:?}, password: {:?}, dictionary_file: {:?} }}",
             self.user,
             self.password,
             self.path.display().to_string(),
