@@ -86,6 +86,12 @@ struct StudyArgs {
     /// Output directory: one directory per experiment, figures, REPORT.md.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    /// Play only share K of N of the runs into --out, and no statistics
+    /// (K from 1 to N; shards may run at the same time, on one host or many
+    /// sharing the directory; the first also pretrains). Then the same
+    /// command without --shard plays what is missing and writes REPORT.md.
+    #[arg(long, value_name = "K/N")]
+    shard: Option<coordinator::study::Shard>,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -330,14 +336,21 @@ fn run_study(args: StudyArgs) -> Result<()> {
             .threads
             .map_or_else(coordinator::runner::default_threads, |t| t as usize),
         progress: !args.quiet && std::io::stderr().is_terminal(),
+        shard: args.shard,
     };
     let outcome = coordinator::study::run_study(&study, &args.out, &options)?;
-    println!(
-        "study {} -> {} ({:.1} s)",
-        study.name,
-        outcome.report.display(),
-        outcome.wall.as_secs_f64()
-    );
+    let wall = outcome.wall.as_secs_f64();
+    match &outcome.report {
+        Some(report) => println!("study {} -> {} ({wall:.1} s)", study.name, report.display()),
+        None => println!(
+            "study {} shard {}: {} runs played into {} ({wall:.1} s); \
+             without --shard, the statistics and REPORT.md once every shard is done",
+            study.name,
+            args.shard.map(|s| s.to_string()).unwrap_or_default(),
+            outcome.runs_played,
+            args.out.display()
+        ),
+    }
     Ok(())
 }
 

@@ -70,6 +70,40 @@ pub fn run_experiment(
     out: &ExperimentDir,
     options: &RunOptions,
 ) -> Result<Report, Error> {
+    let start = Instant::now();
+    let (finished, timing, _) = play_runs(experiment, out, options, &|_| true)?;
+    let results: Vec<RunResult> = finished.into_iter().flatten().collect();
+    let summary = summarize(&experiment.record(), &results);
+    out.write_summary(&summary)?;
+    Ok(Report {
+        timing,
+        wall: start.elapsed(),
+        summary_path: out.path().join(store::SUMMARY_FILE),
+        summary,
+        results,
+    })
+}
+
+/// Plays the runs of `experiment` that `wanted` selects (a study shard's
+/// share) into `out`, writing no summary; returns how many it played.
+pub fn run_share(
+    experiment: &Experiment,
+    out: &ExperimentDir,
+    options: &RunOptions,
+    wanted: &(dyn Fn(u64) -> bool + Sync),
+) -> Result<usize, Error> {
+    Ok(play_runs(experiment, out, options, wanted)?.2)
+}
+
+/// Plays the runs `wanted` selects that no earlier invocation finished;
+/// returns every run's results, if finished, and the timing and number of
+/// those played.
+fn play_runs(
+    experiment: &Experiment,
+    out: &ExperimentDir,
+    options: &RunOptions,
+    wanted: &(dyn Fn(u64) -> bool + Sync),
+) -> Result<(Vec<Option<RunResult>>, Timing, usize), Error> {
     let config = experiment.config();
     out.create()?;
     if let Some(dir) = &options.save_agents {
@@ -83,7 +117,7 @@ pub fn run_experiment(
     let mut finished: Vec<Option<RunResult>> =
         (0..config.runs).map(|r| out.finished_run(r)).collect();
     let pending: Vec<u64> = (0..config.runs)
-        .filter(|&r| finished[r as usize].is_none())
+        .filter(|&r| finished[r as usize].is_none() && wanted(r))
         .collect();
     let kept = config.runs - pending.len() as u64;
     bar.inc(kept * config.episodes_per_run());
@@ -143,21 +177,13 @@ pub fn run_experiment(
         bar.finish_and_clear();
     }
     let mut timing = Timing::default();
+    let count = played.len();
     for result in played {
         timing.add(&result.timing);
         let run = result.run as usize;
         finished[run] = Some(result);
     }
-    let results: Vec<RunResult> = finished.into_iter().flatten().collect();
-    let summary = summarize(&experiment.record(), &results);
-    out.write_summary(&summary)?;
-    Ok(Report {
-        timing,
-        wall: start.elapsed(),
-        summary_path: out.path().join(store::SUMMARY_FILE),
-        summary,
-        results,
-    })
+    Ok((finished, timing, count))
 }
 
 /// One run: its backend, its CSV and, if asked, its agents saved.

@@ -1,7 +1,7 @@
 //! The schedule of one run (docs/algorithms.md section 4): an evaluation
 //! before training, then K training episodes and an evaluation, ..., through N.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use agent::Mode;
 use env_server::Outcome;
@@ -33,44 +33,49 @@ pub struct EvalPoint {
     pub actions_timed_out: u64,
 }
 
-/// Where the time of a run went (not part of any result: it varies).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// What a run cost: the frames it played and the wall time they took. Saved
+/// with the run; the times vary from one machine and moment to another.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Timing {
-    /// Training episodes played.
-    pub training_episodes: u64,
     /// Agent decisions in training episodes.
     pub training_frames: u64,
-    /// Wall time of the training episodes.
-    pub training: Duration,
+    /// Wall time of the training episodes (s).
+    pub training_s: f64,
     /// Agent decisions in evaluation episodes.
     pub evaluation_frames: u64,
-    /// Wall time of the evaluations.
-    pub evaluation: Duration,
+    /// Wall time of the evaluations (s).
+    pub evaluation_s: f64,
 }
 
 impl Timing {
     /// Adds another run's timing.
     pub fn add(&mut self, other: &Timing) {
-        self.training_episodes += other.training_episodes;
         self.training_frames += other.training_frames;
-        self.training += other.training;
+        self.training_s += other.training_s;
         self.evaluation_frames += other.evaluation_frames;
-        self.evaluation += other.evaluation;
+        self.evaluation_s += other.evaluation_s;
     }
 
     /// Training decisions per second of one thread's time.
     pub fn training_frames_per_sec(&self) -> f64 {
-        rate(self.training_frames, self.training)
+        rate(self.training_frames, self.training_s)
     }
 
     /// Evaluation decisions per second of one thread's time.
     pub fn evaluation_frames_per_sec(&self) -> f64 {
-        rate(self.evaluation_frames, self.evaluation)
+        rate(self.evaluation_frames, self.evaluation_s)
+    }
+
+    /// Decisions per second of one thread's time, training and evaluation.
+    pub fn frames_per_sec(&self) -> f64 {
+        rate(
+            self.training_frames + self.evaluation_frames,
+            self.training_s + self.evaluation_s,
+        )
     }
 }
 
-fn rate(frames: u64, time: Duration) -> f64 {
-    let secs = time.as_secs_f64();
+fn rate(frames: u64, secs: f64) -> f64 {
     if secs > 0.0 {
         frames as f64 / secs
     } else {
@@ -85,8 +90,8 @@ pub struct RunResult {
     pub run: u64,
     /// Its evaluations, in order.
     pub points: Vec<EvalPoint>,
-    /// Where its time went (not saved: it varies).
-    #[serde(skip)]
+    /// What it cost (absent from the files of older versions).
+    #[serde(default)]
     pub timing: Timing,
     /// Every agent's advice round-trip times (ms) over the run; empty in process.
     pub advice_rtt_ms: Vec<Vec<f32>>,
@@ -116,7 +121,7 @@ pub fn play_run(
             trained += 1;
             progress(u64::from(episode.frames));
         }
-        timing.training += start.elapsed();
+        timing.training_s += start.elapsed().as_secs_f64();
 
         let start = Instant::now();
         backend.begin_evaluation(experiment.evaluation_seed(run, index as u64))?;
@@ -131,7 +136,7 @@ pub fn play_run(
                 goal_frames += u64::from(episode.frames);
             }
         }
-        timing.evaluation += start.elapsed();
+        timing.evaluation_s += start.elapsed().as_secs_f64();
 
         let agents = backend.agent_stats()?;
         let spent: u64 = agents.iter().map(|a| a.spent_give).sum();
@@ -148,7 +153,6 @@ pub fn play_run(
         on_point(&point)?;
         points.push(point);
     }
-    timing.training_episodes = trained;
     Ok(RunResult {
         run,
         points,

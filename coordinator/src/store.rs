@@ -387,7 +387,12 @@ mod tests {
                     actions_timed_out: 0,
                 })
                 .collect(),
-            timing: Timing::default(),
+            timing: Timing {
+                training_frames: 5,
+                training_s: 0.1,
+                evaluation_frames: 7,
+                evaluation_s: 1.0 / 3.0,
+            },
             advice_rtt_ms: vec![vec![0.1, 1.0 / 3.0, 2.7e-3]],
         };
         out.write_run_result(&result).unwrap();
@@ -401,6 +406,7 @@ mod tests {
             assert_eq!(a.spent_budget.to_bits(), b.spent_budget.to_bits());
         }
         assert_eq!(back.advice_rtt_ms, result.advice_rtt_ms);
+        assert_eq!(back.timing, result.timing);
     }
 
     #[test]

@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use crate::config::ExperimentConfig;
 use crate::experiment::Record;
-use crate::schedule::{EvalPoint, RunResult};
+use crate::schedule::{EvalPoint, RunResult, Timing};
 use crate::stats::{Estimate, estimate};
 
 /// One evaluation point over all runs.
@@ -22,7 +22,8 @@ pub struct SummaryPoint {
 }
 
 /// What `summary.json` holds. It depends only on the configuration, the
-/// loaded snapshots and the seed: never on threads or timing.
+/// loaded snapshots and the seed, never on threads or timing, except for the
+/// measured times in `cost` (`wall_s`, `frames_per_sec`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Summary {
     /// Version of the output formats.
@@ -42,6 +43,38 @@ pub struct Summary {
     /// Communication costs, for runs whose agents are processes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub comm: Option<CommSummary>,
+    /// What the runs cost in frames and time.
+    pub cost: Cost,
+}
+
+/// What an experiment's runs cost, summed over runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Cost {
+    /// Agent decisions in training episodes.
+    pub training_frames: u64,
+    /// Agent decisions in evaluation episodes.
+    pub evaluation_frames: u64,
+    /// Wall time of the runs, each measured on its own thread when it was
+    /// played (s; it varies from one machine and moment to another).
+    pub wall_s: f64,
+    /// `(training_frames + evaluation_frames) / wall_s`.
+    pub frames_per_sec: f64,
+}
+
+impl Cost {
+    /// The cost of `results`.
+    pub fn of(results: &[RunResult]) -> Self {
+        let mut total = Timing::default();
+        for r in results {
+            total.add(&r.timing);
+        }
+        Cost {
+            training_frames: total.training_frames,
+            evaluation_frames: total.evaluation_frames,
+            wall_s: total.training_s + total.evaluation_s,
+            frames_per_sec: total.frames_per_sec(),
+        }
+    }
 }
 
 /// Communication of a team or an agent over a run, averaged over runs
@@ -185,6 +218,7 @@ pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
             .transport
             .communicates()
             .then(|| CommSummary::of(results, config.team.len())),
+        cost: Cost::of(results),
     }
 }
 

@@ -1,8 +1,11 @@
-//! `coordinator study`: a study interrupted and started again completes with
-//! the same results; bad studies are refused with one line and exit code 2.
+//! `coordinator study`: a study interrupted and started again, or played as
+//! concurrent shards, completes with the same results; bad studies are
+//! refused with one line and exit code 2.
+
+mod common;
 
 use std::fs;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -93,7 +96,7 @@ fn an_interrupted_study_resumes_to_the_same_results() {
         String::from_utf8_lossy(&out.stderr)
     );
     for entry in ["no-advice", "adhoc-td"] {
-        let summary = |dir: &Path| read(&dir.join(entry).join("summary.json"));
+        let summary = |dir: &Path| common::without_times(&dir.join(entry).join("summary.json"));
         assert_eq!(summary(&resumed), summary(&whole), "{entry}");
         for k in 0..3 {
             let csv = |dir: &Path| read(&dir.join(entry).join(format!("run-{k}.csv")));
@@ -120,6 +123,88 @@ fn an_interrupted_study_resumes_to_the_same_results() {
                     .join("figures")
                     .join(format!("{figure}.{ext}"))
                     .is_file()
+            );
+        }
+    }
+}
+
+#[test]
+fn concurrent_shards_then_one_invocation_equal_an_unsharded_study() {
+    let tmp = tempfile::tempdir().unwrap();
+    let config = tmp.path().join("tiny.toml");
+    fs::write(&config, TINY).unwrap();
+    let config = config.to_str().unwrap();
+    let whole = tmp.path().join("whole");
+    let sharded = tmp.path().join("sharded");
+    let out = run(&["--config", config, "--out", whole.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    let children: Vec<_> = (1..=3)
+        .map(|k| {
+            study(&["--config", config, "--out", sharded.to_str().unwrap()])
+                .args(["--shard", &format!("{k}/3")])
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    let mut played = 0;
+    for child in children {
+        let out = child.wait_with_output().unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        played += stdout
+            .split(": ")
+            .nth(1)
+            .and_then(|s| s.split(' ').next())
+            .and_then(|n| n.parse::<u64>().ok())
+            .unwrap_or_else(|| panic!("runs played in {stdout:?}"));
+    }
+    assert_eq!(played, 2 * 3, "the shards play every run once");
+    assert!(
+        !sharded.join("REPORT.md").exists(),
+        "shards write no report"
+    );
+
+    let out = run(&["--config", config, "--out", sharded.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(files(&sharded), files(&whole));
+    for file in files(&whole) {
+        let (a, b) = (whole.join(&file), sharded.join(&file));
+        let name = file.file_name().unwrap().to_string_lossy().into_owned();
+        if name == "summary.json" || name == "REPORT.md" {
+            assert_eq!(
+                common::without_times(&a),
+                common::without_times(&b),
+                "{name}"
+            );
+        } else if name.starts_with("run-") && name.ends_with(".json") {
+            // A run's results record the time it took.
+            let results = |p: &Path| {
+                let mut v: serde_json::Value = serde_json::from_str(&read(p)).unwrap();
+                v["timing"]["training_s"] = 0.into();
+                v["timing"]["evaluation_s"] = 0.into();
+                v
+            };
+            assert_eq!(results(&a), results(&b), "{}", file.display());
+        } else {
+            assert!(
+                fs::read(&a).unwrap() == fs::read(&b).unwrap(),
+                "{}",
+                file.display()
             );
         }
     }
@@ -182,4 +267,22 @@ fn bad_studies_are_refused_and_nothing_is_overwritten() {
         "study.json differs at `runs`",
     );
     assert_eq!(read(&out.join("study.json")), before);
+}
+
+/// Every file under `dir`, relative to it, sorted.
+pub fn files(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                found.push(path.strip_prefix(dir).unwrap().to_path_buf());
+            }
+        }
+    }
+    found.sort();
+    found
 }

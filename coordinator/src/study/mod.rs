@@ -2,12 +2,17 @@
 //! experiments (one per algorithm, optionally after a pretraining stage),
 //! compares them run by run, draws figures and writes `REPORT.md`; started
 //! again on the same directory it continues from the runs already finished.
+//! Split into shards (`--shard K/N`), several processes, on one host or
+//! many sharing a file system, play their shares into one directory at the
+//! same time; an invocation without a shard then completes it.
 
 mod analysis;
 mod config;
 mod report;
 mod run;
+mod shard;
 
 pub use analysis::{Comparison, EntryResults, compare};
 pub use config::{Entry, PRESETS, Pretrain, StudyConfig};
 pub use run::{StudyOptions, StudyOutcome, run_study};
+pub use shard::{MAX_SHARDS, Shard};

@@ -3,7 +3,6 @@
 use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
 use agent::StrategyName;
 
@@ -20,7 +19,6 @@ pub fn write_report(
     study: &StudyConfig,
     entries: &[EntryResults],
     comparisons: &[Comparison],
-    wall: Duration,
 ) -> Result<PathBuf, Error> {
     store::write_json(&out.join("significance.json"), &comparisons)?;
     let sets: Vec<SeriesSet> = entries
@@ -49,7 +47,7 @@ pub fn write_report(
         "{} runs x {} training episodes per algorithm; an evaluation of {} episodes with every agent \
          frozen before training and every {} episodes ({points} points); seed {}; transport {}; \
          fidelity profile {} (docs/fidelity.md). Intervals: {pct}% Student's t over runs. Tests: Wilcoxon signed-rank on goal percentage, \
-         paired by run, two-sided, at the {pct}% level. Wall time of this invocation: {:.1} s.\n",
+         paired by run, two-sided, at the {pct}% level.\n",
         study.runs,
         study.episodes,
         study.eval_episodes,
@@ -57,7 +55,6 @@ pub fn write_report(
         study.seed,
         study.transport.name(),
         study.profile,
-        wall.as_secs_f64(),
     );
     if let Some(p) = &study.pretrain {
         let _ = writeln!(
@@ -196,6 +193,28 @@ pub fn write_report(
         }
         md.push('\n');
     }
+    let _ = writeln!(
+        md,
+        "## Cost (all runs; wall time summed over runs, each on one thread)\n"
+    );
+    let _ = writeln!(
+        md,
+        "| algorithm | training frames | evaluation frames | wall time (s) | frames per second |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|");
+    for e in entries {
+        let c = &e.summary.cost;
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.1} | {:.0} |",
+            label(&e.entry),
+            c.training_frames,
+            c.evaluation_frames,
+            c.wall_s,
+            c.frames_per_sec
+        );
+    }
+    md.push('\n');
     let _ = writeln!(
         md,
         "Data: `<algorithm>/summary.json` (every point, mean and interval), `<algorithm>/run-<k>.csv` (every run)."

@@ -6,9 +6,10 @@ use std::time::{Duration, Instant};
 use super::analysis::{EntryResults, compare_all};
 use super::config::StudyConfig;
 use super::report::write_report;
+use super::shard::Shard;
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::runner::{RunOptions, new_bar, run_experiment};
+use crate::runner::{RunOptions, new_bar, run_experiment, run_share};
 use crate::store::{self, ExperimentDir, agent_file_name};
 
 /// How to run a study (none of it changes the results in process).
@@ -18,13 +19,17 @@ pub struct StudyOptions {
     pub threads: usize,
     /// Show one progress bar for the whole study.
     pub progress: bool,
+    /// Play only this share of the runs, and no statistics.
+    pub shard: Option<Shard>,
 }
 
 /// What a finished study reports besides its files.
 #[derive(Clone, Debug)]
 pub struct StudyOutcome {
-    /// `REPORT.md`.
-    pub report: PathBuf,
+    /// `REPORT.md`; none for a shard.
+    pub report: Option<PathBuf>,
+    /// Runs this invocation played.
+    pub runs_played: usize,
     /// Wall time of this invocation.
     pub wall: Duration,
 }
@@ -77,11 +82,12 @@ pub fn run_study(
         Experiment::prepare(config)
     };
 
+    let mut runs_played = 0;
     let expert = out.join("pretrain").join("expert.qtable");
     if let Some(p) = &study.pretrain {
         let dir = out.join("pretrain");
         let experiment = prepare(study.pretraining(p), "pretrain")?;
-        if expert.is_file() {
+        if expert.is_file() || options.shard.is_some_and(|s| !s.is_first()) {
             bar.inc(experiment.config().episodes_per_run());
         } else {
             let output = ExperimentDir::check(&dir, &experiment.record())?;
@@ -90,26 +96,48 @@ pub fn run_study(
             let saved = agents.join(agent_file_name(0, p.expert));
             let bytes = std::fs::read(&saved).map_err(|e| Error::io("read", &saved, e))?;
             store::write_atomically(&expert, &bytes)?;
+            runs_played += 1;
         }
     }
 
     let mut entries = Vec::with_capacity(study.entries.len());
-    for entry in &study.entries {
+    for (i, entry) in study.entries.iter().enumerate() {
+        if entry.expert && !expert.is_file() {
+            // Only a shard other than the first gets here: the first pretrains.
+            tracing::warn!(entry = %entry.name, "no expert yet: its runs are left to another invocation");
+            continue;
+        }
         let config = study.experiment(entry, entry.expert.then_some(expert.as_path()));
         let experiment = prepare(config, &entry.name)?;
         let output = ExperimentDir::check(&out.join(&entry.name), &experiment.record())?;
-        let report = run_experiment(&experiment, &output, &run_options(None))?;
-        entries.push(EntryResults {
-            entry: entry.clone(),
-            results: report.results,
-            summary: report.summary,
-        });
+        let first = i as u64 * study.runs;
+        match options.shard {
+            Some(shard) => {
+                let ours = |run| shard.owns(first, run);
+                runs_played += run_share(&experiment, &output, &run_options(None), &ours)?;
+            }
+            None => {
+                let report = run_experiment(&experiment, &output, &run_options(None))?;
+                runs_played += report.results.len();
+                entries.push(EntryResults {
+                    entry: entry.clone(),
+                    results: report.results,
+                    summary: report.summary,
+                });
+            }
+        }
     }
     bar.finish_and_clear();
-    let comparisons = compare_all(study, &entries);
-    let report = write_report(out, study, &entries, &comparisons, start.elapsed())?;
+    let report = match options.shard {
+        Some(_) => None,
+        None => {
+            let comparisons = compare_all(study, &entries);
+            Some(write_report(out, study, &entries, &comparisons)?)
+        }
+    };
     Ok(StudyOutcome {
         report,
+        runs_played,
         wall: start.elapsed(),
     })
 }
