@@ -65,31 +65,39 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
         return Err(Error::NotADirectory(dir.to_path_buf()));
     }
     let path = dir.join(name);
-    match fs::read(&path) {
-        Ok(bytes) => {
-            let theirs: Value = serde_json::from_slice(&bytes)
-                .map_err(|e| other(format!("its {name} is unreadable: {e}")))?;
-            match first_difference(identity, &theirs, "") {
-                Some(diff) => Err(other(format!("{name} differs at {diff}"))),
-                None => Ok(()),
-            }
+    let compare = |bytes: Vec<u8>| {
+        let theirs: Value = serde_json::from_slice(&bytes)
+            .map_err(|e| other(format!("its {name} is unreadable: {e}")))?;
+        match first_difference(identity, &theirs, "") {
+            Some(diff) => Err(other(format!("{name} differs at {diff}"))),
+            None => Ok(()),
         }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            if !dir.is_dir() {
-                return Ok(());
-            }
-            let entries = fs::read_dir(dir).map_err(|e| Error::io("read", dir, e))?;
-            for entry in entries {
-                let entry = entry.map_err(|e| Error::io("read", dir, e))?;
-                let file = entry.file_name().to_string_lossy().into_owned();
-                if !file.starts_with(TEMP_PREFIX) {
-                    return Err(other(format!("it has {file} but no {name}")));
-                }
-            }
-            Ok(())
-        }
-        Err(e) => Err(Error::io("read", path, e)),
+    };
+    let read = || match fs::read(&path) {
+        Ok(bytes) => Ok(Some(bytes)),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(Error::io("read", &path, e)),
+    };
+    if let Some(bytes) = read()? {
+        return compare(bytes);
     }
+    if !dir.is_dir() {
+        return Ok(());
+    }
+    let entries = fs::read_dir(dir).map_err(|e| Error::io("read", dir, e))?;
+    for entry in entries {
+        let entry = entry.map_err(|e| Error::io("read", dir, e))?;
+        let file = entry.file_name().to_string_lossy().into_owned();
+        if !file.starts_with(TEMP_PREFIX) {
+            // The identity is written before anything else: another process
+            // (a concurrent shard) may have claimed the directory meanwhile.
+            return match read()? {
+                Some(bytes) => compare(bytes),
+                None => Err(other(format!("it has {file} but no {name}"))),
+            };
+        }
+    }
+    Ok(())
 }
 
 /// Creates `dir` and writes its identity file `name`.
