@@ -28,7 +28,7 @@ pub struct StudyOptions {
 pub struct StudyOutcome {
     /// `REPORT.md`; none for a shard.
     pub report: Option<PathBuf>,
-    /// Runs this invocation played.
+    /// Runs a shard played (the pretraining counts as one); 0 without a shard.
     pub runs_played: usize,
     /// Wall time of this invocation.
     pub wall: Duration,
@@ -96,7 +96,7 @@ pub fn run_study(
             let saved = agents.join(agent_file_name(0, p.expert));
             let bytes = std::fs::read(&saved).map_err(|e| Error::io("read", &saved, e))?;
             store::write_atomically(&expert, &bytes)?;
-            runs_played += 1;
+            runs_played += usize::from(options.shard.is_some());
         }
     }
 
@@ -118,7 +118,6 @@ pub fn run_study(
             }
             None => {
                 let report = run_experiment(&experiment, &output, &run_options(None))?;
-                runs_played += report.results.len();
                 entries.push(EntryResults {
                     entry: entry.clone(),
                     results: report.results,
