@@ -1,7 +1,9 @@
 //! Fault injection into a real experiment over loopback zenoh: env-server,
 //! three agents and the coordinator as processes, and one fault per trial:
 //! an agent or env-server killed, or stopped and resumed; the coordinator
-//! killed, terminated or interrupted at a random moment from its start-up on.
+//! killed, terminated or interrupted at a random moment from its start-up on;
+//! or the zenoh router that every process of an attached experiment connects
+//! to restarted mid-run.
 //!
 //! Every trial must end within a bound (no hang), leave no process of its
 //! experiment behind (no orphan) and leave only result files that parse (no
@@ -16,7 +18,7 @@
 //! `ADV_FAULT_SEED` (default 1) picks the trials and their moments.
 
 use std::fs::File;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
 
@@ -48,9 +50,13 @@ enum Fault {
     TermCoordinator,
     /// SIGINT the coordinator (Ctrl-C).
     InterruptCoordinator,
+    /// Stop the router (SIGTERM) and start it again on its port after the
+    /// pause; env-server and the agents were started by hand and the
+    /// coordinator attached to them, all connecting only to the router.
+    RestartRouter,
 }
 
-const FAULTS: [Fault; 7] = [
+const FAULTS: [Fault; 8] = [
     Fault::KillAgent,
     Fault::StopAgent,
     Fault::KillServer,
@@ -58,6 +64,7 @@ const FAULTS: [Fault; 7] = [
     Fault::KillCoordinator,
     Fault::TermCoordinator,
     Fault::InterruptCoordinator,
+    Fault::RestartRouter,
 ];
 
 /// One trial: a fault, when it strikes and how long a stop lasts.
@@ -74,9 +81,10 @@ impl Trial {
     fn random(fault: Fault, rng: &mut Xoshiro256PlusPlus) -> Self {
         let delay = match fault {
             // From the very start: before, during and after the spawns.
-            Fault::KillCoordinator | Fault::TermCoordinator | Fault::InterruptCoordinator => {
-                rng.random_range(0..3000)
-            }
+            Fault::KillCoordinator
+            | Fault::TermCoordinator
+            | Fault::InterruptCoordinator
+            | Fault::RestartRouter => rng.random_range(0..3000),
             _ => rng.random_range(0..1500),
         };
         Self {
@@ -120,7 +128,7 @@ fn find(experiment: &str, part: &str, deadline: Instant) -> Option<u32> {
     None
 }
 
-fn start(experiment: &str, out: &Path, stderr: File) -> Child {
+fn start(experiment: &str, out: &Path, stderr: File, attach: &[String]) -> Child {
     Command::new(bin("coordinator"))
         .args(["run", "--algorithm", "adhoc-td", "--runs", "1"])
         .args([
@@ -133,6 +141,7 @@ fn start(experiment: &str, out: &Path, stderr: File) -> Child {
         ])
         .args(["--transport", "zenoh", "--experiment", experiment])
         .args(["--stall-limit-ms", &STALL_LIMIT_MS.to_string(), "--quiet"])
+        .args(attach)
         .arg("--out")
         .arg(out)
         .stdin(Stdio::null())
@@ -153,11 +162,124 @@ fn wait(child: &mut Child, bound: Duration) -> Option<ExitStatus> {
     None
 }
 
+/// A router on a loopback port, and env-server and three agents started by
+/// hand that connect only to it, all with the experiment's secret: what a
+/// coordinator started with [`Attached::coordinator_args`] attaches to.
+struct Attached {
+    router: Child,
+    processes: Vec<Child>,
+    port: u16,
+    secret: PathBuf,
+    dir: PathBuf,
+}
+
+impl Attached {
+    fn start(experiment: &str, dir: &Path) -> Self {
+        let secret = dir.join("secret");
+        let made = Command::new(bin("coordinator"))
+            .arg("secret")
+            .arg(&secret)
+            .status()
+            .expect("run coordinator secret");
+        assert!(made.success(), "coordinator secret: {made}");
+        let port = node::net::free_port().expect("a free loopback port");
+        let mut attached = Attached {
+            router: Self::router(port, &secret, dir),
+            processes: Vec::new(),
+            port,
+            secret,
+            dir: dir.to_path_buf(),
+        };
+        let server = ["serve", "--experiment", experiment].map(String::from);
+        attached.spawn("env-server", &server, "env-server");
+        for id in 0..3 {
+            let id = id.to_string();
+            let agent = ["--experiment", experiment, "--id", &id, "--team-size", "3"];
+            attached.spawn("agent", &agent.map(String::from), &format!("agent-{id}"));
+        }
+        attached
+    }
+
+    fn router(port: u16, secret: &Path, dir: &Path) -> Child {
+        let router = Command::new(bin("coordinator"))
+            .args(["router", "--listen", &format!("tcp/127.0.0.1:{port}")])
+            .arg("--secret-file")
+            .arg(secret)
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(File::create(dir.join("router.log")).expect("router log"))
+            .spawn()
+            .expect("start the router");
+        let deadline = Instant::now() + Duration::from_secs(30);
+        while std::net::TcpStream::connect(("127.0.0.1", port)).is_err() {
+            assert!(
+                Instant::now() < deadline,
+                "the router does not listen on port {port}"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        router
+    }
+
+    /// The endpoints and secret every process of the experiment gets.
+    fn common_args(&self) -> Vec<String> {
+        vec![
+            "--listen".into(),
+            "tcp/127.0.0.1:0".into(),
+            "--connect".into(),
+            format!("tcp/127.0.0.1:{}", self.port),
+            "--secret-file".into(),
+            self.secret.display().to_string(),
+        ]
+    }
+
+    fn spawn(&mut self, program: &str, args: &[String], log: &str) {
+        let child = Command::new(bin(program))
+            .args(args)
+            .args(self.common_args())
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(File::create(self.dir.join(format!("{log}.log"))).expect("log file"))
+            .spawn()
+            .unwrap_or_else(|e| panic!("start {program}: {e}"));
+        self.processes.push(child);
+    }
+
+    fn coordinator_args(&self) -> Vec<String> {
+        [vec!["--attach".to_string()], self.common_args()].concat()
+    }
+
+    /// SIGTERM to the router, then a new one on its port after `pause`.
+    fn restart_router(&mut self, pause: Duration) {
+        signal(self.router.id(), "TERM");
+        let _ = self.router.wait();
+        std::thread::sleep(pause);
+        self.router = Self::router(self.port, &self.secret, &self.dir);
+    }
+}
+
+impl Drop for Attached {
+    /// Attached processes outlive their coordinator by design: the trial
+    /// stops them itself.
+    fn drop(&mut self) {
+        for child in self.processes.iter_mut().chain([&mut self.router]) {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
+    }
+}
+
 /// Plays `trial` as experiment `name` in `dir`.
 fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
     let out = dir.join("out");
     let stderr_path = dir.join("stderr");
-    let mut coordinator = start(name, &out, File::create(&stderr_path).expect("stderr file"));
+    let mut attached = (trial.fault == Fault::RestartRouter).then(|| Attached::start(name, dir));
+    let attach = attached
+        .as_ref()
+        .map(Attached::coordinator_args)
+        .unwrap_or_default();
+    let stderr = File::create(&stderr_path).expect("stderr file");
+    let mut coordinator = start(name, &out, stderr, &attach);
     let started = Instant::now();
     let target = match trial.fault {
         Fault::KillAgent | Fault::StopAgent => Some("--id\u{0}1\u{0}"),
@@ -165,6 +287,12 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
         _ => None,
     };
     match target {
+        None if trial.fault == Fault::RestartRouter => {
+            std::thread::sleep(trial.delay);
+            if let Some(attached) = attached.as_mut() {
+                attached.restart_router(trial.pause);
+            }
+        }
         None => {
             std::thread::sleep(trial.delay);
             let name = match trial.fault {
@@ -193,6 +321,7 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
         kill_all(name);
         return Verdict::Hang;
     };
+    drop(attached);
     let deadline = Instant::now() + ORPHAN_BOUND;
     while !processes_with(name).is_empty() && Instant::now() < deadline {
         std::thread::sleep(Duration::from_millis(50));
@@ -214,7 +343,9 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
     match (status.code(), last) {
         (Some(0), _) => Verdict::Ok("finished".into()),
         // A signal before the handlers are installed, i.e. before any spawn.
-        (None, _) if target.is_none() => Verdict::Ok(format!("{status}")),
+        (None, _) if target.is_none() && trial.fault != Fault::RestartRouter => {
+            Verdict::Ok(format!("{status}"))
+        }
         (Some(code), Some(line)) if line.starts_with("error:") || line.contains("stopping") => {
             Verdict::Ok(format!("exit {code}: {line}"))
         }

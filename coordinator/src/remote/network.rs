@@ -350,6 +350,7 @@ impl Network {
         if let Some(gone_role) = *lost.borrow_and_update() {
             return Err(gone(gone_role));
         }
+        let sent = Instant::now();
         let reply = self.runtime.block_on(async {
             let replies = self
                 .session
@@ -393,7 +394,16 @@ impl Network {
                     Err(e) => self.counters.lock().expect("counters").drop_undecodable(&e),
                 }
             }
-            Err(format!("{role} did not answer {what} within {timeout:?}"))
+            // All routes answered without a reply: say so, not the timeout.
+            let waited = sent.elapsed();
+            Err(if waited + Duration::from_millis(100) < timeout {
+                format!(
+                    "{role} did not answer {what}: the query ended after {waited:.1?} with no \
+                     reply (no route to {role})"
+                )
+            } else {
+                format!("{role} did not answer {what} within {timeout:?}")
+            })
         })?;
         match reply {
             ControlReply::Error(e) => Err(format!("{role}: {e}")),
