@@ -21,8 +21,9 @@
 # Copy OUT_DIR/NAME to NAME's host at the same absolute path (the
 # configuration names its files by absolute path; PREFIX=/etc/adv writes
 # /etc/adv/NAME/... into it instead). Every process then listens and connects
-# with tls/ endpoints and refuses a peer whose certificate the experiment's
-# authority did not sign.
+# with quic/ endpoints (QUIC is TLS 1.3 over UDP; zenoh's tls/ links take the
+# same files but close under load, see deploy/README.md) and refuses a peer
+# whose certificate the experiment's authority did not sign.
 #
 # Access control (every process enforces it on what its peers send it; the
 # common name of the peer's certificate says who sent it; anything not listed
