@@ -491,6 +491,8 @@ elif command -v nft >/dev/null; then
     a_b_packets=$(ip netns exec "$NS_A" nft list chain inet watch out | grep -o 'packets [0-9]*' | cut -d' ' -f2)
     say "QUIC: $NS_A sent ${a_b_packets:-0} packets to $NS_B directly"
     [ "${a_b_packets:-0}" -gt 0 ] || problems+=("$NS_A sent nothing to $NS_B: no direct agent links")
+else
+    say "nft is not installed: direct QUIC links between $NS_A and $NS_B are not checked"
 fi
 
 numbers="requests=$requests replies=$replies given=$given agent2(replies=$b_replies given=$b_given) a<->b-$([ "$SS_PROTO" = t ] && echo "links=$a_b_links" || echo "packets=${a_b_packets:-?}")"
