@@ -3,7 +3,7 @@
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
 use crate::formation::home_positions;
-use crate::geom::unit;
+use crate::geom::{ceil_usize, unit};
 use crate::params::*;
 use crate::world::{Player, World};
 use glam::DVec2;
@@ -49,18 +49,17 @@ impl Analysis {
         let mut reach = [NO_REACH; MAX_OFFENSE];
         let mut own_reach = [NO_REACH; MAX_OFFENSE];
         for ((r, o), p) in reach.iter_mut().zip(&mut own_reach).zip(&world.offense) {
-            *r = reach_cycle(p, path, None, Estimate::Other);
-            *o = reach_cycle(p, path, None, Estimate::Own);
+            (*r, *o) = reach_cycles(p, path, None);
         }
-        let keeper = Some(KEEPER_CONTROL_AREA);
-        let keeper_reach = reach_cycle(&world.keeper, path, keeper, Estimate::Other);
+        let (keeper_reach, keeper_own_reach) =
+            reach_cycles(&world.keeper, path, Some(KEEPER_CONTROL_AREA));
         let mut analysis = Analysis {
             ball_path,
             path_len,
             reach,
             own_reach,
             keeper_reach,
-            keeper_own_reach: reach_cycle(&world.keeper, path, keeper, Estimate::Own),
+            keeper_own_reach,
             home: [DVec2::ZERO; MAX_OFFENSE],
         };
         let ball_step = reach[..n]
@@ -185,7 +184,7 @@ fn turn_count(facing: DVec2, rel: DVec2, d: f64, control: f64) -> usize {
 
 /// Whose estimate of a reach cycle (spec 6.1.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Estimate {
+enum Estimate {
     /// Another player's (librcsc `PlayerIntercept`): the full control area.
     Other,
     /// The player's own (librcsc `SelfInterceptV13`): once it must move, the
@@ -205,58 +204,91 @@ impl Estimate {
     }
 }
 
-/// Reach cycle of player `p` for the ball path `path` (spec 6.1.2);
-/// `keeper_control` is the keeper's control area inside its penalty area.
-/// A ball already under control is reached at once by either estimate.
-pub fn reach_cycle(
-    p: &Player,
-    path: &[DVec2],
+/// Reach cycles of player `p` for the ball path `path` (spec 6.1.2), as the
+/// others estimate it and as it estimates its own; `keeper_control` is the
+/// keeper's control area inside its penalty area. A ball already under
+/// control is reached at once by either estimate.
+pub fn reach_cycles(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> (usize, usize) {
+    let scan = Scan::new(p, path, keeper_control);
+    // Whatever the own estimate accepts the others' accepts too, and the
+    // cycles skipped do not depend on the estimate: the own scan goes on
+    // from where the others' stopped.
+    let (other, t) = scan.run(0, Estimate::Other);
+    let (own, _) = scan.run(t, Estimate::Own);
+    (other, own)
+}
+
+/// One player's walk along the ball path.
+struct Scan<'a> {
+    p: &'a Player,
+    path: &'a [DVec2],
     keeper_control: Option<f64>,
-    estimate: Estimate,
-) -> usize {
-    let facing = unit(p.body);
-    // Per cycle the gap closes by at most the ball's and the player's initial
-    // speeds plus one metre of dashing (plus the keeper's larger area once):
-    // far out of reach, the cycles that cannot qualify are skipped.
-    let ball_speed = if path.len() > 1 {
-        path[1].distance(path[0])
-    } else {
-        0.0
-    };
-    let closing = ball_speed + p.vel.length() + 1.0;
-    let slack = keeper_control.map_or(0.0, |c| (c - KICKABLE_AREA).max(0.0));
-    let mut t = 0;
-    while t < path.len() {
-        let (rel, control) = reach_vector(p, t, path[t], keeper_control);
-        let reach = control + dash_distance(t);
-        if rel.length_squared() > reach * reach {
-            let excess = rel.length() - reach - slack;
-            t += ((excess / closing).ceil() as usize).max(1);
-            continue; // out of reach even without turning
+    facing: DVec2,
+    /// Most the gap can close per cycle (see [`Scan::new`]).
+    closing: f64,
+    /// The keeper's extra control area, once.
+    slack: f64,
+}
+
+impl<'a> Scan<'a> {
+    fn new(p: &'a Player, path: &'a [DVec2], keeper_control: Option<f64>) -> Self {
+        // Per cycle the gap closes by at most the ball's and the player's initial
+        // speeds plus one metre of dashing (plus the keeper's larger area once):
+        // far out of reach, the cycles that cannot qualify are skipped.
+        let ball_speed = if path.len() > 1 {
+            path[1].distance(path[0])
+        } else {
+            0.0
+        };
+        Scan {
+            p,
+            path,
+            keeper_control,
+            facing: unit(p.body),
+            closing: ball_speed + p.vel.length() + 1.0,
+            slack: keeper_control.map_or(0.0, |c| (c - KICKABLE_AREA).max(0.0)),
         }
+    }
+
+    /// The reach cycle by `estimate`, walking from cycle `start`, and the
+    /// cycle the walk stopped at (the path's length if it ran off its end).
+    fn run(&self, start: usize, estimate: Estimate) -> (usize, usize) {
+        let (p, path, facing) = (self.p, self.path, self.facing);
+        let mut t = start;
+        while t < path.len() {
+            let (rel, control) = reach_vector(p, t, path[t], self.keeper_control);
+            let reach = control + dash_distance(t);
+            if rel.length_squared() > reach * reach {
+                let excess = rel.length() - reach - self.slack;
+                t += ceil_usize(excess / self.closing).max(1);
+                continue; // out of reach even without turning
+            }
+            let d = rel.length();
+            if d <= control && (t == 0 || estimate == Estimate::Other) {
+                return (t, t);
+            }
+            let gap = d - control + estimate.buffer(t);
+            if gap <= 0.0 {
+                return (t, t);
+            }
+            let n_turn = turn_count(facing, rel, d, control);
+            if t >= n_turn && gap <= dash_distance(t - n_turn) {
+                return (t, t);
+            }
+            t += 1;
+        }
+        let last = path.len() - 1;
+        let (rel, control) = reach_vector(p, last, path[last], self.keeper_control);
         let d = rel.length();
-        if d <= control && (t == 0 || estimate == Estimate::Other) {
-            return t;
-        }
-        let gap = d - control + estimate.buffer(t);
+        let gap = d - control + estimate.buffer(last.max(6));
         if gap <= 0.0 {
-            return t;
+            return (path.len(), path.len());
         }
-        let n_turn = turn_count(facing, rel, d, control);
-        if t >= n_turn && gap <= dash_distance(t - n_turn) {
-            return t;
-        }
-        t += 1;
+        let cycle = path
+            .len()
+            .max(turn_count(facing, rel, d, control) + dash_cycles(gap));
+        (cycle, path.len())
     }
-    let last = path.len() - 1;
-    let (rel, control) = reach_vector(p, last, path[last], keeper_control);
-    let d = rel.length();
-    let gap = d - control + estimate.buffer(last.max(6));
-    if gap <= 0.0 {
-        return path.len();
-    }
-    path.len()
-        .max(turn_count(facing, rel, d, control) + dash_cycles(gap))
 }
 
 /// One way for a player to get the ball at a given cycle (librcsc

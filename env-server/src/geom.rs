@@ -83,3 +83,10 @@ mod tests {
         assert!((3.0 * decay_sum(0.94, 10) - 23.1).abs() < 0.05);
     }
 }
+
+/// `x.ceil() as usize` without the call to `ceil` that targets without
+/// SSE4.1 make (bit for bit the same, 0 for negative `x`).
+pub fn ceil_usize(x: f64) -> usize {
+    let floor = x as usize;
+    floor + usize::from((floor as f64) < x)
+}

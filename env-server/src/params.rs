@@ -161,7 +161,7 @@ pub fn dash_cycles(dist: f64) -> usize {
     }
     match DASH_DISTANCE.iter().position(|&d| d >= dist) {
         Some(n) => n,
-        None => 10 + (dist - DASH_DISTANCE[10]).ceil() as usize,
+        None => 10 + crate::geom::ceil_usize(dist - DASH_DISTANCE[10]),
     }
 }
 

@@ -80,7 +80,13 @@ pub fn kick(
 /// failure exponent `exponent` (rcssserver `Player::tackle`, spec 3.5):
 /// `1 - (bx/2)^e - (|by|/1.25)^e` with the ball in body coordinates, 0 behind.
 pub fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
-    tackle_probability_at((ball - player.pos).rotate(unit(-player.body)), exponent)
+    let rel = ball - player.pos;
+    // Beyond sqrt(TACKLE_DIST² + TACKLE_WIDTH²) ≈ 2.36 m one term of the
+    // failure is at least 1 whatever the body angle: skip the rotation.
+    if rel.length_squared() > 6.0 {
+        return 0.0;
+    }
+    tackle_probability_at(rel.rotate(unit(-player.body)), exponent)
 }
 
 /// [`tackle_probability`] of a ball at `rel` in the tackler's body coordinates.
@@ -90,7 +96,8 @@ pub fn tackle_probability_at(rel: DVec2, exponent: f64) -> f64 {
     } else {
         TACKLE_BACK_DIST
     };
-    if reach <= 1e-5 {
+    // A term of at least 1 fails the tackle: no need for the powers.
+    if reach <= 1e-5 || rel.x.abs() >= reach || rel.y.abs() >= TACKLE_WIDTH {
         return 0.0;
     }
     let fail =

@@ -4,7 +4,7 @@
 use super::Situation;
 use super::body::{max_one_kick_speed, smart_kick};
 use crate::analysis::DRIFT;
-use crate::geom::{angle_diff, asin_clamped, direction};
+use crate::geom::{angle_diff, asin_clamped, ceil_usize, direction, unit};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel};
 use crate::world::{Player, ShotCourse};
@@ -48,7 +48,7 @@ struct Search {
 /// course HFO reads the first element of its emptied course vector: the
 /// agent's last non-empty search's first course (spec 6.2.2).
 pub fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
-    let search = search(s);
+    let search = search(s, Want::Best);
     let first = search.first.map(|c| c.shot());
     let command = match (search.best, s.world.last_shot[s.agent]) {
         (Some(c), _) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
@@ -65,12 +65,21 @@ pub fn check(s: &Situation) -> Option<ShotCourse> {
     if s.me().pos.distance(GOAL_CENTER) > CHECK_DISTANCE {
         return None;
     }
-    search(s).first.map(|c| c.shot())
+    search(s, Want::First).first.map(|c| c.shot())
+}
+
+/// How much of a search its caller reads.
+#[derive(Clone, Copy, PartialEq)]
+enum Want {
+    /// Only the first course: the search stops there.
+    First,
+    /// The first and the best course.
+    Best,
 }
 
 /// `ShootGenerator::generate` (spec 6.2.1). A non-kickable agent (reach 1)
 /// shoots from the ball's next position with a 0.1 one-kick limit.
-fn search(s: &Situation) -> Search {
+fn search(s: &Situation, want: Want) -> Search {
     let me = s.me();
     let kickable = s.world.agent_kickable(s.agent);
     let ball = if kickable {
@@ -79,9 +88,11 @@ fn search(s: &Situation) -> Search {
         s.world.ball.pos + s.world.ball.vel
     };
     let keeper_dir = direction(s.world.keeper.pos - ball);
+    let keeper = Keeper::new(s);
     let mut first = None;
     let mut best: Option<(f64, Course)> = None;
     for target in targets(me, ball) {
+        let line = Line::new(s, ball, target, keeper.side);
         let dir = direction(target - ball);
         let s1 = if kickable {
             max_one_kick_speed(dir, s.world.ball.vel, max_kick_accel(me, ball))
@@ -94,7 +105,7 @@ fn search(s: &Situation) -> Search {
             if last {
                 speed = BALL_SPEED_MAX;
             }
-            if let Some(never) = keeper_verdict(s, ball, target, speed) {
+            if let Some(never) = keeper_verdict(&keeper, ball, &line, speed) {
                 let course = Course {
                     target,
                     speed,
@@ -102,6 +113,9 @@ fn search(s: &Situation) -> Search {
                     keeper_never_reaches: never,
                 };
                 first.get_or_insert(course);
+                if want == Want::First {
+                    return Search { first, best: None };
+                }
                 let score = score(&course, ball, keeper_dir, if never { 1.0 } else { 10.0 });
                 if best.is_none_or(|(b, _)| score > b) {
                     best = Some((score, course));
@@ -189,35 +203,74 @@ fn score(c: &Course, ball: DVec2, keeper_dir: f64, sigma_deg: f64) -> f64 {
     score
 }
 
-/// The keeper test of a course from `ball` (spec 6.2.1 step 3): `None` if the keeper
-/// catches the ball, else whether it never even gets close.
-fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Option<bool> {
-    let rel = target - ball;
-    let length = rel.length();
-    let ratio = 0.06 * length / speed;
+/// What the keeper tests of the courses from `ball` to one target share
+/// (spec 6.2.1 step 3): none of it depends on the course's speed.
+struct Line {
+    /// Distance from the ball to the target.
+    length: f64,
+    /// Unit vector from the ball to the target.
+    u: DVec2,
+    /// The first cycle the keeper could be on the path, or `None` if it
+    /// never gets close: its side is more than 90° off the course, it is
+    /// out of its penalty area, or it is behind the ball.
+    first: Option<usize>,
+}
+
+impl Line {
+    fn new(s: &Situation, ball: DVec2, target: DVec2, keeper_side: f64) -> Self {
+        let keeper = &s.world.keeper;
+        let rel = target - ball;
+        let length = rel.length();
+        let u = rel / length;
+        let k_rel = keeper.pos - ball;
+        let away = angle_diff(direction(u), keeper_side) > FRAC_PI_2
+            || keeper.pos.x < 6.0
+            || keeper.pos.y.abs() > PENALTY_AREA_HALF_WIDTH
+            || k_rel.dot(u) < -1.0;
+        let first = (!away).then(|| ((k_rel.perp_dot(u).abs()).floor() as usize).max(1));
+        Line { length, u, first }
+    }
+}
+
+/// The shot search's view of the keeper.
+struct Keeper<'a> {
+    player: &'a Player,
+    /// Its body direction as a unit vector.
+    facing: DVec2,
+    /// Direction from the shooter to the keeper.
+    side: f64,
+    /// Distance from the shooter to the keeper.
+    from_shooter: f64,
+}
+
+impl<'a> Keeper<'a> {
+    fn new(s: &'a Situation) -> Self {
+        let player = &s.world.keeper;
+        Keeper {
+            player,
+            facing: unit(player.body),
+            side: direction(player.pos - s.me().pos),
+            from_shooter: player.pos.distance(s.me().pos),
+        }
+    }
+}
+
+/// The keeper test of a course along `line` from `ball` at `speed` (spec
+/// 6.2.1 step 3): `None` if the keeper catches the ball, else whether it
+/// never even gets close.
+fn keeper_verdict(keeper: &Keeper, ball: DVec2, line: &Line, speed: f64) -> Option<bool> {
+    let ratio = 0.06 * line.length / speed;
     if ratio >= 1.0 {
         return None;
     }
-    let steps = ((1.0 - ratio).ln() / BALL_DECAY.ln()).ceil() as usize;
+    let steps = ceil_usize((1.0 - ratio).ln() / BALL_DECAY.ln());
     if steps <= 1 {
         return Some(true);
     }
-    let keeper = &s.world.keeper;
-    let me = s.me();
-    let u = rel / length;
-    let dir = direction(u);
-    if angle_diff(dir, direction(keeper.pos - me.pos)) > FRAC_PI_2
-        || keeper.pos.x < 6.0
-        || keeper.pos.y.abs() > PENALTY_AREA_HALF_WIDTH
-    {
+    let Some(first) = line.first else {
         return Some(true);
-    }
-    let k_rel = keeper.pos - ball;
-    if k_rel.dot(u) < -1.0 {
-        return Some(true);
-    }
-    let first = ((k_rel.perp_dot(u).abs()).floor() as usize).max(1);
-    let keeper_shooter = keeper.pos.distance(me.pos);
+    };
+    let k0 = keeper.player;
     let mut never = true;
     let (mut ball_travel, mut decay_pow) = (0.0, 1.0);
     for c in 1..steps {
@@ -226,7 +279,7 @@ fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Opti
         if c < first {
             continue;
         }
-        let b = ball + u * ball_travel;
+        let b = ball + line.u * ball_travel;
         if b.x > PITCH_HALF_LENGTH {
             break;
         }
@@ -236,8 +289,12 @@ fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Opti
         } else {
             KICKABLE_AREA
         };
-        let k = keeper.pos + keeper.vel * DRIFT[c.min(DRIFT.len() - 1)];
-        let margin = if in_area { 0.02 * keeper_shooter } else { 0.0 };
+        let k = k0.pos + k0.vel * DRIFT[c.min(DRIFT.len() - 1)];
+        let margin = if in_area {
+            0.02 * keeper.from_shooter
+        } else {
+            0.0
+        };
         // Beyond this the keeper neither catches nor comes close (the tests below).
         let far = (dash_distance(c) + 0.9 * control) / 0.999 + margin;
         let dist_sq = b.distance_squared(k);
@@ -269,14 +326,32 @@ fn keeper_verdict(s: &Situation, ball: DVec2, target: DVec2, speed: f64) -> Opti
     Some(never)
 }
 
+/// cos(15°): the smallest turn threshold of `predict_player_turn_cycle`.
+const COS_15_DEG: f64 = 0.965_925_826_289_068_3;
+
 /// agent2d's `predict_player_turn_cycle` for the keeper facing `rel`.
-fn turn_cycles(keeper: &Player, rel: DVec2, dist: f64, control: f64) -> usize {
-    let mut angle = angle_diff(direction(rel), keeper.body);
+fn turn_cycles(keeper: &Keeper, rel: DVec2, dist: f64, control: f64) -> usize {
+    let ratio = (control + 0.1) / dist;
+    // Facing well inside the threshold (a margin far above rounding): no
+    // turn, decided by cosines without the angles' atan2 and asin.
+    let mut cos = rel.dot(keeper.facing) / rel.length();
+    if dist < 5.0 {
+        cos = cos.abs();
+    }
+    if ratio < 1.0 && cos > COS_15_DEG.min((1.0 - ratio * ratio).sqrt()) + 1e-9 {
+        return 0;
+    }
+    turn_cycles_by_angle(keeper.player, rel, dist, ratio)
+}
+
+/// [`turn_cycles`] from the angles; `ratio` is `(control + 0.1) / dist`.
+fn turn_cycles_by_angle(player: &Player, rel: DVec2, dist: f64, ratio: f64) -> usize {
+    let mut angle = angle_diff(direction(rel), player.body);
     if dist < 5.0 && angle > FRAC_PI_2 {
         angle = PI - angle;
     }
-    let threshold = 15f64.to_radians().max(asin_clamped((control + 0.1) / dist));
-    let mut speed = keeper.vel.length();
+    let threshold = 15f64.to_radians().max(asin_clamped(ratio));
+    let mut speed = player.vel.length();
     let mut n = 0;
     while angle > threshold && n < 10 {
         angle -= max_turn(speed);
@@ -318,7 +393,7 @@ mod tests {
         let a = Analysis::new(&w);
         let s = situation(&w, &a, &config);
         assert!(
-            search(&s).first.is_none(),
+            search(&s, Want::Best).first.is_none(),
             "the keeper reaches every course"
         );
         assert_eq!(command(&s), (long_shot(&s), None), "the stand-in");
@@ -372,10 +447,31 @@ mod tests {
             config: &config,
             agent: 0,
         };
+        let keeper = Keeper::new(&s);
+        let ball = world.ball.pos;
+        let line = Line::new(&s, ball, DVec2::new(52.5, 5.0), keeper.side);
         for speed in [2.1, 2.7, 3.0] {
-            assert_eq!(
-                keeper_verdict(&s, world.ball.pos, DVec2::new(52.5, 5.0), speed),
-                Some(true)
+            assert_eq!(keeper_verdict(&keeper, ball, &line, speed), Some(true));
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn facing_within_the_threshold_by_cosine_agrees_with_the_angles(
+            body in -PI..PI,
+            dir in -PI..PI,
+            dist in 1.0..20.0f64,
+            speed in 0.0..1.0f64,
+            control in proptest::sample::select(vec![KICKABLE_AREA, KEEPER_CONTROL_AREA]),
+        ) {
+            let mut player = Player::new(DVec2::new(45.0, 0.0), body);
+            player.vel = unit(dir + 1.0) * speed;
+            let rel = unit(dir) * (dist + 0.3);
+            let keeper = Keeper { player: &player, facing: unit(body), side: 0.0, from_shooter: 10.0 };
+            let ratio = (control + 0.1) / dist;
+            proptest::prop_assert_eq!(
+                turn_cycles(&keeper, rel, dist, control),
+                turn_cycles_by_angle(&player, rel, dist, ratio)
             );
         }
     }

@@ -4,7 +4,7 @@
 
 use super::body::predict_turn_cycles;
 use crate::analysis::{Analysis, NO_REACH};
-use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
+use crate::geom::{angle_diff, ceil_usize, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::{Command, tackle_accel, tackle_probability};
 use crate::world::{Player, World};
@@ -209,7 +209,7 @@ fn ball_move_step(speed: f64, dist: f64) -> usize {
     if ratio <= 1e-6 {
         return 0;
     }
-    (ratio.ln() / BALL_DECAY.ln()).ceil().max(0.0) as usize
+    ceil_usize(ratio.ln() / BALL_DECAY.ln())
 }
 
 /// `TackleGenerator::predictOpponentReachStep`: the first cycle below
