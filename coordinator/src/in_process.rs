@@ -67,14 +67,15 @@ impl Backend for InProcess {
         let mut reward = 0.0;
         loop {
             self.observations.clear();
-            self.observations.extend((0..env.offense()).map(|i| {
-                let pos = env.world().offense[i].pos;
-                Observation {
-                    state: env.state(i),
-                    can_kick: env.can_kick(i),
-                    position: [pos.x, pos.y],
-                }
-            }));
+            self.observations
+                .extend(env.states().enumerate().map(|(i, state)| {
+                    let pos = env.world().offense[i].pos;
+                    Observation {
+                        state,
+                        can_kick: env.can_kick(i),
+                        position: [pos.x, pos.y],
+                    }
+                }));
             let actions = self
                 .team
                 .act(&self.observations, reward)

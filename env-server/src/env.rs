@@ -158,7 +158,14 @@ impl Env {
 
     /// The paper's 6-feature state of agent `agent`.
     pub fn state(&self, agent: usize) -> State {
-        features::paper_state(&self.world, agent)
+        features::paper_state(&self.world, &features::goal_openings(&self.world), agent)
+    }
+
+    /// The paper's 6-feature states of every agent, in order (each player's
+    /// goal opening computed once).
+    pub fn states(&self) -> impl Iterator<Item = State> + '_ {
+        let openings = features::goal_openings(&self.world);
+        (0..self.config.offense).map(move |agent| features::paper_state(&self.world, &openings, agent))
     }
 
     /// The full high-level feature vector of agent `agent`.

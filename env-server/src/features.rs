@@ -1,7 +1,7 @@
 //! HFO's high-level feature set of the authors' version (spec 5.3) and the
 //! paper's 6-feature view (spec 5.4, docs/algorithms.md section 1).
 
-use crate::analysis::offense_unums;
+use crate::analysis::{MAX_OFFENSE, offense_unums};
 use crate::geom::direction;
 use crate::params::*;
 use crate::world::World;
@@ -122,28 +122,36 @@ pub fn high_level(world: &World, agent: usize) -> Vec<f64> {
     f
 }
 
+/// The goal opening (normalised) of every offense player, for [`paper_state`].
+pub fn goal_openings(world: &World) -> [f64; MAX_OFFENSE] {
+    let mut openings = [0.0; MAX_OFFENSE];
+    for (o, p) in openings.iter_mut().zip(&world.offense) {
+        *o = norm_open_angle(goal_opening(p.pos, world.keeper.pos));
+    }
+    openings
+}
+
 /// The paper's 6-feature state of agent `agent`: able to kick, goal distance,
 /// goal angle, goal opening, then the goal openings of the nearest and the
-/// farthest teammate (docs/algorithms.md section 1; -1 when there is no teammate).
-pub fn paper_state(world: &World, agent: usize) -> State {
+/// farthest teammate (docs/algorithms.md section 1; -1 when there is no
+/// teammate); `openings` are [`goal_openings`] of `world`.
+pub fn paper_state(world: &World, openings: &[f64; MAX_OFFENSE], agent: usize) -> State {
     let me = world.offense[agent].pos;
-    let k = world.keeper.pos;
-    let mut nearest: Option<(f64, DVec2)> = None;
-    let mut farthest: Option<(f64, DVec2)> = None;
+    let mut nearest: Option<(f64, usize)> = None;
+    let mut farthest: Option<(f64, usize)> = None;
     for (j, p) in world.offense.iter().enumerate() {
         if j == agent {
             continue;
         }
         let d = p.pos.distance(me);
         if nearest.is_none_or(|(n, _)| d < n) {
-            nearest = Some((d, p.pos));
+            nearest = Some((d, j));
         }
         if farthest.is_none_or(|(f, _)| d > f) {
-            farthest = Some((d, p.pos));
+            farthest = Some((d, j));
         }
     }
-    let opening =
-        |m: Option<(f64, DVec2)>| m.map_or(-1.0, |(_, pos)| norm_open_angle(goal_opening(pos, k)));
+    let opening = |m: Option<(f64, usize)>| m.map_or(-1.0, |(_, j)| openings[j]);
     [
         if world.agent_kickable(agent) {
             1.0
@@ -152,7 +160,7 @@ pub fn paper_state(world: &World, agent: usize) -> State {
         },
         norm_dist(me.distance(GOAL_CENTER)),
         norm_angle(direction(GOAL_CENTER - me)),
-        norm_open_angle(goal_opening(me, k)),
+        openings[agent],
         opening(nearest),
         opening(farthest),
     ]
