@@ -3,7 +3,7 @@
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
 use crate::formation::home_positions;
-use crate::geom::{ceil_usize, unit};
+use crate::geom::unit;
 use crate::params::*;
 use crate::world::{Player, World};
 use glam::DVec2;
@@ -224,29 +224,15 @@ struct Scan<'a> {
     path: &'a [DVec2],
     keeper_control: Option<f64>,
     facing: DVec2,
-    /// Most the gap can close per cycle (see [`Scan::new`]).
-    closing: f64,
-    /// The keeper's extra control area, once.
-    slack: f64,
 }
 
 impl<'a> Scan<'a> {
     fn new(p: &'a Player, path: &'a [DVec2], keeper_control: Option<f64>) -> Self {
-        // Per cycle the gap closes by at most the ball's and the player's initial
-        // speeds plus one metre of dashing (plus the keeper's larger area once):
-        // far out of reach, the cycles that cannot qualify are skipped.
-        let ball_speed = if path.len() > 1 {
-            path[1].distance(path[0])
-        } else {
-            0.0
-        };
         Scan {
             p,
             path,
             keeper_control,
             facing: unit(p.body),
-            closing: ball_speed + p.vel.length() + 1.0,
-            slack: keeper_control.map_or(0.0, |c| (c - KICKABLE_AREA).max(0.0)),
         }
     }
 
@@ -254,13 +240,10 @@ impl<'a> Scan<'a> {
     /// cycle the walk stopped at (the path's length if it ran off its end).
     fn run(&self, start: usize, estimate: Estimate) -> (usize, usize) {
         let (p, path, facing) = (self.p, self.path, self.facing);
-        let mut t = start;
-        while t < path.len() {
-            let (rel, control) = reach_vector(p, t, path[t], self.keeper_control);
+        for (t, &ball) in path.iter().enumerate().skip(start) {
+            let (rel, control) = reach_vector(p, t, ball, self.keeper_control);
             let reach = control + dash_distance(t);
             if rel.length_squared() > reach * reach {
-                let excess = rel.length() - reach - self.slack;
-                t += ceil_usize(excess / self.closing).max(1);
                 continue; // out of reach even without turning
             }
             let d = rel.length();
@@ -275,7 +258,6 @@ impl<'a> Scan<'a> {
             if t >= n_turn && gap <= dash_distance(t - n_turn) {
                 return (t, t);
             }
-            t += 1;
         }
         let last = path.len() - 1;
         let (rel, control) = reach_vector(p, last, path[last], self.keeper_control);

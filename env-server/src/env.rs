@@ -165,7 +165,8 @@ impl Env {
     /// goal opening computed once).
     pub fn states(&self) -> impl Iterator<Item = State> + '_ {
         let openings = features::goal_openings(&self.world);
-        (0..self.config.offense).map(move |agent| features::paper_state(&self.world, &openings, agent))
+        (0..self.config.offense)
+            .map(move |agent| features::paper_state(&self.world, &openings, agent))
     }
 
     /// The full high-level feature vector of agent `agent`.
