@@ -65,6 +65,13 @@ pub fn decay_sum(decay: f64, n: u32) -> f64 {
     (1.0 - decay.powi(n as i32)) / (1.0 - decay)
 }
 
+/// `x.ceil() as usize` without the call to `ceil` that targets without
+/// SSE4.1 make (bit for bit the same, 0 for negative `x`).
+pub fn ceil_usize(x: f64) -> usize {
+    let floor = x as usize;
+    floor + usize::from((floor as f64) < x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,17 +83,19 @@ mod tests {
         assert!((angle_diff(PI - 0.1, -PI + 0.1) - 0.2).abs() < 1e-12);
     }
 
+    proptest::proptest! {
+        #[test]
+        fn ceil_usize_is_ceil(x in -10.0..1e6f64, whole in 0..1_000_000u32) {
+            proptest::prop_assert_eq!(ceil_usize(x), x.ceil() as usize);
+            let w = f64::from(whole);
+            proptest::prop_assert_eq!(ceil_usize(w), whole as usize);
+        }
+    }
+
     #[test]
     fn decay_sum_matches_spec_distances() {
         // A ball kicked at 3.0 travels 13.3 m in 5 cycles and 23.1 m in 10 (spec 2.2).
         assert!((3.0 * decay_sum(0.94, 5) - 13.3).abs() < 0.05);
         assert!((3.0 * decay_sum(0.94, 10) - 23.1).abs() < 0.05);
     }
-}
-
-/// `x.ceil() as usize` without the call to `ceil` that targets without
-/// SSE4.1 make (bit for bit the same, 0 for negative `x`).
-pub fn ceil_usize(x: f64) -> usize {
-    let floor = x as usize;
-    floor + usize::from((floor as f64) < x)
 }
