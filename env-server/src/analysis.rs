@@ -210,12 +210,10 @@ impl Estimate {
 /// control is reached at once by either estimate.
 pub fn reach_cycles(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> (usize, usize) {
     let scan = Scan::new(p, path, keeper_control);
-    // Whatever the own estimate accepts the others' accepts too, and the
-    // cycles skipped do not depend on the estimate: the own scan goes on
-    // from where the others' stopped.
-    let (other, t) = scan.run(0, Estimate::Other);
-    let (own, _) = scan.run(t, Estimate::Own);
-    (other, own)
+    // Whatever the own estimate accepts the others' accepts too: the own
+    // scan goes on from where the others' stopped.
+    let other = scan.run(0, Estimate::Other);
+    (other, scan.run(other.min(path.len()), Estimate::Own))
 }
 
 /// One player's walk along the ball path.
@@ -236,9 +234,9 @@ impl<'a> Scan<'a> {
         }
     }
 
-    /// The reach cycle by `estimate`, walking from cycle `start`, and the
-    /// cycle the walk stopped at (the path's length if it ran off its end).
-    fn run(&self, start: usize, estimate: Estimate) -> (usize, usize) {
+    /// The reach cycle by `estimate`, walking from cycle `start` (at least
+    /// the path's length if the walk runs off its end).
+    fn run(&self, start: usize, estimate: Estimate) -> usize {
         let (p, path, facing) = (self.p, self.path, self.facing);
         for (t, &ball) in path.iter().enumerate().skip(start) {
             let (rel, control) = reach_vector(p, t, ball, self.keeper_control);
@@ -248,15 +246,15 @@ impl<'a> Scan<'a> {
             }
             let d = rel.length();
             if d <= control && (t == 0 || estimate == Estimate::Other) {
-                return (t, t);
+                return t;
             }
             let gap = d - control + estimate.buffer(t);
             if gap <= 0.0 {
-                return (t, t);
+                return t;
             }
             let n_turn = turn_count(facing, rel, d, control);
             if t >= n_turn && gap <= dash_distance(t - n_turn) {
-                return (t, t);
+                return t;
             }
         }
         let last = path.len() - 1;
@@ -264,12 +262,10 @@ impl<'a> Scan<'a> {
         let d = rel.length();
         let gap = d - control + estimate.buffer(last.max(6));
         if gap <= 0.0 {
-            return (path.len(), path.len());
+            return path.len();
         }
-        let cycle = path
-            .len()
-            .max(turn_count(facing, rel, d, control) + dash_cycles(gap));
-        (cycle, path.len())
+        path.len()
+            .max(turn_count(facing, rel, d, control) + dash_cycles(gap))
     }
 }
 
