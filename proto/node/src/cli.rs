@@ -99,10 +99,13 @@ pub fn exit_with_error(message: impl Display) -> ! {
 }
 
 /// Logs to standard error, filtered by `RUST_LOG`, or by `default_filter`
-/// (e.g. `"off"`, `"error"`) when it is unset or invalid.
+/// (e.g. `"off"`, `"error"`) when it is unset or invalid. The default also
+/// silences zenoh's "sending on a closed channel": a sample that reaches a
+/// subscriber while the process drops it on its way out.
 pub fn init_tracing(default_filter: &str) {
-    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
-        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(default_filter));
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| {
+        tracing_subscriber::EnvFilter::new(format!("{default_filter},zenoh::api::handlers=off"))
+    });
     tracing_subscriber::fmt()
         .with_env_filter(filter)
         .with_writer(std::io::stderr)
