@@ -1,6 +1,6 @@
 //! A fingerprint of the simulator's exact trajectories: a hash of every
 //! world state, command and outcome over a rollout of each baseline policy.
-//! A speed change must leave it unchanged (docs/calibration.md, "Speed").
+//! A speed change must leave it unchanged (docs/speed.md).
 //!
 //! `cargo run --release -p env-server --example fingerprint -- [EPISODES] [SEED]`
 
