@@ -286,13 +286,13 @@ fn keeper_verdict(keeper: &Keeper, ball: DVec2, line: &Line, speed: f64) -> Opti
     if ratio >= 1.0 {
         return None;
     }
+    let Some(first) = line.first else {
+        return Some(true);
+    };
     let steps = ceil_usize((1.0 - ratio).ln() / BALL_DECAY.ln());
     if steps <= 1 {
         return Some(true);
     }
-    let Some(first) = line.first else {
-        return Some(true);
-    };
     let k0 = keeper.player;
     let mut never = true;
     let (mut ball_travel, mut decay_pow) = (0.0, 1.0);
