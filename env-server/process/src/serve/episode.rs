@@ -8,6 +8,7 @@ use env_server::analysis::MAX_OFFENSE;
 use env_server::{Env, EnvConfig, Outcome};
 use proto::{
     Action, ActionChoice, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode, Observation,
+    State,
 };
 
 /// The simulators of one run.
@@ -112,11 +113,6 @@ impl Episode {
         episode
     }
 
-    /// Number of agents.
-    pub fn offense(&self) -> usize {
-        self.offense
-    }
-
     /// Whether the episode has reached its terminal frame.
     pub fn is_over(&self) -> bool {
         self.outcome.is_terminal()
@@ -139,12 +135,13 @@ impl Episode {
         self.awaited = 0;
     }
 
-    /// Writes agent `agent`'s observation of the current frame into `obs`.
-    /// The terminal frame carries the final reward and no decision.
-    pub fn observe(&self, env: &Env, agent: usize, obs: &mut Observation) {
+    /// Writes agent `agent`'s observation of the current frame, whose state
+    /// is `state`, into `obs`. The terminal frame carries the final reward
+    /// and no decision.
+    pub fn observe(&self, env: &Env, agent: usize, state: State, obs: &mut Observation) {
         obs.agent = agent as u8;
         obs.mode = self.mode;
-        obs.state = env.state(agent);
+        obs.state = state;
         obs.can_kick = self.kickers & (1 << agent) != 0;
         obs.positions.clear();
         obs.positions
@@ -231,14 +228,15 @@ impl ObservationSlot {
         })
     }
 
-    /// Agent `agent`'s observation of `episode`'s current frame, encoded.
-    pub fn encode(&mut self, episode: &Episode, env: &Env, agent: usize) -> Vec<u8> {
+    /// Agent `agent`'s observation of `episode`'s current frame, whose
+    /// state is `state` (from [`Env::states`]), encoded.
+    pub fn encode(&mut self, episode: &Episode, env: &Env, agent: usize, state: State) -> Vec<u8> {
         let Envelope { header, body } = &mut self.0;
         *header = episode.header;
         let Body::Observation(obs) = body else {
             unreachable!("the slot always holds an observation")
         };
-        episode.observe(env, agent, obs);
+        episode.observe(env, agent, state, obs);
         proto::encode(&self.0)
     }
 }
@@ -294,7 +292,7 @@ mod tests {
         let mut slot = ObservationSlot::new(1);
         while !e.is_over() {
             assert_eq!(e.header.frame, direct.frame());
-            let bytes = slot.encode(&e, &env, 0);
+            let bytes = slot.encode(&e, &env, 0, env.state(0));
             let Body::Observation(obs) = proto::decode(&bytes, 1).unwrap().body else {
                 panic!("not an observation")
             };
@@ -323,7 +321,7 @@ mod tests {
         }
         let result = e.result().unwrap();
         assert_eq!(result.frames, direct.frame());
-        let bytes = slot.encode(&e, &env, 1);
+        let bytes = slot.encode(&e, &env, 1, env.state(1));
         let Body::Observation(obs) = proto::decode(&bytes, 1).unwrap().body else {
             panic!("not an observation")
         };

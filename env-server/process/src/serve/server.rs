@@ -306,8 +306,8 @@ impl Server {
             let Some(env) = run.simulators.env(play.episode.mode) else {
                 return Ok(());
             };
-            for agent in 0..play.episode.offense() {
-                let bytes = self.slot.encode(&play.episode, env, agent);
+            for (agent, state) in env.states().enumerate() {
+                let bytes = self.slot.encode(&play.episode, env, agent, state);
                 self.counters
                     .record(Direction::Sent, MessageKind::Observation, bytes.len());
                 self.link.publish(agent, bytes).await?;
