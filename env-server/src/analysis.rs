@@ -184,7 +184,7 @@ fn turn_count(facing: DVec2, rel: DVec2, d: f64, control: f64) -> usize {
 
 /// Whose estimate of a reach cycle (spec 6.1.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Estimate {
+pub enum Estimate {
     /// Another player's (librcsc `PlayerIntercept`): the full control area.
     Other,
     /// The player's own (librcsc `SelfInterceptV13`): once it must move, the
@@ -195,7 +195,7 @@ enum Estimate {
 
 impl Estimate {
     /// Margin inside the control area for a reach at cycle `t`.
-    fn buffer(self, t: usize) -> f64 {
+    pub(crate) fn buffer(self, t: usize) -> f64 {
         match self {
             Estimate::Other => 0.0,
             Estimate::Own if t <= 5 => 0.15,
@@ -287,8 +287,8 @@ pub struct Interception {
 }
 
 /// How player `p` gets the ball at cycle `t` of `path`, if it can by the
-/// rule of spec 6.1.2; beyond the path, how it reaches the ball's resting
-/// point (librcsc `SelfInterceptV13::predictFinal`).
+/// rule of spec 6.1.2 under `estimate`'s margin; beyond the path, how it
+/// reaches the ball's resting point (librcsc `SelfInterceptV13::predictFinal`).
 ///
 /// As librcsc's `canReachAfterDash`, the player dashes along its body (or
 /// along the line to the ball after a turn): if the dashes carry it past the
@@ -299,6 +299,7 @@ pub fn interception(
     path: &[DVec2],
     t: usize,
     keeper_control: Option<f64>,
+    estimate: Estimate,
 ) -> Option<Interception> {
     let final_point = t >= path.len();
     let i = t.min(path.len() - 1);
@@ -311,7 +312,8 @@ pub fn interception(
     } else {
         0
     };
-    if !final_point && gap > 0.0 && (t < turns || gap > dash_distance(t - turns)) {
+    let needed = gap + estimate.buffer(t);
+    if !final_point && needed > 0.0 && (t < turns || needed > dash_distance(t - turns)) {
         return None;
     }
     let dashes = if final_point {

@@ -1,5 +1,6 @@
 //! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5, 6.2.3 and 6.3.4 allow.
 
+use super::intercept::{best_interception, self_cache};
 use super::kick_table;
 use crate::analysis::Analysis;
 use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
@@ -61,7 +62,8 @@ pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) ->
     })
 }
 
-/// Body_Intercept (spec 6.1.3) for a player with reach cycle `reach`;
+/// Body_Intercept (spec 6.1.3) for an attacker with reach cycle `reach`:
+/// towards the interception `getBestIntercept` picks from its cache;
 /// `no_dash_turn` is where to face when the ball comes to the player.
 pub fn intercept(
     p: &Player,
@@ -75,8 +77,10 @@ pub fn intercept(
         let rest = world.ball_final();
         return go_to_point(p, rest, 2.0, MAX_DASH_POWER).unwrap_or_else(|| turn_to_point(p, rest));
     }
-    let target = analysis.ball_at(reach);
-    let q = p.drift(reach as u32);
+    let cycle = best_interception(p, world, analysis, &self_cache(p, analysis.path()))
+        .map_or(reach, |best| best.cycle);
+    let target = analysis.ball_at(cycle);
+    let q = p.drift(cycle as u32);
     let rel = target - q;
     let d = rel.length();
     if d <= control {

@@ -3,7 +3,7 @@
 
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::analysis::{Analysis, Interception, interception};
+use crate::analysis::{Analysis, Estimate, Interception, interception};
 use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
@@ -189,7 +189,13 @@ impl<'a> View<'a> {
             if b.x.abs() > PITCH_HALF_LENGTH - 1.0 || b.y.abs() > PITCH_HALF_WIDTH - 1.0 {
                 continue;
             }
-            let Some(c) = interception(self.keeper, path, t, Some(KEEPER_CONTROL_AREA)) else {
+            let Some(c) = interception(
+                self.keeper,
+                path,
+                t,
+                Some(KEEPER_CONTROL_AREA),
+                Estimate::Other,
+            ) else {
                 continue;
             };
             // The ball reached on the keeper's running line without a turn,
@@ -218,7 +224,15 @@ impl<'a> View<'a> {
         aggressive
             .or(goalie)
             .map(|(_, c)| c)
-            .or_else(|| interception(self.keeper, path, first, Some(KEEPER_CONTROL_AREA)))
+            .or_else(|| {
+                interception(
+                    self.keeper,
+                    path,
+                    first,
+                    Some(KEEPER_CONTROL_AREA),
+                    Estimate::Other,
+                )
+            })
             .expect("the keeper gets the ball at its reach cycle")
     }
 
@@ -494,7 +508,15 @@ mod tests {
     fn goalie_candidates(view: &View) -> Vec<Interception> {
         let path = view.analysis.path();
         (view.self_min..path.len().min(view.self_min.max(6) + 10))
-            .filter_map(|t| interception(view.keeper, path, t, Some(KEEPER_CONTROL_AREA)))
+            .filter_map(|t| {
+                interception(
+                    view.keeper,
+                    path,
+                    t,
+                    Some(KEEPER_CONTROL_AREA),
+                    Estimate::Other,
+                )
+            })
             .filter(|c| (c.turns == 0 && c.ball_dist < 0.65) || c.ball_dist < 0.01)
             .collect()
     }

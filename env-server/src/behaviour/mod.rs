@@ -5,6 +5,7 @@
 
 mod body;
 mod dribble;
+mod intercept;
 pub mod keeper;
 mod kick_table;
 mod movement;
