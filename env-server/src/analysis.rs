@@ -286,63 +286,92 @@ pub struct Interception {
     pub ball_dist: f64,
 }
 
-/// How player `p` gets the ball at cycle `t` of `path`, if it can by the
-/// rule of spec 6.1.2 under `estimate`'s margin; beyond the path, how it
-/// reaches the ball's resting point (librcsc `SelfInterceptV13::predictFinal`).
-///
-/// As librcsc's `canReachAfterDash`, the player dashes along its body (or
-/// along the line to the ball after a turn): if the dashes carry it past the
-/// ball (within 0.1 m) it stops on that line, and `ball_dist` is the ball's
-/// distance from the line; otherwise it is the distance left after the dashes.
-pub fn interception(
-    p: &Player,
-    path: &[DVec2],
-    t: usize,
+/// How one player gets the ball on one ball path (spec 6.1.2), cycle by
+/// cycle; the player's facing is computed once for all cycles.
+pub struct Reach<'a> {
+    p: &'a Player,
+    path: &'a [DVec2],
+    facing: DVec2,
     keeper_control: Option<f64>,
     estimate: Estimate,
-) -> Option<Interception> {
-    let final_point = t >= path.len();
-    let i = t.min(path.len() - 1);
-    let (rel, control) = reach_vector(p, i, path[i], keeper_control);
-    let d = rel.length();
-    let gap = d - control;
-    let facing = unit(p.body);
-    let turns = if gap > 0.0 {
-        turn_count(facing, rel, d, control)
-    } else {
-        0
-    };
-    let needed = gap + estimate.buffer(t);
-    if !final_point && needed > 0.0 && (t < turns || needed > dash_distance(t - turns)) {
-        return None;
+}
+
+impl<'a> Reach<'a> {
+    /// Player `p` on `path`; `keeper_control` is the keeper's control area
+    /// inside its penalty area, `estimate` whose margin applies.
+    pub fn new(
+        p: &'a Player,
+        path: &'a [DVec2],
+        keeper_control: Option<f64>,
+        estimate: Estimate,
+    ) -> Self {
+        Reach {
+            p,
+            path,
+            facing: unit(p.body),
+            keeper_control,
+            estimate,
+        }
     }
-    let dashes = if final_point {
-        dash_cycles(gap)
-    } else {
-        t - turns
-    };
-    let back = turns == 0 && rel.dot(facing) < 0.0;
-    let line = match (turns, back) {
-        (0, false) => facing,
-        (0, true) => -facing,
-        _ => rel / d,
-    };
-    let along = rel.dot(line);
-    let run = dash_distance(dashes);
-    let ball_dist = if dashes == 0 {
-        d
-    } else if along - 0.1 <= run {
-        rel.perp_dot(line).abs()
-    } else {
-        (rel - line * run).length()
-    };
-    Some(Interception {
-        cycle: t.max(turns + dashes),
-        turns,
-        dashes,
-        back,
-        ball_dist,
-    })
+
+    /// How the player gets the ball at cycle `t`, if it can by the rule of
+    /// spec 6.1.2 under the estimate's margin; beyond the path, how it
+    /// reaches the ball's resting point (librcsc `SelfInterceptV13::predictFinal`).
+    ///
+    /// As librcsc's `canReachAfterDash`, the player dashes along its body (or
+    /// along the line to the ball after a turn): if the dashes carry it past the
+    /// ball (within 0.1 m) it stops on that line, and `ball_dist` is the ball's
+    /// distance from the line; otherwise it is the distance left after the dashes.
+    pub fn at(&self, t: usize) -> Option<Interception> {
+        let Reach {
+            p,
+            path,
+            facing,
+            keeper_control,
+            estimate,
+        } = *self;
+        let final_point = t >= path.len();
+        let i = t.min(path.len() - 1);
+        let (rel, control) = reach_vector(p, i, path[i], keeper_control);
+        let d = rel.length();
+        let gap = d - control;
+        let turns = if gap > 0.0 {
+            turn_count(facing, rel, d, control)
+        } else {
+            0
+        };
+        let needed = gap + estimate.buffer(t);
+        if !final_point && needed > 0.0 && (t < turns || needed > dash_distance(t - turns)) {
+            return None;
+        }
+        let dashes = if final_point {
+            dash_cycles(gap)
+        } else {
+            t - turns
+        };
+        let back = turns == 0 && rel.dot(facing) < 0.0;
+        let line = match (turns, back) {
+            (0, false) => facing,
+            (0, true) => -facing,
+            _ => rel / d,
+        };
+        let along = rel.dot(line);
+        let run = dash_distance(dashes);
+        let ball_dist = if dashes == 0 {
+            d
+        } else if along - 0.1 <= run {
+            rel.perp_dot(line).abs()
+        } else {
+            (rel - line * run).length()
+        };
+        Some(Interception {
+            cycle: t.max(turns + dashes),
+            turns,
+            dashes,
+            back,
+            ball_dist,
+        })
+    }
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! lines 225-757, field-player mode) over the cycles of its self-interception
 //! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
 
-use crate::analysis::{Analysis, Estimate, Interception, interception};
+use crate::analysis::{Analysis, Estimate, Interception, Reach};
 use crate::geom::direction;
 use crate::params::*;
 use crate::world::{Player, World};
@@ -38,7 +38,8 @@ const MAX_CYCLE: usize = 30;
 /// (librcsc's `EXHAUST` mode needs the stamina below the recovery threshold,
 /// which save-recovery dashing avoids).
 pub fn self_cache(p: &Player, path: &[DVec2]) -> Vec<Interception> {
-    let reach = |t: usize| interception(p, path, t, None, Estimate::Own);
+    let own = Reach::new(p, path, None, Estimate::Own);
+    let reach = |t: usize| own.at(t);
     let max_cycle = MAX_CYCLE.min(path.len());
     let mut cache: Vec<Interception> = (1..=SHORT_STEPS)
         .take_while(|&t| t < path.len())
@@ -51,7 +52,7 @@ pub fn self_cache(p: &Player, path: &[DVec2]) -> Vec<Interception> {
             cache.push(first);
             cache.extend((first.cycle + 1..end).filter_map(reach));
         }
-        None => cache.extend(interception(p, path, path.len(), None, Estimate::Own)),
+        None => cache.extend(own.at(path.len())),
     }
     cache
 }

@@ -3,7 +3,7 @@
 
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::analysis::{Analysis, Estimate, Interception, interception};
+use crate::analysis::{Analysis, Estimate, Interception, Reach};
 use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
@@ -184,18 +184,17 @@ impl<'a> View<'a> {
         let end = path.len().min(first.max(6) + 10);
         let mut goalie: Option<(f64, Interception)> = None;
         let mut aggressive: Option<(f64, Interception)> = None;
-        for t in first..end {
-            let b = path[t];
+        let reach = Reach::new(
+            self.keeper,
+            path,
+            Some(KEEPER_CONTROL_AREA),
+            Estimate::Other,
+        );
+        for (t, &b) in path.iter().enumerate().take(end).skip(first) {
             if b.x.abs() > PITCH_HALF_LENGTH - 1.0 || b.y.abs() > PITCH_HALF_WIDTH - 1.0 {
                 continue;
             }
-            let Some(c) = interception(
-                self.keeper,
-                path,
-                t,
-                Some(KEEPER_CONTROL_AREA),
-                Estimate::Other,
-            ) else {
+            let Some(c) = reach.at(t) else {
                 continue;
             };
             // The ball reached on the keeper's running line without a turn,
@@ -224,15 +223,7 @@ impl<'a> View<'a> {
         aggressive
             .or(goalie)
             .map(|(_, c)| c)
-            .or_else(|| {
-                interception(
-                    self.keeper,
-                    path,
-                    first,
-                    Some(KEEPER_CONTROL_AREA),
-                    Estimate::Other,
-                )
-            })
+            .or_else(|| reach.at(first))
             .expect("the keeper gets the ball at its reach cycle")
     }
 
@@ -509,13 +500,13 @@ mod tests {
         let path = view.analysis.path();
         (view.self_min..path.len().min(view.self_min.max(6) + 10))
             .filter_map(|t| {
-                interception(
+                Reach::new(
                     view.keeper,
                     path,
-                    t,
                     Some(KEEPER_CONTROL_AREA),
                     Estimate::Other,
                 )
+                .at(t)
             })
             .filter(|c| (c.turns == 0 && c.ball_dist < 0.65) || c.ball_dist < 0.01)
             .collect()
