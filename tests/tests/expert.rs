@@ -39,7 +39,7 @@ fn value_at(out: &Path, episode: u64, column: &str) -> u64 {
 fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
-    // Pretraining: after 50 episodes with this seed, agent 2 has given advice.
+    // Pretraining: after 200 episodes with this seed, agent 2 has given advice.
     let pretrain = [
         "run",
         "--algorithm",
@@ -47,9 +47,9 @@ fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports
         "--runs",
         "1",
         "--episodes",
-        "50",
+        "200",
         "--eval-every",
-        "50",
+        "200",
         "--eval-episodes",
         "1",
         "--seed",
@@ -61,7 +61,7 @@ fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports
     let agents = dir.join("agents");
     let pretrain = [&pretrain[..], &[agents.to_str().unwrap()]].concat();
     coordinator(&pretrain, &dir.join("pretrain"));
-    let spent = value_at(&dir.join("pretrain"), 50, "give_spent_2");
+    let spent = value_at(&dir.join("pretrain"), 200, "give_spent_2");
     assert!(spent > 0, "the expert must have spent some give budget");
 
     for keep_counters in [true, false] {
