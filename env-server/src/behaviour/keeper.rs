@@ -498,16 +498,14 @@ mod tests {
     /// The cache entries the goalie rule of `getBestIntercept` accepts.
     fn goalie_candidates(view: &View) -> Vec<Interception> {
         let path = view.analysis.path();
+        let reach = Reach::new(
+            view.keeper,
+            path,
+            Some(KEEPER_CONTROL_AREA),
+            Estimate::Other,
+        );
         (view.self_min..path.len().min(view.self_min.max(6) + 10))
-            .filter_map(|t| {
-                Reach::new(
-                    view.keeper,
-                    path,
-                    Some(KEEPER_CONTROL_AREA),
-                    Estimate::Other,
-                )
-                .at(t)
-            })
+            .filter_map(|t| reach.at(t))
             .filter(|c| (c.turns == 0 && c.ball_dist < 0.65) || c.ball_dist < 0.01)
             .collect()
     }
