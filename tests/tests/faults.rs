@@ -6,8 +6,10 @@
 //! to restarted mid-run.
 //!
 //! Every trial must end within a bound (no hang), leave no process of its
-//! experiment behind (no orphan) and leave only result files that parse (no
-//! corrupted file); a run that fails says why on its last line.
+//! experiment behind (no orphan), leave only result files that parse (no
+//! corrupted file) and, unless the coordinator died of a signal it cannot
+//! handle, nothing in its temporary directory; a run that fails says why on
+//! its last line.
 //!
 //! CI plays one trial of each kind. The long mode plays N random trials:
 //!
@@ -103,6 +105,7 @@ enum Verdict {
     Hang,
     Orphans(Vec<String>),
     Corrupted(String),
+    Leftovers(Vec<String>),
     Unclear(String),
 }
 
@@ -128,8 +131,9 @@ fn find(experiment: &str, part: &str, deadline: Instant) -> Option<u32> {
     None
 }
 
-fn start(experiment: &str, out: &Path, stderr: File, attach: &[String]) -> Child {
+fn start(experiment: &str, out: &Path, tmp: &Path, stderr: File, attach: &[String]) -> Child {
     Command::new(bin("coordinator"))
+        .env("TMPDIR", tmp)
         .args(["run", "--algorithm", "adhoc-td", "--runs", "1"])
         .args([
             "--episodes",
@@ -279,7 +283,9 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
         .map(Attached::coordinator_args)
         .unwrap_or_default();
     let stderr = File::create(&stderr_path).expect("stderr file");
-    let mut coordinator = start(name, &out, stderr, &attach);
+    let tmp = dir.join("tmp");
+    std::fs::create_dir_all(&tmp).expect("temporary directory");
+    let mut coordinator = start(name, &out, &tmp, stderr, &attach);
     let started = Instant::now();
     let target = match trial.fault {
         Fault::KillAgent | Fault::StopAgent => Some("--id\u{0}1\u{0}"),
@@ -337,6 +343,15 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
     }
     if let Err(e) = check_files(&out) {
         return Verdict::Corrupted(e);
+    }
+    // An exit code means the coordinator ended by itself or by its signal
+    // handler: either way its generated secret's directory must be gone.
+    let leftovers: Vec<String> = std::fs::read_dir(&tmp)
+        .expect("temporary directory")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    if status.code().is_some() && !leftovers.is_empty() {
+        return Verdict::Leftovers(leftovers);
     }
     let stderr = std::fs::read_to_string(&stderr_path).unwrap_or_default();
     let last = stderr.lines().rev().find(|l| !l.trim().is_empty());
@@ -437,10 +452,11 @@ fn every_fault_ends_bounded_without_orphans_or_corrupted_files() {
     }
     let count_of = |f: &dyn Fn(&Verdict) -> bool| failures.iter().filter(|(_, _, v)| f(v)).count();
     eprintln!(
-        "{count} faults (seed {seed}): {} hangs, {} orphans, {} corrupted, {} unclear",
+        "{count} faults (seed {seed}): {} hangs, {} orphans, {} corrupted, {} leftovers, {} unclear",
         count_of(&|v| *v == Verdict::Hang),
         count_of(&|v| matches!(v, Verdict::Orphans(_))),
         count_of(&|v| matches!(v, Verdict::Corrupted(_))),
+        count_of(&|v| matches!(v, Verdict::Leftovers(_))),
         count_of(&|v| matches!(v, Verdict::Unclear(_))),
     );
     assert!(failures.is_empty(), "{failures:#?}");

@@ -35,7 +35,7 @@ pub struct Network {
     counters: Mutex<MessageCounters>,
     secret: Option<Secret>,
     /// The private directory of a generated secret, removed when dropped.
-    _secret_dir: Option<tempfile::TempDir>,
+    secret_dir: Option<tempfile::TempDir>,
     _token: LivelinessToken,
     _watch: Subscriber<()>,
 }
@@ -167,7 +167,7 @@ impl Network {
             children: Arc::new(Mutex::new(Children::default())),
             counters: Mutex::new(MessageCounters::default()),
             secret,
-            _secret_dir: secret_dir,
+            secret_dir,
             _token: token,
             _watch: watch,
         };
@@ -263,8 +263,8 @@ impl Network {
     }
 
     /// On SIGINT (Ctrl-C) or SIGTERM: stop every process this coordinator
-    /// started, then exit 130 or 143. Installed before the first process
-    /// starts.
+    /// started, remove the generated secret's directory, then exit 130 or
+    /// 143. Installed before the first process starts.
     fn stop_on_signals(&self) -> Result<(), Error> {
         use tokio::signal::unix::{SignalKind, signal};
         let _guard = self.runtime.enter();
@@ -275,6 +275,7 @@ impl Network {
             listen(SignalKind::terminate())?,
         );
         let children = self.children.clone();
+        let secret_dir = self.secret_dir.as_ref().map(|d| d.path().to_owned());
         self.runtime.spawn(async move {
             let (name, code) = tokio::select! {
                 _ = interrupt.recv() => ("interrupted", 130),
@@ -285,6 +286,12 @@ impl Network {
                 .lock()
                 .expect("children")
                 .reap(Duration::from_millis(500));
+            // `exit` runs no destructors: the directory would outlive us.
+            if let Some(dir) = secret_dir
+                && let Err(e) = std::fs::remove_dir_all(&dir)
+            {
+                eprintln!("cannot remove {}: {e}", dir.display());
+            }
             std::process::exit(code);
         });
         Ok(())
