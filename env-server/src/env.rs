@@ -3,19 +3,21 @@
 
 use crate::analysis::{Analysis, MAX_OFFENSE, update_offside_line};
 use crate::behaviour::keeper::{self, KeeperMemory};
-use crate::behaviour::{Situation, offense_command};
+use crate::behaviour::{Decision, Situation, offense_command};
 use crate::config::{ConfigError, EnvConfig};
 use crate::features;
 use crate::geom::uniform;
 use crate::params::*;
 use crate::physics::{self, BALL_BODY, Command, PLAYER_BODY};
 use crate::referee::{Outcome, Referee};
+use crate::view::{self, Neck, Outlook};
 use crate::world::World;
 use glam::DVec2;
 use proto::{Action, State};
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_xoshiro::Xoshiro256PlusPlus;
+use std::f64::consts::PI;
 
 /// The attackers' start offsets around the ball, in units of 10.5 m (spec 4.2).
 const START_OFFSETS: [(f64, f64); 10] = [
@@ -186,11 +188,26 @@ impl Env {
             }
         }
         let analysis = Analysis::new(&self.world);
+        let phase = self.world.view_phase;
+        let mut looks = [(0.0, false); MAX_OFFENSE];
+        for (look, (p, sight)) in looks
+            .iter_mut()
+            .zip(self.world.offense.iter().zip(&self.world.sight))
+        {
+            *look = (p.body.to_degrees() + sight.neck, view::moved(p.vel));
+        }
+        view::before_decisions(&mut self.world.sight, phase, &looks[..n]);
         let mut searched = [None; MAX_OFFENSE];
+        let mut necks = [Neck::Scan; MAX_OFFENSE];
         for agent in 0..n {
-            (self.commands[agent], searched[agent]) = match actions {
-                _ if self.world.offense[agent].tackle_freeze > 0 => (Command::None, None),
-                None => (Command::None, None),
+            let idle = Decision {
+                command: Command::None,
+                shot: None,
+                neck: Neck::Scan,
+            };
+            let decision = match actions {
+                _ if self.world.offense[agent].tackle_freeze > 0 => idle,
+                None => idle,
                 Some(a) => offense_command(
                     &Situation {
                         world: &self.world,
@@ -201,12 +218,25 @@ impl Env {
                     a[agent],
                 ),
             };
+            (self.commands[agent], searched[agent], necks[agent]) =
+                (decision.command, decision.shot, decision.neck);
         }
         for (memory, course) in self.world.last_shot.iter_mut().zip(searched) {
             if course.is_some() {
                 *memory = course;
             }
         }
+        for agent in 0..n {
+            let outlook = outlook(&self.world, &analysis, agent, self.commands[agent]);
+            let dribbled = actions.is_some_and(|a| a[agent] == Action::Dribble)
+                && self.world.agent_kickable(agent);
+            let p = &self.world.offense[agent];
+            let (body, moved) = (p.body.to_degrees(), view::moved(p.vel));
+            let sight = &mut self.world.sight[agent];
+            sight.chain_ready |= dribbled;
+            sight.act(phase, necks[agent], &outlook, body, moved);
+        }
+        self.world.view_phase = (phase + 1) % 3;
         self.commands[n] = if self.world.keeper.tackle_freeze > 0 {
             Command::None
         } else {
@@ -305,6 +335,43 @@ impl Env {
         for (p, accel) in players.zip(&accels[1..]) {
             physics::move_object(&mut p.pos, &mut p.vel, *accel, PLAYER_BODY, rng);
         }
+    }
+}
+
+/// What agent `agent`'s view and neck actions see after its body command
+/// `command` (librcsc's queued next position and body, without noise).
+fn outlook(world: &World, analysis: &Analysis, agent: usize, command: Command) -> Outlook {
+    let p = &world.offense[agent];
+    let ball = world.ball.pos;
+    let (mut next_pos, mut next_body) = (p.pos + p.vel, p.body);
+    match command {
+        Command::Dash { power, dir } => {
+            let (mut player, mut accel) = (*p, DVec2::ZERO);
+            physics::dash(&mut player, &mut accel, power, dir);
+            next_pos += accel;
+        }
+        Command::Turn { moment } => {
+            next_body += moment.clamp(-PI, PI) / (1.0 + INERTIA_MOMENT * p.vel.length());
+        }
+        _ => {}
+    }
+    let first = analysis.own_reach[agent]
+        .min(analysis.mate_reach(agent))
+        .min(analysis.keeper_reach)
+        .min(100);
+    let mate_ball_dist = (world.offense.iter().enumerate())
+        .filter(|&(j, _)| j != agent)
+        .map(|(_, m)| m.pos.distance(ball))
+        .fold(1000.0, f64::min);
+    Outlook {
+        next_pos,
+        next_body: next_body.to_degrees(),
+        next_ball: ball + world.ball.vel,
+        reach_point: world.ball_inertia(first as u32),
+        mate_ball_dist,
+        keeper_ball_dist: world.keeper.pos.distance(ball),
+        ball_dist: p.pos.distance(ball),
+        drift_pos: p.pos + p.vel,
     }
 }
 

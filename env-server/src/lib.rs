@@ -22,6 +22,7 @@ pub mod policy;
 pub mod referee;
 pub mod render;
 pub mod rollout;
+pub mod view;
 pub mod world;
 
 pub use config::{ConfigError, EnvConfig, LongShot};

@@ -2,6 +2,7 @@
 
 use crate::geom::decay_sum;
 use crate::params::*;
+use crate::view::Sight;
 use glam::DVec2;
 
 /// The ball.
@@ -92,6 +93,11 @@ pub struct World {
     /// search (spec 6.2.2). Like HFO's per-agent `ShootGenerator` storage it
     /// survives episode resets; `None` until the agent's first such search.
     pub last_shot: Vec<Option<ShotCourse>>,
+    /// Per offense agent: its view and seen-direction counts (spec 6.5),
+    /// which survive episode resets like the agent's world model.
+    pub sight: Vec<Sight>,
+    /// The cycle within rcssserver's 3-cycle period of visual ticks.
+    pub view_phase: u8,
 }
 
 impl World {
@@ -107,6 +113,8 @@ impl World {
             catch_ban: 0,
             offside_line: 0.0,
             last_shot: vec![None; offense],
+            sight: vec![Sight::default(); offense],
+            view_phase: 0,
         }
     }
 

@@ -1,7 +1,7 @@
 //! The behaviours that turn high-level actions into one body command per
 //! cycle (spec sections 6 and 7). Every behaviour re-plans from scratch on
-//! the current state; the only thing carried between cycles is each agent's
-//! last shot course (spec 6.2.2), which the environment stores.
+//! the current state; what is carried between cycles is each agent's last
+//! shot course (spec 6.2.2) and view (spec 6.5), which the world stores.
 
 mod body;
 mod dribble;
@@ -17,6 +17,7 @@ use crate::analysis::Analysis;
 use crate::config::EnvConfig;
 use crate::params::KICKABLE_AREA;
 use crate::physics::Command;
+use crate::view::Neck;
 use crate::world::{Player, ShotCourse, World};
 use proto::Action;
 
@@ -51,25 +52,50 @@ impl Situation<'_> {
     }
 }
 
-/// The body command that `action` produces for the acting agent this cycle,
-/// and the first course of a non-empty shot search it ran (spec 6.2.2).
-/// Kick actions issue nothing when the agent cannot kick (spec 6.0).
-pub fn offense_command(s: &Situation, action: Action) -> (Command, Option<ShotCourse>) {
+/// What a behaviour decides for the acting agent this cycle.
+pub struct Decision {
+    /// The body command.
+    pub command: Command,
+    /// The first course of a non-empty shot search it ran (spec 6.2.2).
+    pub shot: Option<ShotCourse>,
+    /// The neck action it leaves (spec 6.5).
+    pub neck: Neck,
+}
+
+/// What `action` makes the acting agent do this cycle. Kick actions issue
+/// nothing when the agent cannot kick (spec 6.0); they and SHOOT, PASS and
+/// DRIBBLE keep HFO's default neck action, the field scan.
+pub fn offense_command(s: &Situation, action: Action) -> Decision {
+    let decide = |command, shot| Decision {
+        command,
+        shot,
+        neck: Neck::Scan,
+    };
     if action != Action::Move && !s.world.agent_kickable(s.agent) {
-        return (Command::None, None);
+        return decide(Command::None, None);
     }
     match action {
-        Action::Move => (movement::command(s), move_shot_check(s)),
-        Action::Shoot => shoot::command(s),
+        Action::Move => {
+            let (command, neck) = movement::command(s);
+            Decision {
+                command,
+                shot: move_shot_check(s),
+                neck,
+            }
+        }
+        Action::Shoot => {
+            let (command, shot) = shoot::command(s);
+            decide(command, shot)
+        }
         // `doPreprocess`'s Bhv_StrictCheckShoot; its kick is overridden (spec 6.0).
-        Action::Dribble => (dribble::command(s), shoot::check(s)),
+        Action::Dribble => decide(dribble::command(s), shoot::check(s)),
         Action::PassNear | Action::PassFar => {
             let receiver = s
                 .config
                 .pass_to_named_receiver
                 .then(|| s.teammate_by_distance(action == Action::PassFar))
                 .flatten();
-            (pass::command(s, receiver), None)
+            decide(pass::command(s, receiver), None)
         }
     }
 }

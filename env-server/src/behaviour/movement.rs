@@ -6,6 +6,7 @@ use super::body::{go_to_point, intercept, turn_to_point};
 use super::tackle::{self, Tackler};
 use crate::params::*;
 use crate::physics::Command;
+use crate::view::Neck;
 use glam::DVec2;
 
 /// Where an attacker with the ball, or with the ball coming to it, faces.
@@ -13,21 +14,34 @@ pub fn forward_point(y: f64) -> DVec2 {
     DVec2::new(50.5, 0.75 * y)
 }
 
-/// The MOVE command of offense agent `s.agent`.
-pub fn command(s: &Situation) -> Command {
+/// The MOVE command of offense agent `s.agent` and its neck action:
+/// Bhv_BasicTackle's field scan, Neck_OffensiveInterceptNeck when it chases
+/// the ball, otherwise the ball when the keeper holds it within 18 m, else
+/// the field scan (spec 6.5).
+pub fn command(s: &Situation) -> (Command, Neck) {
     if let Some(cmd) = tackle::command(s.world, s.analysis, Tackler::Attacker(s.agent)) {
-        return cmd;
+        return (cmd, Neck::Scan);
     }
     let me = s.me();
+    let keeper_kickable = s.world.keeper.pos.distance(s.world.ball.pos) <= KICKABLE_AREA;
+    // Neck_OffensiveInterceptNeck: towards ball and keeper when the keeper
+    // can kick; the scan once the agent's action chain exists, else nothing.
+    let intercept_neck = if keeper_kickable {
+        Neck::TurnToBall
+    } else if s.world.sight[s.agent].chain_ready {
+        Neck::Scan
+    } else {
+        Neck::Keep
+    };
     if s.world.agent_kickable(s.agent) {
-        return turn_to_point(me, forward_point(me.pos.y));
+        return (turn_to_point(me, forward_point(me.pos.y)), intercept_neck);
     }
     let self_min = s.analysis.own_reach[s.agent];
     let mate_min = s.analysis.mate_reach(s.agent);
     let opp_min = s.analysis.keeper_reach;
     let chase = self_min <= 3 || (self_min <= mate_min && self_min < opp_min + 3);
     if chase && !s.world.teammate_kickable(s.agent) {
-        return intercept(
+        let cmd = intercept(
             me,
             s.world,
             s.analysis,
@@ -35,11 +49,19 @@ pub fn command(s: &Situation) -> Command {
             KICKABLE_AREA,
             forward_point(me.pos.y),
         );
+        return (cmd, intercept_neck);
     }
     let target = s.analysis.home[s.agent];
-    let tolerance = (0.1 * me.pos.distance(s.world.ball.pos)).max(1.0);
-    go_to_point(me, target, tolerance, dash_power(s))
-        .unwrap_or_else(|| turn_to_point(me, s.world.ball.pos))
+    let ball_dist = me.pos.distance(s.world.ball.pos);
+    let tolerance = (0.1 * ball_dist).max(1.0);
+    let cmd = go_to_point(me, target, tolerance, dash_power(s))
+        .unwrap_or_else(|| turn_to_point(me, s.world.ball.pos));
+    let neck = if keeper_kickable && ball_dist < 18.0 {
+        Neck::TurnToBall
+    } else {
+        Neck::Scan
+    };
+    (cmd, neck)
 }
 
 /// agent2d's positioning dash power (spec 6.1.4).

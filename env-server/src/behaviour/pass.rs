@@ -155,7 +155,11 @@ fn lead_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)) {
             continue;
         };
         for sign in [-1.0, 1.0] {
-            let target = ball + polar(dist, base + sign * k as f64 * step);
+            let angle = base + sign * k as f64 * step;
+            if !seen_lately(s, angle) {
+                continue;
+            }
+            let target = ball + polar(dist, angle);
             if !inside_shrunk_pitch(target) || lead_back_pass(target, me.pos.x, r.x) {
                 continue;
             }
@@ -191,7 +195,11 @@ fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)
         for l in [5.0, 9.0, 13.0, 17.0, 21.0, 25.0] {
             let target = r + polar(l, theta.to_radians());
             let dist = target.distance(ball);
-            if !inside_shrunk_pitch(target) || target.x < me.pos.x + 3.0 || dist > 45.0 || dist < l
+            if !inside_shrunk_pitch(target)
+                || target.x < me.pos.x + 3.0
+                || !seen_lately(s, direction(target - ball))
+                || dist > 45.0
+                || dist < l
             {
                 continue;
             }
@@ -210,6 +218,14 @@ fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)
             }
         }
     }
+}
+
+/// The lead and through passes' direction check: the passer has looked
+/// within 10° either side of `angle` (radians) lately, every 5° bin within 9
+/// cycles and their average within 3 (`dirRangeCount(angle, 20)`).
+fn seen_lately(s: &Situation, angle: f64) -> bool {
+    let (max, average) = s.world.sight[s.agent].range_count(angle.to_degrees(), 20.0);
+    max <= 9 && average <= 3
 }
 
 fn inside_shrunk_pitch(p: DVec2) -> bool {
@@ -236,7 +252,8 @@ fn through_pass_safe(s: &Situation, mate: &Player, target: DVec2, speed: f64) ->
         && !keeper_near_path(s, target, speed)
 }
 
-/// `evaluate_routes` (spec 6.4 step 6), with every direction counted as just seen.
+/// `evaluate_routes` (spec 6.4 step 6): 0.95 per cycle since the passer
+/// last looked within 10° of the pass direction.
 fn score(s: &Situation, route: Route) -> f64 {
     let me = s.me();
     let ball = &s.world.ball;
@@ -254,7 +271,9 @@ fn score(s: &Situation, route: Route) -> f64 {
     if (first - ball.vel).length() < MAX_KICK_POWER * kick_rate(me, ball.pos) {
         score *= 1.2;
     }
-    score
+    let (max_count, _) =
+        s.world.sight[s.agent].range_count(direction(q - me.pos).to_degrees(), 20.0);
+    score * 0.95f64.powi(i32::from(max_count))
 }
 
 #[cfg(test)]
@@ -328,6 +347,24 @@ mod tests {
         assert!(near(&keeper_at(7.0)));
         assert!(!near(&keeper_at(8.0)));
         assert!(!near(&keeper_at(-8.0)));
+    }
+
+    #[test]
+    fn lead_and_through_passes_go_only_where_the_passer_looked_lately() {
+        let routes = |count| {
+            let mut w = world(DVec2::new(20.0, 12.0), DVec2::new(50.0, 0.0));
+            w.sight[0] = crate::view::Sight::with_counts(count);
+            let mut n = 0;
+            in_situation(&w, |s| {
+                lead_passes(s, &w.offense[1], &mut |_| n += 1);
+                through_passes(s, &w.offense[1], &mut |_| n += 1);
+            });
+            n
+        };
+        assert!(routes(0) > 0);
+        assert!(routes(3) > 0);
+        assert_eq!(routes(4), 0, "average over 3");
+        assert_eq!(routes(10), 0);
     }
 
     #[test]
