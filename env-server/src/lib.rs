@@ -4,7 +4,8 @@
 //! The specification is `docs/hfo-sim-spec.md` ("spec N" in comments). Modules follow one
 //! cycle's data flow: [`world`] holds the state, [`analysis`] derives what
 //! every behaviour reads (reach cycles, formation), [`behaviour`] turns
-//! actions into body commands, [`physics`] executes them, [`referee`] ends
+//! actions into body commands, [`view`] moves the attackers' necks and
+//! counts where they looked, [`physics`] executes the commands, [`referee`] ends
 //! episodes and [`features`] describes the state to the agents; [`env`](mod@env) ties
 //! them together, with the settings of [`config`].
 

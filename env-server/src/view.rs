@@ -1,4 +1,4 @@
-//! What each attacker has looked at lately (spec 6.5): librcsc's
+//! What each attacker has looked at lately (spec 6.6): librcsc's
 //! seen-direction counts, fed by rcssserver's see messages, and the neck and
 //! view-width choices of HFO's agent that decide where those sees look.
 //!
@@ -156,7 +156,7 @@ impl Sight {
     }
 
     /// Cycles since direction `angle` (degrees) was in view (`dirCount`).
-    pub fn count(&self, angle: f64) -> u8 {
+    fn count(&self, angle: f64) -> u8 {
         self.counts[dir_index(angle)]
     }
 
@@ -358,28 +358,11 @@ impl Sight {
             }
         }
     }
-}
 
-/// Advances every attacker's view by one cycle up to its decision: counts
-/// age, and the sees due before the think message arrive. `faces` are body
-/// plus neck, `moved` whether each moved over 0.5 m last cycle.
-pub fn before_decisions(sights: &mut [Sight], phase: u8, players: &[(f64, bool)]) {
-    for (sight, &(face, moved)) in sights.iter_mut().zip(players) {
-        sight.new_cycle();
-        for _ in 0..TICKS_BEFORE_THINK[phase as usize] {
-            sight.tick(face, moved);
-        }
-        // PlayerAgent::action: a see missed while synchronised breaks the synch.
-        if sight.is_synch() && sight.cycles_till_see == 0 && !sight.seen {
-            sight.timing = Timing::NoSynch;
-        }
-    }
-}
-
-impl Sight {
     /// The view and neck actions after the agent's body command, then the
     /// sees due after the think message (still with this cycle's face).
-    /// Returns nothing; the new neck takes effect with the server's step.
+    /// `body` is the body direction now, degrees; the new neck takes effect
+    /// with the server's step.
     pub fn act(&mut self, phase: u8, neck: Neck, o: &Outlook, body: f64, moved: bool) {
         let face = deg_norm(body + self.neck);
         let width = self.tactical_width(o);
@@ -397,9 +380,7 @@ impl Sight {
             self.turn_neck(deg_norm(target - o.next_body - self.neck));
         }
     }
-}
 
-impl Sight {
     /// librcsc's `setTurnNeck` (a whole-degree moment that keeps the neck,
     /// wrapped as an angle, inside its range) and the server's turn_neck.
     fn turn_neck(&mut self, moment: f64) {
@@ -411,6 +392,23 @@ impl Sight {
             moment = (-MAX_NECK - self.neck).round_ties_even();
         }
         self.neck = (self.neck + moment).clamp(-MAX_NECK, MAX_NECK);
+    }
+}
+
+/// Advances every attacker's view by one cycle up to its decision: counts
+/// age, and the sees due before the think message arrive. `players` holds
+/// each one's face (body plus neck, degrees) and whether it moved over 0.5 m
+/// last cycle.
+pub fn before_decisions(sights: &mut [Sight], phase: u8, players: &[(f64, bool)]) {
+    for (sight, &(face, moved)) in sights.iter_mut().zip(players) {
+        sight.new_cycle();
+        for _ in 0..TICKS_BEFORE_THINK[phase as usize] {
+            sight.tick(face, moved);
+        }
+        // PlayerAgent::action: a see missed while synchronised breaks the synch.
+        if sight.is_synch() && sight.cycles_till_see == 0 && !sight.seen {
+            sight.timing = Timing::NoSynch;
+        }
     }
 }
 

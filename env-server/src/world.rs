@@ -93,7 +93,7 @@ pub struct World {
     /// search (spec 6.2.2). Like HFO's per-agent `ShootGenerator` storage it
     /// survives episode resets; `None` until the agent's first such search.
     pub last_shot: Vec<Option<ShotCourse>>,
-    /// Per offense agent: its view and seen-direction counts (spec 6.5),
+    /// Per offense agent: its view and seen-direction counts (spec 6.6),
     /// which survive episode resets like the agent's world model.
     pub sight: Vec<Sight>,
     /// The cycle within rcssserver's 3-cycle period of visual ticks.

@@ -1,7 +1,7 @@
 //! The behaviours that turn high-level actions into one body command per
 //! cycle (spec sections 6 and 7). Every behaviour re-plans from scratch on
 //! the current state; what is carried between cycles is each agent's last
-//! shot course (spec 6.2.2) and view (spec 6.5), which the world stores.
+//! shot course (spec 6.2.2) and view (spec 6.6), which the world stores.
 
 mod body;
 mod dribble;
@@ -58,7 +58,7 @@ pub struct Decision {
     pub command: Command,
     /// The first course of a non-empty shot search it ran (spec 6.2.2).
     pub shot: Option<ShotCourse>,
-    /// The neck action it leaves (spec 6.5).
+    /// The neck action it leaves (spec 6.6).
     pub neck: Neck,
 }
 

@@ -17,7 +17,7 @@ pub fn forward_point(y: f64) -> DVec2 {
 /// The MOVE command of offense agent `s.agent` and its neck action:
 /// Bhv_BasicTackle's field scan, Neck_OffensiveInterceptNeck when it chases
 /// the ball, otherwise the ball when the keeper holds it within 18 m, else
-/// the field scan (spec 6.5).
+/// the field scan (spec 6.6).
 pub fn command(s: &Situation) -> (Command, Neck) {
     if let Some(cmd) = tackle::command(s.world, s.analysis, Tackler::Attacker(s.agent)) {
         return (cmd, Neck::Scan);
