@@ -255,7 +255,9 @@ fn killing_an_agent_ends_the_run_with_a_clear_message() {
 #[test]
 fn killing_the_coordinator_leaves_no_process_behind() {
     let tmp = tempfile::tempdir().unwrap();
+    // SIGKILL leaves the generated secret's directory: keep it in ours.
     let mut coordinator = long_run("no-advice", &tmp.path().join("orphans"))
+        .env("TMPDIR", tmp.path())
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
