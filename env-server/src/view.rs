@@ -505,6 +505,32 @@ mod tests {
     }
 
     #[test]
+    fn an_agent_that_moved_keeps_a_wider_margin_inside_the_cone() {
+        let cleared = |moved| {
+            let mut s = Sight {
+                width: Width::Normal,
+                ..Sight::default()
+            };
+            s.clear_view_cone(2.0, moved);
+            s.count(-42.0)
+        };
+        assert_eq!(cleared(false), 0);
+        assert_eq!(cleared(true), MAX_COUNT);
+    }
+
+    #[test]
+    fn the_neck_turns_the_short_way_and_stops_at_its_limit() {
+        let mut s = Sight::default();
+        s.turn_neck(120.4);
+        assert_eq!(s.neck, 90.0);
+        // 90 + 179 wraps to -91: librcsc stops the moment at -90.
+        s.turn_neck(179.0);
+        assert_eq!(s.neck, -90.0);
+        s.turn_neck(30.6);
+        assert_eq!(s.neck, -59.0);
+    }
+
+    #[test]
     fn a_synchronised_agent_near_the_ball_sees_every_cycle_narrow_narrow_normal() {
         let mut s = Sight::default();
         let o = outlook(DVec2::new(10.0, 0.0), DVec2::new(10.5, 0.0));
