@@ -280,7 +280,7 @@ impl Env {
                 Command::Tackle { dir, foul } => {
                     // The server's foul needs an opponent that can kick the ball.
                     let opponent_kickable = if i < n {
-                        self.world.keeper.pos.distance(self.world.ball.pos) <= KICKABLE_AREA
+                        self.world.keeper_kickable()
                     } else {
                         self.world.any_attacker_kickable()
                     };

@@ -136,6 +136,11 @@ impl World {
             .any(|(j, p)| j != except && p.pos.distance(self.ball.pos) <= KICKABLE_AREA)
     }
 
+    /// Whether the keeper has the ball in its kickable area.
+    pub fn keeper_kickable(&self) -> bool {
+        self.keeper.pos.distance(self.ball.pos) <= KICKABLE_AREA
+    }
+
     /// Whether any offense player has the ball in its server kickable area.
     pub fn any_attacker_kickable(&self) -> bool {
         self.offense

@@ -15,7 +15,6 @@ pub mod tackle;
 
 use crate::analysis::Analysis;
 use crate::config::EnvConfig;
-use crate::params::KICKABLE_AREA;
 use crate::physics::Command;
 use crate::view::Neck;
 use crate::world::{Player, ShotCourse, World};
@@ -104,7 +103,7 @@ pub fn offense_command(s: &Situation, action: Action) -> Decision {
 /// which looks for a shot when the agent reaches the ball within a cycle and
 /// neither a teammate nor the keeper can kick it.
 fn move_shot_check(s: &Situation) -> Option<ShotCourse> {
-    let keeper_kickable = s.world.keeper.pos.distance(s.world.ball.pos) <= KICKABLE_AREA;
+    let keeper_kickable = s.world.keeper_kickable();
     (s.analysis.own_reach[s.agent] <= 1 && !s.world.teammate_kickable(s.agent) && !keeper_kickable)
         .then(|| shoot::check(s))
         .flatten()
