@@ -207,7 +207,8 @@ impl Estimate {
 /// Reach cycles of player `p` for the ball path `path` (spec 6.1.2), as the
 /// others estimate it and as it estimates its own; `keeper_control` is the
 /// keeper's control area inside its penalty area. A ball already under
-/// control is reached at once by either estimate.
+/// control is reached at once by the others' estimate; by the player's own
+/// only if it can kick it by its own test (1.03 m).
 pub fn reach_cycles(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> (usize, usize) {
     let scan = Scan::new(p, path, keeper_control);
     // Whatever the own estimate accepts the others' accepts too: the own
@@ -245,7 +246,15 @@ impl<'a> Scan<'a> {
                 continue; // out of reach even without turning
             }
             let d = rel.length();
-            if d <= control && (t == 0 || estimate == Estimate::Other) {
+            if estimate == Estimate::Own && t == 0 {
+                // Only a ball the player can kick by its own test is reached
+                // at once (`InterceptTable::predictSelf`).
+                if d <= AGENT_KICKABLE_AREA {
+                    return 0;
+                }
+                continue;
+            }
+            if d <= control && estimate == Estimate::Other {
                 return t;
             }
             let gap = d - control + estimate.buffer(t);
@@ -420,5 +429,17 @@ mod tests {
         let a = Analysis::new(&w);
         assert_eq!((a.reach[1], a.own_reach[1]), (0, 0));
         assert_eq!(a.mate_reach(0), 0);
+    }
+
+    #[test]
+    fn own_estimate_reaches_at_once_only_by_the_agents_kickable_test() {
+        // 1.05 m: within the server's kickable area (1.085), so the others
+        // count the ball as reached, but not within the agent's own 1.03 m.
+        let mut w = World::new(3);
+        w.ball.pos = DVec2::new(20.0, 0.0);
+        w.offense[1].pos = DVec2::new(18.95, 0.0);
+        let a = Analysis::new(&w);
+        assert_eq!(a.reach[1], 0);
+        assert_eq!(a.own_reach[1], 1);
     }
 }

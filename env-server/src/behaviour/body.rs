@@ -2,7 +2,7 @@
 
 use super::intercept::{best_interception, self_cache};
 use super::kick_table;
-use crate::analysis::Analysis;
+use crate::analysis::{Analysis, Estimate};
 use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_for_accel};
@@ -83,7 +83,9 @@ pub fn intercept(
     let q = p.drift(cycle as u32);
     let rel = target - q;
     let d = rel.length();
-    if d <= control {
+    // No dash when the ball comes inside the control area by the own
+    // estimate's margin (librcsc `predictNoDash`, `control_area_buf`).
+    if d <= control - Estimate::Own.buffer(cycle) {
         return turn_to_point(p, no_dash_turn);
     }
     let mut e = angle_diff(direction(rel), p.body);

@@ -88,3 +88,38 @@ fn dash_power(s: &Situation) -> f64 {
         (1.7 * inc).min(MAX_DASH_POWER)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Analysis;
+    use crate::config::EnvConfig;
+    use crate::world::{Player, World};
+
+    /// MOVE of agent 0 standing `gap` metres behind a resting ball, facing it.
+    fn move_with_ball_at(gap: f64) -> Command {
+        let mut w = World::new(3);
+        w.ball.pos = DVec2::new(20.0, 0.0);
+        w.offense[0] = Player::new(DVec2::new(20.0 - gap, 0.0), 0.0);
+        w.offense[1].pos = DVec2::new(10.0, 15.0);
+        w.offense[2].pos = DVec2::new(10.0, -15.0);
+        w.offside_line = 20.0;
+        let (analysis, config) = (Analysis::new(&w), EnvConfig::default());
+        let s = Situation {
+            world: &w,
+            analysis: &analysis,
+            config: &config,
+            agent: 0,
+        };
+        command(&s).0
+    }
+
+    #[test]
+    fn a_ball_just_outside_the_agents_kickable_test_is_chased() {
+        // At 1.05 m the server would accept a kick but the agent's own test
+        // (1.03 m) says no: it must step in, not stand there for good.
+        let cmd = move_with_ball_at(1.05);
+        assert!(matches!(cmd, Command::Dash { .. }), "{cmd:?}");
+        assert!(matches!(move_with_ball_at(1.0), Command::Turn { .. }));
+    }
+}
