@@ -3,7 +3,7 @@
 
 use super::Situation;
 use super::body::smart_kick;
-use crate::geom::{angle_diff, direction, polar, unit};
+use crate::geom::{direction, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_rate};
 use crate::world::Player;
@@ -70,7 +70,10 @@ fn keeper_near_path(s: &Situation, target: DVec2, speed: f64) -> bool {
     across < 0.0 || ball_cycles(along, speed * BALL_DECAY).is_none_or(|n| across < n)
 }
 
-/// `create_direct_pass` (spec 6.4 step 2).
+/// `create_direct_pass` (spec 6.4 step 2). Its back-pass test (a receiver
+/// less than 5 m ahead must lie within 40° of straight ahead unless it is
+/// beyond the defence line) never rejects: librcsc's `PlayerObject` shadows
+/// the angle `angleFromSelf()` returns, which stays 0° (spec 6.4).
 fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)) {
     let me = s.me();
     let ball = s.world.ball.pos;
@@ -78,19 +81,6 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
     let d_self = r.distance(me.pos);
     if r.x.abs() > 49.5 || r.y.abs() > 31.0 || !(6.0..=40.0).contains(&d_self) {
         return;
-    }
-    if r.x < me.pos.x + 5.0 {
-        let defense_line = s
-            .world
-            .offense
-            .iter()
-            .map(|p| p.pos.x)
-            .fold(ball.x.min(0.0), f64::min);
-        let forward = direction(r - me.pos).abs() < 40f64.to_radians();
-        let behind_defence = r.x > defense_line + 10.0 && r.x > 0.0;
-        if !(forward || behind_defence) {
-            return;
-        }
     }
     // The receiver's position one cycle of velocity ahead, divided by the
     // player decay (`create_direct_pass` with a velocity seen this cycle).
@@ -118,13 +108,13 @@ fn direct_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route))
     }
 }
 
-/// `verify_direct_pass`: a keeper more than 100° off the pass direction (seen
-/// from the passer) is ignored; otherwise it must be at least 3 m from the
-/// target and off the ball's path.
+/// `verify_direct_pass`: the keeper is ignored when the pass direction is
+/// more than 100° from its `angleFromSelf()`, which is always 0° (see
+/// `direct_passes`); otherwise it must be at least 3 m from the target and
+/// off the ball's path.
 fn direct_pass_safe(s: &Situation, target: DVec2, speed: f64) -> bool {
     let keeper = s.world.keeper.pos;
-    let pass_dir = direction(target - s.world.ball.pos);
-    if angle_diff(direction(keeper - s.me().pos), pass_dir) > 100f64.to_radians() {
+    if direction(target - s.world.ball.pos).abs() > 100f64.to_radians() {
         return true;
     }
     keeper.distance(target) >= 3.0 && !keeper_near_path(s, target, speed)
@@ -177,7 +167,8 @@ fn lead_back_pass(target: DVec2, passer_x: f64, receiver_x: f64) -> bool {
         || (target.x < 0.0 && (target.x < passer_x || target.x < receiver_x - 3.0))
 }
 
-/// `create_through_pass` (spec 6.4 step 4).
+/// `create_through_pass` (spec 6.4 step 4); its receiver-angle test (over
+/// 135°) never rejects, as `angleFromSelf()` is 0° (see `direct_passes`).
 fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)) {
     let me = s.me();
     let ball = s.world.ball.pos;
@@ -186,7 +177,6 @@ fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)
     if r.x > line - 0.5
         || r.x < me.pos.x - 10.0
         || (r.y - me.pos.y).abs() > 35.0
-        || direction(r - me.pos).abs() > 135f64.to_radians()
         || (line < 30.0 && r.x < line - 15.0)
     {
         return;
@@ -347,6 +337,26 @@ mod tests {
         assert!(near(&keeper_at(7.0)));
         assert!(!near(&keeper_at(8.0)));
         assert!(!near(&keeper_at(-8.0)));
+    }
+
+    #[test]
+    fn a_direct_pass_may_go_sideways_or_back_as_angle_from_self_is_0() {
+        // Teammates beside and behind the passer at x < 10: agent2d's back
+        // pass test would cancel them if librcsc's angleFromSelf() worked.
+        for mate in [DVec2::new(9.0, 9.0), DVec2::new(2.0, -4.0)] {
+            let routes = direct_routes(&world(mate, DVec2::new(50.0, 0.0)));
+            assert_eq!(routes.len(), 3, "{mate}: {routes:?}");
+        }
+    }
+
+    #[test]
+    fn the_keeper_is_ignored_for_a_direct_pass_more_than_100_degrees_off_0() {
+        // The keeper 1 m from each receive point: it rejects a forward pass,
+        // not a pass back towards our goal (the angle is the pass's own).
+        let forward = world(DVec2::new(30.6, 0.0), DVec2::new(31.6, 0.0));
+        assert!(direct_routes(&forward).is_empty());
+        let back = world(DVec2::new(2.0, -4.0), DVec2::new(1.0, -4.0));
+        assert_eq!(direct_routes(&back).len(), 3);
     }
 
     #[test]

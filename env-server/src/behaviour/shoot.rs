@@ -92,7 +92,7 @@ fn search(s: &Situation, want: Want) -> Search {
     let mut first = None;
     let mut best: Option<(f64, Course)> = None;
     for target in targets(me, ball) {
-        let line = Line::new(s, ball, target, &keeper.side);
+        let line = Line::new(s, ball, target);
         let dir = direction(target - ball);
         let s1 = if kickable {
             max_one_kick_speed(dir, s.world.ball.vel, max_kick_accel(me, ball))
@@ -211,20 +211,21 @@ struct Line {
     /// Unit vector from the ball to the target.
     u: DVec2,
     /// The first cycle the keeper could be on the path, or `None` if it
-    /// never gets close: its side is more than 90° off the course, it is
-    /// out of its penalty area, or it is behind the ball.
+    /// never gets close: it is out of its penalty area, or behind the ball.
+    /// (agent2d also skips a keeper more than 90° off the course, measured
+    /// from its `angleFromSelf()`, which librcsc leaves at 0° (spec 6.4):
+    /// no course to the goal line is that far off.)
     first: Option<usize>,
 }
 
 impl Line {
-    fn new(s: &Situation, ball: DVec2, target: DVec2, keeper_side: &Side) -> Self {
+    fn new(s: &Situation, ball: DVec2, target: DVec2) -> Self {
         let keeper = &s.world.keeper;
         let rel = target - ball;
         let length = rel.length();
         let u = rel / length;
         let k_rel = keeper.pos - ball;
-        let away = keeper_off_course(u, keeper_side)
-            || keeper.pos.x < 6.0
+        let away = keeper.pos.x < 6.0
             || keeper.pos.y.abs() > PENALTY_AREA_HALF_WIDTH
             || k_rel.dot(u) < -1.0;
         let first = (!away).then(|| ((k_rel.perp_dot(u).abs()).floor() as usize).max(1));
@@ -232,32 +233,11 @@ impl Line {
     }
 }
 
-/// Where the keeper is seen from the shooter.
-struct Side {
-    /// Direction from the shooter to the keeper.
-    dir: f64,
-    /// The same as a unit vector.
-    unit: DVec2,
-}
-
-/// Whether the course along `u` is more than 90° off the keeper's side:
-/// by the sign of a cosine unless it is within rounding of 0, then by the
-/// angles themselves.
-fn keeper_off_course(u: DVec2, side: &Side) -> bool {
-    let cos = u.dot(side.unit);
-    if cos.abs() > 1e-9 {
-        return cos < 0.0;
-    }
-    angle_diff(direction(u), side.dir) > FRAC_PI_2
-}
-
 /// The shot search's view of the keeper.
 struct Keeper<'a> {
     player: &'a Player,
     /// Its body direction as a unit vector.
     facing: DVec2,
-    /// Where it is seen from the shooter.
-    side: Side,
     /// Distance from the shooter to the keeper.
     from_shooter: f64,
 }
@@ -269,10 +249,6 @@ impl<'a> Keeper<'a> {
         Keeper {
             player,
             facing: unit(player.body),
-            side: Side {
-                dir: direction(to_keeper),
-                unit: to_keeper.normalize_or_zero(),
-            },
             from_shooter: to_keeper.length(),
         }
     }
@@ -472,7 +448,7 @@ mod tests {
         };
         let keeper = Keeper::new(&s);
         let ball = world.ball.pos;
-        let line = Line::new(&s, ball, DVec2::new(52.5, 5.0), &keeper.side);
+        let line = Line::new(&s, ball, DVec2::new(52.5, 5.0));
         for speed in [2.1, 2.7, 3.0] {
             assert_eq!(keeper_verdict(&keeper, ball, &line, speed), Some(true));
         }
@@ -490,8 +466,7 @@ mod tests {
             let mut player = Player::new(DVec2::new(45.0, 0.0), body);
             player.vel = unit(dir + 1.0) * speed;
             let rel = unit(dir) * (dist + 0.3);
-            let side = Side { dir: 0.0, unit: DVec2::X };
-            let keeper = Keeper { player: &player, facing: unit(body), side, from_shooter: 10.0 };
+            let keeper = Keeper { player: &player, facing: unit(body), from_shooter: 10.0 };
             let ratio = (control + 0.1) / dist;
             proptest::prop_assert_eq!(
                 turn_cycles(&keeper, rel, dist, control),
