@@ -2,7 +2,7 @@
 //! exact state: the ball's future path, every player's reach cycle (spec
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
-use crate::formation::home_positions;
+use crate::formation::{catch_home, home_positions};
 use crate::geom::unit;
 use crate::params::*;
 use crate::world::{Player, World};
@@ -74,6 +74,7 @@ impl Analysis {
         let mirrored = (n == MAX_OFFENSE).then(|| home_positions(DVec2::new(focus.x, -focus.y))[2]);
         for (i, &unum) in offense_unums(n).iter().enumerate() {
             let home = match unum {
+                _ if world.catch_mode => catch_home(unum),
                 7 => homes[0],
                 8 => homes[1],
                 9 => mirrored.map_or(homes[2], |m| DVec2::new(m.x, -m.y)),
@@ -387,6 +388,30 @@ impl<'a> Reach<'a> {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    #[test]
+    fn after_a_catch_the_attackers_take_the_static_formation() {
+        let mut w = World::new(3);
+        w.ball.pos = DVec2::new(40.0, 5.0);
+        for (i, p) in w.offense.iter_mut().enumerate() {
+            p.place(DVec2::new(30.0, -10.0 + 10.0 * i as f64));
+        }
+        w.offside_line = 40.0;
+        let play_on = Analysis::new(&w).home;
+        w.catch_mode = true;
+        let home = Analysis::new(&w).home;
+        assert_ne!(home, play_on);
+        let want = [(10.0, -12.0), (10.0, 12.0), (20.0, 0.0)];
+        for (h, (x, y)) in home.iter().zip(want) {
+            assert_eq!(*h, DVec2::new(x, y));
+        }
+        // The offside clip still applies: a resting ball at x = 12.
+        w.offside_line = 12.0;
+        w.ball.pos = DVec2::new(12.0, 5.0);
+        let home = Analysis::new(&w).home;
+        assert_eq!(home[0], DVec2::new(10.0, -12.0));
+        assert_eq!(home[2], DVec2::new(11.0, 0.0));
+    }
 
     #[test]
     fn reach_of_a_resting_ball_follows_the_dash_table() {

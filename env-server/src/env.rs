@@ -127,6 +127,7 @@ impl Env {
         self.world.ball.pos = ball;
         self.world.ball.vel = DVec2::ZERO;
         self.world.catch_ban = 0;
+        self.world.catch_mode = false;
         self.world.offside_line = 0.0;
         self.keeper_memory = KeeperMemory {
             since_catch: u32::MAX,
@@ -305,7 +306,8 @@ impl Env {
         self.keeper_memory.since_catch = self.keeper_memory.since_catch.saturating_add(1);
         if self.commands[n] == Command::Catch {
             self.keeper_memory.since_catch = 0;
-            physics::catch(&mut self.world);
+            // HFO's server announces the catch but plays on (spec 4.5).
+            self.world.catch_mode |= physics::catch(&mut self.world);
         }
         let players = self
             .world
@@ -416,5 +418,29 @@ mod tests {
         assert!(remembered.is_some(), "DRIBBLE's check within 30 m");
         env.reset();
         assert_eq!(env.world.last_shot[0], remembered);
+    }
+
+    #[test]
+    fn a_catch_whose_ball_escapes_plays_on_in_the_goalie_catch_mode() {
+        let mut env = Env::new(EnvConfig::default(), 1).expect("valid config");
+        env.reset();
+        for (i, p) in env.world.offense.iter_mut().enumerate() {
+            p.place(DVec2::new(5.0, -20.0 + 20.0 * i as f64));
+        }
+        env.world.keeper = Player::new(DVec2::new(48.0, 0.0), PI);
+        env.world.ball.pos = DVec2::new(47.2, 0.3);
+        env.world.ball.vel = DVec2::new(-2.5, 0.0);
+        let moves = vec![Action::Move; env.offense()];
+        assert_eq!(env.step(&moves), Outcome::InGame);
+        assert_eq!(env.last_commands()[env.offense()], Command::Catch);
+        assert!(env.world.catch_mode);
+        for _ in 0..10 {
+            if env.step(&moves).is_terminal() {
+                break;
+            }
+            assert_ne!(env.last_commands()[env.offense()], Command::Catch);
+        }
+        env.reset();
+        assert!(!env.world.catch_mode);
     }
 }

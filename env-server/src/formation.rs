@@ -1,4 +1,5 @@
-//! agent2d's Delaunay-triangulation formation for players 7, 8 and 11 (spec 6.1.1, Appendix B).
+//! agent2d's formations for players 7, 8, 9 and 11: the Delaunay triangulation
+//! of play-on (spec 6.1.1, Appendix B) and the static one after a catch (4.5).
 
 use delaunator::{Point, triangulate};
 use glam::DVec2;
@@ -218,6 +219,17 @@ pub fn home_positions(focus: DVec2) -> [DVec2; 3] {
         })
         .unwrap_or(0);
     sample_homes(nearest)
+}
+
+/// Home positions of players 7, 8, 9 and 11 in the goalie-catch mode (spec
+/// 4.5): HFO's static `goalie-catch-opp.conf`, whatever the ball does.
+pub fn catch_home(unum: u8) -> DVec2 {
+    match unum {
+        7 => DVec2::new(10.0, -12.0),
+        8 => DVec2::new(10.0, 12.0),
+        9 => DVec2::new(20.0, -20.0),
+        _ => DVec2::new(20.0, 0.0),
+    }
 }
 
 /// Barycentric weights of `p` in triangle `a b c`, if `p` lies inside it (edges included).

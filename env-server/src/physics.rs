@@ -177,8 +177,10 @@ pub fn turn(player: &mut Player, moment: f64, rng: &mut impl Rng) {
         normalize_angle(player.body + moment / (1.0 + INERTIA_MOMENT * player.vel.length()));
 }
 
-/// Goalkeeper catch aimed at the ball (spec 3.4): on success the keeper steps
-/// next to the ball, faces it and stops. Returns whether it succeeded.
+/// Goalkeeper catch (spec 3.4) in agent2d's direction, which puts the catch
+/// area's diagonal on the ball (librcsc `ActionEffector::setCatch`): on
+/// success the keeper steps next to the ball, faces it and stops. Returns
+/// whether it succeeded.
 pub fn catch(world: &mut World) -> bool {
     if world.catch_ban > 0 {
         return false;
@@ -186,7 +188,9 @@ pub fn catch(world: &mut World) -> bool {
     world.catch_ban = CATCH_BAN_CYCLES;
     let rel = world.ball.pos - world.keeper.pos;
     let dist = rel.length();
-    if dist > CATCH_AREA_LENGTH {
+    let diagonal = libm::atan2(CATCH_AREA_HALF_WIDTH, CATCH_AREA_LENGTH);
+    let in_area = rel.rotate(unit(-(direction(rel) + diagonal)));
+    if !(0.0..=CATCH_AREA_LENGTH).contains(&in_area.x) || in_area.y.abs() > CATCH_AREA_HALF_WIDTH {
         return false;
     }
     let gap = PLAYER_SIZE + BALL_SIZE;
@@ -497,6 +501,25 @@ mod tests {
             &mut rng
         ));
         assert_eq!(q.tackle_freeze, TACKLE_CYCLES);
+    }
+
+    #[test]
+    fn the_catch_reaches_the_area_diagonal_of_1_3_m() {
+        let catch_at = |dist: f64| {
+            let mut w = World::new(1);
+            w.keeper = Player::new(DVec2::new(48.0, 0.0), 2.0);
+            w.ball.pos = w.keeper.pos + polar(dist, -0.7);
+            w.ball.vel = DVec2::new(0.5, 0.0);
+            (catch(&mut w), w)
+        };
+        let (caught, w) = catch_at(1.28);
+        assert!(caught);
+        assert!((w.keeper.pos.distance(w.ball.pos) - (PLAYER_SIZE + BALL_SIZE)).abs() < 1e-9);
+        assert_eq!(w.keeper.vel, DVec2::ZERO);
+        assert_eq!(w.ball.vel, DVec2::new(0.5, 0.0), "the ball is not stopped");
+        let (caught, w) = catch_at(1.32);
+        assert!(!caught);
+        assert_eq!(w.catch_ban, CATCH_BAN_CYCLES);
     }
 
     #[test]

@@ -87,6 +87,10 @@ pub struct World {
     pub keeper: Player,
     /// Cycles left before the keeper may catch again.
     pub catch_ban: u32,
+    /// Whether every player's world model is in librcsc's `GoalieCatch_`
+    /// mode: set by a catch that did not end the episode, until the episode
+    /// ends (spec 4.5).
+    pub catch_mode: bool,
     /// agent2d's offside line as the attackers see it (spec 6.1.1).
     pub offside_line: f64,
     /// Per offense agent: the first course of its most recent non-empty shot
@@ -111,6 +115,7 @@ impl World {
             offense: vec![Player::new(DVec2::ZERO, 0.0); offense],
             keeper: Player::new(GOAL_CENTER, std::f64::consts::PI),
             catch_ban: 0,
+            catch_mode: false,
             offside_line: 0.0,
             last_shot: vec![None; offense],
             sight: vec![Sight::default(); offense],

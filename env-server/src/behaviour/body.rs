@@ -1,11 +1,12 @@
 //! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5, 6.2.3 and 6.3.4 allow.
 
+use super::hold::hold_ball;
 use super::intercept::{best_interception, self_cache};
 use super::kick_table;
 use crate::analysis::{Analysis, Estimate};
-use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
+use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, unit};
 use crate::params::*;
-use crate::physics::{Command, kick_for_accel};
+use crate::physics::{Command, kick_for_accel, max_kick_accel};
 use crate::world::{Ball, Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -136,37 +137,31 @@ pub fn kick_to_velocity(p: &Player, ball: &Ball, vel: DVec2) -> Option<Command> 
 /// of up to three kicks sending the ball towards `target` at `speed`, if it
 /// reaches at least `min_speed`; else hold the ball.
 pub fn smart_kick(p: &Player, world: &World, target: DVec2, speed: f64, min_speed: f64) -> Command {
-    kick_table::plan(p, world, target, speed, min_speed)
-        .and_then(|first| kick_to_velocity(p, &world.ball, first - world.ball.pos))
-        .unwrap_or_else(|| hold_ball(p, world))
+    planned_kick(p, world, target, (speed, min_speed), 3)
+        .unwrap_or_else(|| hold_ball(p, world, None, Some(target)))
 }
 
-/// Body_HoldBall (spec 6.3.4), simplified: with the keeper near, keep the
-/// ball 0.6 m from the player's next position on the side away from it;
-/// otherwise turn towards the goal, then keep the ball in front of the body
-/// where the next kick is strongest.
-pub fn hold_ball(p: &Player, world: &World) -> Command {
+/// Body_SmartKick's kick with plans of at most `max_kicks` kicks, or `None`
+/// where it would fail (and hold the ball).
+pub fn planned_kick(
+    p: &Player,
+    world: &World,
+    target: DVec2,
+    speeds: (f64, f64),
+    max_kicks: usize,
+) -> Option<Command> {
+    kick_table::plan(p, world, target, speeds, max_kicks)
+        .and_then(|first| kick_to_velocity(p, &world.ball, first - world.ball.pos))
+}
+
+/// Body_KickOneStep: one kick towards `target` at `speed`, or as fast as one
+/// kick can send it that way; hold the ball if even that needs too much power.
+pub fn kick_one_step(p: &Player, world: &World, target: DVec2, speed: f64) -> Command {
     let ball = &world.ball;
-    let next_self = p.pos + p.vel;
-    let ball_next = ball.pos + ball.vel;
-    let safe = ball_next.distance(next_self) < AGENT_KICKABLE_AREA - 0.2
-        && ball_next.distance(world.keeper.pos) > KICKABLE_AREA + 2.0;
-    let spot = if safe {
-        let to_goal = direction(GOAL_CENTER - next_self);
-        if angle_diff(to_goal, p.body) > 10f64.to_radians() {
-            return turn_to_point(p, GOAL_CENTER);
-        }
-        next_self + polar(PLAYER_SIZE + BALL_SIZE + 0.15, p.body)
-    } else {
-        next_self + polar(0.6, direction(next_self - world.keeper.pos))
-    };
-    if safe && ball_next.distance(spot) < 0.1 {
-        return Command::Turn { moment: 0.0 };
-    }
-    kick_to_velocity(p, ball, spot - ball.pos).unwrap_or(Command::Kick {
-        power: MAX_KICK_POWER,
-        dir: normalize_angle(direction(-ball.vel) - p.body),
-    })
+    let dir = direction(target - ball.pos);
+    let max = max_one_kick_speed(dir, ball.vel, max_kick_accel(p, ball.pos));
+    kick_to_velocity(p, ball, unit(dir) * speed.min(max).min(BALL_SPEED_MAX))
+        .unwrap_or_else(|| hold_ball(p, world, Some(target), Some(target)))
 }
 
 /// agent2d's `FieldAnalyzer::predict_player_turn_cycle` with back dashes

@@ -4,7 +4,8 @@
 //! command replaces any shot `doPreprocess` queued.
 
 use super::Situation;
-use super::body::{hold_ball, kick_to_velocity, predict_turn_cycles, turn_to_point};
+use super::body::{kick_to_velocity, predict_turn_cycles, turn_to_point};
+use super::hold::hold_ball;
 use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel, update_stamina};
@@ -30,13 +31,14 @@ pub fn command(s: &Situation) -> Command {
     let forward = DVec2::new(42.0, 0.0);
     let keeper_near = s.world.keeper.pos.distance(me.pos) < 4.0;
     if angle_diff(me.body, direction(forward - me.pos)) >= 110f64.to_radians() && !keeper_near {
+        let face = DVec2::new(42.0, 0.5 * me.pos.y);
         let self_next = me.pos + me.vel;
         let ball_next = ball.pos + ball.vel;
         let keep = KICKABLE_AREA - 0.1 * me.vel.length() - 0.05 * ball.vel.length() - 0.2;
         if self_next.distance(ball_next) < keep {
-            return turn_to_point(me, DVec2::new(42.0, 0.5 * me.pos.y));
+            return turn_to_point(me, face);
         }
-        return hold_ball(me, s.world);
+        return hold_ball(me, s.world, Some(face), None);
     }
     let mut candidates: Vec<Candidate> = (0..16).flat_map(|a| kick_candidates(s, me, a)).collect();
     // ShortDribbleGenerator sorts by distance to the goal; the first of equals wins.
@@ -56,7 +58,7 @@ pub fn command(s: &Situation) -> Command {
     }
     choice
         .and_then(|c| kick_to_velocity(me, ball, c.first_vel))
-        .unwrap_or_else(|| hold_ball(me, s.world))
+        .unwrap_or_else(|| hold_ball(me, s.world, None, None))
 }
 
 /// The ball holder of the current state (agent2d PredictState::init): the

@@ -28,7 +28,11 @@ pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Com
     let ball_dist = k.pos.distance(ball);
     let catchable_spot = (37.0..=PITCH_HALF_LENGTH).contains(&ball.x)
         && ball.y.abs() <= PENALTY_AREA_HALF_WIDTH - 1.0;
-    if memory.since_catch > 5 && ball_dist < KEEPER_CONTROL_AREA - 0.05 && catchable_spot {
+    // In the goalie-catch mode agent2d's keeper runs Bhv_GoalieFreeKick,
+    // which without the ball only positions: no catch, no chase (spec 4.5).
+    let play_on = !world.catch_mode;
+    if play_on && memory.since_catch > 5 && ball_dist < KEEPER_CONTROL_AREA - 0.05 && catchable_spot
+    {
         return Command::Catch;
     }
     // Bhv_GoalieChaseBall and Bhv_GoalieBasicMove both begin with Bhv_BasicTackle.
@@ -36,7 +40,7 @@ pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Com
         return cmd;
     }
     let view = View::new(world, analysis);
-    if view.is_chase_situation() {
+    if play_on && view.is_chase_situation() {
         return view.chase();
     }
     view.basic_move()
@@ -568,5 +572,26 @@ mod tests {
         let view = View::new(&w, &a);
         assert!(view.opp_min <= view.self_min + 4);
         assert_eq!(view.best_interception().cycle, view.self_min);
+    }
+
+    #[test]
+    fn after_a_catch_the_keeper_only_positions() {
+        // A ball rolling past the keeper within its catch area: in play-on it
+        // catches; in the goalie-catch mode it neither catches nor chases but
+        // takes its basic position.
+        let (mut w, a) = scene(
+            DVec2::new(48.0, 0.0),
+            PI,
+            DVec2::new(47.5, 0.5),
+            DVec2::new(-0.8, 0.0),
+        );
+        let memory = KeeperMemory {
+            since_catch: u32::MAX,
+        };
+        assert_eq!(command(&w, &a, &memory), Command::Catch);
+        w.catch_mode = true;
+        let view = View::new(&w, &a);
+        assert!(view.is_chase_situation());
+        assert_eq!(command(&w, &a, &memory), view.basic_move());
     }
 }

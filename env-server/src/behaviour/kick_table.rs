@@ -114,17 +114,27 @@ impl LastKick<'_> {
 }
 
 /// The first kick's ball position (after this cycle's move) of the best plan
-/// that sends the ball towards `target` at `speed`, if the plan reaches at
-/// least `min_speed` (`KickTable::simulate` with `max_step = 3`, then
-/// Body_SmartKick's acceptance test).
-pub fn plan(p: &Player, world: &World, target: DVec2, speed: f64, min_speed: f64) -> Option<DVec2> {
+/// of at most `max_kicks` kicks that sends the ball towards `target` at
+/// `speed`, if the plan reaches at least `min_speed` (`KickTable::simulate`
+/// with `max_step = max_kicks`, then Body_SmartKick's acceptance test).
+pub fn plan(
+    p: &Player,
+    world: &World,
+    target: DVec2,
+    (speed, min_speed): (f64, f64),
+    max_kicks: usize,
+) -> Option<DVec2> {
     let speed = speed.clamp(0.0, BALL_SPEED_MAX);
     let min_speed = min_speed.clamp(0.0, speed);
     let planner = Planner::new(p, world);
     let mut candidates = Vec::new();
     planner.one_step(target, speed, &mut candidates);
-    planner.two_step(target, speed, &mut candidates);
-    planner.three_step(target, speed, &mut candidates);
+    if max_kicks >= 2 {
+        planner.two_step(target, speed, &mut candidates);
+    }
+    if max_kicks >= 3 {
+        planner.three_step(target, speed, &mut candidates);
+    }
     let best = candidates
         .iter()
         .map(|c| (evaluate(c, speed, min_speed), c))
@@ -197,7 +207,7 @@ fn spots() -> &'static [Spot; SPOTS] {
 }
 
 /// Kick rate for the ball `dist` from the centre, `dir_diff` off the body (spec 3.1).
-fn rate_at(dist: f64, dir_diff: f64) -> f64 {
+pub fn rate_at(dist: f64, dir_diff: f64) -> f64 {
     let dist_ball = (dist - PLAYER_SIZE - BALL_SIZE).max(0.0);
     KICK_POWER_RATE * (1.0 - 0.25 * dir_diff / PI - 0.25 * dist_ball / KICKABLE_MARGIN)
 }
@@ -452,7 +462,8 @@ mod tests {
         let best = best_by_kicks(&p, &w, target, 3.0);
         assert!(best[0] < 2.97 && best[1] < 2.97, "{best:?}");
         assert_eq!(best[2], 3.0);
-        let first = plan(&p, &w, target, 3.0, 2.97).expect("a three-kick plan");
+        assert_eq!(plan(&p, &w, target, (3.0, 2.97), 2), None);
+        let first = plan(&p, &w, target, (3.0, 2.97), 3).expect("a three-kick plan");
         // The first kick only moves the ball around the kicker.
         assert!(first.distance(p.pos) < KICKABLE_AREA);
     }

@@ -5,6 +5,7 @@
 
 mod body;
 mod dribble;
+mod hold;
 mod intercept;
 pub mod keeper;
 mod kick_table;
@@ -84,6 +85,10 @@ pub fn offense_command(s: &Situation, action: Action) -> Decision {
         }
         Action::Shoot => {
             let (command, shot) = shoot::command(s);
+            decide(command, shot)
+        }
+        Action::Dribble if s.world.catch_mode => {
+            let (command, shot) = shoot::strict_check(s);
             decide(command, shot)
         }
         // `doPreprocess`'s Bhv_StrictCheckShoot; its kick is overridden (spec 6.0).

@@ -2,7 +2,7 @@
 //! teammate, or no command when there is none.
 
 use super::Situation;
-use super::body::smart_kick;
+use super::body::{kick_one_step, planned_kick, smart_kick};
 use crate::geom::{direction, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_rate};
@@ -38,8 +38,17 @@ pub fn command(s: &Situation, receiver: Option<usize>) -> Command {
         lead_passes(s, mate, &mut consider);
         through_passes(s, mate, &mut consider);
     }
+    let (me, world) = (s.me(), s.world);
     match best {
-        Some((_, r)) => smart_kick(s.me(), s.world, r.target, r.speed, 0.96 * r.speed),
+        // Force_Pass in the goalie-catch mode (spec 4.5): one kick, else
+        // Body_KickOneStep at most as fast as one full-power kick.
+        Some((_, r)) if world.catch_mode => {
+            planned_kick(me, world, r.target, (r.speed, 0.96 * r.speed), 1).unwrap_or_else(|| {
+                let speed = r.speed.min(MAX_KICK_POWER * kick_rate(me, world.ball.pos));
+                kick_one_step(me, world, r.target, speed)
+            })
+        }
+        Some((_, r)) => smart_kick(me, world, r.target, r.speed, 0.96 * r.speed),
         None => Command::None,
     }
 }
@@ -384,5 +393,28 @@ mod tests {
         assert!(!lead_back_pass(DVec2::new(-0.5, 5.0), -1.0, 2.0));
         assert!(lead_back_pass(DVec2::new(10.0, 5.0), 0.0, 16.5));
         assert!(!lead_back_pass(DVec2::new(10.0, 5.0), 20.0, 15.0));
+    }
+
+    #[test]
+    fn in_the_goalie_catch_mode_a_pass_is_one_kick() {
+        // The ball behind the passer: play-on's smart kick first moves it
+        // around the body; after a catch Force_Pass kicks it away at once.
+        let mut w = world(DVec2::new(25.0, 10.0), DVec2::new(50.0, 0.0));
+        w.ball.pos = DVec2::new(9.4, 0.0);
+        let kicked = |w: &World| match in_situation(w, |s| command(s, None)) {
+            Command::Kick { power, dir } => {
+                let rate = kick_rate(&w.offense[0], w.ball.pos);
+                w.ball.vel + polar(power * rate, w.offense[0].body + dir)
+            }
+            other => panic!("a kick, not {other:?}"),
+        };
+        let towards_mate = direction(w.offense[1].pos - w.ball.pos);
+        let play_on = kicked(&w);
+        w.catch_mode = true;
+        let one_kick = kicked(&w);
+        let off = |v: DVec2| crate::geom::angle_diff(direction(v), towards_mate).to_degrees();
+        assert!(off(play_on) > 10.0, "{play_on}");
+        assert!(off(one_kick) < 5.0, "{one_kick}");
+        assert!(one_kick.length() > play_on.length());
     }
 }

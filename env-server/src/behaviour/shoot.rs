@@ -2,11 +2,11 @@
 //! with none, the course the agent's last non-empty search found first (6.2.2).
 
 use super::Situation;
-use super::body::{max_one_kick_speed, smart_kick};
+use super::body::{max_one_kick_speed, planned_kick, smart_kick};
 use crate::analysis::DRIFT;
 use crate::geom::{angle_diff, asin_clamped, ceil_usize, direction, unit};
 use crate::params::*;
-use crate::physics::{Command, max_kick_accel};
+use crate::physics::{Command, kick_rate, max_kick_accel};
 use crate::world::{Player, ShotCourse};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -68,6 +68,39 @@ pub fn check(s: &Situation) -> Option<ShotCourse> {
     search(s, Want::First).first.map(|c| c.shot())
 }
 
+/// DRIBBLE in the goalie-catch mode (spec 4.5): the action chain cancels
+/// its hold, so only `doPreprocess`'s Bhv_StrictCheckShoot acts. Within 30 m
+/// of the goal centre it kicks the best course, in one kick if one kick is
+/// fast enough; with no course there is no command. Also returns the
+/// search's first course.
+pub fn strict_check(s: &Situation) -> (Command, Option<ShotCourse>) {
+    if s.me().pos.distance(GOAL_CENTER) > CHECK_DISTANCE {
+        return (Command::None, None);
+    }
+    let search = search(s, Want::Best);
+    let first = search.first.map(|c| c.shot());
+    let Some(best) = search.best else {
+        return (Command::None, first);
+    };
+    let (me, world) = (s.me(), s.world);
+    let ball = &world.ball;
+    let dir = direction(best.target - ball.pos);
+    let one_kick = max_one_kick_speed(dir, ball.vel, max_kick_accel(me, ball.pos));
+    let command = (one_kick > 0.99 * best.speed)
+        .then(|| {
+            planned_kick(
+                me,
+                world,
+                best.target,
+                (one_kick, 0.99 * one_kick - 1e-4),
+                1,
+            )
+        })
+        .flatten()
+        .unwrap_or_else(|| smart_kick(me, world, best.target, best.speed, 0.99 * best.speed));
+    (command, first)
+}
+
 /// How much of a search its caller reads.
 #[derive(Clone, Copy, PartialEq)]
 enum Want {
@@ -89,6 +122,7 @@ fn search(s: &Situation, want: Want) -> Search {
     };
     let keeper_dir = direction(s.world.keeper.pos - ball);
     let keeper = Keeper::new(s);
+    let speed_max = speed_limit(s);
     let mut first = None;
     let mut best: Option<(f64, Course)> = None;
     for target in targets(me, ball) {
@@ -101,9 +135,9 @@ fn search(s: &Situation, want: Want) -> Search {
         };
         let mut speed = (0.06 * (target.distance(ball) + 5.0)).max(s1).max(1.5);
         loop {
-            let last = speed > 2.999;
+            let last = speed > speed_max - 0.001;
             if last {
-                speed = BALL_SPEED_MAX;
+                speed = speed_max;
             }
             if let Some(never) = keeper_verdict(&keeper, ball, &line, speed) {
                 let course = Course {
@@ -133,6 +167,18 @@ fn search(s: &Situation, want: Want) -> Search {
     Search {
         first,
         best: best.map(|(_, c)| c),
+    }
+}
+
+/// The fastest first speed a search tries: the server's limit in play-on;
+/// in the goalie-catch mode one full-power kick at the agent's kick rate,
+/// which librcsc sets to 0 beyond the server's kickable area (spec 4.5).
+fn speed_limit(s: &Situation) -> f64 {
+    let (me, ball) = (s.me(), s.world.ball.pos);
+    match s.world.catch_mode {
+        false => BALL_SPEED_MAX,
+        true if me.pos.distance(ball) > KICKABLE_AREA => 0.0,
+        true => MAX_KICK_POWER * kick_rate(me, ball),
     }
 }
 
@@ -473,5 +519,45 @@ mod tests {
                 turn_cycles_by_angle(&player, rel, dist, ratio)
             );
         }
+    }
+
+    #[test]
+    fn in_the_goalie_catch_mode_searches_stop_at_one_full_power_kick() {
+        let config = EnvConfig::default();
+        let mut w = world(38.0, DVec2::new(50.0, 0.0));
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config);
+        assert_eq!(speed_limit(&s), BALL_SPEED_MAX);
+        let fastest = |s: &Situation| search(s, Want::Best).best.map(|c| c.speed);
+        assert_eq!(fastest(&s), Some(BALL_SPEED_MAX));
+        w.catch_mode = true;
+        let s = situation(&w, &a, &config);
+        let limit = MAX_KICK_POWER * kick_rate(s.me(), w.ball.pos);
+        assert_eq!(speed_limit(&s), limit);
+        assert!(fastest(&s).is_some_and(|v| v <= limit));
+        // Beyond the server's kickable area the kick rate is 0: no course.
+        w.ball.pos.x = 38.0 + KICKABLE_AREA + 0.01;
+        let s = situation(&w, &a, &config);
+        assert_eq!(speed_limit(&s), 0.0);
+        assert!(search(&s, Want::Best).first.is_none());
+    }
+
+    #[test]
+    fn dribble_in_the_goalie_catch_mode_only_shoots() {
+        let config = EnvConfig::default();
+        let mut w = world(38.0, DVec2::new(51.0, 6.0));
+        w.catch_mode = true;
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config);
+        let (kick, first) = strict_check(&s);
+        let Command::Kick { power, .. } = kick else {
+            panic!("a shot, not {kick:?}");
+        };
+        assert!(power > 90.0, "one hard kick: {power}");
+        assert!(first.is_some());
+        // Beyond 30 m of the goal centre there is no command at all.
+        let far = world(20.0, DVec2::new(51.0, 6.0));
+        let s = situation(&far, &a, &config);
+        assert_eq!(strict_check(&s), (Command::None, None));
     }
 }
