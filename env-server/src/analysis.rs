@@ -3,7 +3,7 @@
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
 use crate::formation::{catch_home, home_positions};
-use crate::geom::unit;
+use crate::geom::{direction, unit};
 use crate::params::*;
 use crate::world::{Player, World};
 use glam::DVec2;
@@ -213,9 +213,22 @@ impl Estimate {
 pub fn reach_cycles(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> (usize, usize) {
     let scan = Scan::new(p, path, keeper_control);
     // Whatever the own estimate accepts the others' accepts too: the own
-    // scan goes on from where the others' stopped.
-    let other = scan.run(0, Estimate::Other);
-    (other, scan.run(other.min(path.len()), Estimate::Own))
+    // scan goes on from where the others' first accepts.
+    let first = scan.run(0, Estimate::Other);
+    let own = scan.run(first.min(path.len()), Estimate::Own);
+    // PlayerIntercept starts at the cycles the player needs at full speed to
+    // cover its lateral offset from the ball's line of travel.
+    let lateral = path.get(1).map_or(0.0, |&b1| {
+        let rel = p.pos - path[0];
+        rel.perp_dot(unit(direction(b1 - path[0]))).abs()
+    });
+    let skip = (lateral / REAL_SPEED_MAX).floor() as usize;
+    let other = if first >= skip {
+        first
+    } else {
+        scan.run(skip.min(path.len()), Estimate::Other)
+    };
+    (other, own)
 }
 
 /// One player's walk along the ball path.
@@ -411,6 +424,21 @@ mod tests {
         let home = Analysis::new(&w).home;
         assert_eq!(home[0], DVec2::new(10.0, -12.0));
         assert_eq!(home[2], DVec2::new(11.0, 0.0));
+    }
+
+    #[test]
+    fn others_start_at_the_cycles_that_cover_the_lateral_offset() {
+        // The keeper 1.2 m beside a ball rolling past, within its catchable
+        // area: PlayerIntercept starts at cycle floor(1.2 / 1.0) = 1.
+        let mut w = World::new(1);
+        w.offense[0] = Player::new(DVec2::new(10.0, 0.0), 0.0);
+        w.keeper = Player::new(DVec2::new(45.0, 1.2), PI);
+        w.ball.pos = DVec2::new(45.0, 0.0);
+        w.ball.vel = DVec2::new(0.5, 0.0);
+        assert_eq!(Analysis::new(&w).keeper_reach, 1);
+        // The same offset along the ball's line: reached at once.
+        w.keeper.pos = DVec2::new(46.2, 0.0);
+        assert_eq!(Analysis::new(&w).keeper_reach, 0);
     }
 
     #[test]

@@ -60,6 +60,8 @@ pub const PLAYER_ACCEL_MAX: f64 = 1.0;
 pub const INERTIA_MOMENT: f64 = 5.0;
 /// Dash power to acceleration rate.
 pub const DASH_POWER_RATE: f64 = 0.006;
+/// librcsc's `realSpeedMax` of player type 0: full dashes' top speed (1.0 m/cycle).
+pub const REAL_SPEED_MAX: f64 = MAX_DASH_POWER * DASH_POWER_RATE / (1.0 - PLAYER_DECAY);
 /// Dash power limit.
 pub const MAX_DASH_POWER: f64 = 100.0;
 /// Dash directions are rounded to multiples of this angle (radians, 45°).

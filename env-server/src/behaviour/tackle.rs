@@ -15,8 +15,6 @@ use std::f64::consts::{PI, TAU};
 const MIN_PROBABILITY: f64 = 0.8;
 /// Tackle directions TackleGenerator tries, evenly over the full circle.
 const ANGLE_DIVS: usize = 40;
-/// librcsc's `realSpeedMax` of player type 0 (1.0 m/cycle).
-const REAL_SPEED_MAX: f64 = MAX_DASH_POWER * DASH_POWER_RATE / (1.0 - PLAYER_DECAY);
 
 /// Who considers tackling.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +37,7 @@ pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<C
             analysis.own_reach[i],
             analysis.mate_reach(i),
             analysis.keeper_reach,
-            world.keeper.pos.distance(ball.pos) <= KICKABLE_AREA,
+            world.keeper_kickable(),
         ),
         Tackler::Keeper => (
             &world.keeper,
@@ -51,9 +49,10 @@ pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<C
         ),
     };
     let mut prob = tackle_probability(me, ball.pos, TACKLE_EXPONENT);
-    // librcsc's foul probability is 0 unless an opponent is on the ball
-    // (SelfObject::updateKickableState); agent2d fouls only outside its own area.
-    let foul_prob = if opponent_kickable {
+    // librcsc's foul probability is 0 unless the opponents' reach cycle is 0
+    // (SelfObject::updateKickableState): for the keeper in its area, within
+    // its catchable area (1.3 m). agent2d fouls only outside its own area.
+    let foul_prob = if opp_min == 0 {
         tackle_probability(me, ball.pos, FOUL_EXPONENT)
     } else {
         0.0
@@ -314,5 +313,29 @@ mod tests {
         let v = v.clamp_length_max(BALL_SPEED_MAX);
         assert!(evaluate(w.ball.pos, v, &[&w.keeper], 1.0) > 1e5);
         assert!(matches!(cmd, Command::Tackle { foul: false, .. }));
+    }
+
+    #[test]
+    fn an_attacker_fouls_a_keeper_within_its_catchable_area() {
+        // The ball 1.6 m ahead of the attacker, rolling on to the keeper:
+        // 0.74 by the tackle exponent, 0.89 by the foul one. The keeper 1.2 m
+        // from the ball in its area is not on the ball by the kickable area,
+        // but its reach cycle is 0, more than 3 cycles before the attackers'.
+        let mut w = world(DVec2::new(47.2, 0.0), PI, DVec2::new(46.0, 0.0));
+        w.ball.vel = DVec2::new(0.8, 0.0);
+        w.offense[0] = Player::new(DVec2::new(44.4, 0.0), 0.0);
+        let a = Analysis::new(&w);
+        assert!(!w.keeper_kickable());
+        assert_eq!(a.keeper_reach, 0);
+        assert!(a.own_reach[0] > 3, "{}", a.own_reach[0]);
+        let cmd = command(&w, &a, Tackler::Attacker(0));
+        assert!(
+            matches!(cmd, Some(Command::Tackle { foul: true, .. })),
+            "{cmd:?}"
+        );
+        // 1.4 m away the keeper needs a cycle: no foul, and 0.74 is too little.
+        w.keeper.pos.x = 47.4;
+        let a = Analysis::new(&w);
+        assert_eq!(command(&w, &a, Tackler::Attacker(0)), None);
     }
 }
