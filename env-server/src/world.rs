@@ -146,6 +146,19 @@ impl World {
         self.keeper.pos.distance(self.ball.pos) <= KICKABLE_AREA
     }
 
+    /// Whether attacker `i` takes the keeper to be on the ball (librcsc's
+    /// `existKickableOpponent`): a keeper not frozen by a tackle within its
+    /// kickable area plus 2 % of the ball's and of the keeper's distances
+    /// from the attacker (each at most 0.25 m), librcsc's allowance for
+    /// errors of sight.
+    pub fn keeper_kickable_seen_by(&self, i: usize) -> bool {
+        let (me, k, ball) = (self.offense[i].pos, &self.keeper, self.ball.pos);
+        let error = |d: f64| (0.02 * d).min(0.25);
+        k.tackle_freeze == 0
+            && k.pos.distance(ball)
+                < KICKABLE_AREA + error(me.distance(ball)) + error(me.distance(k.pos))
+    }
+
     /// Whether any offense player has the ball in its server kickable area.
     pub fn any_attacker_kickable(&self) -> bool {
         self.offense

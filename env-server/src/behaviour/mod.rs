@@ -108,7 +108,7 @@ pub fn offense_command(s: &Situation, action: Action) -> Decision {
 /// which looks for a shot when the agent reaches the ball within a cycle and
 /// neither a teammate nor the keeper can kick it.
 fn move_shot_check(s: &Situation) -> Option<ShotCourse> {
-    let keeper_kickable = s.world.keeper_kickable();
+    let keeper_kickable = s.world.keeper_kickable_seen_by(s.agent);
     (s.analysis.own_reach[s.agent] <= 1 && !s.world.teammate_kickable(s.agent) && !keeper_kickable)
         .then(|| shoot::check(s))
         .flatten()

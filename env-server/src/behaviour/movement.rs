@@ -23,7 +23,7 @@ pub fn command(s: &Situation) -> (Command, Neck) {
         return (cmd, Neck::Scan);
     }
     let me = s.me();
-    let keeper_kickable = s.world.keeper_kickable();
+    let keeper_kickable = s.world.keeper_kickable_seen_by(s.agent);
     // Neck_OffensiveInterceptNeck: towards ball and keeper when the keeper
     // can kick; the scan once the agent's action chain exists, else nothing.
     let intercept_neck = if keeper_kickable {

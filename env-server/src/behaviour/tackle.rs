@@ -37,7 +37,7 @@ pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<C
             analysis.own_reach[i],
             analysis.mate_reach(i),
             analysis.keeper_reach,
-            world.keeper_kickable(),
+            world.keeper_kickable_seen_by(i),
         ),
         Tackler::Keeper => (
             &world.keeper,
@@ -337,5 +337,21 @@ mod tests {
         w.keeper.pos.x = 47.4;
         let a = Analysis::new(&w);
         assert_eq!(command(&w, &a, Tackler::Attacker(0)), None);
+    }
+
+    #[test]
+    fn a_keeper_seen_on_the_ball_makes_the_tackle_needed() {
+        // The keeper 1.10 m from the ball and 2.34 m from the attacker 1.3 m
+        // behind it: not kickable for the server, but within librcsc's
+        // allowance (1.085 + 0.02 · 1.3 + 0.02 · 2.34), so the attacker tackles.
+        let mut w = world(DVec2::new(46.0, 0.45), PI, DVec2::new(45.0, 0.0));
+        w.offense[0] = Player::new(DVec2::new(43.7, 0.0), 0.0);
+        assert!(!w.keeper_kickable());
+        assert!(w.keeper_kickable_seen_by(0));
+        let a = Analysis::new(&w);
+        assert!(command(&w, &a, Tackler::Attacker(0)).is_some());
+        // Frozen by its own tackle, it is not counted.
+        w.keeper.tackle_freeze = 3;
+        assert!(!w.keeper_kickable_seen_by(0));
     }
 }
