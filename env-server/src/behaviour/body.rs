@@ -1,4 +1,4 @@
-//! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5, 6.2.3 and 6.3.4 allow.
+//! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5 and 6.2.3 allow.
 
 use super::hold::hold_ball;
 use super::intercept::{best_interception, self_cache};
