@@ -8,7 +8,7 @@ use super::body::turn_to_point;
 use super::kick_table::rate_at;
 use crate::geom::{angle_diff, direction, normalize_angle, polar, unit};
 use crate::params::*;
-use crate::physics::{Command, kick_rate};
+use crate::physics::{Command, kick_rate, tackle_probability_at};
 use crate::world::{Player, World};
 use glam::DVec2;
 
@@ -250,12 +250,8 @@ fn keeper_threat(keeper: &Player, spot: DVec2) -> f64 {
             10.0
         };
     }
-    if rel.x > 0.0 {
-        let fail = libm::pow(rel.x / TACKLE_DIST, TACKLE_EXPONENT)
-            + libm::pow(rel.y.abs() / TACKLE_WIDTH, TACKLE_EXPONENT);
-        if fail < 1.0 && 1.0 - fail > 0.7 {
-            threat += 30.0;
-        }
+    if tackle_probability_at(rel, TACKLE_EXPONENT) > 0.7 {
+        threat += 30.0;
     }
     let max_accel = MAX_DASH_POWER * DASH_POWER_RATE;
     if rel.y.abs() < control
