@@ -5,13 +5,16 @@
 use crate::formation::{catch_home, home_positions};
 use crate::geom::{direction, unit};
 use crate::params::*;
-use crate::world::{Player, World};
+use crate::short_reach::{SHORT_STEPS, short_steps};
+use crate::world::{Ball, Player, World};
 use glam::DVec2;
 
 /// Most offense agents the simulator supports.
 pub const MAX_OFFENSE: usize = 4;
 /// Longest ball path considered by the intercept table.
 const CACHE_LEN: usize = 31;
+/// Longest self-interception prediction (librcsc `InterceptTable::MAX_CYCLE`).
+pub const MAX_CYCLE: usize = 30;
 /// Reach cycles beyond which a player is considered unable to get the ball.
 pub const NO_REACH: usize = 1000;
 
@@ -49,10 +52,18 @@ impl Analysis {
         let mut reach = [NO_REACH; MAX_OFFENSE];
         let mut own_reach = [NO_REACH; MAX_OFFENSE];
         for ((r, o), p) in reach.iter_mut().zip(&mut own_reach).zip(&world.offense) {
-            (*r, *o) = reach_cycles(p, path, None);
+            *r = reach_cycles(p, path, None).0;
+            *o = own_reach_cycle(p, &world.ball, path, *r, None);
         }
-        let (keeper_reach, keeper_own_reach) =
-            reach_cycles(&world.keeper, path, Some(KEEPER_CONTROL_AREA));
+        let keeper_control = Some(KEEPER_CONTROL_AREA);
+        let keeper_reach = reach_cycles(&world.keeper, path, keeper_control).0;
+        let keeper_own_reach = own_reach_cycle(
+            &world.keeper,
+            &world.ball,
+            path,
+            keeper_reach,
+            keeper_control,
+        );
         let mut analysis = Analysis {
             ball_path,
             path_len,
@@ -229,6 +240,29 @@ pub fn reach_cycles(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> 
         scan.run(skip.min(path.len()), Estimate::Other)
     };
     (other, own)
+}
+
+/// A player's own reach cycle (`self_min`) given the others' estimate
+/// `other`; `keeper_control` as for [`reach_cycles`], and only for the keeper.
+/// 0 if it can kick the ball by its own test (1.03 m), else the first cycle
+/// of librcsc's short-step prediction ([`short_steps`]), else the long-step
+/// rule from cycle 6 on.
+fn own_reach_cycle(
+    p: &Player,
+    ball: &Ball,
+    path: &[DVec2],
+    other: usize,
+    keeper_control: Option<f64>,
+) -> usize {
+    if p.pos.distance(path[0]) <= AGENT_KICKABLE_AREA {
+        return 0;
+    }
+    let short = short_steps(p, ball, MAX_CYCLE.min(path.len()), keeper_control.is_some());
+    match short.iter().flatten().next() {
+        Some(first) => first.cycle,
+        None => Scan::new(p, path, keeper_control)
+            .run(other.max(SHORT_STEPS + 1).min(path.len()), Estimate::Own),
+    }
 }
 
 /// One player's walk along the ball path.

@@ -209,15 +209,21 @@ impl Env {
             let decision = match actions {
                 _ if self.world.offense[agent].tackle_freeze > 0 => idle,
                 None => idle,
-                Some(a) => offense_command(
-                    &Situation {
-                        world: &self.world,
-                        analysis: &analysis,
-                        config: &self.config,
-                        agent,
-                    },
-                    a[agent],
-                ),
+                Some(a) => {
+                    let believed = stopped_ball_view(&self.world, agent);
+                    let (world, analysis) = believed
+                        .as_ref()
+                        .map_or((&self.world, &analysis), |(w, a)| (w, a));
+                    offense_command(
+                        &Situation {
+                            world,
+                            analysis,
+                            config: &self.config,
+                            agent,
+                        },
+                        a[agent],
+                    )
+                }
             };
             (self.commands[agent], searched[agent], necks[agent]) =
                 (decision.command, decision.shot, decision.neck);
@@ -342,6 +348,21 @@ impl Env {
 
 /// What agent `agent`'s view and neck actions see after its body command
 /// `command` (librcsc's queued next position and body, without noise).
+/// Agent `agent`'s world when it takes the keeper to be on the ball and
+/// cannot kick it itself: librcsc then holds the ball still in its world
+/// model (`setOpponentControlEffect`); `None` when its view is the world.
+fn stopped_ball_view(world: &World, agent: usize) -> Option<(World, Analysis)> {
+    let stopped = world.keeper_kickable_seen_by(agent)
+        && !world.agent_kickable(agent)
+        && world.ball.vel != DVec2::ZERO;
+    stopped.then(|| {
+        let mut believed = world.clone();
+        believed.ball.vel = DVec2::ZERO;
+        let analysis = Analysis::new(&believed);
+        (believed, analysis)
+    })
+}
+
 fn outlook(world: &World, analysis: &Analysis, agent: usize, command: Command) -> Outlook {
     let p = &world.offense[agent];
     let ball = world.ball.pos;
@@ -381,6 +402,23 @@ fn outlook(world: &World, analysis: &Analysis, agent: usize, command: Command) -
 mod tests {
     use super::*;
     use crate::world::Player;
+
+    #[test]
+    fn an_attacker_that_takes_the_keeper_to_be_on_the_ball_holds_it_still() {
+        let mut w = World::new(2);
+        w.keeper = Player::new(DVec2::new(45.0, 0.0), PI);
+        w.ball.pos = DVec2::new(44.0, 0.0);
+        w.ball.vel = DVec2::new(-0.5, 0.2);
+        w.offense[0] = Player::new(DVec2::new(40.0, 0.0), 0.0);
+        w.offense[1] = Player::new(DVec2::new(43.5, 0.5), 0.0);
+        let (believed, analysis) = stopped_ball_view(&w, 0).expect("the keeper is on the ball");
+        assert_eq!(believed.ball.vel, DVec2::ZERO);
+        assert_eq!(analysis.path_len, 6, "a resting ball's path");
+        // An agent that can kick the ball itself sees it move.
+        assert!(stopped_ball_view(&w, 1).is_none());
+        w.keeper.pos = DVec2::new(46.0, 0.0);
+        assert!(stopped_ball_view(&w, 0).is_none());
+    }
 
     /// After its tackle's own cycle the server ignores a player for 9 more
     /// cycles (`tackle_cycles = 10`); the keeper, who always commands

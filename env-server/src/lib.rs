@@ -23,6 +23,7 @@ pub mod policy;
 pub mod referee;
 pub mod render;
 pub mod rollout;
+pub mod short_reach;
 pub mod view;
 pub mod world;
 

@@ -157,17 +157,28 @@ pub fn dash(player: &mut Player, accel: &mut DVec2, power: f64, dir: f64) {
         power = power.min(available);
         player.stamina = (player.stamina - power).max(0.0);
     }
-    let dir = (dir.clamp(-PI, PI) / DASH_ANGLE_STEP).round() * DASH_ANGLE_STEP;
     // The rate depends on the requested direction; a negative power then pushes backwards.
-    let a = dir.abs().to_degrees();
-    let dir_rate = if a <= 90.0 {
+    let dir = dash_dir(dir);
+    let eff = player.effort * power * dash_dir_rate(dir) * DASH_POWER_RATE;
+    *accel += polar(eff, player.body + dir);
+}
+
+/// A dash direction (radians, relative to the body) as the server rounds it
+/// to a multiple of 45°.
+pub fn dash_dir(dir: f64) -> f64 {
+    (dir.clamp(-PI, PI) / DASH_ANGLE_STEP).round() * DASH_ANGLE_STEP
+}
+
+/// The share of a dash's power that a dash towards `dir` (radians, relative
+/// to the body) keeps: 1 forward, 0.4 sideways, 0.6 backwards.
+pub fn dash_dir_rate(dir: f64) -> f64 {
+    let a = dash_dir(dir).abs().to_degrees();
+    if a <= 90.0 {
         SIDE_DASH_RATE + (1.0 - SIDE_DASH_RATE) * (1.0 - a / 90.0)
     } else {
         BACK_DASH_RATE - (BACK_DASH_RATE - SIDE_DASH_RATE) * (1.0 - (a - 90.0) / 90.0)
     }
-    .clamp(0.0, 1.0);
-    let eff = player.effort * power * dir_rate * DASH_POWER_RATE;
-    *accel += polar(eff, player.body + dir);
+    .clamp(0.0, 1.0)
 }
 
 /// Applies a turn with the server's ±10% noise and speed-dependent inertia (spec 3.3).

@@ -159,6 +159,28 @@ impl World {
                 < KICKABLE_AREA + error(me.distance(ball)) + error(me.distance(k.pos))
     }
 
+    /// Whether the keeper takes an attacker to be on the ball (librcsc's
+    /// `existKickableOpponent`, which looks only at the opponent nearest the
+    /// ball that is not frozen by a tackle): that attacker within its
+    /// kickable area plus 2 % of the ball's and of its own distance from
+    /// the keeper (each at most 0.25 m).
+    pub fn attacker_kickable_seen_by_keeper(&self) -> bool {
+        let (k, ball) = (self.keeper.pos, self.ball.pos);
+        let error = |d: f64| (0.02 * d).min(0.25);
+        self.offense
+            .iter()
+            .filter(|p| p.tackle_freeze == 0)
+            .min_by(|a, b| {
+                a.pos
+                    .distance_squared(ball)
+                    .total_cmp(&b.pos.distance_squared(ball))
+            })
+            .is_some_and(|p| {
+                p.pos.distance(ball)
+                    < KICKABLE_AREA + error(k.distance(ball)) + error(k.distance(p.pos))
+            })
+    }
+
     /// Whether any offense player has the ball in its server kickable area.
     pub fn any_attacker_kickable(&self) -> bool {
         self.offense

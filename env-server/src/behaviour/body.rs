@@ -78,8 +78,13 @@ pub fn intercept(
         let rest = world.ball_final();
         return go_to_point(p, rest, 2.0, MAX_DASH_POWER).unwrap_or_else(|| turn_to_point(p, rest));
     }
-    let cycle = best_interception(p, world, analysis, &self_cache(p, analysis.path()))
-        .map_or(reach, |best| best.cycle);
+    let cycle = best_interception(
+        p,
+        world,
+        analysis,
+        &self_cache(p, &world.ball, analysis.path()),
+    )
+    .map_or(reach, |best| best.cycle);
     let target = analysis.ball_at(cycle);
     let q = p.drift(cycle as u32);
     let rel = target - q;
@@ -186,9 +191,67 @@ pub fn predict_turn_cycles(player: &Player, target_dir: f64, dist: f64, control:
     n
 }
 
+/// agent2d's `FieldAnalyzer::predict_player_reach_cycle` (no wait, no
+/// penalty, back dashes allowed): cycles `p` needs to come within
+/// `dist_thr` of `target`. The player's body is taken as seen (librcsc then
+/// counts its turns instead of assuming one).
+pub fn player_reach_cycle(p: &Player, target: DVec2, dist_thr: f64) -> usize {
+    let turns =
+        |from: DVec2, dist: f64| predict_turn_cycles(p, direction(target - from), dist, dist_thr);
+    let rest = p.final_drift();
+    let rest_dist = rest.distance(target);
+    let final_cycle = turns(rest, rest_dist) + dash_cycles(rest_dist);
+    if final_cycle > 6 {
+        return final_cycle;
+    }
+    for cycle in 0..=6 {
+        let drift = p.drift(cycle as u32);
+        let dist = drift.distance(target);
+        let dash_dist = dist - 0.5 * dist_thr;
+        if dist < dist_thr || dash_dist < 0.001 {
+            return cycle;
+        }
+        if dash_dist > REAL_SPEED_MAX * cycle as f64 {
+            continue;
+        }
+        if turns(drift, dist) + dash_cycles(dash_dist) <= cycle {
+            return cycle;
+        }
+    }
+    final_cycle
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reach_cycle_of_a_resting_player_follows_the_dash_table() {
+        let p = Player::new(DVec2::ZERO, 0.0);
+        assert_eq!(
+            player_reach_cycle(&p, DVec2::new(0.5, 0.0), KICKABLE_AREA),
+            0
+        );
+        // 4 m ahead: the dashes that cover 4 - 0.54 m (librcsc aims at half
+        // the threshold).
+        let target = DVec2::new(4.0, 0.0);
+        assert_eq!(
+            player_reach_cycle(&p, target, KICKABLE_AREA),
+            dash_cycles(4.0 - 0.5425)
+        );
+        // As far behind (within 5 m): backward dashes, no turn.
+        assert_eq!(
+            player_reach_cycle(&p, -target, KICKABLE_AREA),
+            dash_cycles(4.0 - 0.5425)
+        );
+        // To the side: one turn first; beyond 6 cycles the estimate stays the
+        // rough one that dashes the whole distance.
+        let side = DVec2::new(0.0, 5.0);
+        assert_eq!(
+            player_reach_cycle(&p, side, KICKABLE_AREA),
+            1 + dash_cycles(5.0)
+        );
+    }
 
     #[test]
     fn one_kick_speed_from_rest_is_the_accel_limit() {

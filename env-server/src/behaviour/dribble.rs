@@ -1,15 +1,17 @@
-//! DRIBBLE (spec 6.3): turn to face forward if badly oriented, else the
+//! DRIBBLE (spec 6.3): turn (or kick the ball aside first) to face forward if badly oriented, else the
 //! short dribble that agent2d's field evaluator rates above the current
 //! state, else hold the ball. HFO never shoots here: the chain action's
 //! command replaces any shot `doPreprocess` queued.
 
 use super::Situation;
-use super::body::{kick_to_velocity, predict_turn_cycles, turn_to_point};
+use super::body::{
+    kick_to_velocity, max_one_kick_speed, player_reach_cycle, predict_turn_cycles, turn_to_point,
+};
 use super::hold::hold_ball;
 use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
 use crate::params::*;
 use crate::physics::{Command, max_kick_accel, update_stamina};
-use crate::world::Player;
+use crate::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::PI;
 
@@ -38,7 +40,10 @@ pub fn command(s: &Situation) -> Command {
         if self_next.distance(ball_next) < keep {
             return turn_to_point(me, face);
         }
-        return hold_ball(me, s.world, Some(face), None);
+        if let Some(vel) = keep_ball_vel(me, s.world) {
+            return kick_to_velocity(me, ball, vel)
+                .unwrap_or_else(|| hold_ball(me, s.world, Some(face), None));
+        }
     }
     let mut candidates: Vec<Candidate> = (0..16).flat_map(|a| kick_candidates(s, me, a)).collect();
     // ShortDribbleGenerator sorts by distance to the goal; the first of equals wins.
@@ -59,6 +64,51 @@ pub fn command(s: &Situation) -> Command {
     choice
         .and_then(|c| kick_to_velocity(me, ball, c.first_vel))
         .unwrap_or_else(|| hold_ball(me, s.world, None, None))
+}
+
+/// agent2d's `Bhv_ChainAction::getKeepBallVel`: the ball velocity that
+/// keeps the ball 0.735 m from where the player will be in two cycles, in
+/// one of 12 directions, one kick's worth, the keeper latest to get there
+/// (then the slowest); `None` when no direction can be kicked.
+fn keep_ball_vel(me: &Player, world: &World) -> Option<DVec2> {
+    let ball = &world.ball;
+    let keep_dist = PLAYER_SIZE + 0.5 * KICKABLE_MARGIN + BALL_SIZE;
+    let next = me.pos + me.vel;
+    let next2 = next + me.vel * PLAYER_DECAY;
+    let max_accel = max_kick_accel(me, ball.pos);
+    let mut best: Option<(DVec2, usize, f64)> = None;
+    for a in 0..12 {
+        let keep = next2 + polar(keep_dist, f64::from(a) * PI / 6.0);
+        if keep.x.abs() > PITCH_HALF_LENGTH - 0.2 || keep.y.abs() > PITCH_HALF_WIDTH - 0.2 {
+            continue;
+        }
+        let ball_move = keep - ball.pos;
+        let speed = ball_move.length() / (1.0 + BALL_DECAY);
+        if max_one_kick_speed(direction(ball_move), ball.vel, max_accel) < speed {
+            continue;
+        }
+        let vel = ball_move.normalize_or_zero() * speed;
+        let ball_next = ball.pos + vel;
+        let target = if next.distance(ball_next) < PLAYER_SIZE + BALL_SIZE {
+            ball_next - vel * (0.1 * BALL_DECAY)
+        } else {
+            keep
+        };
+        // An opponent already there (step 0) ends the search as if none were near.
+        let keeper = &world.keeper;
+        let step = match keeper.pos.distance(me.pos) <= 10.0 {
+            true => player_reach_cycle(keeper, target, KICKABLE_AREA),
+            false => 0,
+        };
+        let step = if step == 0 { 1000 } else { step };
+        let better = best.is_none_or(|(_, best_step, best_speed)| {
+            step > best_step || (step == best_step && best_speed > speed)
+        });
+        if better {
+            best = Some((vel, step, speed));
+        }
+    }
+    best.map(|(vel, ..)| vel)
 }
 
 /// The ball holder of the current state (agent2d PredictState::init): the
@@ -272,6 +322,27 @@ mod tests {
             config: &config,
             agent: 0,
         })
+    }
+
+    #[test]
+    fn facing_backwards_the_dribbler_kicks_the_ball_aside_to_keep_it() {
+        // Bhv_ChainAction::doTurnToForward: the ball too far to just turn,
+        // no keeper within 4 m: one kick puts the ball 0.735 m from where
+        // the player will be two cycles on, as slowly as possible.
+        let mut world = World::new(1);
+        world.offense[0] = Player::new(DVec2::new(20.0, 0.0), PI);
+        world.ball.pos = DVec2::new(19.0, 0.0);
+        world.keeper.pos = DVec2::new(45.0, 0.0);
+        let cmd = with_situation(&world, command);
+        assert!(matches!(cmd, Command::Kick { .. }), "{cmd:?}");
+        let vel = keep_ball_vel(&world.offense[0], &world).expect("a keep velocity");
+        let keep = world.ball.pos + vel * (1.0 + BALL_DECAY);
+        assert!(
+            (keep.distance(world.offense[0].pos) - 0.735).abs() < 1e-9,
+            "{keep}"
+        );
+        // The slowest: the keep point nearest the ball, ahead of the body.
+        assert!(keep.x < 20.0 && vel.length() < 0.2, "{vel}");
     }
 
     #[test]

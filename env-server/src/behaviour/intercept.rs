@@ -3,10 +3,11 @@
 //! lines 225-757, field-player mode) over the cycles of its self-interception
 //! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
 
-use crate::analysis::{Analysis, Estimate, Interception, Reach};
+use crate::analysis::{Analysis, Estimate, Interception, MAX_CYCLE, Reach};
 use crate::geom::direction;
 use crate::params::*;
-use crate::world::{Player, World};
+use crate::short_reach::{SHORT_STEPS, short_steps};
+use crate::world::{Ball, Player, World};
 use glam::DVec2;
 
 /// Where `getBestIntercept` measures the distance to the goal (line 240).
@@ -15,13 +16,9 @@ const GOAL: DVec2 = DVec2::new(65.0, 0.0);
 /// speed under full dashes, 0.6/(1 − 0.4) = 1 m/cycle (librcsc
 /// rcsc/common/player_type.cpp lines 389-396).
 const THROUGH_SPEED: f64 = 0.9 * MAX_DASH_POWER * DASH_POWER_RATE / (1.0 - PLAYER_DECAY);
-/// Last cycle of the short-step prediction (`MAX_SHORT_STEP`, line 74).
-const SHORT_STEPS: usize = 5;
 /// How many cycles the long-step prediction looks on from its first
 /// reachable cycle (`max_loop = cycle + 10`, lines 1874-1877).
 const LONG_WINDOW: usize = 10;
-/// Longest prediction (`InterceptTable::MAX_CYCLE`, intercept_table.cpp line 53).
-const MAX_CYCLE: usize = 30;
 
 /// The interceptions an attacker's self-interception cache holds, earliest
 /// first, as `SelfInterceptV13::predict` (lines 84-150) fills it for a player
@@ -37,13 +34,13 @@ const MAX_CYCLE: usize = 30;
 /// powers, omni-dashes and back dashes, and stamina never rules an entry out
 /// (librcsc's `EXHAUST` mode needs the stamina below the recovery threshold,
 /// which save-recovery dashing avoids).
-pub fn self_cache(p: &Player, path: &[DVec2]) -> Vec<Interception> {
+pub fn self_cache(p: &Player, ball: &Ball, path: &[DVec2]) -> Vec<Interception> {
     let own = Reach::new(p, path, None, Estimate::Own);
     let reach = |t: usize| own.at(t);
     let max_cycle = MAX_CYCLE.min(path.len());
-    let mut cache: Vec<Interception> = (1..=SHORT_STEPS)
-        .take_while(|&t| t < path.len())
-        .filter_map(reach)
+    let mut cache: Vec<Interception> = short_steps(p, ball, max_cycle, false)
+        .into_iter()
+        .flatten()
         .collect();
     let long = (SHORT_STEPS + 1..max_cycle).find_map(reach);
     match long {
@@ -256,7 +253,7 @@ mod tests {
     /// The interception attacker 0 picks.
     fn best(w: &World, a: &Analysis) -> Interception {
         let p = &w.offense[0];
-        best_interception(p, w, a, &self_cache(p, a.path())).expect("a reachable ball")
+        best_interception(p, w, a, &self_cache(p, &w.ball, a.path())).expect("a reachable ball")
     }
 
     #[test]
@@ -294,7 +291,7 @@ mod tests {
         let mate = DVec2::new(30.0, -3.0);
         for vel in [DVec2::new(0.8, 0.0), DVec2::new(-1.0, 0.3)] {
             let (w, a) = scene(DVec2::new(27.0, 0.0), vel, mate);
-            let cache = self_cache(&w.offense[0], a.path());
+            let cache = self_cache(&w.offense[0], &w.ball, a.path());
             assert!(cache.len() > 3, "{vel}: several points to choose from");
             assert_eq!(cache[0].cycle, a.own_reach[0]);
             assert_eq!(best(&w, &a).cycle, a.own_reach[0], "{vel}");
@@ -309,7 +306,7 @@ mod tests {
             DVec2::new(0.5, 0.0),
             DVec2::new(30.0, 0.0),
         );
-        let cycles: Vec<usize> = self_cache(&w.offense[0], a.path())
+        let cycles: Vec<usize> = self_cache(&w.offense[0], &w.ball, a.path())
             .iter()
             .map(|c| c.cycle)
             .collect();

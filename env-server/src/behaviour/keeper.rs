@@ -3,10 +3,11 @@
 
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::analysis::{Analysis, Estimate, Interception, Reach};
+use crate::analysis::{Analysis, Estimate, Interception, MAX_CYCLE, Reach};
 use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
+use crate::short_reach::{SHORT_STEPS, short_steps};
 use crate::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -23,6 +24,19 @@ pub struct KeeperMemory {
 
 /// The keeper's command this cycle.
 pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Command {
+    // While the keeper takes an attacker to be on the ball its world model
+    // holds the ball still (librcsc `setOpponentControlEffect`), and so do
+    // its reach, its intercept and its positioning.
+    if world.attacker_kickable_seen_by_keeper() && world.ball.vel != DVec2::ZERO {
+        let mut believed = world.clone();
+        believed.ball.vel = DVec2::ZERO;
+        return decide(&believed, &Analysis::new(&believed), memory);
+    }
+    decide(world, analysis, memory)
+}
+
+/// [`command`] on the keeper's view of the world.
+fn decide(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Command {
     let k = &world.keeper;
     let ball = world.ball.pos;
     let ball_dist = k.pos.distance(ball);
@@ -68,6 +82,7 @@ impl<'a> View<'a> {
     fn new(world: &'a World, analysis: &'a Analysis) -> Self {
         let keeper = &world.keeper;
         let ball_dist = keeper.pos.distance(world.ball.pos);
+        let attacker_kickable = world.attacker_kickable_seen_by_keeper();
         View {
             world,
             analysis,
@@ -75,10 +90,14 @@ impl<'a> View<'a> {
             ball_dist,
             ball_next: world.ball.pos + world.ball.vel,
             self_min: analysis.keeper_own_reach,
-            opp_min: analysis.attacker_reach(),
+            opp_min: if attacker_kickable {
+                0
+            } else {
+                analysis.attacker_reach()
+            },
             intercept_point: analysis.ball_at(analysis.keeper_own_reach),
             pen_thr: (0.1 * ball_dist + 1.0).max(1.0),
-            attacker_kickable: world.any_attacker_kickable(),
+            attacker_kickable,
         }
     }
 
@@ -194,11 +213,22 @@ impl<'a> View<'a> {
             Some(KEEPER_CONTROL_AREA),
             Estimate::Other,
         );
+        let short = short_steps(
+            self.keeper,
+            &self.world.ball,
+            path.len().min(MAX_CYCLE),
+            true,
+        );
+        // librcsc's short steps up to cycle 5, the long-step rule after.
+        let entry = |t: usize| match t {
+            1..=SHORT_STEPS => short[t],
+            _ => reach.at(t),
+        };
         for (t, &b) in path.iter().enumerate().take(end).skip(first) {
             if b.x.abs() > PITCH_HALF_LENGTH - 1.0 || b.y.abs() > PITCH_HALF_WIDTH - 1.0 {
                 continue;
             }
-            let Some(c) = reach.at(t) else {
+            let Some(c) = entry(t) else {
                 continue;
             };
             // The ball reached on the keeper's running line without a turn,
@@ -227,7 +257,7 @@ impl<'a> View<'a> {
         aggressive
             .or(goalie)
             .map(|(_, c)| c)
-            .or_else(|| reach.at(first))
+            .or_else(|| entry(first))
             .expect("the keeper gets the ball at its reach cycle")
     }
 
@@ -497,6 +527,59 @@ mod tests {
         w.ball.vel = vel;
         let a = Analysis::new(&w);
         (w, a)
+    }
+
+    #[test]
+    fn with_an_attacker_on_the_ball_the_keeper_holds_the_ball_still() {
+        // An attacker dribbling at the keeper: the keeper decides as if the
+        // ball did not move (librcsc's setOpponentControlEffect), which for
+        // some of these states is not what the moving ball would make it do.
+        let memory = KeeperMemory { since_catch: 100 };
+        let mut differs = 0;
+        for i in 0..8 {
+            for j in 0..5 {
+                let ball = DVec2::new(40.0 + i as f64, -4.0 + 2.0 * j as f64);
+                let (mut w, _) = scene(DVec2::new(49.5, 0.0), PI, ball, DVec2::new(0.8, 0.1));
+                w.offense[0].place(ball - DVec2::new(1.1, 0.0));
+                assert!(w.attacker_kickable_seen_by_keeper());
+                let cmd = command(&w, &Analysis::new(&w), &memory);
+                let mut still = w.clone();
+                still.ball.vel = DVec2::ZERO;
+                assert_eq!(
+                    cmd,
+                    decide(&still, &Analysis::new(&still), &memory),
+                    "{ball}"
+                );
+                differs += usize::from(cmd != decide(&w, &Analysis::new(&w), &memory));
+            }
+        }
+        assert!(differs > 0);
+    }
+
+    #[test]
+    fn the_keeper_counts_an_attacker_on_the_ball_with_its_margin_of_sight() {
+        // librcsc: within 1.085 m plus 2 % of the keeper's distances from
+        // the ball and from the attacker (each at most 0.25 m).
+        let (mut w, _) = scene(
+            DVec2::new(50.0, 0.0),
+            PI,
+            DVec2::new(40.0, 0.0),
+            DVec2::ZERO,
+        );
+        w.offense[0].place(DVec2::new(38.7, 0.0));
+        assert!(
+            w.attacker_kickable_seen_by_keeper(),
+            "1.3 m < 1.085 + 0.2 + 0.226"
+        );
+        assert!(!w.any_attacker_kickable());
+        w.offense[0].place(DVec2::new(38.4, 0.0));
+        assert!(!w.attacker_kickable_seen_by_keeper());
+        // Only the attacker nearest the ball counts; one frozen by its
+        // tackle is passed over.
+        w.offense[1].place(DVec2::new(39.5, 0.0));
+        w.offense[1].tackle_freeze = 3;
+        w.offense[2].place(DVec2::new(40.0, 1.2));
+        assert!(w.attacker_kickable_seen_by_keeper());
     }
 
     /// The cache entries the goalie rule of `getBestIntercept` accepts.

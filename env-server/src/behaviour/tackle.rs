@@ -39,14 +39,22 @@ pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<C
             analysis.keeper_reach,
             world.keeper_kickable_seen_by(i),
         ),
-        Tackler::Keeper => (
-            &world.keeper,
-            -1.0,
-            analysis.keeper_own_reach,
-            NO_REACH,
-            analysis.attacker_reach(),
-            world.any_attacker_kickable(),
-        ),
+        Tackler::Keeper => {
+            let kickable = world.attacker_kickable_seen_by_keeper();
+            let opp_min = if kickable {
+                0
+            } else {
+                analysis.attacker_reach()
+            };
+            (
+                &world.keeper,
+                -1.0,
+                analysis.keeper_own_reach,
+                NO_REACH,
+                opp_min,
+                kickable,
+            )
+        }
     };
     let mut prob = tackle_probability(me, ball.pos, TACKLE_EXPONENT);
     // librcsc's foul probability is 0 unless the opponents' reach cycle is 0

@@ -1,0 +1,580 @@
+//! A player's own reach in its first five cycles (spec 6.1.2): librcsc's
+//! `SelfInterceptV13::predictOneStep` and `predictShortStep`
+//! (rcsc/player/self_intercept_v13.cpp, lines 159-1755). Unlike the long-step
+//! rule, the player does not run straight at the ball: it dashes along its
+//! body (after the turns it needs), along its back, or sideways first (the
+//! omni-directional dash), and the ball must end up 0.15 m inside its
+//! control area: the kickable area, or for the keeper (goalie mode) the
+//! catchable area while the ball is in its penalty area.
+//!
+//! Stamina follows librcsc's save-recovery dashing (never below the recovery
+//! threshold), so no entry is `EXHAUST`.
+
+use crate::analysis::{DRIFT, Interception};
+use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
+use crate::params::*;
+use crate::physics::{dash_dir_rate, kick_rate, update_stamina};
+use crate::world::{Ball, Player};
+use glam::DVec2;
+use std::f64::consts::{FRAC_PI_4, PI};
+
+/// Last cycle of the short-step prediction (`MAX_SHORT_STEP`).
+pub const SHORT_STEPS: usize = 5;
+/// `control_area_buf`: how far inside the control area the ball must come.
+const CONTROL_BUF: f64 = 0.15;
+/// `MIN_TURN_THR` (12.5°): the smallest angle that needs a turn.
+const MIN_TURN_THR: f64 = 12.5 * PI / 180.0;
+/// The stamina kept back by save-recovery dashing (`recoverDecThrValue() + 1`).
+const STAMINA_RESERVE: f64 = 0.3 * STAMINA_MAX + 1.0;
+
+/// One way to reach the ball and the stamina left after it.
+#[derive(Clone, Copy, Debug)]
+struct Way {
+    entry: Interception,
+    stamina: f64,
+}
+
+/// The best way to reach the ball at each cycle 1 to 5 (index = cycle) for
+/// player `p`, who cannot kick the ball now, the keeper if `goalie`;
+/// `max_cycle` bounds the cycles as the ball cache's length does
+/// (`min(MAX_CYCLE, cache size)`).
+pub fn short_steps(
+    p: &Player,
+    ball: &Ball,
+    max_cycle: usize,
+    goalie: bool,
+) -> [Option<Interception>; SHORT_STEPS + 1] {
+    let mut best = [None; SHORT_STEPS + 1];
+    let next = ball.pos + ball.vel;
+    let one_step_control = match goalie && in_penalty_area(next) {
+        true => KEEPER_CONTROL_AREA,
+        false => KICKABLE_AREA,
+    };
+    best[1] = one_step(p, ball, one_step_control, goalie).map(|w| w.entry);
+    let max_loop = SHORT_STEPS.min(max_cycle) as i64;
+    // The cycles needed to cover the player's distance from the ball's line.
+    let ball_to_self = in_frame(p.pos - ball.pos, unit(direction(ball.vel)));
+    let min_cycle = libm::ceil((ball_to_self.y.abs() - KICKABLE_AREA) / REAL_SPEED_MAX) as i64;
+    if min_cycle >= max_loop {
+        return best;
+    }
+    let (mut ball_pos, mut ball_vel) = (ball.pos, ball.vel);
+    let mut ways = Vec::new();
+    let cycles = best.iter_mut().enumerate().take(max_loop as usize + 1);
+    for (cycle, slot) in cycles.skip(1) {
+        ball_pos += ball_vel;
+        ball_vel *= BALL_DECAY;
+        if (cycle as i64) < min_cycle.max(2) {
+            continue;
+        }
+        // Goalie mode inside the area less 0.5 m.
+        let deep =
+            ball_pos.x > PENALTY_AREA_X + 0.5 && ball_pos.y.abs() < PENALTY_AREA_HALF_WIDTH - 0.5;
+        let control = if goalie && deep {
+            KEEPER_CONTROL_AREA
+        } else {
+            KICKABLE_AREA
+        };
+        let reach = control + REAL_SPEED_MAX * cycle as f64;
+        if reach * reach < p.pos.distance_squared(ball_pos) {
+            continue;
+        }
+        let c = Chase {
+            p,
+            ball_pos,
+            cycle,
+            control,
+        };
+        ways.clear();
+        for back in [false, true] {
+            for margin in [control - 0.4, control - CONTROL_BUF] {
+                c.turn_dash(back, margin.max(0.1), &mut ways);
+            }
+        }
+        if cycle <= 2 {
+            c.omni_dash(&mut ways);
+        }
+        let safety = (control - 0.2 - ball.pos.distance(ball_pos) * BALL_RAND)
+            .max(PLAYER_SIZE + BALL_SIZE + KICKABLE_MARGIN * 0.4);
+        *slot = pick_short(&ways, safety).map(|w| w.entry);
+    }
+    best
+}
+
+/// `predictOneStep`: the ball comes to the player by itself, or one dash
+/// (in any of the eight dash directions) brings it there.
+fn one_step(p: &Player, ball: &Ball, control: f64, goalie: bool) -> Option<Way> {
+    let too_far = BALL_SPEED_MAX + REAL_SPEED_MAX + control;
+    if p.pos.distance(ball.pos) > too_far {
+        return None;
+    }
+    no_dash(p, ball, control, goalie).or_else(|| one_dash(p, ball, control))
+}
+
+/// `predictNoDash`: the ball's next position is well inside the control
+/// area and (unless the keeper catches it) one kick can still stop it.
+fn no_dash(p: &Player, ball: &Ball, control: f64, goalie: bool) -> Option<Way> {
+    let me_next = Player {
+        pos: p.pos + p.vel,
+        ..*p
+    };
+    let ball_next = ball.pos + ball.vel;
+    let dist = me_next.pos.distance(ball_next);
+    if dist > control - CONTROL_BUF - ball.vel.length() * BALL_RAND {
+        return None;
+    }
+    let next_speed = ball.vel.length() * BALL_DECAY;
+    let catchable = goalie && control == KEEPER_CONTROL_AREA;
+    if !catchable
+        && dist > PLAYER_SIZE + BALL_SIZE
+        && MAX_KICK_POWER * kick_rate(&me_next, ball_next) <= next_speed * BALL_DECAY * 1.1
+    {
+        return None; // it might not be stopped
+    }
+    let mut rested = *p;
+    update_stamina(&mut rested);
+    Some(Way {
+        entry: entry(1, 0, 0.0, dist),
+        stamina: rested.stamina,
+    })
+}
+
+/// `predictOneDash`: of the dash directions after which the ball is
+/// controllable, the one leaving it nearest (or, when several leave it safe,
+/// the one sparing the most stamina).
+fn one_dash(p: &Player, ball: &Ball, control: f64) -> Option<Way> {
+    let forward = (p.stamina - STAMINA_RESERVE).clamp(0.0, MAX_DASH_POWER);
+    let back = ((p.stamina - STAMINA_RESERVE) * -0.5).clamp(-MAX_DASH_POWER, 0.0);
+    let full = (forward - MAX_DASH_POWER).abs() < 1.0 && (back + MAX_DASH_POWER).abs() < 1.0;
+    let mut ways = Vec::new();
+    for dir in dash_dirs() {
+        let angle = p.body + dir;
+        let rate = p.effort * DASH_POWER_RATE * dash_dir_rate(dir);
+        let powers: &[(f64, f64)] = if full {
+            &[(forward, back)]
+        } else {
+            &[(forward, back), (MAX_DASH_POWER, -MAX_DASH_POWER)]
+        };
+        let way = powers.iter().find_map(|&(f, b)| {
+            let max_forward = limit_accel(p.vel, polar(f * rate, angle));
+            let max_back = limit_accel(p.vel, polar(b * rate, angle));
+            one_dash_adjust(p, ball, dir, max_forward, max_back, control)
+        });
+        ways.extend(way);
+    }
+    let safety = (control - 0.2 - ball.vel.length() * BALL_RAND)
+        .max(PLAYER_SIZE + BALL_SIZE + KICKABLE_MARGIN * 0.4);
+    let mut best = *ways.first()?;
+    for &w in &ways[1..] {
+        let both_safe = best.entry.ball_dist < safety && w.entry.ball_dist < safety;
+        let nearer = best.entry.ball_dist > w.entry.ball_dist
+            || ((best.entry.ball_dist - w.entry.ball_dist).abs() < 0.001
+                && best.stamina < w.stamina);
+        if (both_safe && best.stamina < w.stamina) || (!both_safe && nearer) {
+            best = w;
+        }
+    }
+    Some(best)
+}
+
+/// `predictOneDashAdjust`: the dash power along `dir` (relative to the body)
+/// that leaves the ball controllable, between the largest backward and
+/// forward accelerations.
+fn one_dash_adjust(
+    p: &Player,
+    ball: &Ball,
+    dir: f64,
+    max_forward: DVec2,
+    max_back: DVec2,
+    control: f64,
+) -> Option<Way> {
+    let control = control - 0.075;
+    let u = unit(p.body + dir);
+    let ball_next = ball.pos + ball.vel;
+    let ball_rel = in_frame(ball_next - (p.pos + p.vel), u);
+    let (f, b) = (in_frame(max_forward, u), in_frame(max_back, u));
+    let rate = p.effort * DASH_POWER_RATE * dash_dir_rate(dir);
+    if ball_rel.y.abs() > control || segment_distance(f, b, ball_rel) > control {
+        return None;
+    }
+    let between = b.x < ball_rel.x && ball_rel.x < f.x;
+    let power = between
+        .then(|| one_step_dash_power(p, p.body + dir, ball_rel, f.x, b.x))
+        .flatten()
+        .or_else(|| (f.x < ball_rel.x && ball_rel.distance(f) < control).then(|| f.x / rate))
+        .or_else(|| (ball_rel.x < b.x && ball_rel.distance(b) < control).then(|| b.x / rate))
+        .or_else(|| between.then(|| ball_rel.x / rate))?;
+    let pos = p.pos + p.vel + u * (power * rate);
+    let mut after = *p;
+    spend(&mut after, power);
+    Some(Way {
+        entry: entry(0, 1, power, pos.distance(ball_next)),
+        stamina: after.stamina,
+    })
+}
+
+/// `getOneStepDashPower`: the weakest dash that traps the ball at the best
+/// control distance in front of or behind the player. As librcsc, the rate
+/// reads the dash's global angle where the relative one was meant.
+fn one_step_dash_power(
+    p: &Player,
+    dash_angle: f64,
+    ball_rel: DVec2,
+    max_forward_x: f64,
+    max_back_x: f64,
+) -> Option<f64> {
+    let rate = p.effort * DASH_POWER_RATE * dash_dir_rate(normalize_angle(dash_angle));
+    let best_forward = PLAYER_SIZE + 0.5 * KICKABLE_MARGIN + BALL_SIZE;
+    let best_backward = PLAYER_SIZE + 0.3 * KICKABLE_MARGIN + BALL_SIZE;
+    if ball_rel.y.abs() > best_forward {
+        return Some(ball_rel.x / rate); // just put the ball at the side
+    }
+    let y2 = ball_rel.y * ball_rel.y;
+    let forward_trap = ball_rel.x - (best_forward * best_forward - y2).sqrt();
+    // NaN when the ball is beside the backward circle: then no step is tried.
+    let backward_trap = ball_rel.x + (best_backward * best_backward - y2).sqrt();
+    let step = (backward_trap - forward_trap) / 5.0;
+    let mut best: Option<f64> = None;
+    let mut accel_x = forward_trap;
+    while accel_x < backward_trap + 0.01 {
+        let feasible = if accel_x >= 0.0 {
+            max_forward_x > accel_x
+        } else {
+            max_back_x < accel_x
+        };
+        let power = accel_x / rate;
+        if feasible && best.is_none_or(|b| power.abs() < b.abs()) {
+            best = Some(power);
+        }
+        accel_x += step;
+    }
+    best
+}
+
+/// One cycle of `predictShortStep`: the player and where the ball will be.
+struct Chase<'a> {
+    p: &'a Player,
+    ball_pos: DVec2,
+    cycle: usize,
+    /// The control area at that cycle.
+    control: f64,
+}
+
+impl Chase<'_> {
+    /// `predictTurnDashShort`: turn (if the ball is off the body's line by
+    /// more than the margin allows), then dash along the body or its back.
+    fn turn_dash(&self, back: bool, margin: f64, ways: &mut Vec<Way>) {
+        let p = self.p;
+        let rel = self.ball_pos - p.drift(self.cycle as u32);
+        let (target_dist, target_angle) = (rel.length(), direction(rel));
+        let body = if back {
+            normalize_angle(p.body + PI)
+        } else {
+            p.body
+        };
+        let mut diff = angle_diff(target_angle, body);
+        let turn_margin = if margin < target_dist {
+            MIN_TURN_THR.max(asin_clamped(margin / target_dist))
+        } else {
+            PI
+        };
+        let mut n_turn = 0;
+        let mut speed = p.vel.length();
+        while diff > turn_margin {
+            diff -= PI / (1.0 + INERTIA_MOMENT * speed);
+            speed *= PLAYER_DECAY;
+            n_turn += 1;
+        }
+        let dash_angle = match n_turn {
+            0 => body,
+            _ if normalize_angle(target_angle - body) > 0.0 => target_angle - diff.max(0.0),
+            _ => target_angle + diff.max(0.0),
+        };
+        if n_turn <= self.cycle {
+            self.dash_cycle(n_turn, dash_angle, back, ways);
+        }
+    }
+
+    /// `predictDashCycleShort`: after `n_turn` turns, the dashes along
+    /// `dash_angle` that stop the player at the ball, if they get there.
+    fn dash_cycle(&self, n_turn: usize, dash_angle: f64, back: bool, ways: &mut Vec<Way>) {
+        let (p, ball_pos, cycle) = (self.p, self.ball_pos, self.cycle);
+        let max_dash = cycle - n_turn;
+        let inertia = p.drift(cycle as u32);
+        let mut me = *p;
+        for _ in 0..n_turn {
+            update_stamina(&mut me);
+        }
+        let control2 = (self.control - CONTROL_BUF).powi(2);
+        if inertia.distance_squared(ball_pos) < control2 {
+            let mut waited = me;
+            for _ in 0..max_dash {
+                update_stamina(&mut waited);
+            }
+            ways.push(Way {
+                entry: entry(n_turn, max_dash, 0.0, inertia.distance(ball_pos)),
+                stamina: waited.stamina,
+            });
+        }
+        if angle_diff(direction(ball_pos - inertia), dash_angle) > PI / 2.0 {
+            return;
+        }
+        me.pos = p.drift(n_turn as u32);
+        me.vel = p.vel * PLAYER_DECAY.powi(n_turn as i32);
+        let first = dash_to(&mut me, ball_pos, unit(dash_angle), back, max_dash);
+        if me.pos.distance_squared(ball_pos) < control2
+            || p.pos.distance_squared(me.pos) > p.pos.distance_squared(ball_pos)
+        {
+            ways.push(Way {
+                entry: entry(n_turn, max_dash, first, me.pos.distance(ball_pos)),
+                stamina: me.stamina,
+            });
+        }
+    }
+
+    /// `predictOmniDashShort` (cycles 1-2, forward): up to two dashes sideways
+    /// onto the ball's line along the body, then dashes along the body.
+    fn omni_dash(&self, ways: &mut Vec<Way>) {
+        let (p, ball_pos, cycle) = (self.p, self.ball_pos, self.cycle);
+        let body = unit(p.body);
+        let line_dist = |q: DVec2| body.perp_dot(q - ball_pos).abs();
+        let inertia = p.drift(cycle as u32);
+        if line_dist(inertia) < self.control - 0.4 {
+            return;
+        }
+        let target_angle = direction(ball_pos - inertia);
+        for dir in dash_dirs().filter(|&d| d != 0.0) {
+            if angle_diff(p.body + dir, target_angle) > 91f64.to_radians() {
+                continue;
+            }
+            let mut me = *p;
+            let u = unit(p.body + dir);
+            let rate = p.effort * DASH_POWER_RATE * dash_dir_rate(dir);
+            let mut first = 0.0;
+            let mut n_omni = None;
+            for n in 1..=cycle.min(2) {
+                let first_speed = first_term(line_dist(me.pos).max(0.0), cycle - n + 1);
+                let required = first_speed - me.vel.dot(u);
+                if required.abs() < 0.01 {
+                    n_omni = Some(n - 1);
+                    break;
+                }
+                let power = (required / rate)
+                    .clamp(0.0, MAX_DASH_POWER)
+                    .min(available(me.stamina));
+                if n == 1 {
+                    first = power;
+                }
+                me.vel += u * (power.abs() * rate);
+                me.pos += me.vel;
+                me.vel *= PLAYER_DECAY;
+                spend(&mut me, power);
+                if line_dist(me.pos + me.vel * DRIFT[cycle - n]) < self.control - CONTROL_BUF {
+                    n_omni = Some(n);
+                    break;
+                }
+            }
+            let Some(n_omni) = n_omni.filter(|&n| n > 0) else {
+                continue;
+            };
+            let ahead = me.pos + me.vel * DRIFT[cycle - n_omni];
+            if (ball_pos - ahead).dot(body) < 0.0 {
+                continue; // the ball would be behind
+            }
+            dash_to(&mut me, ball_pos, body, false, cycle - n_omni);
+            let moved = me.pos - p.pos;
+            let reaches_line = moved.length()
+                > in_frame(ball_pos - p.pos, moved.normalize_or_zero())
+                    .x
+                    .abs();
+            if me.pos.distance_squared(ball_pos) < (self.control - CONTROL_BUF).powi(2)
+                || reaches_line
+            {
+                ways.push(Way {
+                    entry: entry(0, cycle, first, me.pos.distance(ball_pos)),
+                    stamina: me.stamina,
+                });
+            }
+        }
+    }
+}
+
+/// Dashes along `u` (the body or its back) that would bring `me` level with
+/// `ball_pos` along `u` in `n_dash` cycles, each as strong as the stamina
+/// allows; returns the first dash's power (0 if there is none).
+fn dash_to(me: &mut Player, ball_pos: DVec2, u: DVec2, back: bool, n_dash: usize) -> f64 {
+    let mut first_power = 0.0;
+    for n in 1..=n_dash {
+        let first_speed = first_term((ball_pos - me.pos).dot(u), n_dash - n + 1);
+        let rate = me.effort * DASH_POWER_RATE;
+        let required = (first_speed - me.vel.dot(u)) / rate;
+        let power = if back {
+            (-required)
+                .clamp(-MAX_DASH_POWER, 0.0)
+                .max(available(me.stamina) * -0.5)
+        } else {
+            required
+                .clamp(0.0, MAX_DASH_POWER)
+                .min(available(me.stamina))
+        };
+        if n == 1 {
+            first_power = power;
+        }
+        me.vel += u * (power.abs() * rate);
+        me.pos += me.vel;
+        me.vel *= PLAYER_DECAY;
+        spend(me, power);
+    }
+    first_power
+}
+
+/// `predictShortStep`'s choice among one cycle's ways: when both are safely
+/// inside the kickable area, fewer turns, then more stamina; otherwise the
+/// nearer ball among ways with no more turns.
+fn pick_short(ways: &[Way], safety: f64) -> Option<Way> {
+    let mut best = *ways.first()?;
+    for &w in &ways[1..] {
+        let (b, e) = (best.entry, w.entry);
+        let better = if b.ball_dist < safety && e.ball_dist < safety {
+            b.turns > e.turns || (b.turns == e.turns && best.stamina < w.stamina)
+        } else {
+            b.turns >= e.turns
+                && (b.ball_dist > e.ball_dist
+                    || ((b.ball_dist - e.ball_dist).abs() < 0.001 && best.stamina < w.stamina))
+        };
+        if better {
+            best = w;
+        }
+    }
+    Some(best)
+}
+
+/// An interception at cycle `turns + dashes`, backwards when `power` < 0.
+fn entry(turns: usize, dashes: usize, power: f64, ball_dist: f64) -> Interception {
+    Interception {
+        cycle: turns + dashes,
+        turns,
+        dashes,
+        back: power < 0.0,
+        ball_dist,
+    }
+}
+
+/// The eight dash directions relative to the body, -180° to 135°.
+fn dash_dirs() -> impl Iterator<Item = f64> {
+    (-4..4).map(|k| f64::from(k) * FRAC_PI_4)
+}
+
+/// `v` in the frame whose x axis is the unit vector `u`.
+fn in_frame(v: DVec2, u: DVec2) -> DVec2 {
+    DVec2::new(v.dot(u), u.perp_dot(v))
+}
+
+/// Distance from `q` to the segment from `a` to `b`.
+fn segment_distance(a: DVec2, b: DVec2, q: DVec2) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((q - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    q.distance(a + ab * t)
+}
+
+/// `PlayerType::normalizeAccel`: shortens a dash's acceleration so the
+/// player's speed stays within its limit.
+fn limit_accel(vel: DVec2, accel: DVec2) -> DVec2 {
+    if (vel + accel).length_squared() <= PLAYER_SPEED_MAX * PLAYER_SPEED_MAX + 0.0001 {
+        return accel;
+    }
+    let u = accel.normalize_or_zero();
+    let rel = in_frame(vel, u);
+    u * ((PLAYER_SPEED_MAX * PLAYER_SPEED_MAX - rel.y * rel.y).sqrt() - rel.x)
+}
+
+/// First term of a series decaying by the player's decay that sums to
+/// `sum` over `len` terms (`calc_first_term_geom_series`).
+fn first_term(sum: f64, len: usize) -> f64 {
+    sum * (1.0 - PLAYER_DECAY) / (1.0 - PLAYER_DECAY.powi(len as i32))
+}
+
+/// The dash power the stamina allows under save-recovery dashing.
+fn available(stamina: f64) -> f64 {
+    (stamina - STAMINA_RESERVE).max(0.0)
+}
+
+/// librcsc's `StaminaModel::simulateDash`.
+fn spend(p: &mut Player, power: f64) {
+    let cost = if power >= 0.0 { power } else { -2.0 * power };
+    p.stamina = (p.stamina - cost).max(0.0);
+    update_stamina(p);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::{Analysis, reach_cycles};
+    use crate::world::World;
+
+    fn world(ball: (f64, f64, f64, f64), me: (f64, f64, f64, f64), body_deg: f64) -> World {
+        let mut w = World::new(1);
+        w.ball.pos = DVec2::new(ball.0, ball.1);
+        w.ball.vel = DVec2::new(ball.2, ball.3);
+        w.offense[0] = Player::new(DVec2::new(me.0, me.1), body_deg.to_radians());
+        w.offense[0].vel = DVec2::new(me.2, me.3);
+        w.keeper = Player::new(DVec2::new(50.0, 2.8), FRAC_PI_4 * 2.0);
+        w
+    }
+
+    #[test]
+    fn a_ball_kicked_on_beside_the_body_takes_five_cycles_as_in_hfo() {
+        // A state from HFO's logs where its dribbler's self_min was 5: the
+        // ball 1.1 m ahead at 0.68 m/cycle, 21° off the body. Running
+        // straight at it would take 2 cycles; dashing along the body leaves
+        // it too far to the side, so the player turns first and gets there
+        // at cycle 5.
+        let w = world(
+            (44.6709, 5.4471, 0.6549, 0.1775),
+            (43.5482, 5.2586, 0.1476, -0.0176),
+            -6.261,
+        );
+        let a = Analysis::new(&w);
+        assert_eq!(reach_cycles(&w.offense[0], a.path(), None).1, 2);
+        assert_eq!(a.own_reach[0], 5);
+        let steps = short_steps(&w.offense[0], &w.ball, a.path_len, false);
+        assert!(steps[..5].iter().all(Option::is_none));
+        assert_eq!(steps[5].map(|e| (e.cycle, e.turns)), Some((5, 1)));
+    }
+
+    #[test]
+    fn a_ball_rolling_into_the_kickable_area_needs_no_dash() {
+        let w = world((10.0, 0.0, -1.0, 0.0), (8.5, 0.0, 0.0, 0.0), 0.0);
+        let entry = one_step(&w.offense[0], &w.ball, KICKABLE_AREA, false)
+            .expect("reachable")
+            .entry;
+        assert_eq!((entry.cycle, entry.turns, entry.dashes), (1, 1, 0));
+        assert!((entry.ball_dist - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn one_sideways_dash_reaches_a_ball_beside_the_player() {
+        // The ball rests 1.2 m to the left: out of reach without a dash and
+        // after a forward one, within reach after a sideways dash.
+        let w = world((0.0, 1.2, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), 0.0);
+        assert!(no_dash(&w.offense[0], &w.ball, KICKABLE_AREA, false).is_none());
+        let entry = one_dash(&w.offense[0], &w.ball, KICKABLE_AREA)
+            .expect("one dash")
+            .entry;
+        assert_eq!((entry.cycle, entry.dashes), (1, 1));
+        assert!(entry.ball_dist < KICKABLE_AREA - 0.075);
+    }
+
+    #[test]
+    fn a_ball_behind_is_chased_by_dashing_backwards() {
+        let w = world((-2.5, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), 0.0);
+        let steps = short_steps(&w.offense[0], &w.ball, 30, false);
+        let first = steps.iter().flatten().next().expect("reachable");
+        assert!(first.back && first.turns == 0, "{first:?}");
+    }
+}
