@@ -5,16 +5,14 @@
 use crate::formation::{catch_home, home_positions};
 use crate::geom::{direction, unit};
 use crate::params::*;
-use crate::short_reach::{SHORT_STEPS, short_steps};
-use crate::world::{Ball, Player, World};
+use crate::self_intercept;
+use crate::world::{Player, World};
 use glam::DVec2;
 
 /// Most offense agents the simulator supports.
 pub const MAX_OFFENSE: usize = 4;
 /// Longest ball path considered by the intercept table.
 const CACHE_LEN: usize = 31;
-/// Longest self-interception prediction (librcsc `InterceptTable::MAX_CYCLE`).
-pub const MAX_CYCLE: usize = 30;
 /// Reach cycles beyond which a player is considered unable to get the ball.
 pub const NO_REACH: usize = 1000;
 
@@ -46,37 +44,16 @@ pub struct Analysis {
 impl Analysis {
     /// Analyses `world` (whose offside line must be up to date).
     pub fn new(world: &World) -> Self {
-        let (ball_path, path_len) = ball_path(world);
-        let path = &ball_path[..path_len];
-        let n = world.offense.len();
-        let mut reach = [NO_REACH; MAX_OFFENSE];
-        let mut own_reach = [NO_REACH; MAX_OFFENSE];
-        for ((r, o), p) in reach.iter_mut().zip(&mut own_reach).zip(&world.offense) {
-            *r = reach_cycles(p, path, None).0;
-            *o = own_reach_cycle(p, &world.ball, path, *r, None);
+        let mut analysis = Analysis::for_keeper(world);
+        let path = &analysis.ball_path[..analysis.path_len];
+        for (o, p) in analysis.own_reach.iter_mut().zip(&world.offense) {
+            *o = self_intercept::reach_cycle(p, &world.ball, path, false);
         }
-        let keeper_control = Some(KEEPER_CONTROL_AREA);
-        let keeper_reach = reach_cycles(&world.keeper, path, keeper_control).0;
-        let keeper_own_reach = own_reach_cycle(
-            &world.keeper,
-            &world.ball,
-            path,
-            keeper_reach,
-            keeper_control,
-        );
-        let mut analysis = Analysis {
-            ball_path,
-            path_len,
-            reach,
-            own_reach,
-            keeper_reach,
-            keeper_own_reach,
-            home: [DVec2::ZERO; MAX_OFFENSE],
-        };
-        let ball_step = reach[..n]
+        let n = world.offense.len();
+        let ball_step = analysis.reach[..n]
             .iter()
             .copied()
-            .chain([keeper_reach])
+            .chain([analysis.keeper_reach])
             .min()
             .unwrap_or(NO_REACH);
         let focus = world.ball_inertia(ball_step.min(NO_REACH) as u32);
@@ -100,6 +77,27 @@ impl Analysis {
             analysis.home[i] = DVec2::new(home.x.min(max_x), home.y);
         }
         analysis
+    }
+
+    /// What the keeper reads of `world`: the ball's path, every reach cycle
+    /// as the others see it and the keeper's own; the attackers' own reach
+    /// (`NO_REACH`) and formation targets (zero) are left out.
+    pub fn for_keeper(world: &World) -> Self {
+        let (ball_path, path_len) = ball_path(world);
+        let path = &ball_path[..path_len];
+        let mut reach = [NO_REACH; MAX_OFFENSE];
+        for (r, p) in reach.iter_mut().zip(&world.offense) {
+            *r = reach_cycle(p, path, None);
+        }
+        Analysis {
+            ball_path,
+            path_len,
+            reach,
+            own_reach: [NO_REACH; MAX_OFFENSE],
+            keeper_reach: reach_cycle(&world.keeper, path, Some(KEEPER_CONTROL_AREA)),
+            keeper_own_reach: self_intercept::reach_cycle(&world.keeper, &world.ball, path, true),
+            home: [DVec2::ZERO; MAX_OFFENSE],
+        }
     }
 
     /// The ball's predicted path.
@@ -194,241 +192,43 @@ fn turn_count(facing: DVec2, rel: DVec2, d: f64, control: f64) -> usize {
     usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
 }
 
-/// Whose estimate of a reach cycle (spec 6.1.2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Estimate {
-    /// Another player's (librcsc `PlayerIntercept`): the full control area.
-    Other,
-    /// The player's own (librcsc `SelfInterceptV13`): once it must move, the
-    /// ball has to come 0.15 m inside the control area within 5 cycles
-    /// (`control_area_buf`), 0.2 m later (its long-step buffer).
-    Own,
-}
-
-impl Estimate {
-    /// Margin inside the control area for a reach at cycle `t`.
-    pub(crate) fn buffer(self, t: usize) -> f64 {
-        match self {
-            Estimate::Other => 0.0,
-            Estimate::Own if t <= 5 => 0.15,
-            Estimate::Own => 0.2,
-        }
-    }
-}
-
-/// Reach cycles of player `p` for the ball path `path` (spec 6.1.2), as the
-/// others estimate it and as it estimates its own; `keeper_control` is the
-/// keeper's control area inside its penalty area. A ball already under
-/// control is reached at once by the others' estimate; by the player's own
-/// only if it can kick it by its own test (1.03 m).
-pub fn reach_cycles(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> (usize, usize) {
-    let scan = Scan::new(p, path, keeper_control);
-    // Whatever the own estimate accepts the others' accepts too: the own
-    // scan goes on from where the others' first accepts.
-    let first = scan.run(0, Estimate::Other);
-    let own = scan.run(first.min(path.len()), Estimate::Own);
-    // PlayerIntercept starts at the cycles the player needs at full speed to
-    // cover its lateral offset from the ball's line of travel.
+/// Reach cycle of player `p` for the ball path `path` as the other players
+/// estimate it (librcsc `PlayerIntercept`, spec 6.1.2); `keeper_control` is
+/// the keeper's control area inside its penalty area. A ball under control
+/// is reached at once. The walk starts at the cycles the player needs at
+/// full speed to cover its offset from the ball's line of travel.
+pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
     let lateral = path.get(1).map_or(0.0, |&b1| {
         let rel = p.pos - path[0];
         rel.perp_dot(unit(direction(b1 - path[0]))).abs()
     });
     let skip = (lateral / REAL_SPEED_MAX).floor() as usize;
-    let other = if first >= skip {
-        first
-    } else {
-        scan.run(skip.min(path.len()), Estimate::Other)
-    };
-    (other, own)
-}
-
-/// A player's own reach cycle (`self_min`) given the others' estimate
-/// `other`; `keeper_control` as for [`reach_cycles`], and only for the keeper.
-/// 0 if it can kick the ball by its own test (1.03 m), else the first cycle
-/// of librcsc's short-step prediction ([`short_steps`]), else the long-step
-/// rule from cycle 6 on.
-fn own_reach_cycle(
-    p: &Player,
-    ball: &Ball,
-    path: &[DVec2],
-    other: usize,
-    keeper_control: Option<f64>,
-) -> usize {
-    if p.pos.distance(path[0]) <= AGENT_KICKABLE_AREA {
-        return 0;
-    }
-    let short = short_steps(p, ball, MAX_CYCLE.min(path.len()), keeper_control.is_some());
-    match short.iter().flatten().next() {
-        Some(first) => first.cycle,
-        None => Scan::new(p, path, keeper_control)
-            .run(other.max(SHORT_STEPS + 1).min(path.len()), Estimate::Own),
-    }
-}
-
-/// One player's walk along the ball path.
-struct Scan<'a> {
-    p: &'a Player,
-    path: &'a [DVec2],
-    keeper_control: Option<f64>,
-    facing: DVec2,
-}
-
-impl<'a> Scan<'a> {
-    fn new(p: &'a Player, path: &'a [DVec2], keeper_control: Option<f64>) -> Self {
-        Scan {
-            p,
-            path,
-            keeper_control,
-            facing: unit(p.body),
+    let facing = unit(p.body);
+    for (t, &ball) in path.iter().enumerate().skip(skip) {
+        let (rel, control) = reach_vector(p, t, ball, keeper_control);
+        let reach = control + dash_distance(t);
+        if rel.length_squared() > reach * reach {
+            continue; // out of reach even without turning
         }
-    }
-
-    /// The reach cycle by `estimate`, walking from cycle `start` (at least
-    /// the path's length if the walk runs off its end).
-    fn run(&self, start: usize, estimate: Estimate) -> usize {
-        let (p, path, facing) = (self.p, self.path, self.facing);
-        for (t, &ball) in path.iter().enumerate().skip(start) {
-            let (rel, control) = reach_vector(p, t, ball, self.keeper_control);
-            let reach = control + dash_distance(t);
-            if rel.length_squared() > reach * reach {
-                continue; // out of reach even without turning
-            }
-            let d = rel.length();
-            if estimate == Estimate::Own && t == 0 {
-                // Only a ball the player can kick by its own test is reached
-                // at once (`InterceptTable::predictSelf`).
-                if d <= AGENT_KICKABLE_AREA {
-                    return 0;
-                }
-                continue;
-            }
-            if d <= control && estimate == Estimate::Other {
-                return t;
-            }
-            let gap = d - control + estimate.buffer(t);
-            if gap <= 0.0 {
-                return t;
-            }
-            let n_turn = turn_count(facing, rel, d, control);
-            if t >= n_turn && gap <= dash_distance(t - n_turn) {
-                return t;
-            }
-        }
-        let last = path.len() - 1;
-        let (rel, control) = reach_vector(p, last, path[last], self.keeper_control);
-        let d = rel.length();
-        let gap = d - control + estimate.buffer(last.max(6));
-        if gap <= 0.0 {
-            return path.len();
-        }
-        path.len()
-            .max(turn_count(facing, rel, d, control) + dash_cycles(gap))
-    }
-}
-
-/// One way for a player to get the ball at a given cycle (librcsc
-/// `InterceptInfo`, one entry of the self-interception cache).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Interception {
-    /// Cycle at which the ball is reached.
-    pub cycle: usize,
-    /// Turns before the dashes (0 or 1).
-    pub turns: usize,
-    /// Dashes after the turn.
-    pub dashes: usize,
-    /// Whether the dashes go backwards.
-    pub back: bool,
-    /// Distance from the player's final position to the ball
-    /// (`InterceptInfo::ballDist`).
-    pub ball_dist: f64,
-}
-
-/// How one player gets the ball on one ball path (spec 6.1.2), cycle by
-/// cycle; the player's facing is computed once for all cycles.
-pub struct Reach<'a> {
-    p: &'a Player,
-    path: &'a [DVec2],
-    facing: DVec2,
-    keeper_control: Option<f64>,
-    estimate: Estimate,
-}
-
-impl<'a> Reach<'a> {
-    /// Player `p` on `path`; `keeper_control` is the keeper's control area
-    /// inside its penalty area, `estimate` whose margin applies.
-    pub fn new(
-        p: &'a Player,
-        path: &'a [DVec2],
-        keeper_control: Option<f64>,
-        estimate: Estimate,
-    ) -> Self {
-        Reach {
-            p,
-            path,
-            facing: unit(p.body),
-            keeper_control,
-            estimate,
-        }
-    }
-
-    /// How the player gets the ball at cycle `t`, if it can by the rule of
-    /// spec 6.1.2 under the estimate's margin; beyond the path, how it
-    /// reaches the ball's resting point (librcsc `SelfInterceptV13::predictFinal`).
-    ///
-    /// As librcsc's `canReachAfterDash`, the player dashes along its body (or
-    /// along the line to the ball after a turn): if the dashes carry it past the
-    /// ball (within 0.1 m) it stops on that line, and `ball_dist` is the ball's
-    /// distance from the line; otherwise it is the distance left after the dashes.
-    pub fn at(&self, t: usize) -> Option<Interception> {
-        let Reach {
-            p,
-            path,
-            facing,
-            keeper_control,
-            estimate,
-        } = *self;
-        let final_point = t >= path.len();
-        let i = t.min(path.len() - 1);
-        let (rel, control) = reach_vector(p, i, path[i], keeper_control);
         let d = rel.length();
         let gap = d - control;
-        let turns = if gap > 0.0 {
-            turn_count(facing, rel, d, control)
-        } else {
-            0
-        };
-        let needed = gap + estimate.buffer(t);
-        if !final_point && needed > 0.0 && (t < turns || needed > dash_distance(t - turns)) {
-            return None;
+        if gap <= 0.0 {
+            return t;
         }
-        let dashes = if final_point {
-            dash_cycles(gap)
-        } else {
-            t - turns
-        };
-        let back = turns == 0 && rel.dot(facing) < 0.0;
-        let line = match (turns, back) {
-            (0, false) => facing,
-            (0, true) => -facing,
-            _ => rel / d,
-        };
-        let along = rel.dot(line);
-        let run = dash_distance(dashes);
-        let ball_dist = if dashes == 0 {
-            d
-        } else if along - 0.1 <= run {
-            rel.perp_dot(line).abs()
-        } else {
-            (rel - line * run).length()
-        };
-        Some(Interception {
-            cycle: t.max(turns + dashes),
-            turns,
-            dashes,
-            back,
-            ball_dist,
-        })
+        let n_turn = turn_count(facing, rel, d, control);
+        if t >= n_turn && gap <= dash_distance(t - n_turn) {
+            return t;
+        }
     }
+    let last = path.len() - 1;
+    let (rel, control) = reach_vector(p, last, path[last], keeper_control);
+    let d = rel.length();
+    let gap = d - control;
+    if gap <= 0.0 {
+        return path.len();
+    }
+    path.len()
+        .max(turn_count(facing, rel, d, control) + dash_cycles(gap))
 }
 
 #[cfg(test)]
@@ -497,10 +297,12 @@ mod tests {
         w.ball.pos = DVec2::new(KICKABLE_AREA + dash_distance(2) - 0.1, 0.0);
         let a = Analysis::new(&w);
         assert_eq!((a.reach[0], a.own_reach[0]), (2, 3));
-        // Beyond 5 cycles the margin is 0.2 m.
+        // A resting ball farther away: librcsc's ball path ends after 5
+        // cycles, so the own estimate is its final point, the dashes that
+        // cover the distance less the kickable area, like the others'.
         w.ball.pos = DVec2::new(KICKABLE_AREA + dash_distance(7) - 0.17, 0.0);
         let a = Analysis::new(&w);
-        assert_eq!((a.reach[0], a.own_reach[0]), (7, 8));
+        assert_eq!((a.reach[0], a.own_reach[0]), (7, 7));
         // The keeper's own estimate too.
         w.keeper = Player::new(DVec2::new(50.0, 0.0), PI);
         w.ball.pos = DVec2::new(50.0 - KEEPER_CONTROL_AREA - dash_distance(2) + 0.1, 0.0);

@@ -23,7 +23,7 @@ pub mod policy;
 pub mod referee;
 pub mod render;
 pub mod rollout;
-pub mod short_reach;
+pub mod self_intercept;
 pub mod view;
 pub mod world;
 

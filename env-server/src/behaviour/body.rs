@@ -1,12 +1,13 @@
 //! librcsc's basic body behaviours, simplified as spec 6.1.3, 6.1.5 and 6.2.3 allow.
 
 use super::hold::hold_ball;
-use super::intercept::{best_interception, self_cache};
+use super::intercept::best_interception;
 use super::kick_table;
-use crate::analysis::{Analysis, Estimate};
+use crate::analysis::Analysis;
 use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_for_accel, max_kick_accel};
+use crate::self_intercept::{self, SHORT_STEPS};
 use crate::world::{Ball, Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -65,60 +66,53 @@ pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) ->
 
 /// Body_Intercept (spec 6.1.3) for an attacker with reach cycle `reach`:
 /// towards the interception `getBestIntercept` picks from its cache;
-/// `no_dash_turn` is where to face when the ball comes to the player.
+/// `face` is where to look when the ball comes to the player.
+///
+/// Simplified: from the chosen cycle on, the turn and the full dash follow
+/// 6.1.2's others' rule with the own estimate's margin (0.15 m up to cycle
+/// 5, 0.2 m later) instead of the cache entry's turns, power and direction
+/// and librcsc's `doWaitTurn` and `doInertiaDash`.
 pub fn intercept(
     p: &Player,
     world: &World,
     analysis: &Analysis,
     reach: usize,
-    control: f64,
-    no_dash_turn: DVec2,
+    face: DVec2,
 ) -> Command {
     if reach > 100 {
         let rest = world.ball_final();
         return go_to_point(p, rest, 2.0, MAX_DASH_POWER).unwrap_or_else(|| turn_to_point(p, rest));
     }
-    let cycle = best_interception(
-        p,
-        world,
-        analysis,
-        &self_cache(p, &world.ball, analysis.path()),
-    )
-    .map_or(reach, |best| best.cycle);
+    let cache = self_intercept::predict(p, &world.ball, analysis.path(), false);
+    let cycle = best_interception(p, world, analysis, &cache).map_or(reach, |best| best.cycle);
     let target = analysis.ball_at(cycle);
-    let q = p.drift(cycle as u32);
-    let rel = target - q;
+    let rel = target - p.drift(cycle as u32);
     let d = rel.length();
-    // No dash when the ball comes inside the control area by the own
-    // estimate's margin (librcsc `predictNoDash`, `control_area_buf`).
-    if d <= control - Estimate::Own.buffer(cycle) {
-        return turn_to_point(p, no_dash_turn);
+    // No dash when the ball comes inside the kickable area by the own
+    // estimate's margin (`control_area_buf`, and 0.2 m in the long step).
+    let margin = if cycle <= SHORT_STEPS { 0.15 } else { 0.2 };
+    if d <= KICKABLE_AREA - margin {
+        return turn_to_point(p, face);
     }
     let mut e = angle_diff(direction(rel), p.body);
     let back = e > FRAC_PI_2 && d < 5.0;
     if back {
         e = PI - e;
     }
-    let threshold = 12f64.to_radians().max(asin_clamped(control / d));
+    let threshold = 12f64.to_radians().max(asin_clamped(KICKABLE_AREA / d));
     if e > threshold {
-        let face = if back {
-            direction(rel) + PI
-        } else {
-            direction(rel)
-        };
-        return turn_to_direction(p, face);
+        let to_ball = direction(rel);
+        return turn_to_direction(p, if back { to_ball + PI } else { to_ball });
     }
     if p.stamina - MAX_DASH_POWER < 0.3 * STAMINA_MAX + 1.0 {
         return Command::Turn { moment: 0.0 };
     }
-    Command::Dash {
-        power: if back {
-            -MAX_DASH_POWER
-        } else {
-            MAX_DASH_POWER
-        },
-        dir: 0.0,
-    }
+    let power = if back {
+        -MAX_DASH_POWER
+    } else {
+        MAX_DASH_POWER
+    };
+    Command::Dash { power, dir: 0.0 }
 }
 
 /// Largest speed along `dir` that one kick can give a ball moving at

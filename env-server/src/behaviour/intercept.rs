@@ -3,11 +3,11 @@
 //! lines 225-757, field-player mode) over the cycles of its self-interception
 //! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
 
-use crate::analysis::{Analysis, Estimate, Interception, MAX_CYCLE, Reach};
+use crate::analysis::Analysis;
 use crate::geom::direction;
 use crate::params::*;
-use crate::short_reach::{SHORT_STEPS, short_steps};
-use crate::world::{Ball, Player, World};
+use crate::self_intercept::Interception;
+use crate::world::{Player, World};
 use glam::DVec2;
 
 /// Where `getBestIntercept` measures the distance to the goal (line 240).
@@ -16,43 +16,6 @@ const GOAL: DVec2 = DVec2::new(65.0, 0.0);
 /// speed under full dashes, 0.6/(1 − 0.4) = 1 m/cycle (librcsc
 /// rcsc/common/player_type.cpp lines 389-396).
 const THROUGH_SPEED: f64 = 0.9 * MAX_DASH_POWER * DASH_POWER_RATE / (1.0 - PLAYER_DECAY);
-/// How many cycles the long-step prediction looks on from its first
-/// reachable cycle (`max_loop = cycle + 10`, lines 1874-1877).
-const LONG_WINDOW: usize = 10;
-
-/// The interceptions an attacker's self-interception cache holds, earliest
-/// first, as `SelfInterceptV13::predict` (lines 84-150) fills it for a player
-/// that cannot kick the ball yet: every reachable cycle up to 5
-/// (`predictShortStep`, lines 865-1070); from the first reachable cycle after
-/// 5 on, the reachable ones among the next 10 (`predictLongStep`, lines
-/// 1756-1925), below `min(30, ball path length)` (`InterceptTable::predictSelf`);
-/// and, when no cycle after 5 is reachable, the ball's resting point
-/// (`predictFinal`, lines 1932-1990).
-///
-/// Simplified: each cycle holds one way (spec 6.1.2's turn-then-dash with
-/// its 0.15/0.2 m margins) where librcsc keeps the best of several dash
-/// powers, omni-dashes and back dashes, and stamina never rules an entry out
-/// (librcsc's `EXHAUST` mode needs the stamina below the recovery threshold,
-/// which save-recovery dashing avoids).
-pub fn self_cache(p: &Player, ball: &Ball, path: &[DVec2]) -> Vec<Interception> {
-    let own = Reach::new(p, path, None, Estimate::Own);
-    let reach = |t: usize| own.at(t);
-    let max_cycle = MAX_CYCLE.min(path.len());
-    let mut cache: Vec<Interception> = short_steps(p, ball, max_cycle, false)
-        .into_iter()
-        .flatten()
-        .collect();
-    let long = (SHORT_STEPS + 1..max_cycle).find_map(reach);
-    match long {
-        Some(first) => {
-            let end = max_cycle.min(first.cycle + LONG_WINDOW);
-            cache.push(first);
-            cache.extend((first.cycle + 1..end).filter_map(reach));
-        }
-        None => cache.extend(own.at(path.len())),
-    }
-    cache
-}
 
 /// What `getBestIntercept` reads of one cache entry.
 struct Candidate {
@@ -85,7 +48,8 @@ impl<'a> Best<'a> {
 }
 
 /// The interception attacker `p` goes for (`getBestIntercept`, field-player
-/// mode), given its cache; `None` for an empty cache.
+/// mode), given its self-interception cache ([`crate::self_intercept::predict`]);
+/// `None` for an empty cache.
 ///
 /// Each entry whose ball point lies inside the pitch less 1 m (lines 296-301)
 /// and before the keeper (`opp_min`, the attackers' estimate of its reach)
@@ -131,7 +95,7 @@ pub fn best_interception(
         let cycle = c.entry.cycle as f64;
         let is_attacker = v.x > 0.5
             && v.length_squared() > THROUGH_SPEED * THROUGH_SPEED
-            && !dashes_back(c)
+            && !c.entry.back()
             && b.x < 47.0
             && (b.x > 35.0 || b.x > world.offside_line);
         if cycle >= opp_min * if is_attacker { 0.95 } else { 0.7 } {
@@ -175,12 +139,6 @@ pub fn best_interception(
         (None, Some(m)) => pick(m),
         (None, None) => Some(chance(p, world, opp_min, cache).unwrap_or(*first)),
     }
-}
-
-/// Whether the entry's dashes go backwards (`dashPower() < 0`); a ball that
-/// comes to the player's inertia point needs no dash at all.
-fn dashes_back(c: &Candidate) -> bool {
-    c.entry.back && c.drift.distance(c.ball) > KICKABLE_AREA - Estimate::Own.buffer(c.entry.cycle)
 }
 
 /// Lines 656-732: between the earliest no-turn point `n` and the nearest
@@ -233,6 +191,7 @@ mod tests {
     use crate::behaviour::body::intercept;
     use crate::behaviour::movement::forward_point;
     use crate::physics::Command;
+    use crate::self_intercept::{self, SHORT_STEPS};
     use std::f64::consts::FRAC_PI_4;
 
     /// A world with the ball at `ball` moving at `vel`, attacker 0 at `mate`
@@ -253,7 +212,13 @@ mod tests {
     /// The interception attacker 0 picks.
     fn best(w: &World, a: &Analysis) -> Interception {
         let p = &w.offense[0];
-        best_interception(p, w, a, &self_cache(p, &w.ball, a.path())).expect("a reachable ball")
+        best_interception(
+            p,
+            w,
+            a,
+            &self_intercept::predict(p, &w.ball, a.path(), false),
+        )
+        .expect("a reachable ball")
     }
 
     #[test]
@@ -272,14 +237,7 @@ mod tests {
         assert!(a.ball_at(best.cycle).x > 35.0, "{best:?}");
         // Its first command turns it goalwards, not back towards the ball.
         let me = &w.offense[0];
-        let cmd = intercept(
-            me,
-            &w,
-            &a,
-            a.own_reach[0],
-            KICKABLE_AREA,
-            forward_point(me.pos.y),
-        );
+        let cmd = intercept(me, &w, &a, a.own_reach[0], forward_point(me.pos.y));
         let Command::Turn { moment } = cmd else {
             panic!("expected a turn, got {cmd:?}");
         };
@@ -291,7 +249,7 @@ mod tests {
         let mate = DVec2::new(30.0, -3.0);
         for vel in [DVec2::new(0.8, 0.0), DVec2::new(-1.0, 0.3)] {
             let (w, a) = scene(DVec2::new(27.0, 0.0), vel, mate);
-            let cache = self_cache(&w.offense[0], &w.ball, a.path());
+            let cache = self_intercept::predict(&w.offense[0], &w.ball, a.path(), false);
             assert!(cache.len() > 3, "{vel}: several points to choose from");
             assert_eq!(cache[0].cycle, a.own_reach[0]);
             assert_eq!(best(&w, &a).cycle, a.own_reach[0], "{vel}");
@@ -306,12 +264,12 @@ mod tests {
             DVec2::new(0.5, 0.0),
             DVec2::new(30.0, 0.0),
         );
-        let cycles: Vec<usize> = self_cache(&w.offense[0], &w.ball, a.path())
+        let cycles: Vec<usize> = self_intercept::predict(&w.offense[0], &w.ball, a.path(), false)
             .iter()
             .map(|c| c.cycle)
             .collect();
         let first = a.own_reach[0];
         assert!(first > SHORT_STEPS);
-        assert_eq!(cycles, (first..first + LONG_WINDOW).collect::<Vec<_>>());
+        assert_eq!(cycles, (first..first + 10).collect::<Vec<_>>());
     }
 }

@@ -3,11 +3,11 @@
 
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::analysis::{Analysis, Estimate, Interception, MAX_CYCLE, Reach};
+use crate::analysis::Analysis;
 use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
-use crate::short_reach::{SHORT_STEPS, short_steps};
+use crate::self_intercept::{self, Interception};
 use crate::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -30,7 +30,7 @@ pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Com
     if world.attacker_kickable_seen_by_keeper() && world.ball.vel != DVec2::ZERO {
         let mut believed = world.clone();
         believed.ball.vel = DVec2::ZERO;
-        return decide(&believed, &Analysis::new(&believed), memory);
+        return decide(&believed, &Analysis::for_keeper(&believed), memory);
     }
     decide(world, analysis, memory)
 }
@@ -183,12 +183,12 @@ impl<'a> View<'a> {
         if best.turns > 0 {
             return turn_to_direction(k, direction(target - k.drift(best.cycle as u32)));
         }
-        let full = if best.back {
+        let full = if best.back() {
             -MAX_DASH_POWER
         } else {
             MAX_DASH_POWER
         };
-        let consumed = if best.back { -2.0 * full } else { full };
+        let consumed = if best.back() { -2.0 * full } else { full };
         if save_recovery && k.stamina - consumed < 0.3 * STAMINA_MAX + 1.0 {
             return IDLE;
         }
@@ -200,37 +200,15 @@ impl<'a> View<'a> {
     /// goalie mode, spec 7.3.1): among the cycles its self-interception cache
     /// holds, the one that meets the ball farthest out, else the earliest.
     fn best_interception(&self) -> Interception {
-        let path = self.analysis.path();
-        let first = self.self_min;
-        // librcsc's cache: every cycle up to 5, then from the first reachable
-        // one after cycle 5 on for 10 cycles.
-        let end = path.len().min(first.max(6) + 10);
+        let cache =
+            self_intercept::predict(self.keeper, &self.world.ball, self.analysis.path(), true);
         let mut goalie: Option<(f64, Interception)> = None;
         let mut aggressive: Option<(f64, Interception)> = None;
-        let reach = Reach::new(
-            self.keeper,
-            path,
-            Some(KEEPER_CONTROL_AREA),
-            Estimate::Other,
-        );
-        let short = short_steps(
-            self.keeper,
-            &self.world.ball,
-            path.len().min(MAX_CYCLE),
-            true,
-        );
-        // librcsc's short steps up to cycle 5, the long-step rule after.
-        let entry = |t: usize| match t {
-            1..=SHORT_STEPS => short[t],
-            _ => reach.at(t),
-        };
-        for (t, &b) in path.iter().enumerate().take(end).skip(first) {
+        for &c in &cache {
+            let (t, b) = (c.cycle, self.analysis.ball_at(c.cycle));
             if b.x.abs() > PITCH_HALF_LENGTH - 1.0 || b.y.abs() > PITCH_HALF_WIDTH - 1.0 {
                 continue;
             }
-            let Some(c) = entry(t) else {
-                continue;
-            };
             // The ball reached on the keeper's running line without a turn,
             // or exactly on it after one.
             let on_line =
@@ -254,11 +232,7 @@ impl<'a> View<'a> {
                 }
             }
         }
-        aggressive
-            .or(goalie)
-            .map(|(_, c)| c)
-            .or_else(|| entry(first))
-            .expect("the keeper gets the ball at its reach cycle")
+        aggressive.or(goalie).map_or(cache[0], |(_, c)| c)
     }
 
     /// librcsc `Body_Intercept2009::doInertiaDash` for the keeper: dash
@@ -584,15 +558,8 @@ mod tests {
 
     /// The cache entries the goalie rule of `getBestIntercept` accepts.
     fn goalie_candidates(view: &View) -> Vec<Interception> {
-        let path = view.analysis.path();
-        let reach = Reach::new(
-            view.keeper,
-            path,
-            Some(KEEPER_CONTROL_AREA),
-            Estimate::Other,
-        );
-        (view.self_min..path.len().min(view.self_min.max(6) + 10))
-            .filter_map(|t| reach.at(t))
+        self_intercept::predict(view.keeper, &view.world.ball, view.analysis.path(), true)
+            .into_iter()
             .filter(|c| (c.turns == 0 && c.ball_dist < 0.65) || c.ball_dist < 0.01)
             .collect()
     }

@@ -1,31 +1,67 @@
-//! A player's own reach in its first five cycles (spec 6.1.2): librcsc's
-//! `SelfInterceptV13::predictOneStep` and `predictShortStep`
-//! (rcsc/player/self_intercept_v13.cpp, lines 159-1755). Unlike the long-step
-//! rule, the player does not run straight at the ball: it dashes along its
-//! body (after the turns it needs), along its back, or sideways first (the
-//! omni-directional dash), and the ball must end up 0.15 m inside its
-//! control area: the kickable area, or for the keeper (goalie mode) the
-//! catchable area while the ball is in its penalty area.
+//! A player's own reach (spec 6.1.2): librcsc's `SelfInterceptV13`
+//! (rcsc/player/self_intercept_v13.cpp). Unlike the estimate others make of
+//! a player, it simulates the player's own turns and dashes: in the first
+//! five cycles (`predictOneStep`, `predictShortStep`) along its body, its
+//! back or sideways first (the omni-directional dash), the ball ending up
+//! 0.15 m inside its control area; later (`predictLongStep`) full dashes
+//! along the line to the ball after the turns it needs; and, when no cycle
+//! qualifies, the ball's resting point (`predictFinal`). The control area is
+//! the kickable area, or for the keeper (goalie mode) the catchable area
+//! while the ball is in its penalty area.
 //!
 //! Stamina follows librcsc's save-recovery dashing (never below the recovery
 //! threshold), so no entry is `EXHAUST`.
 
-use crate::analysis::{DRIFT, Interception};
-use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
+use crate::analysis::DRIFT;
+use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
 use crate::params::*;
-use crate::physics::{dash_dir_rate, kick_rate, update_stamina};
+use crate::physics::{dash_dir, dash_dir_rate, kick_rate, update_stamina};
 use crate::world::{Ball, Player};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_4, PI};
 
+/// Longest prediction (librcsc `InterceptTable::MAX_CYCLE`).
+pub const MAX_CYCLE: usize = 30;
 /// Last cycle of the short-step prediction (`MAX_SHORT_STEP`).
 pub const SHORT_STEPS: usize = 5;
+/// How many cycles the long step looks on from its first reachable one
+/// (`max_loop = cycle + 10`).
+const LONG_WINDOW: usize = 10;
 /// `control_area_buf`: how far inside the control area the ball must come.
 const CONTROL_BUF: f64 = 0.15;
 /// `MIN_TURN_THR` (12.5°): the smallest angle that needs a turn.
 const MIN_TURN_THR: f64 = 12.5 * PI / 180.0;
+/// cos(12.5°).
+const COS_MIN_TURN_THR: f64 = 0.976_296_007_119_933_4;
 /// The stamina kept back by save-recovery dashing (`recoverDecThrValue() + 1`).
 const STAMINA_RESERVE: f64 = 0.3 * STAMINA_MAX + 1.0;
+
+/// One way for a player to get the ball (librcsc `InterceptInfo`, one entry
+/// of the self-interception cache).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interception {
+    /// Cycle at which the ball is reached.
+    pub cycle: usize,
+    /// Turns before the dashes.
+    pub turns: usize,
+    /// Dashes after the turns.
+    pub dashes: usize,
+    /// Power of the first dash (negative backwards, 0 with no dash).
+    pub power: f64,
+    /// Direction of the first dash relative to the body (radians; not 0
+    /// only for the one-step and omni-directional dashes).
+    pub dir: f64,
+    /// Distance from the player's final position to the ball
+    /// (`InterceptInfo::ballDist`).
+    pub ball_dist: f64,
+}
+
+impl Interception {
+    /// Whether the dashes go backwards.
+    pub fn back(&self) -> bool {
+        self.power < 0.0
+    }
+}
 
 /// One way to reach the ball and the stamina left after it.
 #[derive(Clone, Copy, Debug)]
@@ -34,71 +70,355 @@ struct Way {
     stamina: f64,
 }
 
-/// The best way to reach the ball at each cycle 1 to 5 (index = cycle) for
-/// player `p`, who cannot kick the ball now, the keeper if `goalie`;
-/// `max_cycle` bounds the cycles as the ball cache's length does
-/// (`min(MAX_CYCLE, cache size)`).
-pub fn short_steps(
+/// Every way `SelfInterceptV13::predict` finds for player `p` (the keeper
+/// if `goalie`), who cannot kick the ball now, on the ball path `path`
+/// (whose first point is `ball`'s position), earliest first: the best of
+/// each short step, the long-step cycles from the first reachable one for
+/// 10 cycles, and the ball's resting point when no long step reaches it.
+pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Interception> {
+    let max_cycle = MAX_CYCLE.min(path.len());
+    let mut cache: Vec<Interception> = short_steps(p, ball, max_cycle, goalie).collect();
+    let before = cache.len();
+    let mut end = max_cycle;
+    let mut t = long_start(p, ball);
+    while t < end {
+        if let Some(way) = long_step(p, ball, path[t], t, goalie) {
+            if cache.len() == before {
+                end = max_cycle.min(t + LONG_WINDOW);
+            }
+            cache.push(way);
+        }
+        t += 1;
+    }
+    if cache.len() == before {
+        cache.push(final_point(p, ball, max_cycle, goalie));
+    }
+    cache
+}
+
+/// The own reach cycle (`self_min`): 0 if the player can kick the ball by
+/// its own test (1.03 m), else the earliest way of [`predict`].
+pub fn reach_cycle(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> usize {
+    if p.pos.distance(ball.pos) <= AGENT_KICKABLE_AREA {
+        return 0;
+    }
+    let max_cycle = MAX_CYCLE.min(path.len());
+    if let Some(first) = short_steps(p, ball, max_cycle, goalie).next() {
+        return first.cycle;
+    }
+    (long_start(p, ball)..max_cycle)
+        .find_map(|t| long_step(p, ball, path[t], t, goalie))
+        .unwrap_or_else(|| final_point(p, ball, max_cycle, goalie))
+        .cycle
+}
+
+/// The first cycle `predictLongStep` tries: after the short steps, and not
+/// before the player can cover its offset from the ball's line.
+fn long_start(p: &Player, ball: &Ball) -> usize {
+    let lateral = in_frame(p.pos - ball.pos, unit(direction(ball.vel)))
+        .y
+        .abs();
+    let start = libm::ceil((lateral - KICKABLE_AREA - 0.2) / REAL_SPEED_MAX);
+    if start <= SHORT_STEPS as f64 {
+        SHORT_STEPS + 1
+    } else {
+        start as usize
+    }
+}
+
+/// `predictLongStep` at cycle `t` (the ball at `ball_pos`):
+/// `canReachAfterTurnDash`.
+fn long_step(
     p: &Player,
     ball: &Ball,
+    ball_pos: DVec2,
+    t: usize,
+    goalie: bool,
+) -> Option<Interception> {
+    let control = if goalie && in_penalty_area(ball_pos) {
+        KEEPER_CONTROL_AREA
+    } else {
+        KICKABLE_AREA
+    };
+    if control + REAL_SPEED_MAX * (t as f64) < p.pos.distance(ball_pos)
+        || out_of_run(p, ball_pos, t, control)
+    {
+        return None;
+    }
+    let (n_turn, dash_angle, back) = long_turns(p, ball, ball_pos, t, control, goalie);
+    if n_turn > t {
+        return None;
+    }
+    reach_after_dash(
+        p,
+        ball,
+        ball_pos,
+        n_turn,
+        t - n_turn,
+        control,
+        dash_angle,
+        back,
+    )
+}
+
+/// Whether no turn-then-dash plan of `t` cycles can reach `ball_pos`, by a
+/// bound that never rejects a plan [`reach_after_dash`] accepts (it only
+/// saves the simulation). After the turns the dash line is within the turn
+/// margin of the ball as seen from the player's drift point, at distance
+/// `d`; the run along it (drift and full dashes) is at most `k`. The run
+/// must pass the ball's point on that line (at least `d·cos(margin)` minus
+/// the drift, within 0.14 m for librcsc's rounding allowances) or end
+/// within the control area of the ball.
+fn out_of_run(p: &Player, ball_pos: DVec2, t: usize, control: f64) -> bool {
+    let d = ball_pos.distance(p.drift(t as u32));
+    let buf = (control - 0.25).max(0.5);
+    if d <= buf {
+        return false;
+    }
+    let ratio = buf / d;
+    let cos_margin = COS_MIN_TURN_THR.min((1.0 - ratio * ratio).sqrt());
+    // The dash table's 3 decimals round down by less than 0.01 m.
+    let k = 2.0 * p.vel.length() * DRIFT[t.min(DRIFT.len() - 1)] + dash_distance(t) + 0.01;
+    d * cos_margin >= k + 0.14 && d >= k + control
+}
+
+/// `predictTurnCycle`: the turns (each at most 162°, the largest moment less
+/// its noise) until the body, or its back where `canBackDashChase` allows,
+/// points at the ball within max(12.5°, asin((control - 0.25) / distance));
+/// returns them, the dash direction and whether the dashes go backwards.
+fn long_turns(
+    p: &Player,
+    ball: &Ball,
+    ball_pos: DVec2,
+    t: usize,
+    control: f64,
+    goalie: bool,
+) -> (usize, f64, bool) {
+    let rel = ball_pos - p.drift(t as u32);
+    let (dist, target) = (rel.length(), direction(rel));
+    let signed = normalize_angle(target - p.body);
+    let mut diff = signed.abs();
+    let buf = (control - 0.25).max(0.5);
+    let margin = if buf < dist {
+        asin_clamped(buf / dist)
+    } else {
+        PI
+    }
+    .max(MIN_TURN_THR);
+    let mut dash_angle = p.body;
+    let back = back_dash_allowed(p, ball, t, diff, goalie);
+    if back {
+        dash_angle = normalize_angle(p.body + PI);
+        diff = PI - diff;
+    }
+    let mut n_turn = 0;
+    let mut speed = p.vel.length();
+    while diff > margin {
+        diff -= 0.9 * PI / (1.0 + INERTIA_MOMENT * speed);
+        speed *= PLAYER_DECAY;
+        n_turn += 1;
+    }
+    if n_turn > 0 {
+        // librcsc measures the sign before a back dash flips the angle.
+        let left = diff.max(0.0);
+        dash_angle = if signed > 0.0 {
+            target + left
+        } else {
+            target - left
+        };
+    }
+    (n_turn, dash_angle, back)
+}
+
+/// `canBackDashChase`: a ball at least 100° off the body, before cycle 5 for
+/// an attacker; for the keeper before cycle 15 while the ball is then
+/// within 21 m of its goal; and stamina for full backward dashes.
+fn back_dash_allowed(p: &Player, ball: &Ball, t: usize, diff: f64, goalie: bool) -> bool {
+    if diff < 100f64.to_radians() {
+        return false;
+    }
+    if t >= 5 && (!goalie || t >= 15) {
+        return false;
+    }
+    if goalie && t >= 5 {
+        let at = ball.pos + ball.vel * decay_sum(BALL_DECAY, t as u32);
+        if at.distance(GOAL_CENTER) > 21.0 {
+            return false;
+        }
+    }
+    let left = p.stamina - 2.0 * MAX_DASH_POWER * t as f64
+        + STAMINA_INC_MAX * p.recovery * (t as f64 - 1.0);
+    left >= 0.3 * STAMINA_MAX + 205.0
+}
+
+/// `canReachAfterDash`: full dashes along `dash_angle` after the turns; the
+/// player reaches the ball once its run along that line passes the ball's
+/// point there (plus half its noise), or if after the dashes the ball is
+/// within max(control - 0.225, control - 0.2 - noise).
+#[allow(clippy::too_many_arguments)]
+fn reach_after_dash(
+    p: &Player,
+    ball: &Ball,
+    ball_pos: DVec2,
+    n_turn: usize,
+    n_dash: usize,
+    control: f64,
+    dash_angle: f64,
+    back: bool,
+) -> Option<Interception> {
+    let u = unit(dash_angle);
+    let inertia = p.drift((n_turn + n_dash) as u32);
+    let ball_rel = in_frame(ball_pos - p.pos, u);
+    let ball_noise = ball.pos.distance(ball_pos) * BALL_RAND * 0.5;
+    let noised_x = ball_rel.x + ball_noise;
+    let mut pos = in_frame(p.vel * DRIFT[n_turn.min(DRIFT.len() - 1)], u);
+    let mut vel = in_frame(p.vel * PLAYER_DECAY.powi(n_turn as i32), u);
+    let mut me = *p;
+    for _ in 0..n_turn {
+        update_stamina(&mut me);
+    }
+    let mut first = None;
+    for _ in 0..n_dash {
+        // The power the stamina allows (half of it backwards); librcsc's
+        // speed-limit branch never acts for this player type (100 · 0.006 <
+        // 1.05 · 0.6).
+        let share = if back { 0.5 } else { 1.0 };
+        let power = (available(me.stamina) * share).clamp(0.0, MAX_DASH_POWER);
+        first.get_or_insert(power);
+        vel.x += power * DASH_POWER_RATE * me.effort;
+        pos += vel;
+        vel *= PLAYER_DECAY;
+        spend(&mut me, if back { -power } else { power });
+        if pos.x * (1.0 - PLAYER_RAND * 0.01) + 0.1 > noised_x {
+            let mut end = p.pos + u * pos.x + u.perp() * pos.y;
+            if inertia.distance_squared(end) > 0.01 {
+                let line = (end - inertia).normalize();
+                end = inertia + line * (ball_pos - inertia).dot(line);
+            }
+            let power = first.unwrap_or(0.0);
+            return Some(entry(
+                n_turn,
+                n_dash,
+                if back { -power } else { power },
+                0.0,
+                end.distance(ball_pos),
+            ));
+        }
+    }
+    let travel = pos.length();
+    let buf = 0.2 + travel * PLAYER_RAND * 0.5 + ball_noise;
+    let last = ball_rel.distance(pos);
+    (last < (control - 0.225).max(control - buf)).then(|| {
+        let end = p.pos + u * pos.x + u.perp() * pos.y;
+        let power = first.unwrap_or(0.0);
+        entry(
+            n_turn,
+            n_dash,
+            if back { -power } else { power },
+            0.0,
+            end.distance(ball_pos),
+        )
+    })
+}
+
+/// `predictFinal`: the ball's resting point, after the turns and the dashes
+/// that cover the distance less the control area (0.15 m less for the
+/// keeper's catch), and not before the end of the ball's path.
+fn final_point(p: &Player, ball: &Ball, max_cycle: usize, goalie: bool) -> Interception {
+    let me_final = p.final_drift();
+    let ball_final = ball.pos + ball.vel / (1.0 - BALL_DECAY);
+    let control = if goalie && in_penalty_area(ball_final) {
+        KEEPER_CONTROL_AREA - 0.15
+    } else {
+        KICKABLE_AREA
+    };
+    let (n_turn, _, _) = long_turns(p, ball, ball_final, 100, control, goalie);
+    let n_dash =
+        dash_cycles(me_final.distance(ball_final) - control).max(max_cycle.saturating_sub(n_turn));
+    entry(n_turn, n_dash, MAX_DASH_POWER, 0.0, 0.0)
+}
+
+/// The best way to reach the ball at each reachable cycle from 1 to 5, in
+/// order and computed only as far as they are taken, for player `p`, who
+/// cannot kick the ball now, the keeper if `goalie`; `max_cycle` bounds the
+/// cycles as the ball cache's length does (`min(MAX_CYCLE, cache size)`).
+pub fn short_steps<'a>(
+    p: &'a Player,
+    ball: &'a Ball,
     max_cycle: usize,
     goalie: bool,
-) -> [Option<Interception>; SHORT_STEPS + 1] {
-    let mut best = [None; SHORT_STEPS + 1];
-    let next = ball.pos + ball.vel;
-    let one_step_control = match goalie && in_penalty_area(next) {
+) -> impl Iterator<Item = Interception> + 'a {
+    let one_step_control = match goalie && in_penalty_area(ball.pos + ball.vel) {
         true => KEEPER_CONTROL_AREA,
         false => KICKABLE_AREA,
     };
-    best[1] = one_step(p, ball, one_step_control, goalie).map(|w| w.entry);
-    let max_loop = SHORT_STEPS.min(max_cycle) as i64;
+    let first = std::iter::once_with(move || one_step(p, ball, one_step_control, goalie))
+        .flatten()
+        .map(|w| w.entry);
+    let max_loop = SHORT_STEPS.min(max_cycle);
     // The cycles needed to cover the player's distance from the ball's line.
     let ball_to_self = in_frame(p.pos - ball.pos, unit(direction(ball.vel)));
-    let min_cycle = libm::ceil((ball_to_self.y.abs() - KICKABLE_AREA) / REAL_SPEED_MAX) as i64;
-    if min_cycle >= max_loop {
-        return best;
-    }
+    let min_cycle = libm::ceil((ball_to_self.y.abs() - KICKABLE_AREA) / REAL_SPEED_MAX);
+    let cycles = if min_cycle >= max_loop as f64 {
+        0..0
+    } else {
+        (min_cycle.max(2.0) as usize)..max_loop + 1
+    };
+    let mut positions = [ball.pos; SHORT_STEPS + 1];
     let (mut ball_pos, mut ball_vel) = (ball.pos, ball.vel);
-    let mut ways = Vec::new();
-    let cycles = best.iter_mut().enumerate().take(max_loop as usize + 1);
-    for (cycle, slot) in cycles.skip(1) {
+    for slot in positions.iter_mut().skip(1) {
         ball_pos += ball_vel;
         ball_vel *= BALL_DECAY;
-        if (cycle as i64) < min_cycle.max(2) {
-            continue;
-        }
-        // Goalie mode inside the area less 0.5 m.
-        let deep =
-            ball_pos.x > PENALTY_AREA_X + 0.5 && ball_pos.y.abs() < PENALTY_AREA_HALF_WIDTH - 0.5;
-        let control = if goalie && deep {
-            KEEPER_CONTROL_AREA
-        } else {
-            KICKABLE_AREA
-        };
-        let reach = control + REAL_SPEED_MAX * cycle as f64;
-        if reach * reach < p.pos.distance_squared(ball_pos) {
-            continue;
-        }
-        let c = Chase {
-            p,
-            ball_pos,
-            cycle,
-            control,
-        };
-        ways.clear();
-        for back in [false, true] {
-            for margin in [control - 0.4, control - CONTROL_BUF] {
-                c.turn_dash(back, margin.max(0.1), &mut ways);
-            }
-        }
-        if cycle <= 2 {
-            c.omni_dash(&mut ways);
-        }
-        let safety = (control - 0.2 - ball.pos.distance(ball_pos) * BALL_RAND)
-            .max(PLAYER_SIZE + BALL_SIZE + KICKABLE_MARGIN * 0.4);
-        *slot = pick_short(&ways, safety).map(|w| w.entry);
+        *slot = ball_pos;
     }
-    best
+    let mut ways = Vec::new();
+    let later = cycles
+        .filter_map(move |cycle| short_step(p, ball, cycle, positions[cycle], goalie, &mut ways));
+    first.chain(later)
+}
+
+/// `predictShortStep` at cycle `cycle` (2 to 5), the ball then at
+/// `ball_pos`: the best of the turn-then-dash ways (forward and backward,
+/// each with two turn margins) and, up to cycle 2, the omni-directional
+/// dashes; `ways` is scratch space.
+fn short_step(
+    p: &Player,
+    ball: &Ball,
+    cycle: usize,
+    ball_pos: DVec2,
+    goalie: bool,
+    ways: &mut Vec<Way>,
+) -> Option<Interception> {
+    // Goalie mode inside the area less 0.5 m.
+    let deep =
+        ball_pos.x > PENALTY_AREA_X + 0.5 && ball_pos.y.abs() < PENALTY_AREA_HALF_WIDTH - 0.5;
+    let control = if goalie && deep {
+        KEEPER_CONTROL_AREA
+    } else {
+        KICKABLE_AREA
+    };
+    let reach = control + REAL_SPEED_MAX * cycle as f64;
+    if reach * reach < p.pos.distance_squared(ball_pos) {
+        return None;
+    }
+    let c = Chase {
+        p,
+        ball_pos,
+        cycle,
+        control,
+    };
+    ways.clear();
+    for back in [false, true] {
+        for margin in [control - 0.4, control - CONTROL_BUF] {
+            c.turn_dash(back, margin.max(0.1), ways);
+        }
+    }
+    if cycle <= 2 {
+        c.omni_dash(ways);
+    }
+    let safety = (control - 0.2 - ball.pos.distance(ball_pos) * BALL_RAND)
+        .max(PLAYER_SIZE + BALL_SIZE + KICKABLE_MARGIN * 0.4);
+    pick_short(ways, safety).map(|w| w.entry)
 }
 
 /// `predictOneStep`: the ball comes to the player by itself, or one dash
@@ -134,7 +454,7 @@ fn no_dash(p: &Player, ball: &Ball, control: f64, goalie: bool) -> Option<Way> {
     let mut rested = *p;
     update_stamina(&mut rested);
     Some(Way {
-        entry: entry(1, 0, 0.0, dist),
+        entry: entry(1, 0, 0.0, 0.0, dist),
         stamina: rested.stamina,
     })
 }
@@ -208,7 +528,7 @@ fn one_dash_adjust(
     let mut after = *p;
     spend(&mut after, power);
     Some(Way {
-        entry: entry(0, 1, power, pos.distance(ball_next)),
+        entry: entry(0, 1, power, dash_dir(dir), pos.distance(ball_next)),
         stamina: after.stamina,
     })
 }
@@ -312,7 +632,7 @@ impl Chase<'_> {
                 update_stamina(&mut waited);
             }
             ways.push(Way {
-                entry: entry(n_turn, max_dash, 0.0, inertia.distance(ball_pos)),
+                entry: entry(n_turn, max_dash, 0.0, 0.0, inertia.distance(ball_pos)),
                 stamina: waited.stamina,
             });
         }
@@ -326,7 +646,7 @@ impl Chase<'_> {
             || p.pos.distance_squared(me.pos) > p.pos.distance_squared(ball_pos)
         {
             ways.push(Way {
-                entry: entry(n_turn, max_dash, first, me.pos.distance(ball_pos)),
+                entry: entry(n_turn, max_dash, first, 0.0, me.pos.distance(ball_pos)),
                 stamina: me.stamina,
             });
         }
@@ -391,7 +711,7 @@ impl Chase<'_> {
                 || reaches_line
             {
                 ways.push(Way {
-                    entry: entry(0, cycle, first, me.pos.distance(ball_pos)),
+                    entry: entry(0, cycle, first, dash_dir(dir), me.pos.distance(ball_pos)),
                     stamina: me.stamina,
                 });
             }
@@ -449,13 +769,15 @@ fn pick_short(ways: &[Way], safety: f64) -> Option<Way> {
     Some(best)
 }
 
-/// An interception at cycle `turns + dashes`, backwards when `power` < 0.
-fn entry(turns: usize, dashes: usize, power: f64, ball_dist: f64) -> Interception {
+/// An interception at cycle `turns + dashes` whose first dash has `power`
+/// along `dir`.
+fn entry(turns: usize, dashes: usize, power: f64, dir: f64, ball_dist: f64) -> Interception {
     Interception {
         cycle: turns + dashes,
         turns,
         dashes,
-        back: power < 0.0,
+        power,
+        dir,
         ball_dist,
     }
 }
@@ -514,7 +836,7 @@ fn spend(p: &mut Player, power: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::{Analysis, reach_cycles};
+    use crate::analysis::{Analysis, reach_cycle};
     use crate::world::World;
 
     fn world(ball: (f64, f64, f64, f64), me: (f64, f64, f64, f64), body_deg: f64) -> World {
@@ -531,7 +853,8 @@ mod tests {
     fn a_ball_kicked_on_beside_the_body_takes_five_cycles_as_in_hfo() {
         // A state from HFO's logs where its dribbler's self_min was 5: the
         // ball 1.1 m ahead at 0.68 m/cycle, 21° off the body. Running
-        // straight at it would take 2 cycles; dashing along the body leaves
+        // straight at it (the others' estimate) takes 2 cycles or fewer;
+        // dashing along the body leaves
         // it too far to the side, so the player turns first and gets there
         // at cycle 5.
         let w = world(
@@ -540,11 +863,29 @@ mod tests {
             -6.261,
         );
         let a = Analysis::new(&w);
-        assert_eq!(reach_cycles(&w.offense[0], a.path(), None).1, 2);
+        assert!(reach_cycle(&w.offense[0], a.path(), None) <= 2);
         assert_eq!(a.own_reach[0], 5);
-        let steps = short_steps(&w.offense[0], &w.ball, a.path_len, false);
-        assert!(steps[..5].iter().all(Option::is_none));
-        assert_eq!(steps[5].map(|e| (e.cycle, e.turns)), Some((5, 1)));
+        let steps: Vec<_> = short_steps(&w.offense[0], &w.ball, a.path_len, false).collect();
+        assert_eq!(steps.len(), 1);
+        assert_eq!((steps[0].cycle, steps[0].turns), (5, 1));
+    }
+
+    #[test]
+    fn a_far_ball_is_reached_when_the_run_passes_it_as_in_hfo() {
+        // A pass rolling 10 m from a teammate, from HFO's logs: its agent
+        // printed self_min 14 (the straight-run rule with a 0.2 m margin
+        // said 13).
+        let w = world(
+            (28.41, 5.26, 0.27, -0.15),
+            (20.35, 12.11, 0.14, -0.11),
+            -41.0,
+        );
+        let a = Analysis::new(&w);
+        assert_eq!(a.own_reach[0], 14);
+        let cache = predict(&w.offense[0], &w.ball, a.path(), false);
+        assert_eq!(cache[0].cycle, 14);
+        assert!(cache.windows(2).all(|c| c[1].cycle == c[0].cycle + 1));
+        assert!(cache.len() <= LONG_WINDOW);
     }
 
     #[test]
@@ -573,8 +914,9 @@ mod tests {
     #[test]
     fn a_ball_behind_is_chased_by_dashing_backwards() {
         let w = world((-2.5, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), 0.0);
-        let steps = short_steps(&w.offense[0], &w.ball, 30, false);
-        let first = steps.iter().flatten().next().expect("reachable");
-        assert!(first.back && first.turns == 0, "{first:?}");
+        let first = short_steps(&w.offense[0], &w.ball, 30, false)
+            .next()
+            .expect("reachable");
+        assert!(first.back() && first.turns == 0, "{first:?}");
     }
 }
