@@ -888,6 +888,28 @@ mod tests {
         assert!(cache.len() <= LONG_WINDOW);
     }
 
+    proptest::proptest! {
+        /// The quick bound of the long step never rejects a cycle whose
+        /// turn-then-dash simulation reaches the ball.
+        #[test]
+        fn the_long_step_bound_rejects_only_unreachable_cycles(
+            (px, py, vx, vy, body) in (-40.0..40.0f64, -30.0..30.0f64, -0.6..0.6f64, -0.6..0.6f64, -3.1..3.1f64),
+            (bx, by, bvx, bvy) in (-40.0..40.0f64, -30.0..30.0f64, -2.5..2.5f64, -2.5..2.5f64),
+            t in 6..30usize,
+            goalie in proptest::bool::ANY,
+        ) {
+            let mut p = Player::new(DVec2::new(px, py), body);
+            p.vel = DVec2::new(vx, vy);
+            let ball = Ball { pos: DVec2::new(bx, by), vel: DVec2::new(bvx, bvy) };
+            let ball_pos = ball.pos + ball.vel * decay_sum(BALL_DECAY, t as u32);
+            let control = if goalie && in_penalty_area(ball_pos) { KEEPER_CONTROL_AREA } else { KICKABLE_AREA };
+            let (n_turn, angle, back) = long_turns(&p, &ball, ball_pos, t, control, goalie);
+            let reached = n_turn <= t
+                && reach_after_dash(&p, &ball, ball_pos, n_turn, t - n_turn, control, angle, back).is_some();
+            proptest::prop_assert!(!(reached && out_of_run(&p, ball_pos, t, control)));
+        }
+    }
+
     #[test]
     fn a_ball_rolling_into_the_kickable_area_needs_no_dash() {
         let w = world((10.0, 0.0, -1.0, 0.0), (8.5, 0.0, 0.0, 0.0), 0.0);
