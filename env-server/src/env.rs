@@ -346,8 +346,6 @@ impl Env {
     }
 }
 
-/// What agent `agent`'s view and neck actions see after its body command
-/// `command` (librcsc's queued next position and body, without noise).
 /// Agent `agent`'s world when it takes the keeper to be on the ball and
 /// cannot kick it itself: librcsc then holds the ball still in its world
 /// model (`setOpponentControlEffect`); `None` when its view is the world.
@@ -356,13 +354,14 @@ fn stopped_ball_view(world: &World, agent: usize) -> Option<(World, Analysis)> {
         && !world.agent_kickable(agent)
         && world.ball.vel != DVec2::ZERO;
     stopped.then(|| {
-        let mut believed = world.clone();
-        believed.ball.vel = DVec2::ZERO;
+        let believed = world.with_ball_still();
         let analysis = Analysis::new(&believed);
         (believed, analysis)
     })
 }
 
+/// What agent `agent`'s view and neck actions see after its body command
+/// `command` (librcsc's queued next position and body, without noise).
 fn outlook(world: &World, analysis: &Analysis, agent: usize, command: Command) -> Outlook {
     let p = &world.offense[agent];
     let ball = world.ball.pos;

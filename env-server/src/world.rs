@@ -181,6 +181,15 @@ impl World {
             })
     }
 
+    /// This world with the ball held still: what librcsc's world model
+    /// holds while its owner takes an opponent to be on the ball
+    /// (`BallObject::setOpponentControlEffect`).
+    pub fn with_ball_still(&self) -> World {
+        let mut still = self.clone();
+        still.ball.vel = DVec2::ZERO;
+        still
+    }
+
     /// Whether any offense player has the ball in its server kickable area.
     pub fn any_attacker_kickable(&self) -> bool {
         self.offense

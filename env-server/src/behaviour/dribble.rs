@@ -1,6 +1,7 @@
-//! DRIBBLE (spec 6.3): turn (or kick the ball aside first) to face forward if badly oriented, else the
-//! short dribble that agent2d's field evaluator rates above the current
-//! state, else hold the ball. HFO never shoots here: the chain action's
+//! DRIBBLE (spec 6.3): turn to face forward if badly oriented (kicking the
+//! ball aside first if it would get away), else the short dribble that
+//! agent2d's field evaluator rates above the current state, else hold the
+//! ball. HFO never shoots here: the chain action's
 //! command replaces any shot `doPreprocess` queued.
 
 use super::Situation;
@@ -76,6 +77,8 @@ fn keep_ball_vel(me: &Player, world: &World) -> Option<DVec2> {
     let next = me.pos + me.vel;
     let next2 = next + me.vel * PLAYER_DECAY;
     let max_accel = max_kick_accel(me, ball.pos);
+    let keeper = &world.keeper;
+    let keeper_near = keeper.pos.distance(me.pos) <= 10.0;
     let mut best: Option<(DVec2, usize, f64)> = None;
     for a in 0..12 {
         let keep = next2 + polar(keep_dist, f64::from(a) * PI / 6.0);
@@ -94,9 +97,9 @@ fn keep_ball_vel(me: &Player, world: &World) -> Option<DVec2> {
         } else {
             keep
         };
-        // An opponent already there (step 0) ends the search as if none were near.
-        let keeper = &world.keeper;
-        let step = match keeper.pos.distance(me.pos) <= 10.0 {
+        // A keeper more than 10 m away, or already there (step 0), counts
+        // as never getting there.
+        let step = match keeper_near {
             true => player_reach_cycle(keeper, target, KICKABLE_AREA),
             false => 0,
         };

@@ -28,8 +28,7 @@ pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Com
     // holds the ball still (librcsc `setOpponentControlEffect`), and so do
     // its reach, its intercept and its positioning.
     if world.attacker_kickable_seen_by_keeper() && world.ball.vel != DVec2::ZERO {
-        let mut believed = world.clone();
-        believed.ball.vel = DVec2::ZERO;
+        let believed = world.with_ball_still();
         return decide(&believed, &Analysis::for_keeper(&believed), memory);
     }
     decide(world, analysis, memory)
@@ -517,8 +516,7 @@ mod tests {
                 w.offense[0].place(ball - DVec2::new(1.1, 0.0));
                 assert!(w.attacker_kickable_seen_by_keeper());
                 let cmd = command(&w, &Analysis::new(&w), &memory);
-                let mut still = w.clone();
-                still.ball.vel = DVec2::ZERO;
+                let still = w.with_ball_still();
                 assert_eq!(
                     cmd,
                     decide(&still, &Analysis::new(&still), &memory),
