@@ -75,10 +75,11 @@ struct Way {
 /// 10 cycles, and the ball's resting point when no long step reaches it.
 pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Interception> {
     let max_cycle = MAX_CYCLE.min(path.len());
-    let mut cache: Vec<Interception> = short_steps(p, ball, max_cycle, goalie).collect();
+    let lateral = lateral_offset(p, ball);
+    let mut cache: Vec<Interception> = short_steps(p, ball, lateral, max_cycle, goalie).collect();
     let before = cache.len();
     let mut end = max_cycle;
-    let mut t = long_start(p, ball);
+    let mut t = long_start(lateral);
     while t < end {
         if let Some(way) = long_step(p, ball, path[t], t, goalie) {
             if cache.len() == before {
@@ -101,21 +102,27 @@ pub fn reach_cycle(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> usi
         return 0;
     }
     let max_cycle = MAX_CYCLE.min(path.len());
-    if let Some(first) = short_steps(p, ball, max_cycle, goalie).next() {
+    let lateral = lateral_offset(p, ball);
+    if let Some(first) = short_steps(p, ball, lateral, max_cycle, goalie).next() {
         return first.cycle;
     }
-    (long_start(p, ball)..max_cycle)
+    (long_start(lateral)..max_cycle)
         .find_map(|t| long_step(p, ball, path[t], t, goalie))
         .unwrap_or_else(|| final_point(p, ball, max_cycle, goalie))
         .cycle
 }
 
-/// The first cycle `predictLongStep` tries: after the short steps, and not
-/// before the player can cover its offset from the ball's line.
-fn long_start(p: &Player, ball: &Ball) -> usize {
-    let lateral = in_frame(p.pos - ball.pos, unit(direction(ball.vel)))
+/// The player's distance from the ball's line of travel (the x axis for a
+/// resting ball).
+fn lateral_offset(p: &Player, ball: &Ball) -> f64 {
+    in_frame(p.pos - ball.pos, unit(direction(ball.vel)))
         .y
-        .abs();
+        .abs()
+}
+
+/// The first cycle `predictLongStep` tries: after the short steps, and not
+/// before the player can cover its offset `lateral` from the ball's line.
+fn long_start(lateral: f64) -> usize {
     let start = libm::ceil((lateral - KICKABLE_AREA - 0.2) / REAL_SPEED_MAX);
     if start <= SHORT_STEPS as f64 {
         SHORT_STEPS + 1
@@ -315,11 +322,13 @@ fn final_point(p: &Player, ball: &Ball, max_cycle: usize, goalie: bool) -> Inter
 
 /// The best way to reach the ball at each reachable cycle from 1 to 5, in
 /// order and computed only as far as they are taken, for player `p`, who
-/// cannot kick the ball now, the keeper if `goalie`; `max_cycle` bounds the
-/// cycles as the ball cache's length does (`min(MAX_CYCLE, cache size)`).
-pub fn short_steps<'a>(
+/// cannot kick the ball now and stands `lateral` off the ball's line, the
+/// keeper if `goalie`; `max_cycle` bounds the cycles as the ball cache's
+/// length does (`min(MAX_CYCLE, cache size)`).
+fn short_steps<'a>(
     p: &'a Player,
     ball: &'a Ball,
+    lateral: f64,
     max_cycle: usize,
     goalie: bool,
 ) -> impl Iterator<Item = Interception> + 'a {
@@ -332,8 +341,7 @@ pub fn short_steps<'a>(
         .map(|w| w.entry);
     let max_loop = SHORT_STEPS.min(max_cycle);
     // The cycles needed to cover the player's distance from the ball's line.
-    let ball_to_self = in_frame(p.pos - ball.pos, unit(direction(ball.vel)));
-    let min_cycle = libm::ceil((ball_to_self.y.abs() - KICKABLE_AREA) / REAL_SPEED_MAX);
+    let min_cycle = libm::ceil((lateral - KICKABLE_AREA) / REAL_SPEED_MAX);
     let cycles = if min_cycle >= max_loop as f64 {
         0..0
     } else {
@@ -840,7 +848,14 @@ mod tests {
         let a = Analysis::new(&w);
         assert!(reach_cycle(&w.offense[0], a.path(), None) <= 2);
         assert_eq!(a.own_reach[0], 5);
-        let steps: Vec<_> = short_steps(&w.offense[0], &w.ball, a.path_len, false).collect();
+        let steps: Vec<_> = short_steps(
+            &w.offense[0],
+            &w.ball,
+            lateral_offset(&w.offense[0], &w.ball),
+            a.path_len,
+            false,
+        )
+        .collect();
         assert_eq!(steps.len(), 1);
         assert_eq!((steps[0].cycle, steps[0].turns), (5, 1));
     }
@@ -889,9 +904,15 @@ mod tests {
     #[test]
     fn a_ball_behind_is_chased_by_dashing_backwards() {
         let w = world((-2.5, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0), 0.0);
-        let first = short_steps(&w.offense[0], &w.ball, 30, false)
-            .next()
-            .expect("reachable");
+        let first = short_steps(
+            &w.offense[0],
+            &w.ball,
+            lateral_offset(&w.offense[0], &w.ball),
+            30,
+            false,
+        )
+        .next()
+        .expect("reachable");
         assert!(first.back() && first.turns == 0, "{first:?}");
     }
 }
