@@ -5,7 +5,7 @@
 use crate::formation::{catch_home, home_positions};
 use crate::geom::{direction, unit};
 use crate::params::*;
-use crate::self_intercept;
+use crate::self_intercept::{self, Found, Interception};
 use crate::world::{Player, World};
 use glam::DVec2;
 
@@ -33,10 +33,14 @@ pub struct Analysis {
     pub reach: [usize; MAX_OFFENSE],
     /// Reach cycle of each offense agent as it estimates its own (`self_min`).
     pub own_reach: [usize; MAX_OFFENSE],
+    /// Where each offense agent's own reach was found.
+    own_found: [Found; MAX_OFFENSE],
     /// Reach cycle of the goalkeeper as the attackers estimate it.
     pub keeper_reach: usize,
     /// Reach cycle of the goalkeeper as it estimates its own (`self_min`).
     pub keeper_own_reach: usize,
+    /// Where the goalkeeper's own reach was found.
+    keeper_own_found: Found,
     /// Formation target of each offense agent after the offside clip.
     pub home: [DVec2; MAX_OFFENSE],
 }
@@ -46,8 +50,9 @@ impl Analysis {
     pub fn new(world: &World) -> Self {
         let mut analysis = Analysis::for_keeper(world);
         let path = &analysis.ball_path[..analysis.path_len];
-        for (o, p) in analysis.own_reach.iter_mut().zip(&world.offense) {
-            *o = self_intercept::reach_cycle(p, &world.ball, path, false);
+        for (i, p) in world.offense.iter().enumerate() {
+            (analysis.own_reach[i], analysis.own_found[i]) =
+                self_intercept::reach(p, &world.ball, path, false);
         }
         let n = world.offense.len();
         let ball_step = analysis.reach[..n]
@@ -89,15 +94,39 @@ impl Analysis {
         for (r, p) in reach.iter_mut().zip(&world.offense) {
             *r = reach_cycle(p, path, None);
         }
+        let (keeper_own_reach, keeper_own_found) =
+            self_intercept::reach(&world.keeper, &world.ball, path, true);
         Analysis {
             ball_path,
             path_len,
             reach,
             own_reach: [NO_REACH; MAX_OFFENSE],
+            own_found: [Found::Nothing; MAX_OFFENSE],
             keeper_reach: reach_cycle(&world.keeper, path, Some(KEEPER_CONTROL_AREA)),
-            keeper_own_reach: self_intercept::reach_cycle(&world.keeper, &world.ball, path, true),
+            keeper_own_reach,
+            keeper_own_found,
             home: [DVec2::ZERO; MAX_OFFENSE],
         }
+    }
+
+    /// Offense agent `agent`'s self-interception cache in `world`, the
+    /// world this analysis was made of ([`self_intercept::predict`]).
+    pub fn own_cache(&self, world: &World, agent: usize) -> Vec<Interception> {
+        let p = &world.offense[agent];
+        self_intercept::predict_from(p, &world.ball, self.path(), false, self.own_found[agent])
+    }
+
+    /// The goalkeeper's self-interception cache in `world`, the world this
+    /// analysis was made of.
+    pub fn keeper_cache(&self, world: &World) -> Vec<Interception> {
+        let path = self.path();
+        self_intercept::predict_from(
+            &world.keeper,
+            &world.ball,
+            path,
+            true,
+            self.keeper_own_found,
+        )
     }
 
     /// The ball's predicted path.

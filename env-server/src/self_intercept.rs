@@ -13,7 +13,9 @@
 //! threshold), so no entry is `EXHAUST`.
 
 use crate::analysis::DRIFT;
-use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
+use crate::geom::{
+    angle_diff, asin_clamped, decay_pow, decay_sum, direction, normalize_angle, unit,
+};
 use crate::params::*;
 use crate::physics::{dash_dir, dash_dir_rate, kick_rate, update_stamina};
 use crate::world::{Ball, Player};
@@ -68,20 +70,61 @@ struct Way {
     stamina: f64,
 }
 
+/// Where [`reach`] found a player's earliest way, so that [`predict_from`]
+/// need not search again what came before it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Found {
+    /// Not searched, or the ball is kickable now: nothing to skip.
+    #[default]
+    Nothing,
+    /// The first short step that reaches the ball.
+    Short(Interception),
+    /// No short step does; the first long step is at this cycle.
+    Long(usize),
+    /// No short or long step does: the ball's resting point.
+    Final,
+}
+
 /// Every way `SelfInterceptV13::predict` finds for player `p` (the keeper
 /// if `goalie`), who cannot kick the ball now, on the ball path `path`
 /// (whose first point is `ball`'s position), earliest first: the best of
 /// each short step, the long-step cycles from the first reachable one for
 /// 10 cycles, and the ball's resting point when no long step reaches it.
 pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Interception> {
+    predict_from(p, ball, path, goalie, Found::Nothing)
+}
+
+/// [`predict`], skipping the search [`reach`] already made on the same
+/// arguments; `found` is what it returned.
+pub fn predict_from(
+    p: &Player,
+    ball: &Ball,
+    path: &[DVec2],
+    goalie: bool,
+    found: Found,
+) -> Vec<Interception> {
     let max_cycle = MAX_CYCLE.min(path.len());
-    let lateral = lateral_offset(p, ball);
-    let mut cache: Vec<Interception> = short_steps(p, ball, lateral, max_cycle, goalie).collect();
+    let (mut cache, mut t) = match found {
+        Found::Nothing | Found::Short(_) => {
+            let lateral = lateral_offset(p, ball);
+            let (known, after) = match found {
+                Found::Short(first) => (Some(first), first.cycle),
+                _ => (None, 0),
+            };
+            let later = short_steps(p, ball, lateral, max_cycle, goalie, after);
+            (
+                known.into_iter().chain(later).collect(),
+                long_start(lateral),
+            )
+        }
+        Found::Long(first) => (Vec::new(), first),
+        Found::Final => return vec![final_point(p, ball, max_cycle, goalie)],
+    };
     let before = cache.len();
     let mut end = max_cycle;
-    let mut t = long_start(lateral);
+    let mut runs = Runs::new(p);
     while t < end {
-        if let Some(way) = long_step(p, ball, path[t], t, goalie) {
+        if let Some(way) = long_step(p, ball, path[t], t, goalie, &mut runs) {
             if cache.len() == before {
                 end = max_cycle.min(t + LONG_WINDOW);
             }
@@ -95,21 +138,25 @@ pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Int
     cache
 }
 
-/// The own reach cycle (`self_min`): 0 if the player can kick the ball by
-/// its own test (1.03 m), else the earliest way of [`predict`].
-pub fn reach_cycle(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> usize {
+/// The own reach cycle (`self_min`) and where it was found: 0 if the player
+/// can kick the ball by its own test (1.03 m), else the earliest way of
+/// [`predict`].
+pub fn reach(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> (usize, Found) {
     if p.pos.distance(ball.pos) <= AGENT_KICKABLE_AREA {
-        return 0;
+        return (0, Found::Nothing);
     }
     let max_cycle = MAX_CYCLE.min(path.len());
     let lateral = lateral_offset(p, ball);
-    if let Some(first) = short_steps(p, ball, lateral, max_cycle, goalie).next() {
-        return first.cycle;
+    if let Some(first) = short_steps(p, ball, lateral, max_cycle, goalie, 0).next() {
+        return (first.cycle, Found::Short(first));
     }
+    let mut runs = Runs::new(p);
     (long_start(lateral)..max_cycle)
-        .find_map(|t| long_step(p, ball, path[t], t, goalie))
-        .unwrap_or_else(|| final_point(p, ball, max_cycle, goalie))
-        .cycle
+        .find_map(|t| {
+            let way = long_step(p, ball, path[t], t, goalie, &mut runs)?;
+            Some((way.cycle, Found::Long(t)))
+        })
+        .unwrap_or_else(|| (final_point(p, ball, max_cycle, goalie).cycle, Found::Final))
 }
 
 /// The player's distance from the ball's line of travel (the x axis for a
@@ -132,13 +179,14 @@ fn long_start(lateral: f64) -> usize {
 }
 
 /// `predictLongStep` at cycle `t` (the ball at `ball_pos`):
-/// `canReachAfterTurnDash`.
+/// `canReachAfterTurnDash`; `runs` holds player `p`'s dashes.
 fn long_step(
     p: &Player,
     ball: &Ball,
     ball_pos: DVec2,
     t: usize,
     goalie: bool,
+    runs: &mut Runs,
 ) -> Option<Interception> {
     let control = if goalie && in_penalty_area(ball_pos) {
         KEEPER_CONTROL_AREA
@@ -152,16 +200,8 @@ fn long_step(
     if n_turn > t {
         return None;
     }
-    reach_after_dash(
-        p,
-        ball,
-        ball_pos,
-        n_turn,
-        t - n_turn,
-        control,
-        dash_angle,
-        back,
-    )
+    let run = runs.get(n_turn, back);
+    reach_after_dash(p, ball, ball_pos, run, t - n_turn, control, dash_angle)
 }
 
 /// `predictTurnCycle`: the turns (each at most 162°, the largest moment less
@@ -233,44 +273,113 @@ fn back_dash_allowed(p: &Player, ball: &Ball, t: usize, diff: f64, goalie: bool)
     left >= 0.3 * STAMINA_MAX + 205.0
 }
 
-/// `canReachAfterDash`: full dashes along `dash_angle` after the turns; the
-/// player reaches the ball once its run along that line passes the ball's
-/// point there (plus half its noise), or if after the dashes the ball is
-/// within max(control - 0.225, control - 0.2 - noise).
-#[allow(clippy::too_many_arguments)]
+/// The full dashes a player makes after some turns, as its stamina allows
+/// them (half the power backwards); librcsc's speed-limit branch never acts
+/// for this player type (100 · 0.006 < 1.05 · 0.6).
+#[derive(Clone, Copy)]
+struct Run {
+    turns: usize,
+    back: bool,
+    /// The player after the dashes so far.
+    me: Player,
+    /// The first dash's power (0 before it).
+    first: f64,
+    /// Each dash's acceleration along the dash line.
+    accel: [f64; MAX_CYCLE],
+    len: usize,
+}
+
+impl Run {
+    fn new(p: &Player, turns: usize, back: bool) -> Self {
+        let mut me = *p;
+        for _ in 0..turns {
+            update_stamina(&mut me);
+        }
+        Run {
+            turns,
+            back,
+            me,
+            first: 0.0,
+            accel: [0.0; MAX_CYCLE],
+            len: 0,
+        }
+    }
+
+    /// Simulates the dashes up to the `n`th.
+    fn extend(&mut self, n: usize) {
+        let share = if self.back { 0.5 } else { 1.0 };
+        while self.len < n {
+            let me = &mut self.me;
+            let power = (available(me.stamina) * share).clamp(0.0, MAX_DASH_POWER);
+            if self.len == 0 {
+                self.first = power;
+            }
+            self.accel[self.len] = power * DASH_POWER_RATE * me.effort;
+            spend(me, if self.back { -power } else { power });
+            self.len += 1;
+        }
+    }
+}
+
+/// One player's runs, kept while its long steps are predicted: each long
+/// step's dashes depend only on the turns before them and their direction.
+struct Runs {
+    player: Player,
+    runs: Vec<Run>,
+}
+
+impl Runs {
+    fn new(p: &Player) -> Self {
+        Runs {
+            player: *p,
+            runs: Vec::new(),
+        }
+    }
+
+    /// The run after `turns` turns, backwards if `back`.
+    fn get(&mut self, turns: usize, back: bool) -> &mut Run {
+        let i = match self
+            .runs
+            .iter()
+            .position(|r| r.turns == turns && r.back == back)
+        {
+            Some(i) => i,
+            None => {
+                self.runs.push(Run::new(&self.player, turns, back));
+                self.runs.len() - 1
+            }
+        };
+        &mut self.runs[i]
+    }
+}
+
+/// `canReachAfterDash`: `n_dash` dashes of `run` along `dash_angle` after
+/// its turns; the player reaches the ball once its run along that line
+/// passes the ball's point there (plus half its noise), or if after the
+/// dashes the ball is within max(control - 0.225, control - 0.2 - noise).
 fn reach_after_dash(
     p: &Player,
     ball: &Ball,
     ball_pos: DVec2,
-    n_turn: usize,
+    run: &mut Run,
     n_dash: usize,
     control: f64,
     dash_angle: f64,
-    back: bool,
 ) -> Option<Interception> {
+    run.extend(n_dash);
+    let (n_turn, back) = (run.turns, run.back);
     let u = unit(dash_angle);
     let inertia = p.drift((n_turn + n_dash) as u32);
     let ball_rel = in_frame(ball_pos - p.pos, u);
     let ball_noise = ball.pos.distance(ball_pos) * BALL_RAND * 0.5;
     let noised_x = ball_rel.x + ball_noise;
     let mut pos = in_frame(p.vel * DRIFT[n_turn.min(DRIFT.len() - 1)], u);
-    let mut vel = in_frame(p.vel * PLAYER_DECAY.powi(n_turn as i32), u);
-    let mut me = *p;
-    for _ in 0..n_turn {
-        update_stamina(&mut me);
-    }
-    let mut first = None;
-    for _ in 0..n_dash {
-        // The power the stamina allows (half of it backwards); librcsc's
-        // speed-limit branch never acts for this player type (100 · 0.006 <
-        // 1.05 · 0.6).
-        let share = if back { 0.5 } else { 1.0 };
-        let power = (available(me.stamina) * share).clamp(0.0, MAX_DASH_POWER);
-        first.get_or_insert(power);
-        vel.x += power * DASH_POWER_RATE * me.effort;
+    let mut vel = in_frame(p.vel * decay_pow(PLAYER_DECAY, n_turn as u32), u);
+    let first = (n_dash > 0).then_some(run.first);
+    for &accel in &run.accel[..n_dash] {
+        vel.x += accel;
         pos += vel;
         vel *= PLAYER_DECAY;
-        spend(&mut me, if back { -power } else { power });
         if pos.x * (1.0 - PLAYER_RAND * 0.01) + 0.1 > noised_x {
             let mut end = p.pos + u * pos.x + u.perp() * pos.y;
             if inertia.distance_squared(end) > 0.01 {
@@ -320,23 +429,25 @@ fn final_point(p: &Player, ball: &Ball, max_cycle: usize, goalie: bool) -> Inter
     entry(n_turn, n_dash, MAX_DASH_POWER, 0.0, 0.0)
 }
 
-/// The best way to reach the ball at each reachable cycle from 1 to 5, in
-/// order and computed only as far as they are taken, for player `p`, who
-/// cannot kick the ball now and stands `lateral` off the ball's line, the
-/// keeper if `goalie`; `max_cycle` bounds the cycles as the ball cache's
-/// length does (`min(MAX_CYCLE, cache size)`).
+/// The best way to reach the ball at each reachable cycle after `after`
+/// up to 5, in order and computed only as far as they are taken, for player
+/// `p`, who cannot kick the ball now and stands `lateral` off the ball's
+/// line, the keeper if `goalie`; `max_cycle` bounds the cycles as the ball
+/// cache's length does (`min(MAX_CYCLE, cache size)`).
 fn short_steps<'a>(
     p: &'a Player,
     ball: &'a Ball,
     lateral: f64,
     max_cycle: usize,
     goalie: bool,
+    after: usize,
 ) -> impl Iterator<Item = Interception> + 'a {
     let one_step_control = match goalie && in_penalty_area(ball.pos + ball.vel) {
         true => KEEPER_CONTROL_AREA,
         false => KICKABLE_AREA,
     };
     let first = std::iter::once_with(move || one_step(p, ball, one_step_control, goalie))
+        .take(usize::from(after == 0))
         .flatten()
         .map(|w| w.entry);
     let max_loop = SHORT_STEPS.min(max_cycle);
@@ -345,7 +456,7 @@ fn short_steps<'a>(
     let cycles = if min_cycle >= max_loop as f64 {
         0..0
     } else {
-        (min_cycle.max(2.0) as usize)..max_loop + 1
+        (min_cycle.max(2.0) as usize).max(after + 1)..max_loop + 1
     };
     let mut positions = [ball.pos; SHORT_STEPS + 1];
     let (mut ball_pos, mut ball_vel) = (ball.pos, ball.vel);
@@ -451,7 +562,7 @@ fn one_dash(p: &Player, ball: &Ball, control: f64) -> Option<Way> {
     let full = (forward - MAX_DASH_POWER).abs() < 1.0 && (back + MAX_DASH_POWER).abs() < 1.0;
     let mut ways = Vec::new();
     for dir in dash_dirs() {
-        let angle = p.body + dir;
+        let u = unit(p.body + dir);
         let rate = p.effort * DASH_POWER_RATE * dash_dir_rate(dir);
         let powers: &[(f64, f64)] = if full {
             &[(forward, back)]
@@ -459,9 +570,10 @@ fn one_dash(p: &Player, ball: &Ball, control: f64) -> Option<Way> {
             &[(forward, back), (MAX_DASH_POWER, -MAX_DASH_POWER)]
         };
         let way = powers.iter().find_map(|&(f, b)| {
-            let max_forward = limit_accel(p.vel, polar(f * rate, angle));
-            let max_back = limit_accel(p.vel, polar(b * rate, angle));
-            one_dash_adjust(p, ball, dir, max_forward, max_back, control)
+            // `u * r` is `polar(r, angle)` bit for bit.
+            let max_forward = limit_accel(p.vel, u * (f * rate));
+            let max_back = limit_accel(p.vel, u * (b * rate));
+            one_dash_adjust(p, ball, dir, u, max_forward, max_back, control)
         });
         ways.extend(way);
     }
@@ -480,19 +592,19 @@ fn one_dash(p: &Player, ball: &Ball, control: f64) -> Option<Way> {
     Some(best)
 }
 
-/// `predictOneDashAdjust`: the dash power along `dir` (relative to the body)
-/// that leaves the ball controllable, between the largest backward and
-/// forward accelerations.
+/// `predictOneDashAdjust`: the dash power along `dir` (relative to the body;
+/// `u` its global unit vector) that leaves the ball controllable, between
+/// the largest backward and forward accelerations.
 fn one_dash_adjust(
     p: &Player,
     ball: &Ball,
     dir: f64,
+    u: DVec2,
     max_forward: DVec2,
     max_back: DVec2,
     control: f64,
 ) -> Option<Way> {
     let control = control - 0.075;
-    let u = unit(p.body + dir);
     let ball_next = ball.pos + ball.vel;
     let ball_rel = in_frame(ball_next - (p.pos + p.vel), u);
     let (f, b) = (in_frame(max_forward, u), in_frame(max_back, u));
@@ -623,7 +735,7 @@ impl Chase<'_> {
             return;
         }
         me.pos = p.drift(n_turn as u32);
-        me.vel = p.vel * PLAYER_DECAY.powi(n_turn as i32);
+        me.vel = p.vel * decay_pow(PLAYER_DECAY, n_turn as u32);
         let first = dash_to(&mut me, ball_pos, unit(dash_angle), back, max_dash);
         if me.pos.distance_squared(ball_pos) < control2
             || p.pos.distance_squared(me.pos) > p.pos.distance_squared(ball_pos)
@@ -801,7 +913,7 @@ fn limit_accel(vel: DVec2, accel: DVec2) -> DVec2 {
 /// First term of a series decaying by the player's decay that sums to
 /// `sum` over `len` terms (`calc_first_term_geom_series`).
 fn first_term(sum: f64, len: usize) -> f64 {
-    sum * (1.0 - PLAYER_DECAY) / (1.0 - PLAYER_DECAY.powi(len as i32))
+    sum * (1.0 - PLAYER_DECAY) / (1.0 - decay_pow(PLAYER_DECAY, len as u32))
 }
 
 /// The dash power the stamina allows under save-recovery dashing.
@@ -854,6 +966,7 @@ mod tests {
             lateral_offset(&w.offense[0], &w.ball),
             a.path_len,
             false,
+            0,
         )
         .collect();
         assert_eq!(steps.len(), 1);
@@ -910,6 +1023,7 @@ mod tests {
             lateral_offset(&w.offense[0], &w.ball),
             30,
             false,
+            0,
         )
         .next()
         .expect("reachable");

@@ -7,7 +7,7 @@ use crate::analysis::Analysis;
 use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::{Command, kick_for_accel, max_kick_accel};
-use crate::self_intercept::{self, SHORT_STEPS};
+use crate::self_intercept::SHORT_STEPS;
 use crate::world::{Ball, Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -64,26 +64,21 @@ pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) ->
     })
 }
 
-/// Body_Intercept (spec 6.1.3) for an attacker with reach cycle `reach`:
-/// towards the interception `getBestIntercept` picks from its cache;
-/// `face` is where to look when the ball comes to the player.
+/// Body_Intercept (spec 6.1.3) for offense agent `agent`: towards the
+/// interception `getBestIntercept` picks from its cache; `face` is where to
+/// look when the ball comes to the player.
 ///
 /// Simplified: from the chosen cycle on, the turn and the full dash follow
 /// 6.1.2's others' rule with the own estimate's margin (0.15 m up to cycle
 /// 5, 0.2 m later) instead of the cache entry's turns, power and direction
 /// and librcsc's `doWaitTurn` and `doInertiaDash`.
-pub fn intercept(
-    p: &Player,
-    world: &World,
-    analysis: &Analysis,
-    reach: usize,
-    face: DVec2,
-) -> Command {
+pub fn intercept(world: &World, analysis: &Analysis, agent: usize, face: DVec2) -> Command {
+    let (p, reach) = (&world.offense[agent], analysis.own_reach[agent]);
     if reach > 100 {
         let rest = world.ball_final();
         return go_to_point(p, rest, 2.0, MAX_DASH_POWER).unwrap_or_else(|| turn_to_point(p, rest));
     }
-    let cache = self_intercept::predict(p, &world.ball, analysis.path(), false);
+    let cache = analysis.own_cache(world, agent);
     let cycle = best_interception(p, world, analysis, &cache).map_or(reach, |best| best.cycle);
     let target = analysis.ball_at(cycle);
     let rel = target - p.drift(cycle as u32);

@@ -4,7 +4,7 @@
 //! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
 
 use crate::analysis::Analysis;
-use crate::geom::direction;
+use crate::geom::{decay_pow, direction};
 use crate::params::*;
 use crate::self_intercept::Interception;
 use crate::world::{Player, World};
@@ -76,7 +76,7 @@ pub fn best_interception(
         .map(|&entry| Candidate {
             entry,
             ball: analysis.ball_at(entry.cycle),
-            vel: world.ball.vel * BALL_DECAY.powi(entry.cycle as i32),
+            vel: world.ball.vel * decay_pow(BALL_DECAY, entry.cycle as u32),
             drift: p.drift(entry.cycle as u32),
         })
         .collect();
@@ -237,7 +237,7 @@ mod tests {
         assert!(a.ball_at(best.cycle).x > 35.0, "{best:?}");
         // Its first command turns it goalwards, not back towards the ball.
         let me = &w.offense[0];
-        let cmd = intercept(me, &w, &a, a.own_reach[0], forward_point(me.pos.y));
+        let cmd = intercept(&w, &a, 0, forward_point(me.pos.y));
         let Command::Turn { moment } = cmd else {
             panic!("expected a turn, got {cmd:?}");
         };

@@ -4,10 +4,10 @@
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
 use crate::analysis::Analysis;
-use crate::geom::{angle_diff, decay_sum, direction, normalize_angle, unit};
+use crate::geom::{angle_diff, decay_pow, decay_sum, direction, normalize_angle, unit};
 use crate::params::*;
 use crate::physics::Command;
-use crate::self_intercept::{self, Interception};
+use crate::self_intercept::Interception;
 use crate::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -199,8 +199,7 @@ impl<'a> View<'a> {
     /// goalie mode, spec 7.3.1): among the cycles its self-interception cache
     /// holds, the one that meets the ball farthest out, else the earliest.
     fn best_interception(&self) -> Interception {
-        let cache =
-            self_intercept::predict(self.keeper, &self.world.ball, self.analysis.path(), true);
+        let cache = self.analysis.keeper_cache(self.world);
         let mut goalie: Option<(f64, Interception)> = None;
         let mut aggressive: Option<(f64, Interception)> = None;
         for &c in &cache {
@@ -242,7 +241,7 @@ impl<'a> View<'a> {
         let k = self.keeper;
         let forward = unit(k.body);
         let along = (target - k.pos).dot(forward);
-        let ball_speed = self.world.ball.vel.length() * BALL_DECAY.powi(best.cycle as i32);
+        let ball_speed = self.world.ball.vel.length() * decay_pow(BALL_DECAY, best.cycle as u32);
         let accel_max = DASH_POWER_RATE * k.effort * MAX_DASH_POWER;
         let mut power = full;
         if ball_speed < 1.5 * KICKABLE_AREA && along.abs() < KICKABLE_AREA + 0.8 * accel_max {
@@ -556,7 +555,8 @@ mod tests {
 
     /// The cache entries the goalie rule of `getBestIntercept` accepts.
     fn goalie_candidates(view: &View) -> Vec<Interception> {
-        self_intercept::predict(view.keeper, &view.world.ball, view.analysis.path(), true)
+        view.analysis
+            .keeper_cache(view.world)
             .into_iter()
             .filter(|c| (c.turns == 0 && c.ball_dist < 0.65) || c.ball_dist < 0.01)
             .collect()

@@ -41,7 +41,7 @@ pub fn command(s: &Situation) -> (Command, Neck) {
     let opp_min = s.analysis.keeper_reach;
     let chase = self_min <= 3 || (self_min <= mate_min && self_min < opp_min + 3);
     if chase && !s.world.teammate_kickable(s.agent) {
-        let cmd = intercept(me, s.world, s.analysis, self_min, forward_point(me.pos.y));
+        let cmd = intercept(s.world, s.analysis, s.agent, forward_point(me.pos.y));
         return (cmd, intercept_neck);
     }
     let target = s.analysis.home[s.agent];
