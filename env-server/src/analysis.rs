@@ -29,6 +29,8 @@ pub struct Analysis {
     pub ball_path: [DVec2; CACHE_LEN],
     /// Number of valid entries of `ball_path`.
     pub path_len: usize,
+    /// The ball's heading as the own estimates read it ([`self_intercept::heading`]).
+    heading: DVec2,
     /// Reach cycle of each offense agent as the other players estimate it.
     pub reach: [usize; MAX_OFFENSE],
     /// Reach cycle of each offense agent as it estimates its own (`self_min`).
@@ -52,7 +54,7 @@ impl Analysis {
         let path = &analysis.ball_path[..analysis.path_len];
         for (i, p) in world.offense.iter().enumerate() {
             (analysis.own_reach[i], analysis.own_found[i]) =
-                self_intercept::reach(p, &world.ball, path, false);
+                self_intercept::reach(p, &world.ball, analysis.heading, path, false);
         }
         let n = world.offense.len();
         let ball_step = analysis.reach[..n]
@@ -90,19 +92,23 @@ impl Analysis {
     pub fn for_keeper(world: &World) -> Self {
         let (ball_path, path_len) = ball_path(world);
         let path = &ball_path[..path_len];
+        let path_heading = path_heading(path);
         let mut reach = [NO_REACH; MAX_OFFENSE];
         for (r, p) in reach.iter_mut().zip(&world.offense) {
-            *r = reach_cycle(p, path, None);
+            *r = reach_cycle(p, path, path_heading, None);
         }
+        let heading = self_intercept::heading(&world.ball);
         let (keeper_own_reach, keeper_own_found) =
-            self_intercept::reach(&world.keeper, &world.ball, path, true);
+            self_intercept::reach(&world.keeper, &world.ball, heading, path, true);
+        let keeper_control = Some(KEEPER_CONTROL_AREA);
         Analysis {
             ball_path,
             path_len,
+            heading,
             reach,
             own_reach: [NO_REACH; MAX_OFFENSE],
             own_found: [Found::Nothing; MAX_OFFENSE],
-            keeper_reach: reach_cycle(&world.keeper, path, Some(KEEPER_CONTROL_AREA)),
+            keeper_reach: reach_cycle(&world.keeper, path, path_heading, keeper_control),
             keeper_own_reach,
             keeper_own_found,
             home: [DVec2::ZERO; MAX_OFFENSE],
@@ -113,25 +119,25 @@ impl Analysis {
     /// world this analysis was made of ([`self_intercept::predict`]).
     pub fn own_cache(&self, world: &World, agent: usize) -> Vec<Interception> {
         let p = &world.offense[agent];
-        self_intercept::predict_from(p, &world.ball, self.path(), false, self.own_found[agent])
+        let found = self.own_found[agent];
+        self_intercept::predict_from(p, &world.ball, self.heading, self.path(), false, found)
     }
 
     /// The goalkeeper's self-interception cache in `world`, the world this
     /// analysis was made of.
     pub fn keeper_cache(&self, world: &World) -> Vec<Interception> {
-        let path = self.path();
-        self_intercept::predict_from(
-            &world.keeper,
-            &world.ball,
-            path,
-            true,
-            self.keeper_own_found,
-        )
+        let (k, path, found) = (&world.keeper, self.path(), self.keeper_own_found);
+        self_intercept::predict_from(k, &world.ball, self.heading, path, true, found)
     }
 
     /// The ball's predicted path.
     pub fn path(&self) -> &[DVec2] {
         &self.ball_path[..self.path_len]
+    }
+
+    /// The path's heading as the others' estimates read it ([`reach_cycle`]).
+    pub fn path_heading(&self) -> Option<DVec2> {
+        path_heading(self.path())
     }
 
     /// Ball position after `t` cycles (the last known point beyond the path).
@@ -221,16 +227,24 @@ fn turn_count(facing: DVec2, rel: DVec2, d: f64, control: f64) -> usize {
     usize::from(cos < COS_12_DEG.min((1.0 - ratio * ratio).sqrt()))
 }
 
-/// Reach cycle of player `p` for the ball path `path` as the other players
-/// estimate it (librcsc `PlayerIntercept`, spec 6.1.2); `keeper_control` is
-/// the keeper's control area inside its penalty area. A ball under control
-/// is reached at once. The walk starts at the cycles the player needs at
-/// full speed to cover its offset from the ball's line of travel.
-pub fn reach_cycle(p: &Player, path: &[DVec2], keeper_control: Option<f64>) -> usize {
-    let lateral = path.get(1).map_or(0.0, |&b1| {
-        let rel = p.pos - path[0];
-        rel.perp_dot(unit(direction(b1 - path[0]))).abs()
-    });
+/// The unit vector from the first point of `path` to the second, if any.
+fn path_heading(path: &[DVec2]) -> Option<DVec2> {
+    path.get(1).map(|&b1| unit(direction(b1 - path[0])))
+}
+
+/// Reach cycle of player `p` for the ball path `path`, whose heading is
+/// `heading` ([`Analysis::path_heading`]), as the other players estimate it
+/// (librcsc `PlayerIntercept`, spec 6.1.2); `keeper_control` is the
+/// keeper's control area inside its penalty area. A ball under control is
+/// reached at once. The walk starts at the cycles the player needs at full
+/// speed to cover its offset from the ball's line of travel.
+pub fn reach_cycle(
+    p: &Player,
+    path: &[DVec2],
+    heading: Option<DVec2>,
+    keeper_control: Option<f64>,
+) -> usize {
+    let lateral = heading.map_or(0.0, |h| (p.pos - path[0]).perp_dot(h).abs());
     let skip = (lateral / REAL_SPEED_MAX).floor() as usize;
     let facing = unit(p.body);
     for (t, &ball) in path.iter().enumerate().skip(skip) {

@@ -91,7 +91,13 @@ pub enum Found {
 /// each short step, the long-step cycles from the first reachable one for
 /// 10 cycles, and the ball's resting point when no long step reaches it.
 pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Interception> {
-    predict_from(p, ball, path, goalie, Found::Nothing)
+    predict_from(p, ball, heading(ball), path, goalie, Found::Nothing)
+}
+
+/// The unit vector of the ball's direction of travel (the x axis for a
+/// resting ball), which [`reach`] and [`predict_from`] take.
+pub fn heading(ball: &Ball) -> DVec2 {
+    unit(direction(ball.vel))
 }
 
 /// [`predict`], skipping the search [`reach`] already made on the same
@@ -99,6 +105,7 @@ pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Int
 pub fn predict_from(
     p: &Player,
     ball: &Ball,
+    heading: DVec2,
     path: &[DVec2],
     goalie: bool,
     found: Found,
@@ -106,7 +113,7 @@ pub fn predict_from(
     let max_cycle = MAX_CYCLE.min(path.len());
     let (mut cache, mut t) = match found {
         Found::Nothing | Found::Short(_) => {
-            let lateral = lateral_offset(p, ball);
+            let lateral = lateral_offset(p, ball, heading);
             let (known, after) = match found {
                 Found::Short(first) => (Some(first), first.cycle),
                 _ => (None, 0),
@@ -141,12 +148,18 @@ pub fn predict_from(
 /// The own reach cycle (`self_min`) and where it was found: 0 if the player
 /// can kick the ball by its own test (1.03 m), else the earliest way of
 /// [`predict`].
-pub fn reach(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> (usize, Found) {
+pub fn reach(
+    p: &Player,
+    ball: &Ball,
+    heading: DVec2,
+    path: &[DVec2],
+    goalie: bool,
+) -> (usize, Found) {
     if p.pos.distance(ball.pos) <= AGENT_KICKABLE_AREA {
         return (0, Found::Nothing);
     }
     let max_cycle = MAX_CYCLE.min(path.len());
-    let lateral = lateral_offset(p, ball);
+    let lateral = lateral_offset(p, ball, heading);
     if let Some(first) = short_steps(p, ball, lateral, max_cycle, goalie, 0).next() {
         return (first.cycle, Found::Short(first));
     }
@@ -159,12 +172,10 @@ pub fn reach(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> (usize, F
         .unwrap_or_else(|| (final_point(p, ball, max_cycle, goalie).cycle, Found::Final))
 }
 
-/// The player's distance from the ball's line of travel (the x axis for a
-/// resting ball).
-fn lateral_offset(p: &Player, ball: &Ball) -> f64 {
-    in_frame(p.pos - ball.pos, unit(direction(ball.vel)))
-        .y
-        .abs()
+/// The player's distance from the ball's line of travel, whose direction is
+/// `heading`.
+fn lateral_offset(p: &Player, ball: &Ball, heading: DVec2) -> f64 {
+    in_frame(p.pos - ball.pos, heading).y.abs()
 }
 
 /// The first cycle `predictLongStep` tries: after the short steps, and not
@@ -495,16 +506,22 @@ fn short_step(
     if reach * reach < p.pos.distance_squared(ball_pos) {
         return None;
     }
+    let inertia = p.drift(cycle as u32);
+    let rel = ball_pos - inertia;
     let c = Chase {
         p,
         ball_pos,
         cycle,
         control,
+        inertia,
+        target_dist: rel.length(),
+        target_angle: direction(rel),
     };
+    let turn_margins = [control - 0.4, control - CONTROL_BUF].map(|m| c.turn_margin(m.max(0.1)));
     ways.clear();
     for back in [false, true] {
-        for margin in [control - 0.4, control - CONTROL_BUF] {
-            c.turn_dash(back, margin.max(0.1), ways);
+        for turn_margin in turn_margins {
+            c.turn_dash(back, turn_margin, ways);
         }
     }
     if cycle <= 2 {
@@ -673,26 +690,34 @@ struct Chase<'a> {
     cycle: usize,
     /// The control area at that cycle.
     control: f64,
+    /// Where the player drifts to by then, and the ball's distance and
+    /// direction from there.
+    inertia: DVec2,
+    target_dist: f64,
+    target_angle: f64,
 }
 
 impl Chase<'_> {
-    /// `predictTurnDashShort`: turn (if the ball is off the body's line by
-    /// more than the margin allows), then dash along the body or its back.
-    fn turn_dash(&self, back: bool, margin: f64, ways: &mut Vec<Way>) {
-        let p = self.p;
-        let rel = self.ball_pos - p.drift(self.cycle as u32);
-        let (target_dist, target_angle) = (rel.length(), direction(rel));
+    /// The largest angle off the ball that needs no turn, for a ball
+    /// `margin` off the body's line.
+    fn turn_margin(&self, margin: f64) -> f64 {
+        if margin < self.target_dist {
+            MIN_TURN_THR.max(asin_clamped(margin / self.target_dist))
+        } else {
+            PI
+        }
+    }
+
+    /// `predictTurnDashShort`: turn (if the ball is more than `turn_margin`
+    /// off), then dash along the body or its back.
+    fn turn_dash(&self, back: bool, turn_margin: f64, ways: &mut Vec<Way>) {
+        let (p, target_angle) = (self.p, self.target_angle);
         let body = if back {
             normalize_angle(p.body + PI)
         } else {
             p.body
         };
         let mut diff = angle_diff(target_angle, body);
-        let turn_margin = if margin < target_dist {
-            MIN_TURN_THR.max(asin_clamped(margin / target_dist))
-        } else {
-            PI
-        };
         let mut n_turn = 0;
         let mut speed = p.vel.length();
         while diff > turn_margin {
@@ -715,7 +740,7 @@ impl Chase<'_> {
     fn dash_cycle(&self, n_turn: usize, dash_angle: f64, back: bool, ways: &mut Vec<Way>) {
         let (p, ball_pos, cycle) = (self.p, self.ball_pos, self.cycle);
         let max_dash = cycle - n_turn;
-        let inertia = p.drift(cycle as u32);
+        let inertia = self.inertia;
         let mut me = *p;
         for _ in 0..n_turn {
             update_stamina(&mut me);
@@ -731,7 +756,7 @@ impl Chase<'_> {
                 stamina: waited.stamina,
             });
         }
-        if angle_diff(direction(ball_pos - inertia), dash_angle) > PI / 2.0 {
+        if angle_diff(self.target_angle, dash_angle) > PI / 2.0 {
             return;
         }
         me.pos = p.drift(n_turn as u32);
@@ -753,13 +778,11 @@ impl Chase<'_> {
         let (p, ball_pos, cycle) = (self.p, self.ball_pos, self.cycle);
         let body = unit(p.body);
         let line_dist = |q: DVec2| body.perp_dot(q - ball_pos).abs();
-        let inertia = p.drift(cycle as u32);
-        if line_dist(inertia) < self.control - 0.4 {
+        if line_dist(self.inertia) < self.control - 0.4 {
             return;
         }
-        let target_angle = direction(ball_pos - inertia);
         for dir in dash_dirs().filter(|&d| d != 0.0) {
-            if angle_diff(p.body + dir, target_angle) > 91f64.to_radians() {
+            if angle_diff(p.body + dir, self.target_angle) > 91f64.to_radians() {
                 continue;
             }
             let mut me = *p;
@@ -958,12 +981,12 @@ mod tests {
             -6.261,
         );
         let a = Analysis::new(&w);
-        assert!(reach_cycle(&w.offense[0], a.path(), None) <= 2);
+        assert!(reach_cycle(&w.offense[0], a.path(), a.path_heading(), None) <= 2);
         assert_eq!(a.own_reach[0], 5);
         let steps: Vec<_> = short_steps(
             &w.offense[0],
             &w.ball,
-            lateral_offset(&w.offense[0], &w.ball),
+            lateral_offset(&w.offense[0], &w.ball, heading(&w.ball)),
             a.path_len,
             false,
             0,
@@ -1020,7 +1043,7 @@ mod tests {
         let first = short_steps(
             &w.offense[0],
             &w.ball,
-            lateral_offset(&w.offense[0], &w.ball),
+            lateral_offset(&w.offense[0], &w.ball, heading(&w.ball)),
             30,
             false,
             0,

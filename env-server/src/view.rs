@@ -443,7 +443,10 @@ fn faces_pitch(from: DVec2, facing: DVec2, half: DVec2) -> bool {
 
 /// librcsc's direction bin of `angle` (degrees).
 fn dir_index(angle: f64) -> usize {
-    (((deg_norm(angle) - 0.5 + 180.0) / DIR_STEP) as usize).min(DIRS - 1)
+    // In [-0.1, 71.9]: truncating through i32 is the saturating `as usize`
+    // (0 below zero), and cheaper.
+    let bin = (deg_norm(angle) - 0.5 + 180.0) / DIR_STEP;
+    (bin as i32 as usize).min(DIRS - 1)
 }
 
 /// `AngleDeg::normalize`: into [-180, 180].
@@ -483,6 +486,14 @@ mod tests {
             keeper_ball_dist: 20.0,
             ball_dist: next_pos.distance(ball),
             drift_pos: next_pos,
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn dir_index_is_the_saturating_bin(angle in -1000.0..1000.0f64) {
+            let bin = (deg_norm(angle) - 0.5 + 180.0) / DIR_STEP;
+            proptest::prop_assert_eq!(dir_index(angle), (bin as usize).min(DIRS - 1));
         }
     }
 
