@@ -127,8 +127,8 @@ fn search(s: &Situation, want: Want) -> Search {
     let mut best: Option<(f64, Course)> = None;
     for target in targets(me, ball) {
         let line = Line::new(s, ball, target);
-        let dir = direction(target - ball);
         let s1 = if kickable {
+            let dir = direction(target - ball);
             max_one_kick_speed(dir, s.world.ball.vel, max_kick_accel(me, ball))
         } else {
             0.1
