@@ -200,6 +200,8 @@ impl Env {
         view::before_decisions(&mut self.world.sight, phase, &looks[..n]);
         let mut searched = [None; MAX_OFFENSE];
         let mut necks = [Neck::Scan; MAX_OFFENSE];
+        // The world with the ball held still, made for the first agent that sees it so.
+        let mut still: Option<(World, Analysis)> = None;
         for agent in 0..n {
             let idle = Decision {
                 command: Command::None,
@@ -210,10 +212,12 @@ impl Env {
                 _ if self.world.offense[agent].tackle_freeze > 0 => idle,
                 None => idle,
                 Some(a) => {
-                    let believed = stopped_ball_view(&self.world, agent);
-                    let (world, analysis) = believed
-                        .as_ref()
-                        .map_or((&self.world, &analysis), |(w, a)| (w, a));
+                    let (world, analysis) = if sees_ball_held(&self.world, agent) {
+                        let (w, a) = still.get_or_insert_with(|| ball_held_still(&self.world));
+                        (&*w, &*a)
+                    } else {
+                        (&self.world, &analysis)
+                    };
                     offense_command(
                         &Situation {
                             world,
@@ -346,18 +350,20 @@ impl Env {
     }
 }
 
-/// Agent `agent`'s world when it takes the keeper to be on the ball and
-/// cannot kick it itself: librcsc then holds the ball still in its world
-/// model (`setOpponentControlEffect`); `None` when its view is the world.
-fn stopped_ball_view(world: &World, agent: usize) -> Option<(World, Analysis)> {
-    let stopped = world.keeper_kickable_seen_by(agent)
+/// Whether agent `agent` takes the keeper to be on a moving ball that it
+/// cannot kick itself: librcsc then holds the ball still in its world model
+/// (`setOpponentControlEffect`), [`ball_held_still`].
+fn sees_ball_held(world: &World, agent: usize) -> bool {
+    world.keeper_kickable_seen_by(agent)
         && !world.agent_kickable(agent)
-        && world.ball.vel != DVec2::ZERO;
-    stopped.then(|| {
-        let believed = world.with_ball_still();
-        let analysis = Analysis::new(&believed);
-        (believed, analysis)
-    })
+        && world.ball.vel != DVec2::ZERO
+}
+
+/// The world of an agent that [`sees_ball_held`], and its analysis.
+fn ball_held_still(world: &World) -> (World, Analysis) {
+    let believed = world.with_ball_still();
+    let analysis = Analysis::new(&believed);
+    (believed, analysis)
 }
 
 /// What agent `agent`'s view and neck actions see after its body command
@@ -410,13 +416,14 @@ mod tests {
         w.ball.vel = DVec2::new(-0.5, 0.2);
         w.offense[0] = Player::new(DVec2::new(40.0, 0.0), 0.0);
         w.offense[1] = Player::new(DVec2::new(43.5, 0.5), 0.0);
-        let (believed, analysis) = stopped_ball_view(&w, 0).expect("the keeper is on the ball");
+        assert!(sees_ball_held(&w, 0), "the keeper is on the ball");
+        let (believed, analysis) = ball_held_still(&w);
         assert_eq!(believed.ball.vel, DVec2::ZERO);
         assert_eq!(analysis.path_len, 6, "a resting ball's path");
         // An agent that can kick the ball itself sees it move.
-        assert!(stopped_ball_view(&w, 1).is_none());
+        assert!(!sees_ball_held(&w, 1));
         w.keeper.pos = DVec2::new(46.0, 0.0);
-        assert!(stopped_ball_view(&w, 0).is_none());
+        assert!(!sees_ball_held(&w, 0));
     }
 
     /// After its tackle's own cycle the server ignores a player for 9 more
