@@ -287,7 +287,6 @@ fn back_dash_allowed(p: &Player, ball: &Ball, t: usize, diff: f64, goalie: bool)
 /// The full dashes a player makes after some turns, as its stamina allows
 /// them (half the power backwards); librcsc's speed-limit branch never acts
 /// for this player type (100 · 0.006 < 1.05 · 0.6).
-#[derive(Clone, Copy)]
 struct Run {
     turns: usize,
     back: bool,
