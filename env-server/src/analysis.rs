@@ -136,7 +136,8 @@ impl Analysis {
     }
 
     /// The path's heading as the others' estimates read it ([`reach_cycle`]).
-    pub fn path_heading(&self) -> Option<DVec2> {
+    #[cfg(test)]
+    pub(crate) fn path_heading(&self) -> Option<DVec2> {
         path_heading(self.path())
     }
 
