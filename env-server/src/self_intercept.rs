@@ -111,20 +111,20 @@ pub fn predict_from(
     found: Found,
 ) -> Vec<Interception> {
     let max_cycle = MAX_CYCLE.min(path.len());
-    let (mut cache, mut t) = match found {
+    // At most the five short steps and the long step's window.
+    let mut cache = Vec::with_capacity(SHORT_STEPS + LONG_WINDOW);
+    let mut t = match found {
         Found::Nothing | Found::Short(_) => {
             let lateral = lateral_offset(p, ball, heading);
             let (known, after) = match found {
                 Found::Short(first) => (Some(first), first.cycle),
                 _ => (None, 0),
             };
-            let later = short_steps(p, ball, lateral, max_cycle, goalie, after);
-            (
-                known.into_iter().chain(later).collect(),
-                long_start(lateral),
-            )
+            cache.extend(known);
+            cache.extend(short_steps(p, ball, lateral, max_cycle, goalie, after));
+            long_start(lateral)
         }
-        Found::Long(first) => (Vec::new(), first),
+        Found::Long(first) => first,
         Found::Final => return vec![final_point(p, ball, max_cycle, goalie)],
     };
     let before = cache.len();
