@@ -85,23 +85,19 @@ pub enum Found {
     Final,
 }
 
-/// Every way `SelfInterceptV13::predict` finds for player `p` (the keeper
-/// if `goalie`), who cannot kick the ball now, on the ball path `path`
-/// (whose first point is `ball`'s position), earliest first: the best of
-/// each short step, the long-step cycles from the first reachable one for
-/// 10 cycles, and the ball's resting point when no long step reaches it.
-pub fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Interception> {
-    predict_from(p, ball, heading(ball), path, goalie, Found::Nothing)
-}
-
 /// The unit vector of the ball's direction of travel (the x axis for a
 /// resting ball), which [`reach`] and [`predict_from`] take.
 pub fn heading(ball: &Ball) -> DVec2 {
     unit(direction(ball.vel))
 }
 
-/// [`predict`], skipping the search [`reach`] already made on the same
-/// arguments; `found` is what it returned.
+/// Every way `SelfInterceptV13::predict` finds for player `p` (the keeper
+/// if `goalie`), who cannot kick the ball now, on the ball path `path`
+/// (whose first point is `ball`'s position and whose heading is
+/// `heading`), earliest first: the best of each short step, the long-step
+/// cycles from the first reachable one for 10 cycles, and the ball's
+/// resting point when no long step reaches it. `found` is what [`reach`]
+/// returned on the same arguments: the search it already made is skipped.
 pub fn predict_from(
     p: &Player,
     ball: &Ball,
@@ -147,7 +143,7 @@ pub fn predict_from(
 
 /// The own reach cycle (`self_min`) and where it was found: 0 if the player
 /// can kick the ball by its own test (1.03 m), else the earliest way of
-/// [`predict`].
+/// [`predict_from`].
 pub fn reach(
     p: &Player,
     ball: &Ball,
@@ -950,6 +946,13 @@ fn spend(p: &mut Player, power: f64) {
     update_stamina(p);
 }
 
+/// [`predict_from`] searching everything again: the reference the tests
+/// compare with.
+#[cfg(test)]
+pub(crate) fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> Vec<Interception> {
+    predict_from(p, ball, heading(ball), path, goalie, Found::Nothing)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -964,6 +967,33 @@ mod tests {
         w.offense[0].vel = DVec2::new(me.2, me.3);
         w.keeper = Player::new(DVec2::new(50.0, 2.8), FRAC_PI_4 * 2.0);
         w
+    }
+
+    #[test]
+    fn the_cache_resumed_from_the_own_reach_equals_a_full_search() {
+        let (mut short, mut long) = (false, false);
+        for (i, vel) in [(0.0, 0.0), (1.5, 0.3), (-0.8, 0.5), (2.5, -0.4), (0.4, 0.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let near = [(28.5, 0.8), (26.0, -1.5), (29.5, 0.0), (27.0, 2.2)];
+            let far = [(30.0, -3.0), (35.0, 8.0), (20.0, 12.0), (45.0, -10.0)];
+            for me in near.into_iter().chain(far) {
+                let body = 70.0 * i as f64;
+                let w = world((27.0, 0.0, vel.0, vel.1), (me.0, me.1, 0.1, 0.0), body);
+                let a = Analysis::new(&w);
+                let p = &w.offense[0];
+                let (_, found) = reach(p, &w.ball, heading(&w.ball), a.path(), false);
+                short |= matches!(found, Found::Short(_));
+                long |= matches!(found, Found::Long(_));
+                assert_eq!(a.own_cache(&w, 0), predict(p, &w.ball, a.path(), false));
+                assert_eq!(
+                    a.keeper_cache(&w),
+                    predict(&w.keeper, &w.ball, a.path(), true)
+                );
+            }
+        }
+        assert!(short && long, "both kinds of resumption are tried");
     }
 
     #[test]
