@@ -99,28 +99,32 @@ mod tests {
 
     fn body() -> impl Strategy<Value = Body> {
         prop_oneof![
-            (
-                any::<u8>(),
-                mode(),
-                state(),
-                any::<bool>(),
-                prop::collection::vec(prop::array::uniform2(-60.0f64..60.0), 0..5),
-                -1.0f64..=1.0,
-                any::<bool>()
-            )
-                .prop_map(
-                    |(agent, mode, state, can_kick, positions, reward, terminal)| Body::Observation(
-                        Observation {
-                            agent,
-                            mode,
-                            state,
-                            can_kick,
-                            positions,
-                            reward,
-                            terminal
+            prop::collection::vec(
+                (
+                    any::<u8>(),
+                    mode(),
+                    state(),
+                    any::<bool>(),
+                    prop::collection::vec(prop::array::uniform2(-60.0f64..60.0), 0..5),
+                    -1.0f64..=1.0,
+                    any::<bool>()
+                )
+                    .prop_map(
+                        |(agent, mode, state, can_kick, positions, reward, terminal)| {
+                            Observation {
+                                agent,
+                                mode,
+                                state,
+                                can_kick,
+                                positions,
+                                reward,
+                                terminal,
+                            }
                         }
-                    )
-                ),
+                    ),
+                1..4
+            )
+            .prop_map(Body::Observations),
             (any::<u8>(), action())
                 .prop_map(|(agent, action)| Body::Action(ActionChoice { agent, action })),
             (any::<u8>(), state(), prop::option::of(action())).prop_map(

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 /// The kinds of message, for accounting.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum MessageKind {
-    /// Observations.
+    /// Observation messages (each with one or more frames).
     Observation,
     /// Actions.
     Action,
@@ -37,7 +37,7 @@ impl MessageKind {
     /// The kind of a message body.
     pub fn of(body: &Body) -> Self {
         match body {
-            Body::Observation(_) => MessageKind::Observation,
+            Body::Observations(_) => MessageKind::Observation,
             Body::Action(_) => MessageKind::Action,
             Body::AdviceRequest(_) => MessageKind::AdviceRequest,
             Body::AdviceReply(_) => MessageKind::AdviceReply,

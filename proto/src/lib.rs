@@ -19,7 +19,7 @@ pub use message::*;
 use serde::{Deserialize, Serialize};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 3;
+pub const PROTOCOL_VERSION: u16 = 4;
 
 /// Number of features in the paper's state view (docs/algorithms.md section 1).
 pub const STATE_FEATURES: usize = 6;

@@ -60,8 +60,11 @@ pub struct Envelope {
 /// What a message says.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Body {
-    /// env-server -> agent: one frame's observation.
-    Observation(Observation),
+    /// env-server -> agent: its observations of consecutive frames, the
+    /// first of the header's frame, at most [`MAX_FRAMES_PER_MESSAGE`]:
+    /// every frame since its last message, up to one where some agent can
+    /// kick or the episode ends.
+    Observations(Vec<Observation>),
     /// agent -> env-server: the action of an agent that was asked to act.
     Action(ActionChoice),
     /// agent -> agents in G: a request for advice (query payload).
@@ -94,6 +97,9 @@ pub struct Observation {
     /// Whether this frame ends the episode (no action expected).
     pub terminal: bool,
 }
+
+/// The most frames one observation message may carry.
+pub const MAX_FRAMES_PER_MESSAGE: usize = 64;
 
 /// An agent's chosen action for a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use agent::Transition;
-use proto::{ActionChoice, Body, DropReason, Envelope, MessageKind, SharedEpisode};
+use proto::{ActionChoice, Body, DropReason, Envelope, Header, MessageKind, SharedEpisode};
 use zenoh::handlers::FifoChannelHandler;
 use zenoh::pubsub::{Publisher, Subscriber};
 use zenoh::sample::Sample;
@@ -26,7 +26,7 @@ pub async fn run(
     loop {
         tokio::select! {
             sample = observations.recv_async() => match sample {
-                Ok(s) => on_observation(&node, &actions, &s.payload().to_bytes()).await,
+                Ok(s) => on_observations(&node, &actions, &s.payload().to_bytes()).await,
                 Err(_) => break,
             },
             sample = shares.recv_async() => match sample {
@@ -37,24 +37,46 @@ pub async fn run(
     }
 }
 
-/// One observation: begin, play or end the episode, asking for advice and
-/// publishing the action or the shared episodes as needed.
-async fn on_observation(node: &Node, actions: &Publisher<'static>, bytes: &[u8]) {
+/// One observation message: its frames in order, as if each had come alone.
+async fn on_observations(node: &Node, actions: &Publisher<'static>, bytes: &[u8]) {
     let Some(Envelope { header, body }) = node.decode(bytes) else {
         return;
     };
-    let Body::Observation(obs) = body else {
+    let Body::Observations(frames) = body else {
         return node.dropped(DropReason::Malformed, Some(&header));
     };
-    let alive = node.alive();
-    let step = node.learner().observe(&header, &obs, &|j| {
-        u8::try_from(j).is_ok_and(|j| alive.contains(&j))
-    });
-    let step = match step {
-        Ok(step) => step,
-        Err(reason) => return node.dropped(reason, Some(&header)),
-    };
-    node.accepted(MessageKind::Observation, bytes.len());
+    // Frames header.frame ..= header.frame + len - 1, at least one.
+    let fits = (1..=proto::MAX_FRAMES_PER_MESSAGE).contains(&frames.len())
+        && header.frame.checked_add(frames.len() as u32 - 1).is_some();
+    if !fits {
+        return node.dropped(DropReason::Malformed, Some(&header));
+    }
+    // Counted as received once one of its frames is accepted.
+    let mut counted = false;
+    for (k, obs) in frames.iter().enumerate() {
+        let header = Header {
+            frame: header.frame + k as u32,
+            ..header
+        };
+        let alive = node.alive();
+        let step = node.learner().observe(&header, obs, &|j| {
+            u8::try_from(j).is_ok_and(|j| alive.contains(&j))
+        });
+        match step {
+            Ok(step) => {
+                if !std::mem::replace(&mut counted, true) {
+                    node.accepted(MessageKind::Observation, bytes.len());
+                }
+                carry_out(node, actions, header, step).await;
+            }
+            Err(reason) => node.dropped(reason, Some(&header)),
+        }
+    }
+}
+
+/// A frame's step: the action to publish (after asking for advice, if
+/// the learner wants to), or the end of the episode with its shares.
+async fn carry_out(node: &Node, actions: &Publisher<'static>, header: Header, step: Step) {
     let action = match step {
         Step::Act(action) => action,
         Step::Ask(request) => {
@@ -85,7 +107,7 @@ async fn on_observation(node: &Node, actions: &Publisher<'static>, bytes: &[u8])
 }
 
 /// Publishes an ended episode's transitions, one message per receiver.
-async fn publish_shares(node: &Node, header: proto::Header, shares: Vec<(usize, Vec<Transition>)>) {
+async fn publish_shares(node: &Node, header: Header, shares: Vec<(usize, Vec<Transition>)>) {
     for (to, transitions) in shares {
         let Ok(to) = u8::try_from(to) else { continue };
         let share = SharedEpisode {

@@ -180,11 +180,22 @@ impl Fake {
     async fn frame(&self, header: Header, mode: Mode, kick: bool, terminal: bool, reward: f64) {
         for id in 0..2u8 {
             let obs = observation(id, header.frame, mode, kick, terminal, reward);
-            let bytes = proto::encode(&Envelope {
-                header,
-                body: Body::Observation(obs),
-            });
-            self.publish(id, bytes).await;
+            self.publish(id, observations(header, vec![obs])).await;
+        }
+    }
+
+    /// Publishes `n` frames from `header`'s to both agents in one message
+    /// each, none with the ball; the last ends the episode with `reward`.
+    async fn episode_tail(&self, header: Header, n: u32, reward: f64) {
+        for id in 0..2u8 {
+            let frames = (0..n)
+                .map(|k| {
+                    let last = k + 1 == n;
+                    let reward = if last { reward } else { 0.0 };
+                    observation(id, header.frame + k, Mode::Training, false, last, reward)
+                })
+                .collect();
+            self.publish(id, observations(header, frames)).await;
         }
     }
 
@@ -192,6 +203,14 @@ impl Fake {
         let reply = self.control(id, self.header(0, 0, 0), Control::Stop).await;
         assert_eq!(reply, ControlReply::Ok);
     }
+}
+
+/// An observation message.
+fn observations(header: Header, frames: Vec<Observation>) -> Vec<u8> {
+    proto::encode(&Envelope {
+        header,
+        body: Body::Observations(frames),
+    })
 }
 
 /// Agent `id`'s observation of `frame`: a state of its own per frame.
@@ -308,20 +327,25 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     }
 
     // Bad messages on obs/0 are counted and change nothing.
-    let good = |header: Header| {
-        proto::encode(&Envelope {
-            header,
-            body: Body::Observation(Observation {
-                agent: 0,
-                mode: Mode::Training,
-                state: [0.9; 6],
-                can_kick: true,
-                positions: vec![],
-                reward: 1.0,
-                terminal: false,
-            }),
-        })
+    let frame = Observation {
+        agent: 0,
+        mode: Mode::Training,
+        state: [0.9; 6],
+        can_kick: true,
+        positions: vec![],
+        reward: 1.0,
+        terminal: false,
     };
+    let good = |header: Header| observations(header, vec![frame.clone()]);
+    fake.publish(0, observations(fake.header(0, 2, 0), vec![]))
+        .await;
+    let too_many = vec![frame.clone(); proto::MAX_FRAMES_PER_MESSAGE + 1];
+    fake.publish(0, observations(fake.header(0, 2, 0), too_many))
+        .await;
+    let past_the_last_frame = vec![frame.clone(); 2];
+    let last = fake.header(0, 2, u32::MAX);
+    fake.publish(0, observations(last, past_the_last_frame))
+        .await;
     fake.publish(0, vec![0xff, 0x00, 0x13, 0x37]).await;
     fake.publish(0, good(Header::new(proto::experiment_id("other"), 0, 2, 0)))
         .await;
@@ -333,10 +357,10 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     fake.publish(0, good(fake.header(0, 1, 2))).await; // an ended episode
     fake.publish(0, good(fake.header(5, 2, 0))).await; // another run
     let r = fake
-        .report_until(0, 1, |r| r.messages.dropped.total() == 5)
+        .report_until(0, 1, |r| r.messages.dropped.total() == 8)
         .await;
     let d = r.messages.dropped;
-    assert_eq!((d.malformed, d.foreign, d.version, d.stale), (1, 1, 1, 2));
+    assert_eq!((d.malformed, d.foreign, d.version, d.stale), (4, 1, 1, 2));
     assert_eq!(r.digest, reports[0].digest);
     assert_eq!(received(&r, MessageKind::Observation), 6);
 
@@ -373,22 +397,19 @@ async fn episode_sharing_travels_as_published_messages() {
     for id in 0..2 {
         fake.reset(id, &config).await;
     }
-    // Episode 0 ends without a goal (nothing shared); episode 1 with one.
-    for (episode, reward) in [(0, 0.0), (1, 1.0)] {
-        for frame in 0..3 {
-            let header = fake.header(0, episode, frame);
-            fake.frame(header, Mode::Training, false, false, 0.0).await;
-        }
-        let header = fake.header(0, episode, 3);
-        fake.frame(header, Mode::Training, false, true, reward)
-            .await;
-        if episode == 0 {
-            for id in 0..2 {
-                fake.report_until(id, 0, |r| r.alive_peers == vec![1 - id])
-                    .await;
-            }
-        }
+    // Episode 0 ends without a goal (nothing shared), its frames sent one
+    // by one; episode 1 with one, its frames in one message.
+    for frame in 0..3 {
+        let header = fake.header(0, 0, frame);
+        fake.frame(header, Mode::Training, false, false, 0.0).await;
     }
+    fake.frame(fake.header(0, 0, 3), Mode::Training, false, true, 0.0)
+        .await;
+    for id in 0..2 {
+        fake.report_until(id, 0, |r| r.alive_peers == vec![1 - id])
+            .await;
+    }
+    fake.episode_tail(fake.header(0, 1, 0), 4, 1.0).await;
 
     // The same episodes in process: after the goal each agent sends its 3
     // transitions to the other, who replays them.
@@ -423,6 +444,7 @@ async fn episode_sharing_travels_as_published_messages() {
         let r = fake.report_until(id, 1, |r| r.digest == expected).await;
         assert_eq!(sent(&r, MessageKind::SharedEpisode), 1);
         assert_eq!(received(&r, MessageKind::SharedEpisode), 1);
+        assert_eq!(received(&r, MessageKind::Observation), 4 + 1);
         assert_eq!(r.give_spent, 3);
     }
 

@@ -135,19 +135,23 @@ impl Episode {
         self.awaited = 0;
     }
 
-    /// Writes agent `agent`'s observation of the current frame, whose state
-    /// is `state`, into `obs`. The terminal frame carries the final reward
-    /// and no decision.
-    pub fn observe(&self, env: &Env, agent: usize, state: State, obs: &mut Observation) {
-        obs.agent = agent as u8;
-        obs.mode = self.mode;
-        obs.state = state;
-        obs.can_kick = self.kickers & (1 << agent) != 0;
-        obs.positions.clear();
-        obs.positions
-            .extend(env.world().offense.iter().map(|p| [p.pos.x, p.pos.y]));
-        obs.reward = self.reward;
-        obs.terminal = self.is_over();
+    /// Agent `agent`'s observation of the current frame, whose state is
+    /// `state`. The terminal frame carries the final reward and no decision.
+    pub fn observe(&self, env: &Env, agent: usize, state: State) -> Observation {
+        Observation {
+            agent: agent as u8,
+            mode: self.mode,
+            state,
+            can_kick: self.kickers & (1 << agent) != 0,
+            positions: env
+                .world()
+                .offense
+                .iter()
+                .map(|p| [p.pos.x, p.pos.y])
+                .collect(),
+            reward: self.reward,
+            terminal: self.is_over(),
+        }
     }
 
     /// Offers an action received with `header`.
@@ -208,36 +212,55 @@ impl Episode {
     }
 }
 
-/// One observation envelope, reused for every agent and frame.
-pub struct ObservationSlot(Envelope);
+/// Each agent's observations of the frames not sent yet, sent as one
+/// message per agent (docs/protocol.md, "Frames").
+#[derive(Debug, Default)]
+pub struct Batches {
+    /// Run, episode and frame of the first observation held.
+    first: Option<Header>,
+    /// Per agent, its observations in frame order.
+    frames: Vec<Vec<Observation>>,
+}
 
-impl ObservationSlot {
-    /// An empty slot.
-    pub fn new(experiment: u64) -> Self {
-        ObservationSlot(Envelope {
-            header: Header::new(experiment, 0, 0, 0),
-            body: Body::Observation(Observation {
-                agent: 0,
-                mode: Mode::Training,
-                state: [0.0; proto::STATE_FEATURES],
-                can_kick: false,
-                positions: Vec::with_capacity(MAX_OFFENSE),
-                reward: 0.0,
-                terminal: false,
-            }),
-        })
+impl Batches {
+    /// Adds every agent's observation of `episode`'s current frame on `env`.
+    pub fn push(&mut self, episode: &Episode, env: &Env) {
+        self.first.get_or_insert(episode.header);
+        self.frames.resize_with(env.offense(), Vec::new);
+        for (agent, state) in env.states().enumerate() {
+            self.frames[agent].push(episode.observe(env, agent, state));
+        }
     }
 
-    /// Agent `agent`'s observation of `episode`'s current frame, whose
-    /// state is `state` (from [`Env::states`]), encoded.
-    pub fn encode(&mut self, episode: &Episode, env: &Env, agent: usize, state: State) -> Vec<u8> {
-        let Envelope { header, body } = &mut self.0;
-        *header = episode.header;
-        let Body::Observation(obs) = body else {
-            unreachable!("the slot always holds an observation")
+    /// Whether one more frame would not fit in a message.
+    pub fn is_full(&self) -> bool {
+        self.frames
+            .first()
+            .is_some_and(|f| f.len() >= proto::MAX_FRAMES_PER_MESSAGE)
+    }
+
+    /// Each agent's message with the frames held, encoded, in agent order
+    /// (none when no frame is held); the batches are left empty.
+    pub fn take(&mut self) -> Vec<Vec<u8>> {
+        let Some(first) = self.first.take() else {
+            return Vec::new();
         };
-        episode.observe(env, agent, state, obs);
-        proto::encode(&self.0)
+        self.frames
+            .iter_mut()
+            .map(|frames| {
+                let envelope = Envelope {
+                    header: first,
+                    body: Body::Observations(std::mem::take(frames)),
+                };
+                proto::encode(&envelope)
+            })
+            .collect()
+    }
+
+    /// Drops the frames held (an episode abandoned).
+    pub fn clear(&mut self) {
+        self.first = None;
+        self.frames.iter_mut().for_each(Vec::clear);
     }
 }
 
@@ -281,25 +304,49 @@ mod tests {
         assert!(e.missing().all(|m| m != k));
     }
 
+    /// Agent `agent`'s message among `messages`, decoded.
+    fn decoded(messages: &[Vec<u8>], agent: usize) -> (Header, Vec<Observation>) {
+        let envelope = proto::decode(&messages[agent], 1).unwrap();
+        let Body::Observations(frames) = envelope.body else {
+            panic!("not observations")
+        };
+        (envelope.header, frames)
+    }
+
     #[test]
     fn plays_like_the_simulator_alone() {
         // Kickers shoot, the others move: the same episode as stepping the
-        // simulator directly with the same seed.
+        // simulator directly with the same seed. The frames are batched up
+        // to each decision, as the server sends them.
         let mut env = Env::new(EnvConfig::default(), 11).unwrap();
         let mut e = Episode::start(&mut env, header(0, 0, 0), Mode::Training);
         let mut direct = Env::new(EnvConfig::default(), 11).unwrap();
         direct.reset();
-        let mut slot = ObservationSlot::new(1);
-        while !e.is_over() {
+        let mut batches = Batches::default();
+        let mut pending = Vec::new();
+        let mut messages = 0;
+        loop {
             assert_eq!(e.header.frame, direct.frame());
-            let bytes = slot.encode(&e, &env, 0, env.state(0));
-            let Body::Observation(obs) = proto::decode(&bytes, 1).unwrap().body else {
-                panic!("not an observation")
-            };
-            assert_eq!(obs.state, direct.state(0));
-            assert!(!obs.terminal);
-            let kickers: Vec<usize> = e.missing().collect();
-            for &k in &kickers {
+            batches.push(&e, &env);
+            pending.push((direct.frame(), direct.state(0)));
+            if e.is_over() || e.is_waiting() {
+                let sent = batches.take();
+                assert_eq!(sent.len(), 3);
+                assert!(batches.take().is_empty(), "taking empties the batches");
+                let (first, frames) = decoded(&sent, 0);
+                assert_eq!(first.frame, pending[0].0);
+                let states: Vec<State> = frames.iter().map(|o| o.state).collect();
+                let expected: Vec<State> = pending.drain(..).map(|(_, s)| s).collect();
+                assert_eq!(states, expected);
+                let last = frames.last().unwrap();
+                assert!(frames[..frames.len() - 1].iter().all(|o| !o.terminal));
+                assert_eq!(last.terminal, e.is_over());
+                messages += 1;
+            }
+            if e.is_over() {
+                break;
+            }
+            for k in e.missing().collect::<Vec<_>>() {
                 let choice = ActionChoice {
                     agent: k as u8,
                     action: Action::Shoot,
@@ -321,12 +368,33 @@ mod tests {
         }
         let result = e.result().unwrap();
         assert_eq!(result.frames, direct.frame());
-        let bytes = slot.encode(&e, &env, 1, env.state(1));
-        let Body::Observation(obs) = proto::decode(&bytes, 1).unwrap().body else {
-            panic!("not an observation")
+        assert!(
+            messages > 1 && messages < result.frames,
+            "{messages} messages"
+        );
+        let sent = {
+            batches.push(&e, &env);
+            batches.take()
         };
+        let (_, frames) = decoded(&sent, 1);
+        let obs = &frames[0];
         assert!(obs.terminal && !obs.can_kick);
         assert_eq!(obs.reward, direct.outcome().reward());
+    }
+
+    #[test]
+    fn a_batch_is_full_at_the_message_limit() {
+        let mut env = Env::new(EnvConfig::default(), 3).unwrap();
+        let e = Episode::start(&mut env, header(1, 2, 0), Mode::Evaluation);
+        let mut batches = Batches::default();
+        for _ in 0..proto::MAX_FRAMES_PER_MESSAGE {
+            assert!(!batches.is_full());
+            batches.push(&e, &env);
+        }
+        assert!(batches.is_full());
+        batches.clear();
+        assert!(!batches.is_full());
+        assert!(batches.take().is_empty());
     }
 
     fn settings(config: &EnvConfig) -> Vec<u8> {

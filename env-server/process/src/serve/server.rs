@@ -11,9 +11,10 @@
 //! as malformed; any action not of the current run, episode and frame is
 //! stale.
 
-use super::episode::{Episode, ObservationSlot, Offer, Simulators};
+use super::episode::{Batches, Episode, Offer, Simulators};
 use super::link::{Inbox, Link};
 use anyhow::{Result, bail};
+use env_server::Env;
 use env_server::analysis::MAX_OFFENSE;
 use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
@@ -60,7 +61,8 @@ pub struct Server {
     silent_since: [Option<Instant>; MAX_OFFENSE],
     run: Option<Run>,
     play: Option<Play>,
-    slot: ObservationSlot,
+    /// The observations of the frames not sent yet.
+    batches: Batches,
     frames: u64,
     missing_actions: u64,
     counters: MessageCounters,
@@ -79,7 +81,7 @@ impl Server {
             silent_since: [None; MAX_OFFENSE],
             run: None,
             play: None,
-            slot: ObservationSlot::new(experiment),
+            batches: Batches::default(),
             frames: 0,
             missing_actions: 0,
             counters: MessageCounters::default(),
@@ -295,28 +297,28 @@ impl Server {
         self.advance().await
     }
 
-    /// Publishes the current frame, then steps on through frames where no
-    /// agent can kick, until one awaits actions (arming the deadline) or the
-    /// episode ends (answering its query).
+    /// Steps on through frames where no agent can kick, holding back their
+    /// observations, until one awaits actions (arming the deadline) or the
+    /// episode ends (answering its query); then sends each agent its frames
+    /// in one message.
     async fn advance(&mut self) -> Result<()> {
         loop {
-            let (Some(play), Some(run)) = (self.play.as_mut(), self.run.as_mut()) else {
+            let Some((play, env)) = playing(&mut self.play, &mut self.run) else {
                 return Ok(());
             };
-            let Some(env) = run.simulators.env(play.episode.mode) else {
-                return Ok(());
-            };
-            for (agent, state) in env.states().enumerate() {
-                let bytes = self.slot.encode(&play.episode, env, agent, state);
-                self.counters
-                    .record(Direction::Sent, MessageKind::Observation, bytes.len());
-                self.link.publish(agent, bytes).await?;
+            self.batches.push(&play.episode, env);
+            let (over, waiting) = (play.episode.is_over(), play.episode.is_waiting());
+            if over || waiting || self.batches.is_full() {
+                self.send_observations().await?;
             }
-            if play.episode.is_over() {
+            if over {
                 self.finish().await;
                 return Ok(());
             }
-            if play.episode.is_waiting() {
+            let Some((play, env)) = playing(&mut self.play, &mut self.run) else {
+                return Ok(());
+            };
+            if waiting {
                 play.deadline = Some(Instant::now() + self.step_timeout);
                 return Ok(());
             }
@@ -325,11 +327,19 @@ impl Server {
         }
     }
 
+    /// Sends every agent the observations held for it.
+    async fn send_observations(&mut self) -> Result<()> {
+        for (agent, bytes) in self.batches.take().into_iter().enumerate() {
+            self.counters
+                .record(Direction::Sent, MessageKind::Observation, bytes.len());
+            self.link.publish(agent, bytes).await?;
+        }
+        Ok(())
+    }
+
     /// Steps the episode with the actions it has, then advances.
     async fn proceed(&mut self) -> Result<()> {
-        if let (Some(play), Some(run)) = (self.play.as_mut(), self.run.as_mut())
-            && let Some(env) = run.simulators.env(play.episode.mode)
-        {
+        if let Some((play, env)) = playing(&mut self.play, &mut self.run) {
             play.deadline = None;
             play.episode.step(env);
             self.frames += 1;
@@ -350,6 +360,7 @@ impl Server {
 
     /// Gives up the episode in progress, if any, telling its query why.
     async fn abandon(&mut self, why: &str) {
+        self.batches.clear();
         if let Some(play) = self.play.take() {
             let h = play.episode.header;
             warn!(
@@ -480,6 +491,16 @@ impl Server {
     fn current_run(&self) -> u32 {
         self.run.as_ref().map_or(0, |r| r.run)
     }
+}
+
+/// The episode being played and its simulator, if any.
+fn playing<'a>(
+    play: &'a mut Option<Play>,
+    run: &'a mut Option<Run>,
+) -> Option<(&'a mut Play, &'a mut Env)> {
+    let play = play.as_mut()?;
+    let env = run.as_mut()?.simulators.env(play.episode.mode)?;
+    Some((play, env))
 }
 
 /// The agent id in a sample's key (`.../act/<id>`).
