@@ -1,27 +1,15 @@
-//! The advisor side: the agent's advice queryable, served concurrently with
-//! its own decisions (docs/protocol.md §6).
-
-use std::sync::Arc;
+//! The advisor side: the agent's advice queryable, answered in zenoh's
+//! callback, concurrently with the agent's own decisions (docs/protocol.md §6).
 
 use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind};
-use zenoh::handlers::FifoChannelHandler;
-use zenoh::query::{Query, Queryable};
+use zenoh::Wait;
+use zenoh::query::Query;
 
 use crate::context::Node;
 
-/// A queryable whose queries are read from a channel.
-pub type Queries = Queryable<FifoChannelHandler<Query>>;
-
-/// Answers advice requests until the session closes.
-pub async fn serve(node: Arc<Node>, queries: Queries) {
-    while let Ok(query) = queries.recv_async().await {
-        answer(&node, &query).await;
-    }
-}
-
 /// Answers one request: advice, or `None` when the agent gives none (or the
 /// request belongs to another run). Undecodable requests get no answer.
-async fn answer(node: &Node, query: &Query) {
+pub fn answer(node: &Node, query: &Query) {
     let bytes = query.payload().map(|p| p.to_bytes()).unwrap_or_default();
     let Some(Envelope { header, body }) = node.decode(&bytes) else {
         return;
@@ -46,7 +34,7 @@ async fn answer(node: &Node, query: &Query) {
         advice,
     };
     let bytes = node.encode(header, Body::AdviceReply(reply));
-    if let Err(e) = query.reply(node.keys.advice(node.id), bytes).await {
+    if let Err(e) = query.reply(node.keys.advice(node.id), bytes).wait() {
         tracing::warn!(error = %e, "cannot answer an advice request");
     }
 }

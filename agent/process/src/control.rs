@@ -7,14 +7,17 @@ use std::time::Duration;
 
 use proto::keys::Role;
 use proto::{AgentReport, Body, Control, ControlReply, DropReason, Envelope, Header, MessageKind};
-use zenoh::query::Query;
+use zenoh::handlers::FifoChannelHandler;
+use zenoh::query::{Query, Queryable};
 
-use crate::advise::Queries;
 use crate::context::{Exit, Node, Traffic};
 
 /// How long Report and Snapshot wait for their episode to end
 /// (less than the coordinator's 10 s, so that it gets this error).
 const EPISODE_WAIT: Duration = Duration::from_secs(8);
+
+/// A queryable whose queries are read from a channel.
+pub type Queries = Queryable<FifoChannelHandler<Query>>;
 
 /// Answers commands until the session closes.
 pub async fn serve(node: Arc<Node>, queries: Queries) {

@@ -1,129 +1,232 @@
-//! The agent's stream task: observations and shared episodes, processed
-//! strictly in order, one at a time (docs/protocol.md §5).
+//! The agent's stream of observations: frames processed strictly in order,
+//! one at a time (docs/protocol.md §5). A message is stepped in zenoh's
+//! callback, on the thread that received it; only a frame that asks for
+//! advice, and whatever arrives until its answer is in, waits for the
+//! stream task, which can wait for the advisors.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
 use agent::Transition;
-use proto::{ActionChoice, Body, DropReason, Envelope, Header, MessageKind, SharedEpisode};
-use zenoh::handlers::FifoChannelHandler;
-use zenoh::pubsub::{Publisher, Subscriber};
-use zenoh::sample::Sample;
+use proto::{
+    ActionChoice, Body, DropReason, Envelope, Header, MessageKind, Observation, SharedEpisode,
+};
+use tokio::sync::mpsc::{UnboundedReceiver, UnboundedSender, unbounded_channel};
+use zenoh::Wait;
+use zenoh::pubsub::Publisher;
 
 use crate::ask::ask;
 use crate::context::Node;
-use crate::learner::Step;
+use crate::learner::{Ask, Step};
 
-/// A subscriber whose samples are read from a channel.
-pub type Samples = Subscriber<FifoChannelHandler<Sample>>;
-
-/// Processes observations and shared episodes until the session closes.
-pub async fn run(
+/// Steps observation messages and publishes what they lead to.
+pub struct Stream {
     node: Arc<Node>,
-    observations: Samples,
-    shares: Samples,
     actions: Publisher<'static>,
-) {
-    loop {
-        tokio::select! {
-            sample = observations.recv_async() => match sample {
-                Ok(s) => on_observations(&node, &actions, &s.payload().to_bytes()).await,
-                Err(_) => break,
-            },
-            sample = shares.recv_async() => match sample {
-                Ok(s) => on_share(&node, &s.payload().to_bytes()),
-                Err(_) => break,
-            },
-        }
-    }
+    backlog: Mutex<Backlog>,
 }
 
-/// One observation message: its frames in order, as if each had come alone.
-async fn on_observations(node: &Node, actions: &Publisher<'static>, bytes: &[u8]) {
-    let Some(Envelope { header, body }) = node.decode(bytes) else {
-        return;
-    };
-    let Body::Observations(frames) = body else {
-        return node.dropped(DropReason::Malformed, Some(&header));
-    };
-    // Frames header.frame ..= header.frame + len - 1, at least one.
-    let fits = (1..=proto::MAX_FRAMES_PER_MESSAGE).contains(&frames.len())
-        && header.frame.checked_add(frames.len() as u32 - 1).is_some();
-    if !fits {
-        return node.dropped(DropReason::Malformed, Some(&header));
-    }
-    // Counted as received once one of its frames is accepted.
-    let mut counted = false;
-    for (k, obs) in frames.iter().enumerate() {
-        let header = Header {
-            frame: header.frame + k as u32,
-            ..header
+/// What the stream task has still to do. While it is busy, every message
+/// that arrives goes to it, so the frames keep their order.
+struct Backlog {
+    busy: bool,
+    task: UnboundedSender<Pending>,
+}
+
+/// A message's frames from one that asks for advice (or from the first),
+/// left to the stream task.
+struct Pending {
+    ask: Option<(Header, Ask)>,
+    frames: Frames,
+}
+
+/// A checked observation message whose frames are stepped one at a time.
+struct Frames {
+    header: Header,
+    /// The frames not stepped yet, and the number of the next one.
+    rest: std::vec::IntoIter<Observation>,
+    next: u32,
+    /// The message's size, counted once one of its frames is accepted.
+    bytes: usize,
+    counted: bool,
+}
+
+impl Frames {
+    /// Decodes one observation message; a malformed one is counted as
+    /// dropped: no frames, more than `MAX_FRAMES_PER_MESSAGE`, or frame
+    /// numbers past `u32::MAX` (the k-th frame is `header.frame + k`).
+    fn open(node: &Node, bytes: &[u8]) -> Option<Self> {
+        let Envelope { header, body } = node.decode(bytes)?;
+        let Body::Observations(frames) = body else {
+            node.dropped(DropReason::Malformed, Some(&header));
+            return None;
         };
-        let alive = node.alive();
-        let step = node.learner().observe(&header, obs, &|j| {
-            u8::try_from(j).is_ok_and(|j| alive.contains(&j))
-        });
-        match step {
-            Ok(step) => {
-                if !std::mem::replace(&mut counted, true) {
-                    node.accepted(MessageKind::Observation, bytes.len());
-                }
-                carry_out(node, actions, header, step).await;
-            }
-            Err(reason) => node.dropped(reason, Some(&header)),
+        let fits = (1..=proto::MAX_FRAMES_PER_MESSAGE).contains(&frames.len())
+            && header.frame.checked_add(frames.len() as u32 - 1).is_some();
+        if !fits {
+            node.dropped(DropReason::Malformed, Some(&header));
+            return None;
         }
+        Some(Frames {
+            header,
+            rest: frames.into_iter(),
+            next: header.frame,
+            bytes: bytes.len(),
+            counted: false,
+        })
+    }
+
+    /// The learner's step on the next frame it accepts (the frames it
+    /// drops are counted), with that frame's header; `None` at the end.
+    /// `reachable` says which agents can be asked for advice.
+    fn step(&mut self, node: &Node, reachable: &dyn Fn(usize) -> bool) -> Option<(Header, Step)> {
+        for obs in self.rest.by_ref() {
+            let header = Header {
+                frame: self.next,
+                ..self.header
+            };
+            self.next = self.next.wrapping_add(1);
+            match node.learner().observe(&header, &obs, reachable) {
+                Ok(step) => {
+                    if !std::mem::replace(&mut self.counted, true) {
+                        node.accepted(MessageKind::Observation, self.bytes);
+                    }
+                    return Some((header, step));
+                }
+                Err(reason) => node.dropped(reason, Some(&header)),
+            }
+        }
+        None
     }
 }
 
-/// A frame's step: the action to publish (after asking for advice, if
-/// the learner wants to), or the end of the episode with its shares.
-async fn carry_out(node: &Node, actions: &Publisher<'static>, header: Header, step: Step) {
-    let action = match step {
-        Step::Act(action) => action,
-        Step::Ask(request) => {
-            let replies = ask(node, header, &request).await;
-            let action = node.learner().complete(&request, &replies.advice);
-            let mut traffic = node.traffic();
-            traffic.replies_received += replies.replies;
-            traffic.rtt_ms.extend_from_slice(&replies.rtt_ms);
-            action
+impl Stream {
+    /// A stream of agent `node`'s observations that publishes its actions
+    /// on `actions`, and the inbox of its task ([`run`]).
+    pub fn new(node: Arc<Node>, actions: Publisher<'static>) -> (Arc<Self>, Tasks) {
+        let (task, pending) = unbounded_channel();
+        let stream = Stream {
+            node,
+            actions,
+            backlog: Mutex::new(Backlog { busy: false, task }),
+        };
+        (Arc::new(stream), Tasks(pending))
+    }
+
+    /// One observation message, as it arrives: stepped here unless the
+    /// task is busy; a frame that asks for advice hands the rest to it.
+    pub fn on_message(&self, bytes: &[u8]) {
+        let mut backlog = self.backlog.lock().unwrap_or_else(PoisonError::into_inner);
+        let Some(frames) = Frames::open(&self.node, bytes) else {
+            return;
+        };
+        let pending = match backlog.busy {
+            true => Some(Pending { ask: None, frames }),
+            false => self.step_until_ask(frames),
+        };
+        if let Some(pending) = pending {
+            backlog.busy = true;
+            // The receiver lives as long as the runtime.
+            let _ = backlog.task.send(pending);
         }
-        Step::End(shares) => {
-            publish_shares(node, header, shares).await;
-            let learner = node.learner();
-            node.publish_progress(&learner);
-            None
+    }
+
+    /// Steps `frames` until one asks for advice, which is returned with
+    /// the frames after it.
+    fn step_until_ask(&self, mut frames: Frames) -> Option<Pending> {
+        let alive = self.node.alive();
+        let reachable = |j: usize| u8::try_from(j).is_ok_and(|j| alive.contains(&j));
+        while let Some((header, step)) = frames.step(&self.node, &reachable) {
+            match step {
+                Step::Act(action) => self.publish_action(header, action),
+                Step::Ask(request) => {
+                    return Some(Pending {
+                        ask: Some((header, request)),
+                        frames,
+                    });
+                }
+                Step::End(shares) => {
+                    self.publish_shares(header, shares);
+                    let learner = self.node.learner();
+                    self.node.publish_progress(&learner);
+                }
+            }
         }
-    };
-    if let Some(action) = action {
+        None
+    }
+
+    /// Asks for advice and publishes the action the learner then takes.
+    async fn advised(&self, header: Header, request: Ask) {
+        let node = &self.node;
+        let replies = ask(node, header, &request).await;
+        let action = node.learner().complete(&request, &replies.advice);
+        let mut traffic = node.traffic();
+        traffic.replies_received += replies.replies;
+        traffic.rtt_ms.extend_from_slice(&replies.rtt_ms);
+        drop(traffic);
+        self.publish_action(header, action);
+    }
+
+    /// Publishes a kicker's action (nothing for `None`).
+    fn publish_action(&self, header: Header, action: Option<proto::Action>) {
+        let Some(action) = action else { return };
         let choice = ActionChoice {
-            agent: node.id,
+            agent: self.node.id,
             action,
         };
-        let bytes = node.encode(header, Body::Action(choice));
-        if let Err(e) = actions.put(bytes).await {
+        let bytes = self.node.encode(header, Body::Action(choice));
+        if let Err(e) = self.actions.put(bytes).wait() {
             tracing::warn!(error = %e, "cannot publish an action");
         }
     }
+
+    /// Publishes an ended episode's transitions, one message per receiver.
+    fn publish_shares(&self, header: Header, shares: Vec<(usize, Vec<Transition>)>) {
+        let node = &self.node;
+        for (to, transitions) in shares {
+            let Ok(to) = u8::try_from(to) else { continue };
+            let share = SharedEpisode {
+                from: node.id,
+                to,
+                transitions,
+            };
+            let bytes = node.encode(header, Body::SharedEpisode(share));
+            if let Err(e) = node.session.put(node.keys.share(to), bytes).wait() {
+                tracing::warn!(to, error = %e, "cannot publish a shared episode");
+            }
+        }
+    }
 }
 
-/// Publishes an ended episode's transitions, one message per receiver.
-async fn publish_shares(node: &Node, header: Header, shares: Vec<(usize, Vec<Transition>)>) {
-    for (to, transitions) in shares {
-        let Ok(to) = u8::try_from(to) else { continue };
-        let share = SharedEpisode {
-            from: node.id,
-            to,
-            transitions,
-        };
-        let bytes = node.encode(header, Body::SharedEpisode(share));
-        if let Err(e) = node.session.put(node.keys.share(to), bytes).await {
-            tracing::warn!(to, error = %e, "cannot publish a shared episode");
+/// The stream task's inbox.
+pub struct Tasks(UnboundedReceiver<Pending>);
+
+/// The stream task: asks for advice and steps what waited meanwhile, for
+/// as long as the runtime runs.
+pub async fn run(stream: Arc<Stream>, Tasks(mut pending): Tasks) {
+    while let Some(Pending {
+        mut ask,
+        mut frames,
+    }) = pending.recv().await
+    {
+        loop {
+            if let Some((header, request)) = ask.take() {
+                stream.advised(header, request).await;
+            }
+            match stream.step_until_ask(frames) {
+                Some(more) => (ask, frames) = (more.ask, more.frames),
+                None => break,
+            }
         }
+        let mut backlog = stream
+            .backlog
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        backlog.busy = !pending.is_empty();
     }
 }
 
 /// One shared episode: queued, and replayed when due.
-fn on_share(node: &Node, bytes: &[u8]) {
+pub fn on_share(node: &Node, bytes: &[u8]) {
     let Some(Envelope { header, body }) = node.decode(bytes) else {
         return;
     };

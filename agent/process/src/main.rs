@@ -1,11 +1,13 @@
 //! `agent`: one learning agent as a process, talking to env-server, its
 //! teammates and the coordinator over zenoh (docs/protocol.md).
 //!
-//! Tasks: the stream task ([`frames`]) processes observations and shared
-//! episodes in order and asks for advice ([`ask`]) without holding the
-//! learner; [`advise`] answers other agents' requests meanwhile; [`control`]
-//! answers the coordinator; [`alive`] follows liveliness tokens. They share
-//! one [`context::Node`]; [`serve`] declares everything and waits for the end.
+//! [`frames`] steps observations in order where they arrive, in zenoh's
+//! callback, and leaves a frame that asks for advice ([`ask`]) to its
+//! stream task, which waits without holding the learner; shared episodes
+//! are queued in the learner as they arrive; [`advise`] answers other
+//! agents' requests in its callback meanwhile; [`control`] answers the
+//! coordinator; [`alive`] follows liveliness tokens. They share one
+//! [`context::Node`]; [`serve`] declares everything and waits for the end.
 
 mod advise;
 mod alive;

@@ -8,6 +8,7 @@ use node::net::{NetConfig, describe};
 use proto::keys::{Keys, Role};
 
 use crate::context::{Exit, Node};
+use crate::frames::Stream;
 use crate::{advise, alive, control, frames, unique};
 
 /// Who this agent is and how it joins the network.
@@ -46,30 +47,43 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         .history(true)
         .await
         .map_err(|e| declare("the liveliness subscriber", e))?;
-    let observations = session
-        .declare_subscriber(keys.observation(id))
-        .await
-        .map_err(|e| declare("the observation subscriber", e))?;
-    let shares = session
-        .declare_subscriber(keys.share(id))
-        .await
-        .map_err(|e| declare("the share subscriber", e))?;
-    let advice = session
-        .declare_queryable(keys.advice(id))
-        .await
-        .map_err(|e| declare("the advice queryable", e))?;
-    let control = session
-        .declare_queryable(keys.control(Role::Agent(id)))
-        .await
-        .map_err(|e| declare("the control queryable", e))?;
     let actions = session
         .declare_publisher(keys.action(id))
         .await
         .map_err(|e| declare("the action publisher", e))?;
     let node = Arc::new(Node::new(session.clone(), &name, keys, id, team_size));
+    let (stream, tasks) = Stream::new(node.clone(), actions);
+    // Held until the end: dropping them undeclares them.
+    let _observations = {
+        let stream = stream.clone();
+        session
+            .declare_subscriber(node.keys.observation(id))
+            .callback(move |s| stream.on_message(&s.payload().to_bytes()))
+            .await
+            .map_err(|e| declare("the observation subscriber", e))?
+    };
+    let _shares = {
+        let node = node.clone();
+        session
+            .declare_subscriber(node.keys.share(id))
+            .callback(move |s| frames::on_share(&node, &s.payload().to_bytes()))
+            .await
+            .map_err(|e| declare("the share subscriber", e))?
+    };
+    let _advice = {
+        let node = node.clone();
+        session
+            .declare_queryable(node.keys.advice(id))
+            .callback(move |q| advise::answer(&node, &q))
+            .await
+            .map_err(|e| declare("the advice queryable", e))?
+    };
+    let control = session
+        .declare_queryable(node.keys.control(Role::Agent(id)))
+        .await
+        .map_err(|e| declare("the control queryable", e))?;
     tokio::spawn(alive::track(node.clone(), tokens, exit_with_coordinator));
-    tokio::spawn(frames::run(node.clone(), observations, shares, actions));
-    tokio::spawn(advise::serve(node.clone(), advice));
+    tokio::spawn(frames::run(stream, tasks));
     tokio::spawn(control::serve(node.clone(), control));
     // Declared last: whoever sees the token can already reach the rest.
     let token = session

@@ -1,9 +1,9 @@
 //! The server's zenoh side: the session, its liveliness token, the control
 //! queryable, the action subscriber and one observation publisher per agent.
 //!
-//! Queries and action samples are handed over through unbounded channels
-//! fed by zenoh callbacks, so the event loop can wait on both (and on the
-//! step deadline) without ever blocking one behind the other.
+//! Queries are handed over through an unbounded channel fed by zenoh's
+//! callback, so the event loop can wait on them and on the step deadline;
+//! actions are handled in their subscriber's callback ([`Link::listen`]).
 
 use anyhow::{Result, anyhow};
 use node::alive::CoordinatorPresence;
@@ -11,19 +11,17 @@ use node::cli::ConnectionArgs;
 use node::net::describe;
 use proto::keys::{Keys, Role};
 use tokio::sync::mpsc::{UnboundedReceiver, unbounded_channel};
-use zenoh::Session;
 use zenoh::liveliness::LivelinessToken;
 use zenoh::pubsub::{Publisher, Subscriber};
 use zenoh::qos::CongestionControl;
 use zenoh::query::{Query, Queryable};
 use zenoh::sample::Sample;
+use zenoh::{Session, Wait};
 
-/// What arrives from the network, in arrival order per source.
+/// What the event loop waits for, in arrival order per source.
 pub struct Inbox {
     /// Control queries on `ctl/server`.
     pub queries: UnboundedReceiver<Query>,
-    /// Samples on `act/*`.
-    pub actions: UnboundedReceiver<Sample>,
     /// Signals that the coordinator left (with `exit_with_coordinator`).
     pub coordinator_gone: UnboundedReceiver<()>,
 }
@@ -37,15 +35,18 @@ pub struct Link {
     publishers: Vec<Publisher<'static>>,
     // Held for their lifetime: dropping them undeclares them.
     _queryable: Queryable<()>,
-    _subscriber: Subscriber<()>,
     _watch: Option<Subscriber<()>>,
+}
+
+/// The action subscriber and the liveliness token, held while serving.
+pub struct Listening {
+    _subscriber: Subscriber<()>,
     _token: LivelinessToken,
 }
 
 impl Link {
-    /// Opens the session and declares the queryable, the subscriber and,
-    /// last, the liveliness token (so a process that sees the token finds
-    /// the rest declared).
+    /// Opens the session and declares the control queryable (the action
+    /// subscriber and the token come with [`listen`](Self::listen)).
     pub async fn open(connection: &ConnectionArgs, keys: Keys) -> Result<(Self, Inbox)> {
         let session = node::net::open(&connection.net()?).await?;
         let control_key = keys.control(Role::Server);
@@ -58,14 +59,6 @@ impl Link {
             })
             .await
             .map_err(|e| zenoh_error("declare the control queryable", &e))?;
-        let (action_tx, actions) = unbounded_channel();
-        let subscriber = session
-            .declare_subscriber(keys.actions())
-            .callback(move |sample| {
-                let _ = action_tx.send(sample);
-            })
-            .await
-            .map_err(|e| zenoh_error("subscribe to the actions", &e))?;
         let (gone_tx, coordinator_gone) = unbounded_channel();
         let watch = match connection.exit_with_coordinator {
             false => None,
@@ -86,11 +79,6 @@ impl Link {
                 Some(watch)
             }
         };
-        let token = session
-            .liveliness()
-            .declare_token(keys.alive(Role::Server))
-            .await
-            .map_err(|e| zenoh_error("declare the liveliness token", &e))?;
         let link = Link {
             session,
             keys,
@@ -98,18 +86,37 @@ impl Link {
             control_key,
             publishers: Vec::new(),
             _queryable: queryable,
-            _subscriber: subscriber,
             _watch: watch,
-            _token: token,
         };
         Ok((
             link,
             Inbox {
                 queries,
-                actions,
                 coordinator_gone,
             },
         ))
+    }
+
+    /// Declares the action subscriber, whose samples go to `on_action` on
+    /// zenoh's receiving thread, and, last, the liveliness token (so a
+    /// process that sees the token finds everything declared).
+    pub fn listen(&self, on_action: impl Fn(Sample) + Send + Sync + 'static) -> Result<Listening> {
+        let subscriber = self
+            .session
+            .declare_subscriber(self.keys.actions())
+            .callback(on_action)
+            .wait()
+            .map_err(|e| zenoh_error("subscribe to the actions", &e))?;
+        let token = self
+            .session
+            .liveliness()
+            .declare_token(self.keys.alive(Role::Server))
+            .wait()
+            .map_err(|e| zenoh_error("declare the liveliness token", &e))?;
+        Ok(Listening {
+            _subscriber: subscriber,
+            _token: token,
+        })
     }
 
     /// The experiment id carried in every header.
@@ -119,7 +126,7 @@ impl Link {
 
     /// Declares one observation publisher per agent of a team of `n`
     /// (nothing to do when the team size is unchanged).
-    pub async fn set_team(&mut self, n: usize) -> Result<()> {
+    pub fn set_team(&mut self, n: usize) -> Result<()> {
         if self.publishers.len() == n {
             return Ok(());
         }
@@ -131,7 +138,7 @@ impl Link {
                 .declare_publisher(self.keys.observation(id))
                 // Every agent must see every frame: wait rather than drop.
                 .congestion_control(CongestionControl::Block)
-                .await
+                .wait()
                 .map_err(|e| zenoh_error("declare an observation publisher", &e))?;
             self.publishers.push(publisher);
         }
@@ -139,30 +146,30 @@ impl Link {
     }
 
     /// Publishes `bytes` to agent `agent`.
-    pub async fn publish(&self, agent: usize, bytes: Vec<u8>) -> Result<()> {
+    pub fn publish(&self, agent: usize, bytes: Vec<u8>) -> Result<()> {
         let publisher = self
             .publishers
             .get(agent)
             .ok_or_else(|| anyhow!("no observation publisher for agent {agent}"))?;
         publisher
             .put(bytes)
-            .await
+            .wait()
             .map_err(|e| zenoh_error("publish an observation", &e))
     }
 
     /// Replies to a control query on the server's own control key.
-    pub async fn reply(&self, query: &Query, bytes: Vec<u8>) -> Result<()> {
+    pub fn reply(&self, query: &Query, bytes: Vec<u8>) -> Result<()> {
         query
             .reply(self.control_key.as_str(), bytes)
-            .await
+            .wait()
             .map_err(|e| zenoh_error("reply to a control query", &e))
     }
 
-    /// Closes the session (undeclaring everything, the token included).
-    pub async fn close(self) -> Result<()> {
+    /// Closes the session (undeclaring everything).
+    pub fn close(&self) -> Result<()> {
         self.session
             .close()
-            .await
+            .wait()
             .map_err(|e| zenoh_error("close the zenoh session", &e))
     }
 }

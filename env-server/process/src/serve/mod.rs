@@ -27,7 +27,7 @@ pub fn run(connection: ConnectionArgs) -> Result<()> {
         .context("cannot start the async runtime")?;
     let result = runtime.block_on(async {
         let (link, inbox) = link::Link::open(&connection, keys).await?;
-        server::Server::new(link).run(inbox).await
+        server::run(link, inbox).await
     });
     runtime.shutdown_timeout(Duration::from_secs(1));
     result

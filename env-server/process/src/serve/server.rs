@@ -1,5 +1,6 @@
-//! The event loop: control queries, actions and the step deadline, one at a
-//! time, so that an episode waiting for actions never holds up a control
+//! The server: control queries and the step deadline in an event loop, and
+//! actions where they arrive, in zenoh's callback, one at a time under one
+//! lock, so that an episode waiting for actions never holds up a control
 //! query and a silent agent never holds up the episode.
 //!
 //! Rules beyond `docs/protocol.md`: `Report` and `Stop` concern the process
@@ -20,8 +21,9 @@ use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
     MessageCounters, MessageKind, Mode, ServerReport,
 };
-use std::time::Duration;
-use tokio::time::Instant;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::time::{Duration, Instant};
+use tokio::sync::mpsc::unbounded_channel;
 use tracing::{debug, warn};
 use zenoh::query::Query;
 use zenoh::sample::Sample;
@@ -50,7 +52,7 @@ struct Run {
 }
 
 /// env-server's state.
-pub struct Server {
+struct Server {
     link: Link,
     experiment: u64,
     step_timeout: Duration,
@@ -71,7 +73,7 @@ pub struct Server {
 impl Server {
     /// A server on `link`; each run's reset sets how long it waits for a
     /// frame's actions.
-    pub fn new(link: Link) -> Self {
+    fn new(link: Link) -> Self {
         let experiment = link.experiment();
         Server {
             link,
@@ -88,45 +90,14 @@ impl Server {
         }
     }
 
-    /// Serves until `Stop`, then closes the session.
-    pub async fn run(mut self, mut inbox: Inbox) -> Result<()> {
-        let sleep = tokio::time::sleep(Duration::ZERO);
-        tokio::pin!(sleep);
-        let mut armed = None;
-        loop {
-            let deadline = self.play.as_ref().and_then(|p| p.deadline);
-            if deadline != armed {
-                if let Some(d) = deadline {
-                    sleep.as_mut().reset(d);
-                }
-                armed = deadline;
-            }
-            tokio::select! {
-                biased;
-                query = inbox.queries.recv() => {
-                    let Some(query) = query else { bail!("the control queryable closed") };
-                    if self.on_query(query).await? == Flow::Stop {
-                        break;
-                    }
-                }
-                // Before the actions, so that a flood of them cannot hold
-                // the episode up past its deadline.
-                () = &mut sleep, if armed.is_some() => self.on_timeout().await?,
-                Some(()) = inbox.coordinator_gone.recv() => {
-                    bail!("the coordinator that started this server is gone; stopping");
-                }
-                sample = inbox.actions.recv() => {
-                    let Some(sample) = sample else { bail!("the action subscriber closed") };
-                    self.on_action(&sample).await?;
-                }
-            }
-        }
-        self.link.close().await
+    /// When the awaited actions are given up, if they are awaited.
+    fn deadline(&self) -> Option<Instant> {
+        self.play.as_ref().and_then(|p| p.deadline)
     }
 
     /// Handles one control query: decodes it (replying `Error` to what
     /// cannot be accepted, and counting it) and carries it out.
-    async fn on_query(&mut self, query: Query) -> Result<Flow> {
+    fn on_query(&mut self, query: Query) -> Result<Flow> {
         let decoded = match query.payload() {
             Some(payload) => {
                 let bytes = payload.to_bytes();
@@ -141,7 +112,7 @@ impl Server {
                 debug!(error = %e, "dropped a control query");
                 let header = Header::new(self.experiment, self.current_run(), 0, 0);
                 let text = format!("rejected: {e}");
-                self.reply(&query, header, ControlReply::Error(text)).await;
+                self.reply(&query, header, ControlReply::Error(text));
                 return Ok(Flow::Continue);
             }
         };
@@ -152,18 +123,18 @@ impl Server {
                 "expected a control command, got {:?}",
                 MessageKind::of(&body)
             );
-            self.reply(&query, header, ControlReply::Error(text)).await;
+            self.reply(&query, header, ControlReply::Error(text));
             return Ok(Flow::Continue);
         };
         if let Control::PlayEpisode { mode, seed } = control {
             return match self.check_episode(&header) {
                 Ok(()) => {
                     self.received(size);
-                    self.begin(query, header, mode, seed).await?;
+                    self.begin(query, header, mode, seed)?;
                     Ok(Flow::Continue)
                 }
                 Err(text) => {
-                    self.reply(&query, header, ControlReply::Error(text)).await;
+                    self.reply(&query, header, ControlReply::Error(text));
                     Ok(Flow::Continue)
                 }
             };
@@ -176,7 +147,7 @@ impl Server {
                 wait_ms,
                 stall_ms,
             } => (
-                self.reset(header, seed, &config, wait_ms, stall_ms).await?,
+                self.reset(header, seed, &config, wait_ms, stall_ms)?,
                 Flow::Continue,
             ),
             Control::Report => (
@@ -184,7 +155,7 @@ impl Server {
                 Flow::Continue,
             ),
             Control::Stop => {
-                self.abandon("env-server stopped").await;
+                self.abandon("env-server stopped");
                 (ControlReply::Ok, Flow::Stop)
             }
             other => {
@@ -192,14 +163,14 @@ impl Server {
                 (ControlReply::Error(text), Flow::Continue)
             }
         };
-        self.reply(&query, header, reply).await;
+        self.reply(&query, header, reply);
         Ok(flow)
     }
 
     /// Starts run `header.run` with a training simulator seeded with
     /// `seed`; an in-progress episode is abandoned. A bad config changes
     /// nothing.
-    async fn reset(
+    fn reset(
         &mut self,
         header: Header,
         seed: u64,
@@ -226,8 +197,8 @@ impl Server {
         self.step_timeout = Duration::from_millis(wait_ms);
         self.stall_limit = Duration::from_millis(stall_ms);
         self.silent_since = [None; MAX_OFFENSE];
-        self.abandon("its run was reset").await;
-        self.link.set_team(simulators.offense()).await?;
+        self.abandon("its run was reset");
+        self.link.set_team(simulators.offense())?;
         self.run = Some(Run {
             run: header.run,
             simulators,
@@ -269,20 +240,14 @@ impl Server {
     }
 
     /// Starts episode `header.episode` and plays it up to its first wait.
-    async fn begin(
-        &mut self,
-        query: Query,
-        header: Header,
-        mode: Mode,
-        seed: Option<u64>,
-    ) -> Result<()> {
+    fn begin(&mut self, query: Query, header: Header, mode: Mode, seed: Option<u64>) -> Result<()> {
         let Some(run) = self.run.as_mut() else {
             return Ok(());
         };
         let env = match run.simulators.prepare(mode, seed) {
             Ok(env) => env,
             Err(text) => {
-                self.reply(&query, header, ControlReply::Error(text)).await;
+                self.reply(&query, header, ControlReply::Error(text));
                 return Ok(());
             }
         };
@@ -294,14 +259,14 @@ impl Server {
             episode,
             deadline: None,
         });
-        self.advance().await
+        self.advance()
     }
 
     /// Steps on through frames where no agent can kick, holding back their
     /// observations, until one awaits actions (arming the deadline) or the
     /// episode ends (answering its query); then sends each agent its frames
     /// in one message.
-    async fn advance(&mut self) -> Result<()> {
+    fn advance(&mut self) -> Result<()> {
         loop {
             let Some((play, env)) = playing(&mut self.play, &mut self.run) else {
                 return Ok(());
@@ -309,10 +274,10 @@ impl Server {
             self.batches.push(&play.episode, env);
             let (over, waiting) = (play.episode.is_over(), play.episode.is_waiting());
             if over || waiting || self.batches.is_full() {
-                self.send_observations().await?;
+                self.send_observations()?;
             }
             if over {
-                self.finish().await;
+                self.finish();
                 return Ok(());
             }
             let Some((play, env)) = playing(&mut self.play, &mut self.run) else {
@@ -328,38 +293,38 @@ impl Server {
     }
 
     /// Sends every agent the observations held for it.
-    async fn send_observations(&mut self) -> Result<()> {
+    fn send_observations(&mut self) -> Result<()> {
         for (agent, bytes) in self.batches.take().into_iter().enumerate() {
             self.counters
                 .record(Direction::Sent, MessageKind::Observation, bytes.len());
-            self.link.publish(agent, bytes).await?;
+            self.link.publish(agent, bytes)?;
         }
         Ok(())
     }
 
     /// Steps the episode with the actions it has, then advances.
-    async fn proceed(&mut self) -> Result<()> {
+    fn proceed(&mut self) -> Result<()> {
         if let Some((play, env)) = playing(&mut self.play, &mut self.run) {
             play.deadline = None;
             play.episode.step(env);
             self.frames += 1;
         }
-        self.advance().await
+        self.advance()
     }
 
     /// Answers the query of the finished episode with its result.
-    async fn finish(&mut self) {
+    fn finish(&mut self) {
         if let Some(play) = self.play.take() {
             let reply = match play.episode.result() {
                 Some(result) => ControlReply::Episode(result),
                 None => ControlReply::Error("the episode did not end".to_owned()),
             };
-            self.reply(&play.query, play.episode.header, reply).await;
+            self.reply(&play.query, play.episode.header, reply);
         }
     }
 
     /// Gives up the episode in progress, if any, telling its query why.
-    async fn abandon(&mut self, why: &str) {
+    fn abandon(&mut self, why: &str) {
         self.batches.clear();
         if let Some(play) = self.play.take() {
             let h = play.episode.header;
@@ -370,14 +335,14 @@ impl Server {
                 "episode abandoned: {why}"
             );
             let text = format!("episode {} of run {} abandoned: {why}", h.episode, h.run);
-            self.reply(&play.query, h, ControlReply::Error(text)).await;
+            self.reply(&play.query, h, ControlReply::Error(text));
         }
     }
 
     /// Handles a sample on `act/*`: the awaited action of a kicker moves
     /// the episode on once the frame's last one arrives; anything else is
     /// dropped and counted.
-    async fn on_action(&mut self, sample: &Sample) -> Result<()> {
+    fn on_action(&mut self, sample: &Sample) -> Result<()> {
         let bytes = sample.payload().to_bytes();
         let envelope = match proto::decode(&bytes, self.experiment) {
             Ok(envelope) => envelope,
@@ -405,11 +370,7 @@ impl Server {
                 self.counters
                     .record(Direction::Received, MessageKind::Action, bytes.len());
                 let waiting = self.play.as_ref().is_some_and(|p| p.episode.is_waiting());
-                return if waiting {
-                    Ok(())
-                } else {
-                    self.proceed().await
-                };
+                return if waiting { Ok(()) } else { self.proceed() };
             }
             Offer::Stale => DropReason::Stale,
             Offer::Duplicate => DropReason::Duplicate,
@@ -422,7 +383,7 @@ impl Server {
 
     /// The step timeout passed: every missing kicker moves, and the episode
     /// is abandoned if one of them has been silent for the stall limit.
-    async fn on_timeout(&mut self) -> Result<()> {
+    fn on_timeout(&mut self) -> Result<()> {
         let Some(play) = &mut self.play else {
             return Ok(());
         };
@@ -451,15 +412,15 @@ impl Server {
                 silent.as_secs_f64(),
                 self.stall_limit
             );
-            self.abandon(&why).await;
+            self.abandon(&why);
             return Ok(());
         }
-        self.proceed().await
+        self.proceed()
     }
 
     /// Replies `reply` with `header`'s run, episode and frame; a reply that
     /// cannot be sent is logged (the asker is gone or timed out).
-    async fn reply(&mut self, query: &Query, header: Header, reply: ControlReply) {
+    fn reply(&mut self, query: &Query, header: Header, reply: ControlReply) {
         let header = Header::new(self.experiment, header.run, header.episode, header.frame);
         let bytes = proto::encode(&Envelope {
             header,
@@ -467,7 +428,7 @@ impl Server {
         });
         self.counters
             .record(Direction::Sent, MessageKind::ControlReply, bytes.len());
-        if let Err(e) = self.link.reply(query, bytes).await {
+        if let Err(e) = self.link.reply(query, bytes) {
             warn!("{e:#}");
         }
     }
@@ -491,6 +452,60 @@ impl Server {
     fn current_run(&self) -> u32 {
         self.run.as_ref().map_or(0, |r| r.run)
     }
+}
+
+/// Serves on `link` until `Stop`, then closes the session: actions are
+/// handled in the subscriber's callback as they arrive, control queries
+/// and the step deadline here.
+pub async fn run(link: Link, mut inbox: Inbox) -> Result<()> {
+    let server = Arc::new(Mutex::new(Server::new(link)));
+    let (failed, mut failure) = unbounded_channel();
+    // Weak: the callback must not keep the server (and its session) alive.
+    let weak = Arc::downgrade(&server);
+    let listening = lock(&server).link.listen(move |sample| {
+        let Some(server) = weak.upgrade() else { return };
+        if let Err(e) = lock(&server).on_action(&sample) {
+            // The loop below stops on it.
+            let _ = failed.send(e);
+        }
+    })?;
+    let sleep = tokio::time::sleep(Duration::ZERO);
+    tokio::pin!(sleep);
+    loop {
+        // The callback only ever moves the deadline later or clears it:
+        // the timer, armed at an earlier one, checks again when it fires.
+        let deadline = lock(&server).deadline();
+        if let Some(d) = deadline {
+            sleep.as_mut().reset(d.into());
+        }
+        tokio::select! {
+            biased;
+            query = inbox.queries.recv() => {
+                let Some(query) = query else { bail!("the control queryable closed") };
+                if lock(&server).on_query(query)? == Flow::Stop {
+                    break;
+                }
+            }
+            () = &mut sleep, if deadline.is_some() => {
+                let mut server = lock(&server);
+                if server.deadline().is_some_and(|d| d <= Instant::now()) {
+                    server.on_timeout()?;
+                }
+            }
+            Some(()) = inbox.coordinator_gone.recv() => {
+                bail!("the coordinator that started this server is gone; stopping");
+            }
+            Some(e) = failure.recv() => return Err(e),
+        }
+    }
+    // Undeclared first: no callback runs once it is gone.
+    drop(listening);
+    lock(&server).link.close()
+}
+
+/// Locks the server, whatever a panicking holder left in it.
+fn lock(server: &Mutex<Server>) -> MutexGuard<'_, Server> {
+    server.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// The episode being played and its simulator, if any.
