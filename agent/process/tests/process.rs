@@ -377,6 +377,44 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         assert_eq!(r.advice_requests_sent, before.advice_requests_sent);
     }
 
+    // Episode 3: kicks in fresh states published back to back, without
+    // waiting for the actions, so that frames arrive while an agent waits
+    // for advice: each frame's action comes once, in frame order, and
+    // nothing is dropped.
+    let before: Vec<AgentReport> = [fake.report(0, 2).await, fake.report(1, 2).await].into();
+    for frame in 0..4u32 {
+        let last = frame == 3;
+        let header = fake.header(0, 3, frame);
+        for id in 0..2u8 {
+            let mut obs = observation(id, frame, Mode::Training, !last, last, 0.0);
+            obs.state[3] = 0.9;
+            fake.publish(id, observations(header, vec![obs])).await;
+        }
+    }
+    let mut next = [0u32; 2];
+    let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
+    while next != [3; 2] {
+        let sample = tokio::time::timeout_at(deadline, actions.recv_async())
+            .await
+            .expect("actions did not arrive")
+            .unwrap();
+        let envelope = proto::decode(&sample.payload().to_bytes(), fake.experiment).unwrap();
+        if let Body::Action(choice) = envelope.body {
+            let id = usize::from(choice.agent);
+            assert_eq!(envelope.header, fake.header(0, 3, next[id]), "agent {id}");
+            next[id] += 1;
+        }
+    }
+    for id in 0..2u8 {
+        let (r, was) = (fake.report(id, 3).await, &before[usize::from(id)]);
+        assert!(r.advice_requests_sent > was.advice_requests_sent, "{r:?}");
+        assert_eq!(
+            received(&r, MessageKind::Observation),
+            received(was, MessageKind::Observation) + 4
+        );
+        assert_eq!(r.messages.dropped.total(), was.messages.dropped.total());
+    }
+
     for (id, agent) in agents.iter_mut().enumerate() {
         fake.stop(id as u8).await;
         let status = agent.wait_exit(Duration::from_secs(5));
