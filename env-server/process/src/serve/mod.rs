@@ -4,7 +4,8 @@
 //! [`link`] is the zenoh plumbing (session, token, queryable, subscriber,
 //! publishers), [`episode`] the simulator side of a run without any I/O
 //! (which simulator plays, what each agent observes, which actions are
-//! awaited), and [`server`] the event loop tying them together. They
+//! awaited), and [`server`] what ties them together: actions handled in
+//! zenoh's callback, queries and the step deadline in an event loop. They
 //! belong to the binary, so the `env_server` library stays free of zenoh
 //! and tokio.
 
