@@ -11,8 +11,8 @@ use node::net::free_port;
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
-    AgentReport, Body, Control, ControlReply, Envelope, Header, MessageKind, Mode, Observation,
-    PROTOCOL_VERSION,
+    ActionChoice, AgentReport, Body, Control, ControlReply, Envelope, Header, MessageKind, Mode,
+    Observation, PROTOCOL_VERSION,
 };
 use support::Guard;
 use zenoh::Session;
@@ -234,6 +234,24 @@ fn observation(
     }
 }
 
+/// The next action published, with its header (other messages skipped).
+async fn next_action(
+    actions: &Subscriber<FifoChannelHandler<Sample>>,
+    fake: &Fake,
+    deadline: tokio::time::Instant,
+) -> (Header, ActionChoice) {
+    loop {
+        let sample = tokio::time::timeout_at(deadline, actions.recv_async())
+            .await
+            .expect("actions did not arrive")
+            .unwrap();
+        let envelope = proto::decode(&sample.payload().to_bytes(), fake.experiment).unwrap();
+        if let Body::Action(choice) = envelope.body {
+            return (envelope.header, choice);
+        }
+    }
+}
+
 /// Waits for the actions of both agents for `header`'s frame.
 async fn both_actions(
     actions: &Subscriber<FifoChannelHandler<Sample>>,
@@ -243,16 +261,10 @@ async fn both_actions(
     let mut seen = [false; 2];
     let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
     while seen != [true; 2] {
-        let sample = tokio::time::timeout_at(deadline, actions.recv_async())
-            .await
-            .expect("actions did not arrive")
-            .unwrap();
-        let envelope = proto::decode(&sample.payload().to_bytes(), fake.experiment).unwrap();
-        if let Body::Action(choice) = envelope.body {
-            assert_eq!(envelope.header, header);
-            assert!(choice.action.is_kick(), "{choice:?}");
-            seen[usize::from(choice.agent)] = true;
-        }
+        let (h, choice) = next_action(actions, fake, deadline).await;
+        assert_eq!(h, header);
+        assert!(choice.action.is_kick(), "{choice:?}");
+        seen[usize::from(choice.agent)] = true;
     }
 }
 
@@ -394,16 +406,10 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     let mut next = [0u32; 2];
     let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
     while next != [3; 2] {
-        let sample = tokio::time::timeout_at(deadline, actions.recv_async())
-            .await
-            .expect("actions did not arrive")
-            .unwrap();
-        let envelope = proto::decode(&sample.payload().to_bytes(), fake.experiment).unwrap();
-        if let Body::Action(choice) = envelope.body {
-            let id = usize::from(choice.agent);
-            assert_eq!(envelope.header, fake.header(0, 3, next[id]), "agent {id}");
-            next[id] += 1;
-        }
+        let (h, choice) = next_action(&actions, &fake, deadline).await;
+        let id = usize::from(choice.agent);
+        assert_eq!(h, fake.header(0, 3, next[id]), "agent {id}");
+        next[id] += 1;
     }
     for id in 0..2u8 {
         let (r, was) = (fake.report(id, 3).await, &before[usize::from(id)]);
