@@ -6,17 +6,13 @@
 #   e.g. deploy/launch-local.sh --algorithm adhoc-td --runs 5 --episodes 1000 --out results/local
 #
 # Environment: AGENTS (default 3), PORT (default 7447), EXPERIMENT (default
-# local-<pid>), BIN (default target/release), LOW_LATENCY (default 1: the
-# processes link by zenoh's low-latency transport; 0 for EpisodeSharing with
-# env.frames_per_trial of 250 or more, whose goal episodes may not fit it).
+# local-<pid>), BIN (default target/release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 AGENTS=${AGENTS:-3}
 PORT=${PORT:-7447}
 EXPERIMENT=${EXPERIMENT:-local-$$}
 BIN=${BIN:-target/release}
-low_latency=()
-[ "${LOW_LATENCY:-1}" = 0 ] || low_latency=(--low-latency)
 [ -x "$BIN/coordinator" ] || cargo build --release --workspace
 pids=()
 # The experiment's secret, in a directory only this user can enter.
@@ -26,11 +22,11 @@ cleanup() { kill "${pids[@]}" 2>/dev/null || true; wait 2>/dev/null || true; rm 
 trap cleanup EXIT INT TERM
 "$BIN/coordinator" secret "$SECRET"
 "$BIN/env-server" serve --experiment "$EXPERIMENT" --listen "tcp/127.0.0.1:$PORT" \
-    --secret-file "$SECRET" "${low_latency[@]}" &
+    --secret-file "$SECRET" &
 pids+=($!)
 for ((i = 0; i < AGENTS; i++)); do
     "$BIN/agent" --experiment "$EXPERIMENT" --id "$i" --team-size "$AGENTS" \
-        --connect "tcp/127.0.0.1:$PORT" --secret-file "$SECRET" "${low_latency[@]}" &
+        --connect "tcp/127.0.0.1:$PORT" --secret-file "$SECRET" &
     pids+=($!)
 done
 "$BIN/coordinator" run --transport zenoh --attach --experiment "$EXPERIMENT" \

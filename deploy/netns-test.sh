@@ -308,7 +308,7 @@ router router
 say "env-server on $NS_SIM, listening on $(listen_on "$SIM_IP" 0), connecting to $RENDEZVOUS"
 start env-server "$NS_SIM" "$BIN/env-server" serve --experiment "$EXPERIMENT" \
     --listen "$(listen_on "$SIM_IP" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret" \
-    --low-latency $(credentials env-server)
+    $(credentials env-server)
 # Both agent hosts reach the rendezvous over the bridge (a bare TCP connect,
 # closed at once; no ping needed; QUIC's UDP has no such check).
 for ns in "$NS_A" "$NS_B"; do
@@ -321,7 +321,7 @@ say "agents 0, 1 on $NS_A and 2 on $NS_B, listening on $(listen_on "<host>" 0), 
 agent() { # ID NAMESPACE ADDRESS
     start "agent-$1" "$2" "$BIN/agent" --experiment "$EXPERIMENT" --id "$1" --team-size 3 \
         --listen "$(listen_on "$3" 0)" --connect "$RENDEZVOUS" --secret-file "$work/secret" \
-        --low-latency $(credentials "agent-$1")
+        $(credentials "agent-$1")
 }
 agent 0 "$NS_A" "$A_IP"
 agent 1 "$NS_A" "$A_IP"

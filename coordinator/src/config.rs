@@ -227,16 +227,6 @@ impl ExperimentConfig {
     pub fn episodes_per_run(&self) -> u64 {
         self.episodes + self.eval_points().len() as u64 * self.eval_episodes
     }
-
-    /// Whether every message env-server and the agents send each other fits
-    /// zenoh's low-latency transport ([`proto::MAX_LOW_LATENCY_BYTES`]):
-    /// observation messages always do; an EpisodeSharing goal episode (one
-    /// transition per cycle, at most `frames_per_trial` + 1) when short enough.
-    pub fn fits_low_latency(&self) -> bool {
-        let shares = (self.team.iter())
-            .any(|a| matches!(a.config.strategy, Strategy::EpisodeSharing { .. }));
-        !shares || (self.env.frames_per_trial as usize) < proto::MAX_LOW_LATENCY_SHARE
-    }
 }
 
 /// Names the key of a rejected simulator setting.
@@ -326,19 +316,6 @@ mod tests {
         assert_eq!(points.len(), 251);
         assert_eq!((points[0], points[1], points[250]), (0, 20, 5000));
         assert_eq!(c.episodes_per_run(), 5000 + 251 * 100);
-    }
-
-    #[test]
-    fn long_shared_episodes_keep_the_processes_off_the_low_latency_transport() {
-        let mut c = ExperimentConfig::default();
-        c.env.frames_per_trial = 10_000;
-        assert!(c.fits_low_latency(), "NoAdvice shares nothing");
-        c.team[2] = AgentSpec::of(StrategyName::EpisodeSharing, Profile::Paper);
-        assert!(!c.fits_low_latency());
-        c.env.frames_per_trial = EnvConfig::default().frames_per_trial;
-        assert!(c.fits_low_latency(), "the default episodes are short");
-        c.env.frames_per_trial = proto::MAX_LOW_LATENCY_SHARE as u32;
-        assert!(!c.fits_low_latency());
     }
 
     #[test]

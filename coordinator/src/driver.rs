@@ -2,7 +2,6 @@
 //! backend of each run.
 
 use crate::backend::Backend;
-use crate::config::ExperimentConfig;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::in_process::InProcess;
@@ -18,16 +17,12 @@ pub trait Driver: Sync {
     fn max_parallel_runs(&self) -> usize;
 }
 
-/// Opens the transport of `config`: over zenoh, joins the network and
-/// starts (or finds) the processes, on zenoh's low-latency transport when
-/// every message between them fits it.
-pub fn open(config: &ExperimentConfig) -> Result<Box<dyn Driver>, Error> {
-    Ok(match &config.transport {
+/// Opens `transport` for an experiment with `agents` agents: over zenoh,
+/// joins the network and starts (or finds) the processes.
+pub fn open(transport: &Transport, agents: usize) -> Result<Box<dyn Driver>, Error> {
+    Ok(match transport {
         Transport::InProcess => Box::new(InProcessDriver),
-        Transport::Zenoh(settings) => {
-            let (agents, low_latency) = (config.team.len(), config.fits_low_latency());
-            Box::new(Network::start(settings, agents, low_latency)?)
-        }
+        Transport::Zenoh(settings) => Box::new(Network::start(settings, agents)?),
     })
 }
 

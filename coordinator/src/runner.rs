@@ -148,7 +148,7 @@ fn play_runs(
     let played = if pending.is_empty() {
         Vec::new()
     } else {
-        let driver = driver::open(config)?;
+        let driver = driver::open(&config.transport, config.team.len())?;
         let threads = options
             .threads
             .min(driver.max_parallel_runs())

@@ -101,17 +101,6 @@ pub struct Observation {
 /// The most frames one observation message may carry.
 pub const MAX_FRAMES_PER_MESSAGE: usize = 64;
 
-/// The largest message env-server and the agents may send each other over
-/// zenoh's low-latency transport, which never splits a message: one zenoh
-/// batch, over TCP and TLS at least 32,741 bytes (the largest multiple of
-/// half the segment size below 64 KiB), with room for zenoh's headers.
-pub const MAX_LOW_LATENCY_BYTES: usize = 30_000;
-
-/// The most transitions a [`SharedEpisode`] within [`MAX_LOW_LATENCY_BYTES`]
-/// may hold (an episode shares at most one transition per frame; an
-/// observation message always fits).
-pub const MAX_LOW_LATENCY_SHARE: usize = 250;
-
 /// An agent's chosen action for a frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ActionChoice {
@@ -360,49 +349,5 @@ mod tests {
             "PlayEpisode { mode: Training, seed: None }"
         );
         assert_eq!(format!("{:?}", Control::Stop), "Stop");
-    }
-
-    /// The longest encoding of `body` (every header field at its widest).
-    fn widest(body: Body) -> usize {
-        let header = Header {
-            version: u16::MAX,
-            experiment: u64::MAX,
-            run: u32::MAX,
-            episode: u32::MAX,
-            frame: u32::MAX,
-        };
-        crate::encode(&Envelope { header, body }).len()
-    }
-
-    #[test]
-    fn the_largest_messages_between_processes_fit_the_low_latency_transport() {
-        let state = [f64::MAX; crate::STATE_FEATURES];
-        let observation = Observation {
-            agent: u8::MAX,
-            mode: Mode::Evaluation,
-            state,
-            can_kick: true,
-            positions: vec![[f64::MAX; 2]; 4],
-            reward: f64::MAX,
-            terminal: true,
-        };
-        let frames = vec![observation; MAX_FRAMES_PER_MESSAGE];
-        assert!(widest(Body::Observations(frames)) <= MAX_LOW_LATENCY_BYTES);
-        let transition = SharedTransition {
-            state,
-            action: Action::PassFar,
-            reward: f64::MAX,
-            next: Some((state, Action::PassFar)),
-        };
-        let share = |n| {
-            widest(Body::SharedEpisode(SharedEpisode {
-                from: u8::MAX,
-                to: u8::MAX,
-                transitions: vec![transition; n],
-            }))
-        };
-        assert!(share(MAX_LOW_LATENCY_SHARE) <= MAX_LOW_LATENCY_BYTES);
-        // The bound is tight: a fifth more transitions would not fit.
-        assert!(share(MAX_LOW_LATENCY_SHARE * 6 / 5) > MAX_LOW_LATENCY_BYTES);
     }
 }

@@ -48,7 +48,6 @@ fn network(tag: &str, port: u16, auth: Auth) -> Network {
             },
         },
         3,
-        true,
     )
     .expect("processes start and join")
 }

@@ -82,7 +82,7 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
             startup_timeout: Duration::from_secs(60),
         },
     };
-    let net = Network::start(&settings, 3, false).expect("the attached processes join");
+    let net = Network::start(&settings, 3).expect("the attached processes join");
     let experiment = Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,

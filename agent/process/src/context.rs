@@ -43,8 +43,6 @@ pub struct Node {
     pub experiment: u64,
     /// This agent's id.
     pub id: u8,
-    /// The largest message it may send the other processes (bytes).
-    pub max_message: usize,
     /// How long to wait for advice in the current run (set by its reset).
     advice_timeout: Mutex<Duration>,
     learner: Mutex<Learner>,
@@ -61,22 +59,13 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 }
 
 impl Node {
-    /// The context of agent `id` of a team of `team_size` in experiment
-    /// `name`, whose messages to the other processes may be `max_message`
-    /// bytes long.
-    pub fn new(
-        session: Session,
-        name: &str,
-        keys: Keys,
-        (id, team_size): (u8, u8),
-        max_message: usize,
-    ) -> Self {
+    /// The context of agent `id` of a team of `team_size` in experiment `name`.
+    pub fn new(session: Session, name: &str, keys: Keys, id: u8, team_size: u8) -> Self {
         Self {
             session,
             keys,
             experiment: proto::experiment_id(name),
             id,
-            max_message,
             advice_timeout: Mutex::new(Duration::ZERO),
             learner: Mutex::new(Learner::new(id, team_size)),
             traffic: Mutex::new(Traffic::default()),

@@ -190,17 +190,6 @@ impl Stream {
                 transitions,
             };
             let bytes = node.encode(header, Body::SharedEpisode(share));
-            if bytes.len() > node.max_message {
-                tracing::error!(
-                    to,
-                    bytes = bytes.len(),
-                    limit = node.max_message,
-                    "a shared episode too long for --low-latency is not sent \
-                     (at most {} frames; start the agents without --low-latency)",
-                    proto::MAX_LOW_LATENCY_SHARE
-                );
-                continue;
-            }
             if let Err(e) = node.session.put(node.keys.share(to), bytes).wait() {
                 tracing::warn!(to, error = %e, "cannot publish a shared episode");
             }

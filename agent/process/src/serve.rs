@@ -51,13 +51,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         .declare_publisher(keys.action(id))
         .await
         .map_err(|e| declare("the action publisher", e))?;
-    let max_message = if net.low_latency {
-        proto::MAX_LOW_LATENCY_BYTES
-    } else {
-        usize::MAX
-    };
-    let node = Node::new(session.clone(), &name, keys, (id, team_size), max_message);
-    let node = Arc::new(node);
+    let node = Arc::new(Node::new(session.clone(), &name, keys, id, team_size));
     let (stream, tasks) = Stream::new(node.clone(), actions);
     // Held until the end: dropping them undeclares them.
     let _observations = {

@@ -24,11 +24,6 @@ use zenoh::sample::{Sample, SampleKind};
 /// Starts agent `id` of a team of 2, connected to the fake coordinator
 /// with its secret.
 fn spawn_agent(name: &str, id: u8, fake: &Fake) -> Guard {
-    spawn_agent_with(name, id, fake, &[])
-}
-
-/// Starts agent `id` with `extra` flags.
-fn spawn_agent_with(name: &str, id: u8, fake: &Fake, extra: &[&str]) -> Guard {
     let (id, listen) = (
         id.to_string(),
         format!("tcp/127.0.0.1:{}", free_port().unwrap()),
@@ -44,7 +39,7 @@ fn spawn_agent_with(name: &str, id: u8, fake: &Fake, extra: &[&str]) -> Guard {
         "--secret-file",
         &secret,
     ];
-    Guard::agent(&[&args[..], &network, &["--exit-with-coordinator"], extra].concat())
+    Guard::agent(&[&args[..], &network, &["--exit-with-coordinator"]].concat())
 }
 
 /// The in-test coordinator and env-server.
@@ -437,10 +432,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
 async fn episode_sharing_travels_as_published_messages() {
     let name = format!("share-{}", std::process::id());
     let fake = Fake::open(&name).await;
-    // The agents link to each other by zenoh's low-latency transport; the
-    // fake, like the coordinator, does not use it, so snapshots travel as usual.
-    let low = ["--low-latency"];
-    let _agents = [0, 1].map(|id| spawn_agent_with(&name, id, &fake, &low));
+    let _agents = [spawn_agent(&name, 0, &fake), spawn_agent(&name, 1, &fake)];
     fake.wait_for_agents(&[0, 1]).await;
     let config = AgentConfig {
         strategy: Strategy::from(StrategyName::EpisodeSharing),

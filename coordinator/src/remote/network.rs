@@ -80,14 +80,9 @@ fn secret(options: &Endpoints) -> Result<(Option<Secret>, Option<tempfile::TempD
 
 impl Network {
     /// Joins the network of `settings.endpoints.experiment`, starts
-    /// env-server and `agents` agent processes (unless attaching; with
-    /// `low_latency`, linked to each other by zenoh's low-latency transport)
-    /// and waits until every one of them is alive.
-    pub fn start(
-        settings: &ZenohSettings,
-        agents: usize,
-        low_latency: bool,
-    ) -> Result<Self, Error> {
+    /// env-server and `agents` agent processes (unless attaching) and waits
+    /// until every one of them is alive.
+    pub fn start(settings: &ZenohSettings, agents: usize) -> Result<Self, Error> {
         let options = &settings.endpoints;
         let keys = Keys::new(&options.experiment)
             .map_err(|e| ConfigError::new("experiment", e.to_string()))?;
@@ -187,13 +182,13 @@ impl Network {
             }
             let connect = format!("tcp/127.0.0.1:{port}");
             network.stop_on_signals()?;
-            network.launch(agents, &connect, low_latency)?;
+            network.launch(agents, &connect)?;
         }
         network.wait_for_everyone(options)?;
         Ok(network)
     }
 
-    fn launch(&self, agents: usize, connect: &str, low_latency: bool) -> Result<(), Error> {
+    fn launch(&self, agents: usize, connect: &str) -> Result<(), Error> {
         let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
         let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
@@ -210,9 +205,6 @@ impl Network {
                 connect.to_owned(),
             ]);
             args.extend(auth.iter().cloned());
-            if low_latency {
-                args.push("--low-latency".into());
-            }
             args
         };
         let mut children = self.children.lock().expect("children");

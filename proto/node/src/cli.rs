@@ -43,11 +43,6 @@ pub struct ConnectionArgs {
     /// set on top of it.
     #[arg(long, value_name = "FILE")]
     pub zenoh_config: Option<PathBuf>,
-    /// zenoh's low-latency transport on the links to the other processes
-    /// that use it: faster round trips, but no message over 30,000 bytes
-    /// (an EpisodeSharing agent then sends no episode over 250 frames).
-    #[arg(long)]
-    pub low_latency: bool,
 }
 
 impl ConnectionArgs {
@@ -63,8 +58,7 @@ impl ConnectionArgs {
         Ok(
             NetConfig::peer(vec![self.listen.clone()], self.connect.clone())
                 .with_secret(secret)
-                .with_base(self.zenoh_config.clone())
-                .with_low_latency(self.low_latency),
+                .with_base(self.zenoh_config.clone()),
         )
     }
 }
@@ -151,15 +145,6 @@ mod tests {
                 vec!["tcp/127.0.0.1:0".into()],
                 vec!["tcp/127.0.0.1:1".into(), "tcp/127.0.0.1:2".into()]
             )
-        );
-        let low = ["x", "--experiment", "e1", "--no-auth", "--low-latency"];
-        assert!(
-            Cli::try_parse_from(low)
-                .unwrap()
-                .connection
-                .net()
-                .unwrap()
-                .low_latency
         );
         let bad = Cli::try_parse_from(["x", "--experiment", "a/b", "--no-auth"]).unwrap();
         assert!(bad.connection.keys().is_err());

@@ -23,10 +23,6 @@ pub struct NetConfig {
     /// certificates and access control (deploy/tls/); the settings above
     /// are set on top of it.
     pub base: Option<PathBuf>,
-    /// zenoh's low-latency transport on the links to peers that use it
-    /// too: the sending thread writes each message to the socket itself,
-    /// whole ([`proto::MAX_LOW_LATENCY_BYTES`] at most); QoS is off.
-    pub low_latency: bool,
 }
 
 impl NetConfig {
@@ -38,7 +34,6 @@ impl NetConfig {
             mode: "peer".to_owned(),
             secret: None,
             base: None,
-            low_latency: false,
         }
     }
 
@@ -52,14 +47,6 @@ impl NetConfig {
         Self { base, ..self }
     }
 
-    /// These settings with zenoh's low-latency transport, or without.
-    pub fn with_low_latency(self, low_latency: bool) -> Self {
-        Self {
-            low_latency,
-            ..self
-        }
-    }
-
     /// A loopback peer listening on `127.0.0.1:<port>` (0: any free port)
     /// and connecting to `connect`.
     pub fn loopback_peer(port: u16, connect: Vec<String>) -> Self {
@@ -71,8 +58,8 @@ impl NetConfig {
     /// they connect to; of two peers only the one with the greater id opens
     /// their link, since two authenticated handshakes crossing each other
     /// can kill both links), opening fails after 5 s if a configured
-    /// endpoint cannot be reached, with a secret, user/password
-    /// authentication both ways, and the low-latency transport if asked.
+    /// endpoint cannot be reached, and with a secret, user/password
+    /// authentication both ways.
     pub fn settings(&self) -> Vec<(&'static str, String)> {
         let list = |v: &[String]| {
             let quoted: Vec<String> = v.iter().map(|e| format!("{e:?}")).collect();
@@ -93,11 +80,6 @@ impl NetConfig {
         ];
         if let Some(secret) = &self.secret {
             settings.push(("transport/auth/usrpwd", secret.to_json5()));
-        }
-        if self.low_latency {
-            // zenoh refuses the two together.
-            settings.push(("transport/unicast/qos/enabled", "false".to_owned()));
-            settings.push(("transport/unicast/lowlatency", "true".to_owned()));
         }
         settings
     }
@@ -267,42 +249,6 @@ mod tests {
         );
         assert_eq!(describe(&"look at this"), "look at this");
         assert_eq!(describe(&"at /a.rs:1"), "at /a.rs:1");
-    }
-
-    /// Sends `bytes` from a peer to another on loopback; whether it arrived whole.
-    async fn crosses(sender_low: bool, receiver_low: bool, bytes: usize) -> bool {
-        let port = free_port().unwrap();
-        let receiver = NetConfig::loopback_peer(port, Vec::new()).with_low_latency(receiver_low);
-        let receiver = open(&receiver).await.unwrap();
-        let connect = vec![format!("tcp/127.0.0.1:{port}")];
-        let sender = NetConfig::peer(Vec::new(), connect).with_low_latency(sender_low);
-        let sender = open(&sender).await.unwrap();
-        let inbox = receiver.declare_subscriber("test/low").await.unwrap();
-        let payload: Vec<u8> = (0..bytes).map(|i| i as u8).collect();
-        tokio::time::sleep(std::time::Duration::from_millis(300)).await;
-        sender.put("test/low", payload.clone()).await.unwrap();
-        let wait = std::time::Duration::from_secs(2);
-        match tokio::time::timeout(wait, inbox.recv_async()).await {
-            Ok(Ok(sample)) => sample.payload().to_bytes() == payload,
-            _ => false,
-        }
-    }
-
-    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-    async fn the_low_latency_transport_carries_its_largest_message() {
-        let settings = NetConfig::peer(Vec::new(), Vec::new())
-            .with_low_latency(true)
-            .to_config()
-            .unwrap();
-        assert_eq!(
-            settings.get_json("transport/unicast/lowlatency").unwrap(),
-            "true"
-        );
-        assert!(crosses(true, true, proto::MAX_LOW_LATENCY_BYTES).await);
-        // It is in use: it never splits a message, so twice that is lost.
-        assert!(!crosses(true, true, 2 * proto::MAX_LOW_LATENCY_BYTES).await);
-        // A peer without it (the coordinator) links as usual: any size.
-        assert!(crosses(true, false, 1 << 20).await);
     }
 
     #[test]
