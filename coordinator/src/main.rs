@@ -266,6 +266,10 @@ impl NetworkArgs {
 fn main() -> ExitCode {
     node::cli::init_tracing("error");
     let cli: Cli = node::cli::parse_or_exit();
+    // A router forwards for many peers: it keeps zenoh's usual runtimes.
+    if !matches!(cli.command, Command::Router(_)) {
+        node::net::use_one_runtime();
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => node::cli::exit_with_error(e),

@@ -280,6 +280,32 @@ fn killing_the_coordinator_leaves_no_process_behind() {
     }
 }
 
+#[test]
+fn every_process_runs_zenoh_on_one_runtime() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut coordinator = long_run("no-advice", &tmp.path().join("threads"))
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let children = wait_for_children(coordinator.id(), 4);
+    std::thread::sleep(Duration::from_secs(2));
+    // zenoh names its runtimes' threads after them: with every runtime
+    // handed over to `app`, no other runtime has a thread.
+    for pid in children.iter().copied().chain([coordinator.id()]) {
+        let names: Vec<String> = std::fs::read_dir(format!("/proc/{pid}/task"))
+            .unwrap()
+            .filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
+            .collect();
+        let zenoh = |prefix| names.iter().any(|n| n.starts_with(prefix));
+        assert!(zenoh("app-"), "{}: {names:?}", cmdline(pid));
+        for other in ["rx-", "tx-", "net-", "acc-"] {
+            assert!(!zenoh(other), "{}: {names:?}", cmdline(pid));
+        }
+    }
+    coordinator.kill().unwrap();
+    coordinator.wait().unwrap();
+}
+
 /// A coordinator run over zenoh that lasts far longer than any test.
 fn long_run(algorithm: &str, out: &std::path::Path) -> Command {
     let mut c = Command::new(bin("coordinator"));

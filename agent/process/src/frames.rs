@@ -10,6 +10,7 @@ use agent::Transition;
 use proto::{
     ActionChoice, Body, DropReason, Envelope, Header, MessageKind, Observation, SharedEpisode,
 };
+use tokio::runtime::Handle;
 use tokio::sync::mpsc::{UnboundedReceiver, UnboundedSender, unbounded_channel};
 use zenoh::Wait;
 use zenoh::pubsub::Publisher;
@@ -22,6 +23,7 @@ use crate::learner::{Ask, Step};
 pub struct Stream {
     node: Arc<Node>,
     actions: Publisher<'static>,
+    runtime: Handle,
     backlog: Mutex<Backlog>,
 }
 
@@ -101,12 +103,14 @@ impl Frames {
 
 impl Stream {
     /// A stream of agent `node`'s observations that publishes its actions
-    /// on `actions`, and the inbox of its task ([`run`]).
+    /// on `actions`, and the inbox of its task ([`run`]); made within the
+    /// agent's runtime.
     pub fn new(node: Arc<Node>, actions: Publisher<'static>) -> (Arc<Self>, Tasks) {
         let (task, pending) = unbounded_channel();
         let stream = Stream {
             node,
             actions,
+            runtime: Handle::current(),
             backlog: Mutex::new(Backlog { busy: false, task }),
         };
         (Arc::new(stream), Tasks(pending))
@@ -179,7 +183,10 @@ impl Stream {
         }
     }
 
-    /// Publishes an ended episode's transitions, one message per receiver.
+    /// Publishes an ended episode's transitions, one message per receiver,
+    /// from the agent's runtime: a long episode is a large message, and
+    /// zenoh's callback, which may be stepping this, runs on the one thread
+    /// that also sends it ([`node::net::ONE_RUNTIME`]).
     fn publish_shares(&self, header: Header, shares: Vec<(usize, Vec<Transition>)>) {
         let node = &self.node;
         for (to, transitions) in shares {
@@ -190,9 +197,12 @@ impl Stream {
                 transitions,
             };
             let bytes = node.encode(header, Body::SharedEpisode(share));
-            if let Err(e) = node.session.put(node.keys.share(to), bytes).wait() {
-                tracing::warn!(to, error = %e, "cannot publish a shared episode");
-            }
+            let (session, key) = (node.session.clone(), node.keys.share(to));
+            self.runtime.spawn(async move {
+                if let Err(e) = session.put(key, bytes).await {
+                    tracing::warn!(to, error = %e, "cannot publish a shared episode");
+                }
+            });
         }
     }
 }

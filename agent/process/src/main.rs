@@ -45,6 +45,7 @@ struct Cli {
 }
 
 fn main() {
+    node::net::use_one_runtime();
     init_tracing("off");
     let cli: Cli = parse_or_exit();
     let code = match run(cli) {

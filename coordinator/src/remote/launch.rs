@@ -32,11 +32,22 @@ impl Children {
         self.processes.is_empty()
     }
 
-    /// What became of the process named `name`: `Some(status)` once it
-    /// exited, `None` while it runs or when this coordinator did not start it.
-    pub fn exit_status(&mut self, name: &str) -> Option<std::process::ExitStatus> {
+    /// What became of the process named `name` within `limit`: `Some(status)`
+    /// once it exited, `None` while it runs or when this coordinator did not
+    /// start it. (A killed process closes its sockets, which its peers see
+    /// at once, a moment before it has exited.)
+    pub fn exit_status(&mut self, name: &str, limit: Duration) -> Option<std::process::ExitStatus> {
         let (_, child) = self.processes.iter_mut().find(|(n, _)| n == name)?;
-        child.try_wait().ok().flatten()
+        let deadline = Instant::now() + limit;
+        loop {
+            match child.try_wait() {
+                Ok(Some(status)) => return Some(status),
+                Ok(None) if Instant::now() < deadline => {
+                    std::thread::sleep(Duration::from_millis(10))
+                }
+                _ => return None,
+            }
+        }
     }
 
     /// Whether this coordinator started the process named `name`.

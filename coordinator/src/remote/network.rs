@@ -306,7 +306,7 @@ impl Network {
             Role::Coordinator => "coordinator".to_owned(),
         };
         let mut children = self.children.lock().expect("children");
-        match children.exit_status(&name) {
+        match children.exit_status(&name, Duration::from_millis(500)) {
             Some(status) => format!("{role} is gone: its process exited ({status})"),
             None if children.started(&name) => format!(
                 "{role} stopped answering: its liveliness token expired while its process \

@@ -74,6 +74,7 @@ enum Command {
 }
 
 fn main() {
+    node::net::use_one_runtime();
     // Without RUST_LOG: errors, and this program's warnings (missing actions).
     init_tracing("error,env_server=warn");
     let cli: Cli = parse_or_exit();

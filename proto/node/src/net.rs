@@ -176,6 +176,24 @@ fn location_len(s: &str) -> Option<usize> {
     Some(end + usize::from(s[end..].starts_with('.')))
 }
 
+/// zenoh's runtime setting for the experiment's processes: its five
+/// runtimes (app, acc, tx, rx, net) handed over to one, with one worker.
+/// A message's callback, the sends it makes and the reads that follow then
+/// run on one thread instead of waking one another's (docs/speed.md).
+pub const ONE_RUNTIME: &str = "(app: (worker_threads: 1), acc: (handover: app), \
+                               tx: (handover: app), rx: (handover: app), net: (handover: app))";
+
+/// Makes zenoh use [`ONE_RUNTIME`] in this process, unless the environment
+/// already sets `ZENOH_RUNTIME`. Call early in `main`, while no other
+/// thread runs.
+pub fn use_one_runtime() {
+    if std::env::var_os("ZENOH_RUNTIME").is_none() {
+        // SAFETY: no other thread runs yet, so none reads the environment
+        // while it changes.
+        unsafe { std::env::set_var("ZENOH_RUNTIME", ONE_RUNTIME) };
+    }
+}
+
 /// A loopback TCP port that was free a moment ago (bound, read, released).
 pub fn free_port() -> std::io::Result<u16> {
     let listener = std::net::TcpListener::bind("127.0.0.1:0")?;
