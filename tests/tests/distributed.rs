@@ -291,19 +291,26 @@ fn every_process_runs_zenoh_on_one_runtime() {
     std::thread::sleep(Duration::from_secs(2));
     // zenoh names its runtimes' threads after them: with every runtime
     // handed over to `app`, no other runtime has a thread.
-    for pid in children.iter().copied().chain([coordinator.id()]) {
-        let names: Vec<String> = std::fs::read_dir(format!("/proc/{pid}/task"))
-            .unwrap()
-            .filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
-            .collect();
-        let zenoh = |prefix| names.iter().any(|n| n.starts_with(prefix));
-        assert!(zenoh("app-"), "{}: {names:?}", cmdline(pid));
-        for other in ["rx-", "tx-", "net-", "acc-"] {
-            assert!(!zenoh(other), "{}: {names:?}", cmdline(pid));
-        }
-    }
+    let threads: Vec<(String, Vec<String>)> = (children.iter().copied())
+        .chain([coordinator.id()])
+        .map(|pid| {
+            let names = std::fs::read_dir(format!("/proc/{pid}/task"))
+                .unwrap()
+                .filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
+                .collect();
+            (cmdline(pid), names)
+        })
+        .collect();
+    // Killed before any assertion, so that a failure leaves no process behind.
     coordinator.kill().unwrap();
     coordinator.wait().unwrap();
+    for (process, names) in threads {
+        let zenoh = |prefix| names.iter().any(|n| n.starts_with(prefix));
+        assert!(zenoh("app-"), "{process}: {names:?}");
+        for other in ["rx-", "tx-", "net-", "acc-"] {
+            assert!(!zenoh(other), "{process}: {names:?}");
+        }
+    }
 }
 
 /// A coordinator run over zenoh that lasts far longer than any test.
