@@ -287,20 +287,32 @@ fn every_process_runs_zenoh_on_one_runtime() {
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
-    let children = wait_for_children(coordinator.id(), 4);
-    std::thread::sleep(Duration::from_secs(2));
-    // zenoh names its runtimes' threads after them: with every runtime
-    // handed over to `app`, no other runtime has a thread.
-    let threads: Vec<(String, Vec<String>)> = (children.iter().copied())
+    let pids: Vec<u32> = (wait_for_children(coordinator.id(), 4).into_iter())
         .chain([coordinator.id()])
-        .map(|pid| {
-            let names = std::fs::read_dir(format!("/proc/{pid}/task"))
-                .unwrap()
-                .filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
-                .collect();
-            (cmdline(pid), names)
-        })
         .collect();
+    // zenoh names its runtimes' threads after them: with every runtime
+    // handed over to `app`, no other runtime has a thread. Read once every
+    // process has joined (zenoh starts its threads then), or after 30 s.
+    let thread_names = |pid: u32| -> Vec<String> {
+        std::fs::read_dir(format!("/proc/{pid}/task"))
+            .into_iter()
+            .flatten()
+            .filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
+            .collect()
+    };
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let threads: Vec<(String, Vec<String>)> = loop {
+        let threads: Vec<_> = pids
+            .iter()
+            .map(|&p| (cmdline(p), thread_names(p)))
+            .collect();
+        let joined =
+            |(_, names): &(String, Vec<String>)| names.iter().any(|n| n.starts_with("app-"));
+        if threads.iter().all(joined) || Instant::now() > deadline {
+            break threads;
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    };
     // Killed before any assertion, so that a failure leaves no process behind.
     coordinator.kill().unwrap();
     coordinator.wait().unwrap();
