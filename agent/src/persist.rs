@@ -4,6 +4,9 @@
 //! Layout: magic `ADVQTAB\0` | format version (u16 LE) | body length (u64 LE)
 //! | postcard body | FNV-1a 64 of the body (u64 LE).
 
+use std::hash::Hasher;
+
+use fnv::FnvHasher;
 use serde::{Deserialize, Serialize};
 
 use crate::counters::Counters;
@@ -72,25 +75,24 @@ pub struct Snapshot {
     pub training_episodes: u64,
 }
 
-/// FNV-1a, 64 bits.
-#[derive(Clone, Copy, Debug)]
-struct Fnv(u64);
+/// The file checksum of `bytes`: FNV-1a, 64 bits.
+fn checksum(bytes: &[u8]) -> u64 {
+    let mut h = FnvHasher::default();
+    h.write(bytes);
+    h.finish()
+}
 
-impl Fnv {
-    fn new() -> Self {
-        Self(0xcbf2_9ce4_8422_2325)
-    }
-
-    fn bytes(mut self, bytes: &[u8]) -> Self {
-        for &b in bytes {
-            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x100_0000_01b3);
-        }
-        self
-    }
-
-    fn u64(self, x: u64) -> Self {
-        self.bytes(&x.to_le_bytes())
-    }
+/// A snapshot file holding `body`: the header (magic, format version,
+/// length), `body` and its checksum, as [`Snapshot::encode`] writes around
+/// its postcard body. For tools that build or fuzz snapshot files.
+pub fn snapshot_file(body: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(HEADER + body.len() + CHECKSUM);
+    out.extend_from_slice(&MAGIC);
+    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&(body.len() as u64).to_le_bytes());
+    out.extend_from_slice(body);
+    out.extend_from_slice(&checksum(body).to_le_bytes());
+    out
 }
 
 impl Snapshot {
@@ -98,16 +100,18 @@ impl Snapshot {
     /// equal digests mean equal learned state, across runs and platforms.
     pub fn digest(&self) -> u64 {
         let t = self.tiling;
-        let mut h = Fnv::new()
-            .u64(u64::from(t.tiles_per_feature))
-            .u64(t.tile_width.to_bits())
-            .u64(t.tile_step.to_bits());
+        let mut h = FnvHasher::default();
+        let word = |h: &mut FnvHasher, x: u64| h.write(&x.to_le_bytes());
+        word(&mut h, u64::from(t.tiles_per_feature));
+        word(&mut h, t.tile_width.to_bits());
+        word(&mut h, t.tile_step.to_bits());
         for (key, e) in &self.entries {
-            h = h.u64(*key);
+            word(&mut h, *key);
             for q in e.q {
-                h = h.u64(q.to_bits());
+                word(&mut h, q.to_bits());
             }
-            h = h.bytes(&[e.tried]).u64(e.visits);
+            h.write(&[e.tried]);
+            word(&mut h, e.visits);
         }
         let c = self.counters;
         for x in [
@@ -119,9 +123,9 @@ impl Snapshot {
             c.shared_received,
             self.training_episodes,
         ] {
-            h = h.u64(x);
+            word(&mut h, x);
         }
-        h.0
+        h.finish()
     }
 
     /// Rejects impossible values (a tiling without tiles or with a
@@ -145,14 +149,7 @@ impl Snapshot {
 
     /// The file image: header, body and checksum.
     pub fn encode(&self) -> Result<Vec<u8>, PersistError> {
-        let body = postcard::to_allocvec(self)?;
-        let mut out = Vec::with_capacity(HEADER + body.len() + CHECKSUM);
-        out.extend_from_slice(&MAGIC);
-        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-        out.extend_from_slice(&(body.len() as u64).to_le_bytes());
-        out.extend_from_slice(&body);
-        out.extend_from_slice(&Fnv::new().bytes(&body).0.to_le_bytes());
-        Ok(out)
+        Ok(snapshot_file(&postcard::to_allocvec(self)?))
     }
 
     /// Parses a file image, checking magic, version, length and checksum.
@@ -184,7 +181,7 @@ impl Snapshot {
         let body = &bytes[HEADER..bytes.len() - CHECKSUM];
         let sum =
             u64::from_le_bytes(read_array(bytes, bytes.len() - CHECKSUM).ok_or_else(too_short)?);
-        if Fnv::new().bytes(body).0 != sum {
+        if checksum(body) != sum {
             return Err(PersistError::Checksum);
         }
         let (snapshot, rest): (Self, _) = postcard::take_from_bytes(body)?;

@@ -1,7 +1,8 @@
 //! Encoding and checked decoding of [`Envelope`]s, and of the settings a
 //! `Control::Reset` carries.
 
-use crate::{Envelope, Header, PROTOCOL_VERSION};
+use crate::counters::{DropReason, MessageCounters};
+use crate::message::{Envelope, Header, PROTOCOL_VERSION};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use thiserror::Error;
@@ -77,6 +78,17 @@ pub fn decode_settings<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, SettingsE
         return Err(SettingsError(format!("{} trailing bytes", rest.len())));
     }
     Ok(settings)
+}
+
+impl MessageCounters {
+    /// Counts a decode failure under its reason.
+    pub fn drop_undecodable(&mut self, error: &DecodeError) {
+        self.record_drop(match error {
+            DecodeError::Malformed(_) => DropReason::Malformed,
+            DecodeError::Version { .. } => DropReason::Version,
+            DecodeError::Foreign(_) => DropReason::Foreign,
+        });
+    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,5 @@
 //! Message and byte counters by kind and direction, and dropped-message counts.
 
-use crate::Body;
 use serde::{Deserialize, Serialize};
 
 /// The kinds of message, for accounting.
@@ -33,19 +32,6 @@ impl MessageKind {
         MessageKind::Control,
         MessageKind::ControlReply,
     ];
-
-    /// The kind of a message body.
-    pub fn of(body: &Body) -> Self {
-        match body {
-            Body::Observations(_) => MessageKind::Observation,
-            Body::Action(_) => MessageKind::Action,
-            Body::AdviceRequest(_) => MessageKind::AdviceRequest,
-            Body::AdviceReply(_) => MessageKind::AdviceReply,
-            Body::SharedEpisode(_) => MessageKind::SharedEpisode,
-            Body::Control(_) => MessageKind::Control,
-            Body::ControlReply(_) => MessageKind::ControlReply,
-        }
-    }
 
     /// Snake-case name used in reports.
     pub fn name(self) -> &'static str {
@@ -162,15 +148,6 @@ impl MessageCounters {
         }
     }
 
-    /// Counts a decode failure under its reason.
-    pub fn drop_undecodable(&mut self, error: &crate::DecodeError) {
-        self.record_drop(match error {
-            crate::DecodeError::Malformed(_) => DropReason::Malformed,
-            crate::DecodeError::Version { .. } => DropReason::Version,
-            crate::DecodeError::Foreign(_) => DropReason::Foreign,
-        });
-    }
-
     /// Total messages and bytes in one direction.
     pub fn total(&self, direction: Direction) -> Tally {
         let table = match direction {
@@ -182,26 +159,6 @@ impl MessageCounters {
             bytes: a.bytes + t.bytes,
         })
     }
-
-    /// Adds another process's counters to these.
-    pub fn merge(&mut self, other: &MessageCounters) {
-        for (a, b) in self
-            .sent
-            .iter_mut()
-            .zip(&other.sent)
-            .chain(self.received.iter_mut().zip(&other.received))
-        {
-            a.messages += b.messages;
-            a.bytes += b.bytes;
-        }
-        let (d, o) = (&mut self.dropped, &other.dropped);
-        d.malformed += o.malformed;
-        d.version += o.version;
-        d.foreign += o.foreign;
-        d.stale += o.stale;
-        d.duplicate += o.duplicate;
-        d.unrequested += o.unrequested;
-    }
 }
 
 #[cfg(test)]
@@ -209,21 +166,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn totals_and_merge() {
-        let mut a = MessageCounters::default();
-        a.record(Direction::Sent, MessageKind::AdviceRequest, 40);
-        a.record(Direction::Sent, MessageKind::Action, 10);
-        a.record_drop(DropReason::Foreign);
-        let mut b = a.clone();
-        b.merge(&a);
+    fn totals_add_up_every_kind() {
+        let mut c = MessageCounters::default();
+        c.record(Direction::Sent, MessageKind::AdviceRequest, 40);
+        c.record(Direction::Sent, MessageKind::AdviceRequest, 40);
+        c.record(Direction::Sent, MessageKind::Action, 20);
+        c.record(Direction::Received, MessageKind::Action, 7);
+        c.record_drop(DropReason::Foreign);
+        c.record_drop(DropReason::Stale);
         assert_eq!(
-            b.total(Direction::Sent),
+            c.total(Direction::Sent),
             Tally {
-                messages: 4,
+                messages: 3,
                 bytes: 100
             }
         );
-        assert_eq!(b.sent[MessageKind::AdviceRequest as usize].messages, 2);
-        assert_eq!(b.dropped.total(), 2);
+        assert_eq!(c.sent[MessageKind::AdviceRequest as usize].messages, 2);
+        assert_eq!(c.total(Direction::Received).bytes, 7);
+        assert_eq!(c.dropped.total(), 2);
     }
 }

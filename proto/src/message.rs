@@ -1,8 +1,15 @@
 //! The messages every process exchanges, and the header they all carry.
 
-use crate::{Action, PROTOCOL_VERSION, State};
-use serde::{Deserialize, Serialize};
 use std::fmt;
+use std::hash::Hasher;
+
+use serde::{Deserialize, Serialize};
+
+use crate::action::{Action, State};
+use crate::counters::{MessageCounters, MessageKind};
+
+/// Version of the wire protocol; bumped on every incompatible change.
+pub const PROTOCOL_VERSION: u16 = 4;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -34,9 +41,9 @@ impl Header {
 
 /// A stable 64-bit id of an experiment name (FNV-1a), carried in every header.
 pub fn experiment_id(name: &str) -> u64 {
-    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
+    let mut h = fnv::FnvHasher::default();
+    h.write(name.as_bytes());
+    h.finish()
 }
 
 /// Whether an episode trains the agents or evaluates them frozen.
@@ -302,7 +309,7 @@ pub struct AgentReport {
     /// Advice given to others.
     pub advice_given: u64,
     /// Messages and bytes by kind and direction.
-    pub messages: crate::MessageCounters,
+    pub messages: MessageCounters,
     /// Round-trip times of advice requests (ms), one per request with a reply.
     pub advice_rtt_ms: Vec<f32>,
     /// Teammates currently seen alive.
@@ -317,12 +324,35 @@ pub struct ServerReport {
     /// Actions that did not arrive within the step timeout (the fallback was used).
     pub missing_actions: u64,
     /// Messages and bytes by kind and direction.
-    pub messages: crate::MessageCounters,
+    pub messages: MessageCounters,
+}
+
+impl MessageKind {
+    /// The kind of a message body.
+    pub fn of(body: &Body) -> Self {
+        match body {
+            Body::Observations(_) => MessageKind::Observation,
+            Body::Action(_) => MessageKind::Action,
+            Body::AdviceRequest(_) => MessageKind::AdviceRequest,
+            Body::AdviceReply(_) => MessageKind::AdviceReply,
+            Body::SharedEpisode(_) => MessageKind::SharedEpisode,
+            Body::Control(_) => MessageKind::Control,
+            Body::ControlReply(_) => MessageKind::ControlReply,
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn experiment_ids_are_fnv_1a() {
+        // The published FNV-1a 64 test vectors.
+        assert_eq!(experiment_id(""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(experiment_id("a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(experiment_id("foobar"), 0x8594_4171_f739_67e8);
+    }
 
     #[test]
     fn commands_show_the_size_of_their_payloads() {
