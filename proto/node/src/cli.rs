@@ -64,7 +64,7 @@ impl ConnectionArgs {
 }
 
 /// Folds a multi-line message into one line, without clap's usage hints.
-pub fn one_line(message: &str) -> String {
+fn one_line(message: &str) -> String {
     message
         .lines()
         .map(str::trim)

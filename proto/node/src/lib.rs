@@ -7,6 +7,11 @@
 
 #![warn(missing_docs)]
 
+// Secret files are checked by their Unix permissions and synced through
+// their directory, and the processes stop on Unix signals.
+#[cfg(not(unix))]
+compile_error!("the experiment's processes run on Unix only (Linux, macOS)");
+
 pub mod alive;
 pub mod cli;
 pub mod files;

@@ -4,6 +4,7 @@
 use std::fmt::Display;
 use std::path::PathBuf;
 
+use serde_json::{Value, json};
 use zenoh::Session;
 
 use crate::secret::Secret;
@@ -53,33 +54,26 @@ impl NetConfig {
         Self::peer(vec![format!("tcp/127.0.0.1:{port}")], connect)
     }
 
-    /// The zenoh settings, as (key, JSON5 value) pairs: multicast scouting
+    /// The zenoh settings, as (key, value) pairs: multicast scouting
     /// off, gossip on (peers learn each other's listeners through the ones
     /// they connect to; of two peers only the one with the greater id opens
     /// their link, since two authenticated handshakes crossing each other
     /// can kill both links), opening fails after 5 s if a configured
     /// endpoint cannot be reached, and with a secret, user/password
     /// authentication both ways.
-    pub fn settings(&self) -> Vec<(&'static str, String)> {
-        let list = |v: &[String]| {
-            let quoted: Vec<String> = v.iter().map(|e| format!("{e:?}")).collect();
-            format!("[{}]", quoted.join(", "))
-        };
+    pub fn settings(&self) -> Vec<(&'static str, Value)> {
         let mut settings = vec![
-            ("mode", format!("{:?}", self.mode)),
-            ("listen/endpoints", list(&self.listen)),
-            ("connect/endpoints", list(&self.connect)),
-            ("connect/timeout_ms", "5000".to_owned()),
-            ("connect/exit_on_failure", "true".to_owned()),
-            ("scouting/multicast/enabled", "false".to_owned()),
-            ("scouting/gossip/enabled", "true".to_owned()),
-            (
-                "scouting/gossip/autoconnect_strategy",
-                r#""greater-zid""#.to_owned(),
-            ),
+            ("mode", json!(self.mode)),
+            ("listen/endpoints", json!(self.listen)),
+            ("connect/endpoints", json!(self.connect)),
+            ("connect/timeout_ms", json!(5000)),
+            ("connect/exit_on_failure", json!(true)),
+            ("scouting/multicast/enabled", json!(false)),
+            ("scouting/gossip/enabled", json!(true)),
+            ("scouting/gossip/autoconnect_strategy", json!("greater-zid")),
         ];
         if let Some(secret) = &self.secret {
-            settings.push(("transport/auth/usrpwd", secret.to_json5()));
+            settings.push(("transport/auth/usrpwd", secret.usrpwd_setting()));
         }
         settings
     }
@@ -105,8 +99,9 @@ impl NetConfig {
             None => zenoh::Config::default(),
         };
         for (key, value) in self.settings() {
+            // JSON is JSON5.
             config
-                .insert_json5(key, &value)
+                .insert_json5(key, &value.to_string())
                 .map_err(|e| invalid(&format!("{key} = {value}: {e}")))?;
         }
         Ok(config)

@@ -5,8 +5,8 @@
 //! file's path.
 
 use std::fmt;
-use std::fs::{self, File, OpenOptions};
-use std::io::{Read, Write};
+use std::fs::{self, OpenOptions};
+use std::io::Write;
 use std::os::unix::fs::{OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 
@@ -59,10 +59,13 @@ impl Secret {
     /// fails if `path` exists.
     pub fn create(path: &Path) -> Result<Self, SecretError> {
         let mut random = [0u8; SECRET_BYTES];
-        File::open("/dev/urandom")
-            .and_then(|mut f| f.read_exact(&mut random))
-            .map_err(|e| SecretError::new(path, format!("cannot read /dev/urandom: {e}")))?;
-        let password: String = random.iter().map(|b| format!("{b:02x}")).collect();
+        getrandom::fill(&mut random).map_err(|e| {
+            SecretError::new(
+                path,
+                format!("cannot draw random bytes from the system: {e}"),
+            )
+        })?;
+        let password = hex::encode(random);
         let mut file = OpenOptions::new()
             .write(true)
             .create_new(true)
@@ -130,13 +133,12 @@ impl Secret {
 
     /// zenoh's `transport/auth/usrpwd` setting: present these credentials,
     /// accept only peers that present them.
-    pub(crate) fn to_json5(&self) -> String {
-        format!(
-            "{{ user: {:?}, password: {:?}, dictionary_file: {:?} }}",
-            self.user,
-            self.password,
-            self.path.display().to_string(),
-        )
+    pub(crate) fn usrpwd_setting(&self) -> serde_json::Value {
+        serde_json::json!({
+            "user": self.user,
+            "password": self.password,
+            "dictionary_file": self.path.display().to_string(),
+        })
     }
 }
 
