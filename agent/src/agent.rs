@@ -1,9 +1,8 @@
 //! One learning agent: its per-frame API (advisee side), its advisor side and
 //! its learned state.
 
-use proto::{Action, State};
+use proto::{Action, Mode, State};
 use rand::{Rng, SeedableRng};
-use serde::{Deserialize, Serialize};
 
 use crate::advice::shared_prefix;
 use crate::config::AgentConfig;
@@ -29,16 +28,6 @@ pub struct Observation {
     /// Field position, used only by
     /// [`Reachable::WithinDistance`](crate::Reachable::WithinDistance).
     pub position: [f64; 2],
-}
-
-/// Whether an episode trains or evaluates.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Mode {
-    /// Learning, exploring, visit counting and advising on.
-    #[default]
-    Training,
-    /// Frozen: greedy play only; nothing learned, counted, asked or given.
-    Evaluation,
 }
 
 /// The previous step, closed by the next frame's reward and state.

@@ -52,10 +52,9 @@ mod sarsa;
 mod strategy;
 mod team;
 mod tiles;
-mod wire;
 
 pub use advice::{Reachable, p_ask, p_give, psi_td, psi_visit};
-pub use agent::{Agent, Decision, Mode, Observation};
+pub use agent::{Agent, Decision, Observation};
 pub use config::AgentConfig;
 pub use config_error::ConfigError;
 pub use counters::Counters;
@@ -63,7 +62,8 @@ pub use exchange::{AdviceExchange, Isolated, Transition};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
-pub use persist::{FORMAT_VERSION, PersistError, Snapshot};
+pub use persist::{FORMAT_VERSION, PersistError, Snapshot, snapshot_file};
+pub use proto::Mode;
 pub use qtable::{Entry, QTable};
 pub use strategy::{AdHoc, Confidence, Strategy, StrategyName, Torrey, UnknownStrategy};
 pub use team::{Team, TeamError};

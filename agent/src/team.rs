@@ -1,9 +1,9 @@
 //! The in-process backend: all agents in one `Vec`, advising by direct calls
 //! in a fixed order, so a run is bit-for-bit deterministic.
 
-use proto::{Action, State};
+use proto::{Action, Mode, State};
 
-use crate::agent::{Agent, Mode, Observation};
+use crate::agent::{Agent, Observation};
 use crate::exchange::{AdviceExchange, Transition};
 
 /// A team that does not fit together, or a frame of the wrong size.
@@ -74,11 +74,6 @@ impl Team {
     /// The agents, by id.
     pub fn agents(&self) -> &[Agent] {
         &self.agents
-    }
-
-    /// One agent, e.g. to restore a saved expert into it.
-    pub fn agent_mut(&mut self, id: usize) -> Option<&mut Agent> {
-        self.agents.get_mut(id)
     }
 
     /// Starts an episode for every agent.

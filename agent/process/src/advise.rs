@@ -5,36 +5,36 @@ use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind};
 use zenoh::Wait;
 use zenoh::query::Query;
 
-use crate::context::Node;
+use crate::context::Context;
 
 /// Answers one request: advice, or `None` when the agent gives none (or the
 /// request belongs to another run). Undecodable requests get no answer.
-pub fn answer(node: &Node, query: &Query) {
+pub fn answer(ctx: &Context, query: &Query) {
     let bytes = query.payload().map(|p| p.to_bytes()).unwrap_or_default();
-    let Some(Envelope { header, body }) = node.decode(&bytes) else {
+    let Some(Envelope { header, body }) = ctx.decode(&bytes) else {
         return;
     };
     let Body::AdviceRequest(request) = body else {
-        return node.dropped(DropReason::Malformed, Some(&header));
+        return ctx.dropped(DropReason::Malformed, Some(&header));
     };
-    let advice = match node.learner().advise(&header, &request) {
+    let advice = match ctx.learner().advise(&header, &request) {
         Ok(advice) => {
-            node.accepted(MessageKind::AdviceRequest, bytes.len());
+            ctx.accepted(MessageKind::AdviceRequest, bytes.len());
             advice
         }
-        Err(DropReason::Malformed) => return node.dropped(DropReason::Malformed, Some(&header)),
+        Err(DropReason::Malformed) => return ctx.dropped(DropReason::Malformed, Some(&header)),
         // Another run's asker still gets its answer: no advice.
         Err(reason) => {
-            node.dropped(reason, Some(&header));
+            ctx.dropped(reason, Some(&header));
             None
         }
     };
     let reply = AdviceReply {
-        from: node.id,
+        from: ctx.id,
         advice,
     };
-    let bytes = node.encode(header, Body::AdviceReply(reply));
-    if let Err(e) = query.reply(node.keys.advice(node.id), bytes).wait() {
+    let bytes = ctx.encode(header, Body::AdviceReply(reply));
+    if let Err(e) = query.reply(ctx.keys.advice(ctx.id), bytes).wait() {
         tracing::warn!(error = %e, "cannot answer an advice request");
     }
 }

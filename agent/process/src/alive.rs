@@ -9,26 +9,26 @@ use zenoh::handlers::FifoChannelHandler;
 use zenoh::pubsub::Subscriber;
 use zenoh::sample::{Sample, SampleKind};
 
-use crate::context::{Exit, Node};
+use crate::context::{Context, Exit};
 
 /// Follows the experiment's liveliness tokens until the session closes:
 /// agents come and go from the live set; with `exit_with_coordinator`,
 /// once the coordinator has been seen, its disappearance stops the process
 /// (nobody else would stop it).
 pub async fn track(
-    node: Arc<Node>,
+    ctx: Arc<Context>,
     tokens: Subscriber<FifoChannelHandler<Sample>>,
     exit_with_coordinator: bool,
 ) {
     let coordinator = CoordinatorPresence::default();
     while let Ok(sample) = tokens.recv_async().await {
         let present = sample.kind() == SampleKind::Put;
-        let role = node.keys.role_of_alive(sample.key_expr().as_str());
+        let role = ctx.keys.role_of_alive(sample.key_expr().as_str());
         tracing::debug!(?role, present, "liveliness");
         match role {
-            Some(Role::Agent(j)) => node.set_alive(j, present),
+            Some(Role::Agent(j)) => ctx.set_alive(j, present),
             Some(Role::Coordinator) if coordinator.left(present) && exit_with_coordinator => {
-                node.stop(Exit::CoordinatorGone)
+                ctx.stop(Exit::CoordinatorGone)
             }
             _ => {}
         }

@@ -8,7 +8,7 @@ use proto::{Action, Body, DropReason, Header, MessageKind};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
-use crate::context::Node;
+use crate::context::Context;
 use crate::learner::Ask;
 
 /// The replies collected for one request.
@@ -68,18 +68,18 @@ type Arrival = (u8, Vec<u8>, Duration);
 
 /// Sends `ask` (for the frame of `header`) to its advisors and collects
 /// their replies.
-pub async fn ask(node: &Node, header: Header, ask: &Ask) -> Collector {
-    let timeout = node.advice_timeout();
+pub async fn ask(ctx: &Context, header: Header, ask: &Ask) -> Collector {
+    let timeout = ctx.advice_timeout();
     let deadline = tokio::time::Instant::now() + timeout;
     let (tx, mut rx) = mpsc::unbounded_channel::<Arrival>();
     let mut collector = Collector::new(&[]);
     for &j in &ask.to {
-        let bytes = node.encode(header, Body::AdviceRequest(ask.request));
+        let bytes = ctx.encode(header, Body::AdviceRequest(ask.request));
         let tx = tx.clone();
         let sent = Instant::now();
-        let query = node
+        let query = ctx
             .session
-            .get(node.keys.advice(j))
+            .get(ctx.keys.advice(j))
             .payload(bytes)
             .consolidation(ConsolidationMode::None)
             .target(QueryTarget::All)
@@ -101,21 +101,21 @@ pub async fn ask(node: &Node, header: Header, ask: &Ask) -> Collector {
         let Ok(Some((j, bytes, rtt))) = tokio::time::timeout_at(deadline, rx.recv()).await else {
             break;
         };
-        take_reply(node, header, &mut collector, j, &bytes, rtt);
+        take_reply(ctx, header, &mut collector, j, &bytes, rtt);
     }
     collector
 }
 
 /// Checks one reply and hands it to the collector, counting it.
 fn take_reply(
-    node: &Node,
+    ctx: &Context,
     header: Header,
     collector: &mut Collector,
     j: u8,
     bytes: &[u8],
     rtt: Duration,
 ) {
-    let Some(envelope) = node.decode(bytes) else {
+    let Some(envelope) = ctx.decode(bytes) else {
         return;
     };
     let result = match envelope.body {
@@ -126,8 +126,8 @@ fn take_reply(
         _ => Err(DropReason::Malformed),
     };
     match result {
-        Ok(()) => node.accepted(MessageKind::AdviceReply, bytes.len()),
-        Err(reason) => node.dropped(reason, Some(&envelope.header)),
+        Ok(()) => ctx.accepted(MessageKind::AdviceReply, bytes.len()),
+        Err(reason) => ctx.dropped(reason, Some(&envelope.header)),
     }
 }
 

@@ -34,7 +34,7 @@ pub enum Exit {
 
 /// The process's shared context.
 #[derive(Debug)]
-pub struct Node {
+pub struct Context {
     /// The zenoh session.
     pub session: Session,
     /// The experiment's keys.
@@ -58,7 +58,7 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
-impl Node {
+impl Context {
     /// The context of agent `id` of a team of `team_size` in experiment `name`.
     pub fn new(session: Session, name: &str, keys: Keys, id: u8, team_size: u8) -> Self {
         Self {

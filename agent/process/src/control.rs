@@ -10,7 +10,7 @@ use proto::{AgentReport, Body, Control, ControlReply, DropReason, Envelope, Head
 use zenoh::handlers::FifoChannelHandler;
 use zenoh::query::{Query, Queryable};
 
-use crate::context::{Exit, Node, Traffic};
+use crate::context::{Context, Exit, Traffic};
 
 /// How long Report and Snapshot wait for their episode to end
 /// (less than the coordinator's 10 s, so that it gets this error).
@@ -20,33 +20,33 @@ const EPISODE_WAIT: Duration = Duration::from_secs(8);
 pub type Queries = Queryable<FifoChannelHandler<Query>>;
 
 /// Answers commands until the session closes.
-pub async fn serve(node: Arc<Node>, queries: Queries) {
+pub async fn serve(ctx: Arc<Context>, queries: Queries) {
     while let Ok(query) = queries.recv_async().await {
-        tokio::spawn(answer(node.clone(), query));
+        tokio::spawn(answer(ctx.clone(), query));
     }
 }
 
 /// Answers one command; undecodable ones get no answer.
-async fn answer(node: Arc<Node>, query: Query) {
+async fn answer(ctx: Arc<Context>, query: Query) {
     let bytes = query.payload().map(|p| p.to_bytes()).unwrap_or_default();
-    let Some(Envelope { header, body }) = node.decode(&bytes) else {
+    let Some(Envelope { header, body }) = ctx.decode(&bytes) else {
         return;
     };
     let Body::Control(control) = body else {
-        return node.dropped(DropReason::Malformed, Some(&header));
+        return ctx.dropped(DropReason::Malformed, Some(&header));
     };
     tracing::debug!(?header, ?control, "command");
     let reset = matches!(control, Control::Reset { .. });
     let stop = control == Control::Stop;
-    let reply = execute(&node, header, control).await;
+    let reply = execute(&ctx, header, control).await;
     if reset && reply == ControlReply::Ok {
         // A new run counts its messages afresh, this command included.
-        *node.traffic() = Traffic::default();
+        *ctx.traffic() = Traffic::default();
     }
-    node.accepted(MessageKind::Control, bytes.len());
-    let reply = node.encode(header, Body::ControlReply(reply));
+    ctx.accepted(MessageKind::Control, bytes.len());
+    let reply = ctx.encode(header, Body::ControlReply(reply));
     if let Err(e) = query
-        .reply(node.keys.control(Role::Agent(node.id)), reply)
+        .reply(ctx.keys.control(Role::Agent(ctx.id)), reply)
         .await
     {
         tracing::warn!(error = %e, "cannot answer a command");
@@ -54,12 +54,12 @@ async fn answer(node: Arc<Node>, query: Query) {
     // The final reply message goes out when the query is dropped.
     drop(query);
     if stop {
-        node.stop(Exit::Stopped);
+        ctx.stop(Exit::Stopped);
     }
 }
 
 /// Runs one command.
-async fn execute(node: &Node, header: Header, control: Control) -> ControlReply {
+async fn execute(ctx: &Context, header: Header, control: Control) -> ControlReply {
     let done = |r: Result<(), String>| r.map_or_else(ControlReply::Error, |()| ControlReply::Ok);
     match control {
         Control::Reset {
@@ -74,22 +74,22 @@ async fn execute(node: &Node, header: Header, control: Control) -> ControlReply 
                     proto::MAX_WAIT_MS
                 ));
             }
-            let mut learner = node.learner();
+            let mut learner = ctx.learner();
             let result = learner.reset(header.run, seed, &config);
             if result.is_ok() {
-                node.set_advice_timeout(Duration::from_millis(wait_ms));
+                ctx.set_advice_timeout(Duration::from_millis(wait_ms));
             }
-            node.publish_progress(&learner);
+            ctx.publish_progress(&learner);
             done(result)
         }
-        Control::Load { snapshot } => done(node.learner().load(&snapshot)),
-        Control::Snapshot => after_episode(node, header, |n| {
+        Control::Load { snapshot } => done(ctx.learner().load(&snapshot)),
+        Control::Snapshot => after_episode(ctx, header, |n| {
             let snapshot = n.learner().agent()?.snapshot();
             snapshot.encode().map_err(|e| e.to_string())
         })
         .await
         .map_or_else(ControlReply::Error, ControlReply::Snapshot),
-        Control::Report => after_episode(node, header, report)
+        Control::Report => after_episode(ctx, header, report)
             .await
             .map_or_else(ControlReply::Error, |r| ControlReply::Agent(Box::new(r))),
         Control::Stop => ControlReply::Ok,
@@ -102,11 +102,11 @@ async fn execute(node: &Node, header: Header, control: Control) -> ControlReply 
 /// Runs `f` once the terminal frame of `header.episode` of run `header.run`
 /// has been processed.
 async fn after_episode<T>(
-    node: &Node,
+    ctx: &Context,
     header: Header,
-    f: impl FnOnce(&Node) -> Result<T, String>,
+    f: impl FnOnce(&Context) -> Result<T, String>,
 ) -> Result<T, String> {
-    let mut progress = node.watch_progress();
+    let mut progress = ctx.watch_progress();
     let reached = async {
         // Copied out at once: the watch stays locked while borrowed.
         progress
@@ -125,18 +125,18 @@ async fn after_episode<T>(
             "the command is for run {}, the agent is in run {}",
             header.run, p.run
         )),
-        Ok(Ok(_)) => f(node),
+        Ok(Ok(_)) => f(ctx),
     }
 }
 
 /// The agent's report: learned state, budgets, advice and message counters.
-fn report(node: &Node) -> Result<AgentReport, String> {
+fn report(ctx: &Context) -> Result<AgentReport, String> {
     let mut report = {
-        let learner = node.learner();
+        let learner = ctx.learner();
         let agent = learner.agent()?;
         let c = agent.counters();
         AgentReport {
-            agent: node.id,
+            agent: ctx.id,
             digest: agent.digest(),
             ask_spent: c.advised_steps,
             give_spent: agent.spent_budget(),
@@ -145,10 +145,10 @@ fn report(node: &Node) -> Result<AgentReport, String> {
             ..AgentReport::default()
         }
     };
-    let traffic = node.traffic().clone();
+    let traffic = ctx.traffic().clone();
     report.advice_replies_received = traffic.replies_received;
     report.messages = traffic.messages;
     report.advice_rtt_ms = traffic.rtt_ms;
-    report.alive_peers = node.alive().into_iter().filter(|&j| j != node.id).collect();
+    report.alive_peers = ctx.alive().into_iter().filter(|&j| j != ctx.id).collect();
     Ok(report)
 }

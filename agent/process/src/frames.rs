@@ -16,12 +16,12 @@ use zenoh::Wait;
 use zenoh::pubsub::Publisher;
 
 use crate::ask::ask;
-use crate::context::Node;
+use crate::context::Context;
 use crate::learner::{Ask, Step};
 
 /// Steps observation messages and publishes what they lead to.
 pub struct Stream {
-    node: Arc<Node>,
+    ctx: Arc<Context>,
     actions: Publisher<'static>,
     runtime: Handle,
     backlog: Mutex<Backlog>,
@@ -56,16 +56,16 @@ impl Frames {
     /// Decodes one observation message; a malformed one is counted as
     /// dropped: no frames, more than `MAX_FRAMES_PER_MESSAGE`, or frame
     /// numbers past `u32::MAX` (the k-th frame is `header.frame + k`).
-    fn open(node: &Node, bytes: &[u8]) -> Option<Self> {
-        let Envelope { header, body } = node.decode(bytes)?;
+    fn open(ctx: &Context, bytes: &[u8]) -> Option<Self> {
+        let Envelope { header, body } = ctx.decode(bytes)?;
         let Body::Observations(frames) = body else {
-            node.dropped(DropReason::Malformed, Some(&header));
+            ctx.dropped(DropReason::Malformed, Some(&header));
             return None;
         };
         let fits = (1..=proto::MAX_FRAMES_PER_MESSAGE).contains(&frames.len())
             && header.frame.checked_add(frames.len() as u32 - 1).is_some();
         if !fits {
-            node.dropped(DropReason::Malformed, Some(&header));
+            ctx.dropped(DropReason::Malformed, Some(&header));
             return None;
         }
         Some(Frames {
@@ -80,21 +80,21 @@ impl Frames {
     /// The learner's step on the next frame it accepts (the frames it
     /// drops are counted), with that frame's header; `None` at the end.
     /// `reachable` says which agents can be asked for advice.
-    fn step(&mut self, node: &Node, reachable: &dyn Fn(usize) -> bool) -> Option<(Header, Step)> {
+    fn step(&mut self, ctx: &Context, reachable: &dyn Fn(usize) -> bool) -> Option<(Header, Step)> {
         for obs in self.rest.by_ref() {
             let header = Header {
                 frame: self.next,
                 ..self.header
             };
             self.next = self.next.wrapping_add(1);
-            match node.learner().observe(&header, &obs, reachable) {
+            match ctx.learner().observe(&header, &obs, reachable) {
                 Ok(step) => {
                     if !std::mem::replace(&mut self.counted, true) {
-                        node.accepted(MessageKind::Observation, self.bytes);
+                        ctx.accepted(MessageKind::Observation, self.bytes);
                     }
                     return Some((header, step));
                 }
-                Err(reason) => node.dropped(reason, Some(&header)),
+                Err(reason) => ctx.dropped(reason, Some(&header)),
             }
         }
         None
@@ -102,13 +102,13 @@ impl Frames {
 }
 
 impl Stream {
-    /// A stream of agent `node`'s observations that publishes its actions
+    /// A stream of this agent's observations that publishes its actions
     /// on `actions`, and the inbox of its task ([`run`]); made within the
     /// agent's runtime.
-    pub fn new(node: Arc<Node>, actions: Publisher<'static>) -> (Arc<Self>, Tasks) {
+    pub fn new(ctx: Arc<Context>, actions: Publisher<'static>) -> (Arc<Self>, Tasks) {
         let (task, pending) = unbounded_channel();
         let stream = Stream {
-            node,
+            ctx,
             actions,
             runtime: Handle::current(),
             backlog: Mutex::new(Backlog { busy: false, task }),
@@ -120,7 +120,7 @@ impl Stream {
     /// task is busy; a frame that asks for advice hands the rest to it.
     pub fn on_message(&self, bytes: &[u8]) {
         let mut backlog = self.backlog.lock().unwrap_or_else(PoisonError::into_inner);
-        let Some(frames) = Frames::open(&self.node, bytes) else {
+        let Some(frames) = Frames::open(&self.ctx, bytes) else {
             return;
         };
         let pending = match backlog.busy {
@@ -137,9 +137,9 @@ impl Stream {
     /// Steps `frames` until one asks for advice, which is returned with
     /// the frames after it.
     fn step_until_ask(&self, mut frames: Frames) -> Option<Pending> {
-        let alive = self.node.alive();
+        let alive = self.ctx.alive();
         let reachable = |j: usize| u8::try_from(j).is_ok_and(|j| alive.contains(&j));
-        while let Some((header, step)) = frames.step(&self.node, &reachable) {
+        while let Some((header, step)) = frames.step(&self.ctx, &reachable) {
             match step {
                 Step::Act(action) => self.publish_action(header, action),
                 Step::Ask(request) => {
@@ -150,8 +150,8 @@ impl Stream {
                 }
                 Step::End(shares) => {
                     self.publish_shares(header, shares);
-                    let learner = self.node.learner();
-                    self.node.publish_progress(&learner);
+                    let learner = self.ctx.learner();
+                    self.ctx.publish_progress(&learner);
                 }
             }
         }
@@ -160,10 +160,10 @@ impl Stream {
 
     /// Asks for advice and publishes the action the learner then takes.
     async fn advised(&self, header: Header, request: Ask) {
-        let node = &self.node;
-        let replies = ask(node, header, &request).await;
-        let action = node.learner().complete(&request, &replies.advice);
-        let mut traffic = node.traffic();
+        let ctx = &self.ctx;
+        let replies = ask(ctx, header, &request).await;
+        let action = ctx.learner().complete(&request, &replies.advice);
+        let mut traffic = ctx.traffic();
         traffic.replies_received += replies.replies;
         traffic.rtt_ms.extend_from_slice(&replies.rtt_ms);
         drop(traffic);
@@ -174,10 +174,10 @@ impl Stream {
     fn publish_action(&self, header: Header, action: Option<proto::Action>) {
         let Some(action) = action else { return };
         let choice = ActionChoice {
-            agent: self.node.id,
+            agent: self.ctx.id,
             action,
         };
-        let bytes = self.node.encode(header, Body::Action(choice));
+        let bytes = self.ctx.encode(header, Body::Action(choice));
         if let Err(e) = self.actions.put(bytes).wait() {
             tracing::warn!(error = %e, "cannot publish an action");
         }
@@ -188,16 +188,16 @@ impl Stream {
     /// zenoh's callback, which may be stepping this, runs on the one thread
     /// that also sends it ([`node::net::ONE_RUNTIME`]).
     fn publish_shares(&self, header: Header, shares: Vec<(usize, Vec<Transition>)>) {
-        let node = &self.node;
+        let ctx = &self.ctx;
         for (to, transitions) in shares {
             let Ok(to) = u8::try_from(to) else { continue };
             let share = SharedEpisode {
-                from: node.id,
+                from: ctx.id,
                 to,
                 transitions,
             };
-            let bytes = node.encode(header, Body::SharedEpisode(share));
-            let (session, key) = (node.session.clone(), node.keys.share(to));
+            let bytes = ctx.encode(header, Body::SharedEpisode(share));
+            let (session, key) = (ctx.session.clone(), ctx.keys.share(to));
             self.runtime.spawn(async move {
                 if let Err(e) = session.put(key, bytes).await {
                     tracing::warn!(to, error = %e, "cannot publish a shared episode");
@@ -236,16 +236,16 @@ pub async fn run(stream: Arc<Stream>, Tasks(mut pending): Tasks) {
 }
 
 /// One shared episode: queued, and replayed when due.
-pub fn on_share(node: &Node, bytes: &[u8]) {
-    let Some(Envelope { header, body }) = node.decode(bytes) else {
+pub fn on_share(ctx: &Context, bytes: &[u8]) {
+    let Some(Envelope { header, body }) = ctx.decode(bytes) else {
         return;
     };
     let result = match body {
-        Body::SharedEpisode(share) => node.learner().receive_share(&header, share),
+        Body::SharedEpisode(share) => ctx.learner().receive_share(&header, share),
         _ => Err(DropReason::Malformed),
     };
     match result {
-        Ok(()) => node.accepted(MessageKind::SharedEpisode, bytes.len()),
-        Err(reason) => node.dropped(reason, Some(&header)),
+        Ok(()) => ctx.accepted(MessageKind::SharedEpisode, bytes.len()),
+        Err(reason) => ctx.dropped(reason, Some(&header)),
     }
 }

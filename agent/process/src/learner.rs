@@ -3,9 +3,9 @@
 //! it. Pure state, driven by the tasks that hold it under a lock.
 
 use agent::{Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
-use proto::{Action, AdviceRequest, DropReason, Header, SharedEpisode};
+use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
 
-use crate::order::{Position, Stream};
+use crate::order::{ObservationOrder, Position};
 use crate::shares::PendingShares;
 
 /// What the process does after an accepted observation.
@@ -49,7 +49,7 @@ pub struct Learner {
     /// Counts resets and loads, so that answers to an older learner's
     /// request are not fed to a newer one.
     epoch: u64,
-    stream: Stream,
+    stream: ObservationOrder,
     shares: PendingShares,
 }
 
@@ -62,7 +62,7 @@ impl Learner {
             agent: None,
             run: 0,
             epoch: 0,
-            stream: Stream::default(),
+            stream: ObservationOrder::default(),
             shares: PendingShares::default(),
         }
     }
@@ -127,7 +127,7 @@ impl Learner {
             .stream
             .accept(header.episode, header.frame, obs.terminal)?;
         if position == Position::NewEpisode {
-            agent.begin_episode(obs.mode.into());
+            agent.begin_episode(obs.mode);
             replay(agent, &mut self.shares, self.stream.finished());
         }
         if obs.terminal {
@@ -217,7 +217,7 @@ const NO_RUN: &str = "no run started: the agent has not been reset";
 
 /// Replays the shares that are due.
 fn replay(agent: &mut Agent, shares: &mut PendingShares, finished: Option<u32>) {
-    let training = agent.mode() == agent::Mode::Training;
+    let training = agent.mode() == Mode::Training;
     for transitions in shares.take_ready(finished, training) {
         agent.receive_shared(&transitions);
     }
@@ -226,7 +226,6 @@ fn replay(agent: &mut Agent, shares: &mut PendingShares, finished: Option<u32>) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proto::Mode;
 
     /// The wire form of the `AgentConfig` these JSON settings describe.
     fn config(json: &str) -> Vec<u8> {

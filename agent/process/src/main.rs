@@ -7,7 +7,7 @@
 //! are queued in the learner as they arrive; [`advise`] answers other
 //! agents' requests in its callback meanwhile; [`control`] answers the
 //! coordinator; [`alive`] follows liveliness tokens. They share one
-//! [`context::Node`]; [`serve`] declares everything and waits for the end.
+//! [`context::Context`]; [`serve`] declares everything and waits for the end.
 
 mod advise;
 mod alive;

@@ -14,14 +14,14 @@ pub enum Position {
 
 /// Where the observations of one run stand.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Stream {
+pub struct ObservationOrder {
     /// The last accepted (episode, frame).
     last: Option<(u32, u32)>,
     /// The last episode whose terminal frame was accepted.
     finished: Option<u32>,
 }
 
-impl Stream {
+impl ObservationOrder {
     /// Accepts frame `frame` of episode `episode` if it comes after
     /// everything seen so far; a terminal frame finishes its episode, after
     /// which nothing more of that episode is accepted.
@@ -59,7 +59,7 @@ mod tests {
 
     #[test]
     fn frames_in_order_start_and_finish_episodes() {
-        let mut s = Stream::default();
+        let mut s = ObservationOrder::default();
         assert_eq!(s.accept(0, 0, false), Ok(NewEpisode));
         assert_eq!(s.accept(0, 1, false), Ok(SameEpisode));
         assert_eq!(s.finished(), None);
@@ -74,7 +74,7 @@ mod tests {
 
     #[test]
     fn repeated_earlier_and_finished_frames_are_dropped() {
-        let mut s = Stream::default();
+        let mut s = ObservationOrder::default();
         s.accept(1, 0, false).unwrap();
         s.accept(1, 4, false).unwrap();
         assert_eq!(s.accept(1, 4, false), Err(Duplicate));

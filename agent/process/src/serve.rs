@@ -7,7 +7,7 @@ use anyhow::{Result, anyhow};
 use node::net::{NetConfig, describe};
 use proto::keys::{Keys, Role};
 
-use crate::context::{Exit, Node};
+use crate::context::{Context, Exit};
 use crate::frames::Stream;
 use crate::{advise, alive, control, frames, unique};
 
@@ -51,48 +51,48 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         .declare_publisher(keys.action(id))
         .await
         .map_err(|e| declare("the action publisher", e))?;
-    let node = Arc::new(Node::new(session.clone(), &name, keys, id, team_size));
-    let (stream, tasks) = Stream::new(node.clone(), actions);
+    let ctx = Arc::new(Context::new(session.clone(), &name, keys, id, team_size));
+    let (stream, tasks) = Stream::new(ctx.clone(), actions);
     // Held until the end: dropping them undeclares them.
     let _observations = {
         let stream = stream.clone();
         session
-            .declare_subscriber(node.keys.observation(id))
+            .declare_subscriber(ctx.keys.observation(id))
             .callback(move |s| stream.on_message(&s.payload().to_bytes()))
             .await
             .map_err(|e| declare("the observation subscriber", e))?
     };
     let _shares = {
-        let node = node.clone();
+        let ctx = ctx.clone();
         session
-            .declare_subscriber(node.keys.share(id))
-            .callback(move |s| frames::on_share(&node, &s.payload().to_bytes()))
+            .declare_subscriber(ctx.keys.share(id))
+            .callback(move |s| frames::on_share(&ctx, &s.payload().to_bytes()))
             .await
             .map_err(|e| declare("the share subscriber", e))?
     };
     let _advice = {
-        let node = node.clone();
+        let ctx = ctx.clone();
         session
-            .declare_queryable(node.keys.advice(id))
-            .callback(move |q| advise::answer(&node, &q))
+            .declare_queryable(ctx.keys.advice(id))
+            .callback(move |q| advise::answer(&ctx, &q))
             .await
             .map_err(|e| declare("the advice queryable", e))?
     };
     let control = session
-        .declare_queryable(node.keys.control(Role::Agent(id)))
+        .declare_queryable(ctx.keys.control(Role::Agent(id)))
         .await
         .map_err(|e| declare("the control queryable", e))?;
-    tokio::spawn(alive::track(node.clone(), tokens, exit_with_coordinator));
+    tokio::spawn(alive::track(ctx.clone(), tokens, exit_with_coordinator));
     tokio::spawn(frames::run(stream, tasks));
-    tokio::spawn(control::serve(node.clone(), control));
+    tokio::spawn(control::serve(ctx.clone(), control));
     // Declared last: whoever sees the token can already reach the rest.
     let token = session
         .liveliness()
-        .declare_token(node.keys.alive(Role::Agent(id)))
+        .declare_token(ctx.keys.alive(Role::Agent(id)))
         .await
         .map_err(|e| declare("the liveliness token", e))?;
     tracing::info!(experiment = %name, id, "agent ready");
-    let exit = node.stopped().await;
+    let exit = ctx.stopped().await;
     tracing::info!(?exit, "stopping");
     drop(token);
     session

@@ -3,7 +3,7 @@
 //!
 //! The random draws happen here, in the order docs/algorithms.md gives them.
 
-use super::{AdHoc, Confidence, Strategy, Torrey};
+use super::settings::{AdHoc, Confidence, Strategy, Torrey};
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::counters::Counters;
 use crate::fidelity::TorreyUnknownState;

@@ -149,9 +149,9 @@ impl Backend for RemoteBackend<'_> {
     }
 
     fn play_episode(&mut self, mode: Mode) -> Result<Episode, Error> {
-        let (mode, seed) = match mode {
-            Mode::Training => (proto::Mode::Training, None),
-            Mode::Evaluation => (proto::Mode::Evaluation, self.evaluation_seed.take()),
+        let seed = match mode {
+            Mode::Training => None,
+            Mode::Evaluation => self.evaluation_seed.take(),
         };
         let reply = self.call(
             Role::Server,

@@ -1,0 +1,316 @@
+//! Each strategy's settings, with the paper's defaults, and their checks.
+
+use serde::{Deserialize, Serialize};
+
+use super::name::StrategyName;
+use crate::advice::Reachable;
+use crate::config_error::{ConfigError, require_non_negative};
+use crate::fidelity::Profile;
+
+/// The paper's budget of every advising and sharing side.
+const PAPER_BUDGET: u64 = 1000;
+
+/// The confidence function Psi of an ad hoc advisor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Confidence {
+    /// Visit-based: `Psi = log2 n(s)` (AdHocVisit).
+    Visit,
+    /// TD-based: `Psi = sqrt(n(s)) * spread of Q(s, .)` (AdHocTD).
+    Td,
+}
+
+/// The constants of ad hoc advising (Algorithms 1 and 2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdHoc {
+    /// The advisor's confidence function: `adhoc-visit` or `adhoc-td`.
+    pub confidence: Confidence,
+    /// Scaling v_a of P_ask, finite and >= 0 (default 0.5).
+    pub v_a: f64,
+    /// Scaling v_g of P_give, finite and >= 0 (default 0.5 for `adhoc-visit`,
+    /// 0.4 under the authors' profile, 1.5 for `adhoc-td`).
+    pub v_g: f64,
+    /// Advisee budget b_ask: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget b_give: answers given (default 1000).
+    pub give_budget: u64,
+    /// Mistake Correcting: the advisee sends its own epsilon-greedy choice
+    /// along and plays it when no advice comes; advisors answer only when
+    /// they disagree (default off).
+    pub mistake_correcting: bool,
+    /// The reachable set G: whom the advisee asks (default everyone).
+    pub reachable: Reachable,
+}
+
+impl AdHoc {
+    /// Ad hoc advising with `confidence` and the paper's constants.
+    pub fn new(confidence: Confidence) -> Self {
+        Self {
+            confidence,
+            v_a: 0.5,
+            v_g: match confidence {
+                Confidence::Visit => 0.5,
+                Confidence::Td => 1.5,
+            },
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            mistake_correcting: false,
+            reachable: Reachable::Everyone,
+        }
+    }
+
+    /// AdHocVisit with the paper's constants.
+    pub fn visit() -> Self {
+        Self::new(Confidence::Visit)
+    }
+
+    /// AdHocTD with the paper's constants.
+    pub fn td() -> Self {
+        Self::new(Confidence::Td)
+    }
+}
+
+/// The constants of Torrey's importance advising from the fixed teacher
+/// `(i + 1) mod n`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Torrey {
+    /// The teacher advises when the spread of Q(s, .) exceeds this
+    /// importance threshold t, finite and >= 0 (default 0.01).
+    pub importance_threshold: f64,
+    /// Teacher budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// Mistake Correcting, as for [`AdHoc::mistake_correcting`] (default off).
+    pub mistake_correcting: bool,
+}
+
+impl Default for Torrey {
+    /// The paper's constants.
+    fn default() -> Self {
+        Self {
+            importance_threshold: 0.01,
+            give_budget: PAPER_BUDGET,
+            mistake_correcting: false,
+        }
+    }
+}
+
+/// Which learner and advising strategy an agent runs, with its constants.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub enum Strategy {
+    /// SARSA(lambda) alone.
+    #[default]
+    NoAdvice,
+    /// Ad hoc advising (AdHocVisit or AdHocTD).
+    AdHoc(AdHoc),
+    /// Importance advising from a fixed teacher.
+    Torrey(Torrey),
+    /// Tan's episode sharing after goal episodes.
+    EpisodeSharing {
+        /// Transitions sent, one unit per transition per receiver (default 1000).
+        sharing_budget: u64,
+    },
+    /// The authors' random baseline: never learns, never advises.
+    Random,
+}
+
+impl From<StrategyName> for Strategy {
+    /// The strategy `name` with the paper's constants.
+    fn from(name: StrategyName) -> Self {
+        Strategy::of(name, Profile::Paper)
+    }
+}
+
+impl Strategy {
+    /// The strategy `name` with the constants of `profile`.
+    pub fn of(name: StrategyName, profile: Profile) -> Self {
+        match name {
+            StrategyName::NoAdvice => Strategy::NoAdvice,
+            StrategyName::AdHocVisit => Strategy::AdHoc(AdHoc {
+                v_g: profile.visit_v_g(),
+                ..AdHoc::visit()
+            }),
+            StrategyName::AdHocTd => Strategy::AdHoc(AdHoc::td()),
+            StrategyName::Torrey => Strategy::Torrey(Torrey::default()),
+            StrategyName::EpisodeSharing => Strategy::EpisodeSharing {
+                sharing_budget: PAPER_BUDGET,
+            },
+            StrategyName::Random => Strategy::Random,
+        }
+    }
+
+    /// Its name.
+    pub fn name(&self) -> StrategyName {
+        match self {
+            Strategy::NoAdvice => StrategyName::NoAdvice,
+            Strategy::AdHoc(a) => match a.confidence {
+                Confidence::Visit => StrategyName::AdHocVisit,
+                Confidence::Td => StrategyName::AdHocTd,
+            },
+            Strategy::Torrey(_) => StrategyName::Torrey,
+            Strategy::EpisodeSharing { .. } => StrategyName::EpisodeSharing,
+            Strategy::Random => StrategyName::Random,
+        }
+    }
+
+    /// Whether it runs in Mistake Correcting mode.
+    pub fn mistake_correcting(&self) -> bool {
+        match self {
+            Strategy::AdHoc(a) => a.mistake_correcting,
+            Strategy::Torrey(t) => t.mistake_correcting,
+            _ => false,
+        }
+    }
+
+    /// Switches Mistake Correcting on or off; switching it on is an error for
+    /// a strategy without that mode.
+    pub fn set_mistake_correcting(&mut self, on: bool) -> Result<(), ConfigError> {
+        match self {
+            Strategy::AdHoc(AdHoc {
+                mistake_correcting, ..
+            })
+            | Strategy::Torrey(Torrey {
+                mistake_correcting, ..
+            }) => *mistake_correcting = on,
+            _ if on => {
+                return Err(ConfigError::new(
+                    "mistake_correcting",
+                    format!(
+                        "only for adhoc-visit, adhoc-td and torrey, not {}",
+                        self.name()
+                    ),
+                ));
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Returns the first invalid constant, naming its key.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        match self {
+            Strategy::AdHoc(a) => {
+                require_non_negative("v_a", a.v_a)?;
+                require_non_negative("v_g", a.v_g)?;
+                if let Reachable::WithinDistance(d) = a.reachable {
+                    require_non_negative("reachable", d)?;
+                }
+                Ok(())
+            }
+            Strategy::Torrey(t) => {
+                require_non_negative("importance_threshold", t.importance_threshold)
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Checks the ids of a [`Reachable::Agents`] set against the team size.
+    pub(crate) fn check_team(&self, team_size: usize) -> Result<(), ConfigError> {
+        let Strategy::AdHoc(AdHoc {
+            reachable: Reachable::Agents(ids),
+            ..
+        }) = self
+        else {
+            return Ok(());
+        };
+        for (k, &j) in ids.iter().enumerate() {
+            if j >= team_size || ids[..k].contains(&j) {
+                return Err(ConfigError::new(
+                    "reachable",
+                    format!("agent {j} is out of range or repeated"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_gives_its_strategy_with_the_papers_constants() {
+        for name in StrategyName::ALL {
+            assert_eq!(Strategy::from(name).name(), name);
+            Strategy::from(name).validate().unwrap();
+        }
+        let Strategy::AdHoc(visit) = Strategy::from(StrategyName::AdHocVisit) else {
+            panic!("adhoc-visit is ad hoc");
+        };
+        let Strategy::AdHoc(td) = Strategy::from(StrategyName::AdHocTd) else {
+            panic!("adhoc-td is ad hoc");
+        };
+        assert_eq!((visit.v_a, visit.v_g, td.v_a, td.v_g), (0.5, 0.5, 0.5, 1.5));
+        assert_eq!(
+            (visit.ask_budget, visit.give_budget, visit.reachable),
+            (1000, 1000, Reachable::Everyone)
+        );
+        assert_eq!(
+            Torrey::default(),
+            Torrey {
+                importance_threshold: 0.01,
+                give_budget: 1000,
+                mistake_correcting: false
+            }
+        );
+        assert_eq!(
+            Strategy::from(StrategyName::EpisodeSharing),
+            Strategy::EpisodeSharing {
+                sharing_budget: 1000
+            }
+        );
+    }
+
+    #[test]
+    fn mistake_correcting_only_where_it_exists() {
+        for name in StrategyName::ALL {
+            let mut s = Strategy::from(name);
+            assert!(!s.mistake_correcting());
+            let set = s.set_mistake_correcting(true);
+            assert_eq!(set.is_ok(), name.supports_mistake_correcting(), "{name}");
+            assert_eq!(s.mistake_correcting(), set.is_ok(), "{name}");
+            s.set_mistake_correcting(false).unwrap();
+            assert!(!s.mistake_correcting());
+        }
+        let e = Strategy::NoAdvice.set_mistake_correcting(true).unwrap_err();
+        assert_eq!(e.key, "mistake_correcting");
+        assert!(e.reason.contains("no-advice"), "{e}");
+    }
+
+    #[test]
+    fn bad_constants_name_their_key() {
+        let key = |s: Strategy| s.validate().unwrap_err().key;
+        let v_g = AdHoc {
+            v_g: -1.0,
+            ..AdHoc::td()
+        };
+        assert_eq!(key(Strategy::AdHoc(v_g)), "v_g");
+        let v_a = AdHoc {
+            v_a: f64::NAN,
+            ..AdHoc::visit()
+        };
+        assert_eq!(key(Strategy::AdHoc(v_a)), "v_a");
+        let far = AdHoc {
+            reachable: Reachable::WithinDistance(f64::INFINITY),
+            ..AdHoc::td()
+        };
+        assert_eq!(key(Strategy::AdHoc(far)), "reachable");
+        let t = Torrey {
+            importance_threshold: -0.1,
+            ..Torrey::default()
+        };
+        assert_eq!(key(Strategy::Torrey(t)), "importance_threshold");
+        let twice = AdHoc {
+            reachable: Reachable::Agents(vec![1, 1]),
+            ..AdHoc::td()
+        };
+        assert_eq!(
+            Strategy::AdHoc(twice).check_team(3).unwrap_err().key,
+            "reachable"
+        );
+        let outside = AdHoc {
+            reachable: Reachable::Agents(vec![3]),
+            ..AdHoc::td()
+        };
+        assert!(Strategy::AdHoc(outside).check_team(3).is_err());
+    }
+}
