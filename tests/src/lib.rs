@@ -1,8 +1,11 @@
 //! Helpers shared by the end-to-end tests in `tests/`: where the workspace's
-//! executables are, and unique experiment names (free loopback ports come
-//! from `node::net::free_port`).
+//! executables are, unique experiment names (free loopback ports come
+//! from `node::net::free_port`), and the module graph of a crate
+//! ([`modules`]).
 
 use std::path::PathBuf;
+
+pub mod modules;
 
 /// The directory holding the workspace's executables (`target/<profile>`).
 ///

@@ -1,0 +1,104 @@
+//! The rules of docs/ARCHITECTURE.md that the sources themselves can show:
+//! no module imports forming a circle in any crate, and pure libraries
+//! that touch neither the network nor files.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use integration_tests::modules::ModuleGraph;
+
+/// The workspace's root directory.
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+/// Every target's root file of every workspace package (libraries,
+/// binaries, tests, benches, examples), read from `cargo metadata`.
+fn target_roots() -> Vec<PathBuf> {
+    let output = Command::new(env!("CARGO"))
+        .args([
+            "metadata",
+            "--no-deps",
+            "--offline",
+            "--format-version",
+            "1",
+        ])
+        .current_dir(workspace())
+        .output()
+        .expect("cargo metadata runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let packages = metadata["packages"].as_array().expect("packages");
+    let roots: Vec<PathBuf> = packages
+        .iter()
+        .flat_map(|p| p["targets"].as_array().expect("targets"))
+        .map(|t| PathBuf::from(t["src_path"].as_str().expect("src_path")))
+        .collect();
+    assert!(roots.len() > 10, "{roots:?}");
+    roots
+}
+
+#[test]
+fn no_crate_has_an_import_circle() {
+    let mut circles = Vec::new();
+    for root in target_roots() {
+        let graph = ModuleGraph::read(&root).unwrap_or_else(|e| panic!("{e}"));
+        circles.extend(graph.circles());
+    }
+    let workspace = workspace().canonicalize().unwrap().display().to_string() + "/";
+    let circles: Vec<String> = circles.iter().map(|c| c.replace(&workspace, "")).collect();
+    assert!(
+        circles.is_empty(),
+        "import circles:\n{}",
+        circles.join("\n")
+    );
+}
+
+/// What `crate` depends on through normal dependencies, one package a line.
+fn normal_dependencies(krate: &str) -> String {
+    let output = Command::new(env!("CARGO"))
+        .args([
+            "tree",
+            "--offline",
+            "-e",
+            "normal",
+            "--prefix",
+            "none",
+            "-p",
+            krate,
+        ])
+        .current_dir(workspace())
+        .output()
+        .expect("cargo tree runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).expect("UTF-8")
+}
+
+#[test]
+fn the_pure_libraries_use_neither_network_nor_files() {
+    for krate in ["proto", "agent", "env-server"] {
+        let tree = normal_dependencies(krate);
+        for forbidden in ["zenoh", "tokio", "clap"] {
+            let found = tree
+                .lines()
+                .find(|l| l.starts_with(&format!("{forbidden} ")));
+            assert!(found.is_none(), "{krate} depends on {found:?}");
+        }
+        let root = workspace().join(krate).join("src/lib.rs");
+        let graph = ModuleGraph::read(&root).unwrap_or_else(|e| panic!("{e}"));
+        for (file, path) in graph.external_paths() {
+            let io = ["fs", "net", "process"]
+                .iter()
+                .any(|m| path.starts_with(&format!("std::{m}")));
+            assert!(!io, "{} uses {path}", file.display());
+        }
+    }
+}
