@@ -1,34 +1,15 @@
 //! A Rust simulator of RoboCup 2D Half Field Offense: K offense agents
 //! choosing HFO's high-level actions against agent2d's goalkeeper.
 //!
-//! The specification is `docs/hfo-sim-spec.md` ("spec N" in comments). Modules follow one
-//! cycle's data flow: [`world`] holds the state, [`analysis`] derives what
-//! every behaviour reads (reach cycles, formation), [`behaviour`] turns
-//! actions into body commands, [`view`] moves the attackers' necks and
-//! counts where they looked, [`physics`] executes the commands, [`referee`] ends
-//! episodes and [`features`] describes the state to the agents; [`env`](mod@env) ties
-//! them together, with the settings of [`config`].
+//! The specification is `docs/hfo-sim-spec.md` ("spec N" in comments). The
+//! simulation core is in [`sim`], the [`tools`] built on it (baseline
+//! policies, rollouts, pictures) apart.
 
-pub mod analysis;
-pub mod behaviour;
-pub mod config;
-pub mod decisions;
-pub mod env;
-pub mod features;
-pub mod formation;
-pub mod geom;
-pub mod params;
-pub mod physics;
-pub mod policy;
-pub mod referee;
-pub mod render;
-pub mod rollout;
-pub mod self_intercept;
-pub mod view;
-pub mod world;
+pub mod sim;
+pub mod tools;
 
-pub use config::{ConfigError, EnvConfig, LongShot};
-pub use env::Env;
-pub use policy::BaselinePolicy;
-pub use referee::Outcome;
-pub use rollout::{RolloutSummary, rollout};
+pub use sim::config::{ConfigError, EnvConfig, LongShot};
+pub use sim::env::Env;
+pub use sim::referee::Outcome;
+pub use tools::policy::BaselinePolicy;
+pub use tools::rollout::{RolloutSummary, rollout};

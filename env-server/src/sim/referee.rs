@@ -1,7 +1,7 @@
 //! HFO's referee (spec 4.3): goal, out of bounds, captured, out of time.
 
-use crate::params::*;
-use crate::world::World;
+use crate::sim::params::*;
+use crate::sim::world::World;
 use glam::DVec2;
 use serde::Serialize;
 

@@ -3,11 +3,11 @@
 //! direction of its `TackleGenerator` (src/chain_action/tackle_generator.cpp).
 
 use super::body::predict_turn_cycles;
-use crate::analysis::{Analysis, NO_REACH};
-use crate::geom::{angle_diff, ceil_usize, decay_sum, direction, normalize_angle, unit};
-use crate::params::*;
-use crate::physics::{Command, tackle_accel, tackle_probability};
-use crate::world::{Player, World};
+use crate::sim::analysis::{Analysis, NO_REACH};
+use crate::sim::geom::{angle_diff, ceil_usize, decay_sum, direction, normalize_angle, unit};
+use crate::sim::params::*;
+use crate::sim::physics::{Command, tackle_accel, tackle_probability};
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::{PI, TAU};
 
@@ -271,7 +271,7 @@ fn opponent_reach_step(o: &Player, pos: DVec2, vel: DVec2, max_cycle: usize) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::Command;
+    use crate::sim::physics::Command;
 
     /// A world with the keeper, three attackers far away, and the ball at rest.
     fn world(keeper: DVec2, keeper_body: f64, ball: DVec2) -> World {

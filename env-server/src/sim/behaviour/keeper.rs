@@ -3,12 +3,12 @@
 
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::analysis::Analysis;
-use crate::geom::{angle_diff, decay_pow, decay_sum, direction, normalize_angle, unit};
-use crate::params::*;
-use crate::physics::Command;
-use crate::self_intercept::Interception;
-use crate::world::{Player, World};
+use crate::sim::analysis::Analysis;
+use crate::sim::geom::{angle_diff, decay_pow, decay_sum, direction, normalize_angle, unit};
+use crate::sim::params::*;
+use crate::sim::physics::Command;
+use crate::sim::self_intercept::Interception;
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 

@@ -1,8 +1,8 @@
 //! The server's command models and movement step (spec sections 2 and 3).
 
-use crate::geom::{angle_diff, direction, normalize_angle, polar, polar_noise, uniform, unit};
-use crate::params::*;
-use crate::world::{Ball, Player, World};
+use crate::sim::geom::{angle_diff, direction, normalize_angle, polar, polar_noise, uniform, unit};
+use crate::sim::params::*;
+use crate::sim::world::{Ball, Player, World};
 use glam::DVec2;
 use rand::Rng;
 use std::f64::consts::PI;

@@ -6,8 +6,8 @@
 //! HFO's pass code reads it (`dirRangeCount` in `bhv_force_pass.cpp`). Angles
 //! here are in degrees, as in librcsc, with its `AngleDeg` wrapping.
 
-use crate::geom::unit;
-use crate::params::PLAYER_DECAY;
+use crate::sim::geom::unit;
+use crate::sim::params::PLAYER_DECAY;
 use glam::DVec2;
 
 /// Number of 5° direction bins (`WorldModel::DIR_CONF_DIVS`).
@@ -469,7 +469,7 @@ fn is_left_of(a: f64, b: f64) -> bool {
 
 /// Direction of `v`, degrees.
 fn dir_deg(v: DVec2) -> f64 {
-    crate::geom::direction(v).to_degrees()
+    crate::sim::geom::direction(v).to_degrees()
 }
 
 #[cfg(test)]

@@ -1,17 +1,17 @@
 //! The HFO environment: episode start, the per-cycle loop and the agents' view
 //! of it (spec 2.1, 4.2, 4.4, Appendix D).
 
-use crate::analysis::{Analysis, MAX_OFFENSE, update_offside_line};
-use crate::behaviour::keeper::{self, KeeperMemory};
-use crate::behaviour::{Decision, Situation, offense_command};
-use crate::config::{ConfigError, EnvConfig};
-use crate::features;
-use crate::geom::uniform;
-use crate::params::*;
-use crate::physics::{self, BALL_BODY, Command, PLAYER_BODY};
-use crate::referee::{Outcome, Referee};
-use crate::view::{self, Neck, Outlook};
-use crate::world::World;
+use crate::sim::analysis::{Analysis, MAX_OFFENSE, update_offside_line};
+use crate::sim::behaviour::keeper::{self, KeeperMemory};
+use crate::sim::behaviour::{Decision, Situation, offense_command};
+use crate::sim::config::{ConfigError, EnvConfig};
+use crate::sim::features;
+use crate::sim::geom::uniform;
+use crate::sim::params::*;
+use crate::sim::physics::{self, BALL_BODY, Command, PLAYER_BODY};
+use crate::sim::referee::{Outcome, Referee};
+use crate::sim::view::{self, Neck, Outlook};
+use crate::sim::world::World;
 use glam::DVec2;
 use proto::{Action, State};
 use rand::SeedableRng;
@@ -406,7 +406,7 @@ fn outlook(world: &World, analysis: &Analysis, agent: usize, command: Command) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::world::Player;
+    use crate::sim::world::Player;
 
     #[test]
     fn an_attacker_that_takes_the_keeper_to_be_on_the_ball_holds_it_still() {

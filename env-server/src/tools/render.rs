@@ -4,14 +4,14 @@
 //! The picture keeps the server's orientation (as rcssmonitor draws it): the
 //! attacked goal is on the right, +y points down.
 
-use crate::analysis::{MAX_OFFENSE, offense_unums};
-use crate::config::{ConfigError, EnvConfig};
-use crate::env::Env;
-use crate::params::*;
-use crate::physics::Command;
-use crate::policy::BaselinePolicy;
-use crate::referee::Outcome;
-use crate::rollout::{play_episode, policy_rng};
+use crate::sim::analysis::{MAX_OFFENSE, offense_unums};
+use crate::sim::config::{ConfigError, EnvConfig};
+use crate::sim::env::Env;
+use crate::sim::params::*;
+use crate::sim::physics::Command;
+use crate::sim::referee::Outcome;
+use crate::tools::policy::BaselinePolicy;
+use crate::tools::rollout::{play_episode, policy_rng};
 use glam::DVec2;
 use std::fmt::Write as _;
 
@@ -667,8 +667,9 @@ mod tests {
     #[test]
     fn follows_the_rollout_sequence() {
         let config = EnvConfig::default();
-        let summary = crate::rollout(config.clone(), BaselinePolicy::Random, 4, 7).unwrap();
-        let mut counts = crate::rollout::OutcomeCounts::default();
+        let summary =
+            crate::tools::rollout::rollout(config.clone(), BaselinePolicy::Random, 4, 7).unwrap();
+        let mut counts = crate::tools::rollout::OutcomeCounts::default();
         let mut frames = 0;
         for k in 1..=4 {
             let t = record_episode(config.clone(), BaselinePolicy::Random, 7, k).unwrap();

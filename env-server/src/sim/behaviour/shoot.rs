@@ -3,11 +3,11 @@
 
 use super::Situation;
 use super::body::{max_one_kick_speed, planned_kick, smart_kick};
-use crate::analysis::DRIFT;
-use crate::geom::{angle_diff, asin_clamped, ceil_usize, direction, unit};
-use crate::params::*;
-use crate::physics::{Command, kick_rate, max_kick_accel};
-use crate::world::{Player, ShotCourse};
+use crate::sim::analysis::DRIFT;
+use crate::sim::geom::{angle_diff, asin_clamped, ceil_usize, direction, unit};
+use crate::sim::params::*;
+use crate::sim::physics::{Command, kick_rate, max_kick_accel};
+use crate::sim::world::{Player, ShotCourse};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -409,9 +409,9 @@ fn turn_cycles_by_angle(player: &Player, rel: DVec2, dist: f64, ratio: f64) -> u
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::Analysis;
-    use crate::config::EnvConfig;
-    use crate::world::World;
+    use crate::sim::analysis::Analysis;
+    use crate::sim::config::EnvConfig;
+    use crate::sim::world::World;
 
     /// One attacker at `x` on the axis with the ball at its feet, the keeper at `keeper`.
     fn world(x: f64, keeper: DVec2) -> World {

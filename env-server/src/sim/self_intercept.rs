@@ -12,13 +12,13 @@
 //! Stamina follows librcsc's save-recovery dashing (never below the recovery
 //! threshold), so no entry is `EXHAUST`.
 
-use crate::analysis::DRIFT;
-use crate::geom::{
+use crate::sim::analysis::DRIFT;
+use crate::sim::geom::{
     angle_diff, asin_clamped, decay_pow, decay_sum, direction, normalize_angle, unit,
 };
-use crate::params::*;
-use crate::physics::{dash_dir, dash_dir_rate, kick_rate, update_stamina};
-use crate::world::{Ball, Player};
+use crate::sim::params::*;
+use crate::sim::physics::{dash_dir, dash_dir_rate, kick_rate, update_stamina};
+use crate::sim::world::{Ball, Player};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_4, PI};
 
@@ -956,8 +956,8 @@ pub(crate) fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::{Analysis, reach_cycle};
-    use crate::world::World;
+    use crate::sim::analysis::{Analysis, reach_cycle};
+    use crate::sim::world::World;
 
     fn world(ball: (f64, f64, f64, f64), me: (f64, f64, f64, f64), body_deg: f64) -> World {
         let mut w = World::new(1);

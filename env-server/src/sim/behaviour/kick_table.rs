@@ -1,15 +1,15 @@
 //! librcsc's KickTable (rcsc/action/kick_table.cpp): plans of one, two or
 //! three kicks through 35 ball spots around the kicker (spec 6.2.3).
 
-use crate::geom::{angle_diff, direction, normalize_angle, polar};
-use crate::params::*;
-use crate::world::{Player, World};
+use crate::sim::geom::{angle_diff, direction, normalize_angle, polar};
+use crate::sim::params::*;
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
 use super::body::max_one_kick_speed;
-use crate::physics::tackle_probability_at;
+use crate::sim::physics::tackle_probability_at;
 
 /// Ring radii (`calc_near_dist`, `calc_mid_dist`, `calc_far_dist`) and spots per ring.
 const RINGS: [(f64, usize); 3] = [
@@ -290,7 +290,7 @@ impl<'a> Planner<'a> {
             p,
             world,
             current: interference(world, ball.pos),
-            current_rate: crate::physics::kick_rate(p, ball.pos),
+            current_rate: crate::sim::physics::kick_rate(p, ball.pos),
             states,
             miss_terms: (p.vel.length() * PLAYER_RAND, pos_rate + speed_rate),
         }

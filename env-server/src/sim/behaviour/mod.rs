@@ -14,11 +14,11 @@ mod pass;
 mod shoot;
 pub mod tackle;
 
-use crate::analysis::Analysis;
-use crate::config::EnvConfig;
-use crate::physics::Command;
-use crate::view::Neck;
-use crate::world::{Player, ShotCourse, World};
+use crate::sim::analysis::Analysis;
+use crate::sim::config::EnvConfig;
+use crate::sim::physics::Command;
+use crate::sim::view::Neck;
+use crate::sim::world::{Player, ShotCourse, World};
 use proto::Action;
 
 /// What an offense behaviour sees: the state, its analysis and who is acting.

@@ -6,10 +6,10 @@
 
 use super::body::turn_to_point;
 use super::kick_table::rate_at;
-use crate::geom::{angle_diff, direction, normalize_angle, polar, unit};
-use crate::params::*;
-use crate::physics::{Command, kick_rate, tackle_probability_at};
-use crate::world::{Player, World};
+use crate::sim::geom::{angle_diff, direction, normalize_angle, polar, unit};
+use crate::sim::params::*;
+use crate::sim::physics::{Command, kick_rate, tackle_probability_at};
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 
 /// The score of a keep point no opponent threatens.

@@ -3,11 +3,11 @@
 //! lines 225-757, field-player mode) over the cycles of its self-interception
 //! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
 
-use crate::analysis::Analysis;
-use crate::geom::{decay_pow, direction};
-use crate::params::*;
-use crate::self_intercept::Interception;
-use crate::world::{Player, World};
+use crate::sim::analysis::Analysis;
+use crate::sim::geom::{decay_pow, direction};
+use crate::sim::params::*;
+use crate::sim::self_intercept::Interception;
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 
 /// Where `getBestIntercept` measures the distance to the goal (line 240).
@@ -48,7 +48,7 @@ impl<'a> Best<'a> {
 }
 
 /// The interception attacker `p` goes for (`getBestIntercept`, field-player
-/// mode), given its self-interception cache ([`crate::self_intercept::predict`]);
+/// mode), given its self-interception cache ([`crate::sim::self_intercept::predict`]);
 /// `None` for an empty cache.
 ///
 /// Each entry whose ball point lies inside the pitch less 1 m (lines 296-301)
@@ -187,11 +187,11 @@ fn chance(p: &Player, world: &World, opp_min: f64, cache: &[Interception]) -> Op
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::update_offside_line;
-    use crate::behaviour::body::intercept;
-    use crate::behaviour::movement::forward_point;
-    use crate::physics::Command;
-    use crate::self_intercept::{self, SHORT_STEPS};
+    use crate::sim::analysis::update_offside_line;
+    use crate::sim::behaviour::body::intercept;
+    use crate::sim::behaviour::movement::forward_point;
+    use crate::sim::physics::Command;
+    use crate::sim::self_intercept::{self, SHORT_STEPS};
     use std::f64::consts::FRAC_PI_4;
 
     /// A world with the ball at `ball` moving at `vel`, attacker 0 at `mate`

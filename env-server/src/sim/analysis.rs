@@ -2,11 +2,11 @@
 //! exact state: the ball's future path, every player's reach cycle (spec
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
-use crate::formation::{catch_home, home_positions};
-use crate::geom::{direction, unit};
-use crate::params::*;
-use crate::self_intercept::{self, Found, Interception};
-use crate::world::{Player, World};
+use crate::sim::formation::{catch_home, home_positions};
+use crate::sim::geom::{direction, unit};
+use crate::sim::params::*;
+use crate::sim::self_intercept::{self, Found, Interception};
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 
 /// Most offense agents the simulator supports.

@@ -3,12 +3,12 @@
 use super::hold::hold_ball;
 use super::intercept::best_interception;
 use super::kick_table;
-use crate::analysis::Analysis;
-use crate::geom::{angle_diff, asin_clamped, direction, normalize_angle, unit};
-use crate::params::*;
-use crate::physics::{Command, kick_for_accel, max_kick_accel};
-use crate::self_intercept::SHORT_STEPS;
-use crate::world::{Ball, Player, World};
+use crate::sim::analysis::Analysis;
+use crate::sim::geom::{angle_diff, asin_clamped, direction, normalize_angle, unit};
+use crate::sim::params::*;
+use crate::sim::physics::{Command, kick_for_accel, max_kick_accel};
+use crate::sim::self_intercept::SHORT_STEPS;
+use crate::sim::world::{Ball, Player, World};
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 

@@ -2,8 +2,8 @@
 //! their validation: what the behaviours and the environment read, apart
 //! from both.
 
-use crate::analysis::MAX_OFFENSE;
-use crate::params::BALL_SPEED_MAX;
+use crate::sim::analysis::MAX_OFFENSE;
+use crate::sim::params::BALL_SPEED_MAX;
 use serde::{Deserialize, Serialize};
 
 /// Settings of the simulated task; the defaults are the paper's setup.

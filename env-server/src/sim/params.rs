@@ -163,7 +163,7 @@ pub fn dash_cycles(dist: f64) -> usize {
     }
     match DASH_DISTANCE.iter().position(|&d| d >= dist) {
         Some(n) => n,
-        None => 10 + crate::geom::ceil_usize(dist - DASH_DISTANCE[10]),
+        None => 10 + crate::sim::geom::ceil_usize(dist - DASH_DISTANCE[10]),
     }
 }
 

@@ -9,10 +9,12 @@ use super::body::{
     kick_to_velocity, max_one_kick_speed, player_reach_cycle, predict_turn_cycles, turn_to_point,
 };
 use super::hold::hold_ball;
-use crate::geom::{angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit};
-use crate::params::*;
-use crate::physics::{Command, max_kick_accel, update_stamina};
-use crate::world::{Player, World};
+use crate::sim::geom::{
+    angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit,
+};
+use crate::sim::params::*;
+use crate::sim::physics::{Command, max_kick_accel, update_stamina};
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 use std::f64::consts::PI;
 
@@ -312,9 +314,9 @@ fn opponent_bonus(keeper: &Player, trap: DVec2) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::Analysis;
-    use crate::config::EnvConfig;
-    use crate::world::World;
+    use crate::sim::analysis::Analysis;
+    use crate::sim::config::EnvConfig;
+    use crate::sim::world::World;
 
     fn with_situation<T>(world: &World, f: impl FnOnce(&Situation) -> T) -> T {
         let analysis = Analysis::new(world);

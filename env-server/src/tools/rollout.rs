@@ -1,10 +1,10 @@
 //! Running episodes under a baseline policy and summarising them.
 
-use crate::config::{ConfigError, EnvConfig};
-use crate::decisions::{DecisionRecorder, DecisionStats};
-use crate::env::Env;
-use crate::policy::BaselinePolicy;
-use crate::referee::Outcome;
+use crate::sim::config::{ConfigError, EnvConfig};
+use crate::sim::env::Env;
+use crate::sim::referee::Outcome;
+use crate::tools::decisions::{DecisionRecorder, DecisionStats};
+use crate::tools::policy::BaselinePolicy;
 use proto::Action;
 use rand::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -123,7 +123,7 @@ pub fn play_episode(
 ) -> (Outcome, u32) {
     env.reset();
     observe(env, &[]);
-    let mut actions = [Action::Move; crate::analysis::MAX_OFFENSE];
+    let mut actions = [Action::Move; crate::sim::analysis::MAX_OFFENSE];
     let n = env.offense();
     loop {
         for (i, a) in actions[..n].iter_mut().enumerate() {

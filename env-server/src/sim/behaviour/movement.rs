@@ -4,9 +4,9 @@
 use super::Situation;
 use super::body::{go_to_point, intercept, turn_to_point};
 use super::tackle::{self, Tackler};
-use crate::params::*;
-use crate::physics::Command;
-use crate::view::Neck;
+use crate::sim::params::*;
+use crate::sim::physics::Command;
+use crate::sim::view::Neck;
 use glam::DVec2;
 
 /// Where an attacker with the ball, or with the ball coming to it, faces.
@@ -85,9 +85,9 @@ fn dash_power(s: &Situation) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::Analysis;
-    use crate::config::EnvConfig;
-    use crate::world::{Player, World};
+    use crate::sim::analysis::Analysis;
+    use crate::sim::config::EnvConfig;
+    use crate::sim::world::{Player, World};
 
     /// MOVE of agent 0 standing `gap` metres behind a resting ball, facing it.
     fn move_with_ball_at(gap: f64) -> Command {

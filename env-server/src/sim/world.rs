@@ -1,8 +1,8 @@
 //! The world state: ball, offense players and goalkeeper (plain data, no behaviour).
 
-use crate::geom::decay_sum;
-use crate::params::*;
-use crate::view::Sight;
+use crate::sim::geom::decay_sum;
+use crate::sim::params::*;
+use crate::sim::view::Sight;
 use glam::DVec2;
 
 /// The ball.

@@ -1,10 +1,10 @@
 //! HFO's high-level feature set of the authors' version (spec 5.3) and the
 //! paper's 6-feature view (spec 5.4, docs/algorithms.md section 1).
 
-use crate::analysis::{MAX_OFFENSE, offense_unums};
-use crate::geom::direction;
-use crate::params::*;
-use crate::world::World;
+use crate::sim::analysis::{MAX_OFFENSE, offense_unums};
+use crate::sim::geom::direction;
+use crate::sim::params::*;
+use crate::sim::world::World;
 use glam::DVec2;
 use proto::State;
 use std::f64::consts::{FRAC_PI_4, PI};

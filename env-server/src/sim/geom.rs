@@ -1,6 +1,6 @@
 //! Small 2D helpers on top of `glam::DVec2`: angles, polar vectors, uniform draws.
 
-use crate::params::{BALL_DECAY, PLAYER_DECAY};
+use crate::sim::params::{BALL_DECAY, PLAYER_DECAY};
 use glam::DVec2;
 use rand::Rng;
 use std::f64::consts::{PI, TAU};

@@ -3,10 +3,10 @@
 
 use super::Situation;
 use super::body::{kick_one_step, planned_kick, smart_kick};
-use crate::geom::{direction, polar, unit};
-use crate::params::*;
-use crate::physics::{Command, kick_rate};
-use crate::world::Player;
+use crate::sim::geom::{direction, polar, unit};
+use crate::sim::params::*;
+use crate::sim::physics::{Command, kick_rate};
+use crate::sim::world::Player;
 use glam::DVec2;
 
 /// A pass route: receive point and first speed.
@@ -278,9 +278,9 @@ fn score(s: &Situation, route: Route) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::Analysis;
-    use crate::config::EnvConfig;
-    use crate::world::World;
+    use crate::sim::analysis::Analysis;
+    use crate::sim::config::EnvConfig;
+    use crate::sim::world::World;
 
     /// Passer 0 at (10, 0) with the ball at its feet, teammate 1 at `mate`,
     /// the keeper at `keeper`.
@@ -372,7 +372,7 @@ mod tests {
     fn lead_and_through_passes_go_only_where_the_passer_looked_lately() {
         let routes = |count| {
             let mut w = world(DVec2::new(20.0, 12.0), DVec2::new(50.0, 0.0));
-            w.sight[0] = crate::view::Sight::with_counts(count);
+            w.sight[0] = crate::sim::view::Sight::with_counts(count);
             let mut n = 0;
             in_situation(&w, |s| {
                 lead_passes(s, &w.offense[1], &mut |_| n += 1);
@@ -412,7 +412,7 @@ mod tests {
         let play_on = kicked(&w);
         w.catch_mode = true;
         let one_kick = kicked(&w);
-        let off = |v: DVec2| crate::geom::angle_diff(direction(v), towards_mate).to_degrees();
+        let off = |v: DVec2| crate::sim::geom::angle_diff(direction(v), towards_mate).to_degrees();
         assert!(off(play_on) > 10.0, "{play_on}");
         assert!(off(one_kick) < 5.0, "{one_kick}");
         assert!(one_kick.length() > play_on.length());

@@ -1,0 +1,7 @@
+//! Tools built on the simulator: baseline policies, rollouts and their
+//! statistics, pictures.
+
+pub mod decisions;
+pub mod policy;
+pub mod render;
+pub mod rollout;
