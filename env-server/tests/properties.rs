@@ -3,7 +3,7 @@
 use env_server::sim::features::unum_feature_indices;
 use env_server::sim::params::*;
 use env_server::sim::physics::Command;
-use env_server::tools::rollout::{play_episode, policy_rng};
+use env_server::tools::policy::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
 use glam::DVec2;
 use proptest::prelude::*;

@@ -2,25 +2,19 @@
 //! exact state: the ball's future path, every player's reach cycle (spec
 //! 6.1.2) and the attackers' formation targets (spec 6.1.1).
 
-use crate::sim::formation::{catch_home, home_positions};
+use crate::sim::config::MAX_OFFENSE;
+use crate::sim::formation::{catch_home, home_positions, offense_unums};
 use crate::sim::geom::{direction, unit};
+use crate::sim::kinematics::{DRIFT, dash_cycles, dash_distance};
 use crate::sim::params::*;
 use crate::sim::self_intercept::{self, Found, Interception};
 use crate::sim::world::{Player, World};
 use glam::DVec2;
 
-/// Most offense agents the simulator supports.
-pub const MAX_OFFENSE: usize = 4;
 /// Longest ball path considered by the intercept table.
 const CACHE_LEN: usize = 31;
 /// Reach cycles beyond which a player is considered unable to get the ball.
 pub const NO_REACH: usize = 1000;
-
-/// Uniform numbers of the offense players for each team size (HFO's order [11, 7, 8, 9, ...], sorted).
-pub fn offense_unums(offense: usize) -> &'static [u8] {
-    const UNUMS: [&[u8]; MAX_OFFENSE + 1] = [&[], &[11], &[7, 11], &[7, 8, 11], &[7, 8, 9, 11]];
-    UNUMS[offense]
-}
 
 /// The per-cycle analysis of a world.
 #[derive(Clone, Debug)]
@@ -191,19 +185,6 @@ fn ball_path(world: &World) -> ([DVec2; CACHE_LEN], usize) {
     (path, len)
 }
 
-/// Precomputed `(1 - 0.4^t) / 0.6`: a player's drift per unit velocity after t cycles.
-pub(crate) const DRIFT: [f64; CACHE_LEN] = {
-    let mut d = [0.0; CACHE_LEN];
-    let mut pow = 1.0;
-    let mut t = 0;
-    while t < CACHE_LEN {
-        d[t] = (1.0 - pow) / (1.0 - PLAYER_DECAY);
-        pow *= PLAYER_DECAY;
-        t += 1;
-    }
-    d
-};
-
 /// cos(12°): the smallest turn threshold of the reach estimate.
 const COS_12_DEG: f64 = 0.978_147_600_733_805_6;
 
@@ -278,7 +259,62 @@ pub fn reach_cycle(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::self_intercept::{heading, predict, reach};
     use std::f64::consts::PI;
+
+    /// Attacker 0 at `me` (position, velocity) facing `body_deg` degrees,
+    /// the ball at `ball` (position, velocity), the keeper in goal.
+    fn scene(ball: [f64; 4], me: [f64; 4], body_deg: f64) -> World {
+        let mut w = World::new(1);
+        w.ball.pos = DVec2::new(ball[0], ball[1]);
+        w.ball.vel = DVec2::new(ball[2], ball[3]);
+        w.offense[0] = Player::new(DVec2::new(me[0], me[1]), body_deg.to_radians());
+        w.offense[0].vel = DVec2::new(me[2], me[3]);
+        w.keeper = Player::new(DVec2::new(50.0, 2.8), std::f64::consts::FRAC_PI_2);
+        w
+    }
+
+    #[test]
+    fn others_run_straight_at_a_ball_kicked_on_beside_the_body() {
+        // A state from HFO's logs where its dribbler's self_min was 5 (the
+        // self-interception tests): running straight at the ball, as the
+        // others' estimate does, takes 2 cycles or fewer.
+        let w = scene(
+            [44.6709, 5.4471, 0.6549, 0.1775],
+            [43.5482, 5.2586, 0.1476, -0.0176],
+            -6.261,
+        );
+        let a = Analysis::new(&w);
+        assert!(reach_cycle(&w.offense[0], a.path(), a.path_heading(), None) <= 2);
+        assert_eq!(a.own_reach[0], 5);
+    }
+
+    #[test]
+    fn the_cache_resumed_from_the_own_reach_equals_a_full_search() {
+        let (mut short, mut long) = (false, false);
+        for (i, vel) in [(0.0, 0.0), (1.5, 0.3), (-0.8, 0.5), (2.5, -0.4), (0.4, 0.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let near = [(28.5, 0.8), (26.0, -1.5), (29.5, 0.0), (27.0, 2.2)];
+            let far = [(30.0, -3.0), (35.0, 8.0), (20.0, 12.0), (45.0, -10.0)];
+            for me in near.into_iter().chain(far) {
+                let body = 70.0 * i as f64;
+                let w = scene([27.0, 0.0, vel.0, vel.1], [me.0, me.1, 0.1, 0.0], body);
+                let a = Analysis::new(&w);
+                let p = &w.offense[0];
+                let (_, found) = reach(p, &w.ball, heading(&w.ball), a.path(), false);
+                short |= matches!(found, Found::Short(_));
+                long |= matches!(found, Found::Long(_));
+                assert_eq!(a.own_cache(&w, 0), predict(p, &w.ball, a.path(), false));
+                assert_eq!(
+                    a.keeper_cache(&w),
+                    predict(&w.keeper, &w.ball, a.path(), true)
+                );
+            }
+        }
+        assert!(short && long, "both kinds of resumption are tried");
+    }
 
     #[test]
     fn after_a_catch_the_attackers_take_the_static_formation() {

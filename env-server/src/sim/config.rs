@@ -2,9 +2,11 @@
 //! their validation: what the behaviours and the environment read, apart
 //! from both.
 
-use crate::sim::analysis::MAX_OFFENSE;
 use crate::sim::params::BALL_SPEED_MAX;
 use serde::{Deserialize, Serialize};
+
+/// Most offense agents the simulator supports.
+pub const MAX_OFFENSE: usize = 4;
 
 /// Settings of the simulated task; the defaults are the paper's setup.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

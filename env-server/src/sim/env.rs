@@ -1,10 +1,10 @@
 //! The HFO environment: episode start, the per-cycle loop and the agents' view
 //! of it (spec 2.1, 4.2, 4.4, Appendix D).
 
-use crate::sim::analysis::{Analysis, MAX_OFFENSE, update_offside_line};
+use crate::sim::analysis::{Analysis, update_offside_line};
 use crate::sim::behaviour::keeper::{self, KeeperMemory};
 use crate::sim::behaviour::{Decision, Situation, offense_command};
-use crate::sim::config::{ConfigError, EnvConfig};
+use crate::sim::config::{ConfigError, EnvConfig, MAX_OFFENSE};
 use crate::sim::features;
 use crate::sim::geom::uniform;
 use crate::sim::params::*;

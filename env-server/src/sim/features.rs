@@ -1,7 +1,8 @@
 //! HFO's high-level feature set of the authors' version (spec 5.3) and the
 //! paper's 6-feature view (spec 5.4, docs/algorithms.md section 1).
 
-use crate::sim::analysis::{MAX_OFFENSE, offense_unums};
+use crate::sim::config::MAX_OFFENSE;
+use crate::sim::formation::offense_unums;
 use crate::sim::geom::direction;
 use crate::sim::params::*;
 use crate::sim::world::World;

@@ -1,6 +1,7 @@
 //! agent2d's formations for players 7, 8, 9 and 11: the Delaunay triangulation
 //! of play-on (spec 6.1.1, Appendix B) and the static one after a catch (4.5).
 
+use crate::sim::config::MAX_OFFENSE;
 use delaunator::{Point, triangulate};
 use glam::DVec2;
 use std::sync::OnceLock;
@@ -219,6 +220,12 @@ pub fn home_positions(focus: DVec2) -> [DVec2; 3] {
         })
         .unwrap_or(0);
     sample_homes(nearest)
+}
+
+/// Uniform numbers of the offense players for each team size (HFO's order [11, 7, 8, 9, ...], sorted).
+pub fn offense_unums(offense: usize) -> &'static [u8] {
+    const UNUMS: [&[u8]; MAX_OFFENSE + 1] = [&[], &[11], &[7, 11], &[7, 8, 11], &[7, 8, 9, 11]];
+    UNUMS[offense]
 }
 
 /// Home positions of players 7, 8, 9 and 11 in the goalie-catch mode (spec

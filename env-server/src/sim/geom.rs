@@ -1,6 +1,5 @@
 //! Small 2D helpers on top of `glam::DVec2`: angles, polar vectors, uniform draws.
 
-use crate::sim::params::{BALL_DECAY, PLAYER_DECAY};
 use glam::DVec2;
 use rand::Rng;
 use std::f64::consts::{PI, TAU};
@@ -60,56 +59,6 @@ pub fn polar_noise(rng: &mut impl Rng, max: f64) -> DVec2 {
     polar(r, a)
 }
 
-/// Sum of the geometric series `v0 + v0·d + ... ` over `n` terms: distance a
-/// decaying object travels in `n` cycles per unit of initial speed.
-pub fn decay_sum(decay: f64, n: u32) -> f64 {
-    (1.0 - decay_pow(decay, n)) / (1.0 - decay)
-}
-
-/// `decay.powi(n)`, bit for bit, from a table for the ball's and the
-/// players' decay.
-pub fn decay_pow(decay: f64, n: u32) -> f64 {
-    let table = if decay == PLAYER_DECAY {
-        &PLAYER_POWERS
-    } else if decay == BALL_DECAY {
-        &BALL_POWERS
-    } else {
-        return decay.powi(n as i32);
-    };
-    match table.get(n as usize) {
-        Some(&pow) => pow,
-        None => decay.powi(n as i32),
-    }
-}
-
-/// Powers tabulated by [`decay_pow`].
-const POWERS: usize = 128;
-const PLAYER_POWERS: [f64; POWERS] = powers(PLAYER_DECAY);
-const BALL_POWERS: [f64; POWERS] = powers(BALL_DECAY);
-
-/// `base.powi(n)` for every `n` below [`POWERS`], computed as compiler-builtins'
-/// `__powidf2` (which `powi` calls) does: square and multiply.
-const fn powers(base: f64) -> [f64; POWERS] {
-    let mut table = [1.0; POWERS];
-    let mut n = 0;
-    while n < POWERS {
-        let (mut a, mut bits, mut product) = (base, n, 1.0);
-        loop {
-            if bits & 1 != 0 {
-                product *= a;
-            }
-            bits >>= 1;
-            if bits == 0 {
-                break;
-            }
-            a *= a;
-        }
-        table[n] = product;
-        n += 1;
-    }
-    table
-}
-
 /// `x.ceil() as usize` without the call to `ceil` that targets without
 /// SSE4.1 make (bit for bit the same, 0 for negative `x`).
 pub fn ceil_usize(x: f64) -> usize {
@@ -135,22 +84,5 @@ mod tests {
             let w = f64::from(whole);
             proptest::prop_assert_eq!(ceil_usize(w), whole as usize);
         }
-    }
-
-    #[test]
-    fn decay_powers_are_powi_bit_for_bit() {
-        for decay in [PLAYER_DECAY, BALL_DECAY] {
-            for n in 0..POWERS as u32 + 3 {
-                let powi = std::hint::black_box(decay).powi(std::hint::black_box(n) as i32);
-                assert_eq!(decay_pow(decay, n).to_bits(), powi.to_bits(), "{decay}^{n}");
-            }
-        }
-    }
-
-    #[test]
-    fn decay_sum_matches_spec_distances() {
-        // A ball kicked at 3.0 travels 13.3 m in 5 cycles and 23.1 m in 10 (spec 2.2).
-        assert!((3.0 * decay_sum(0.94, 5) - 13.3).abs() < 0.05);
-        assert!((3.0 * decay_sum(0.94, 10) - 23.1).abs() < 0.05);
     }
 }

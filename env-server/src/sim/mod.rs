@@ -13,6 +13,7 @@ pub mod env;
 pub mod features;
 pub mod formation;
 pub mod geom;
+pub mod kinematics;
 pub mod params;
 pub mod physics;
 pub mod referee;

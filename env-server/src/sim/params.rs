@@ -142,49 +142,9 @@ pub fn in_penalty_area(p: DVec2) -> bool {
     p.x > PENALTY_AREA_X && p.y.abs() < PENALTY_AREA_HALF_WIDTH
 }
 
-/// Distance a player covers with `n` consecutive full-power dashes from rest,
-/// for `n = 0..=10` (librcsc's `cyclesToReachDistance` table); +1.0 per further cycle.
-const DASH_DISTANCE: [f64; 11] = [
-    0.0, 0.600, 1.440, 2.376, 3.350, 4.340, 5.336, 6.334, 7.334, 8.334, 9.333,
-];
-
-/// Distance covered by `n` full-power dashes from rest.
-pub fn dash_distance(n: usize) -> f64 {
-    match DASH_DISTANCE.get(n) {
-        Some(d) => *d,
-        None => DASH_DISTANCE[10] + (n - 10) as f64,
-    }
-}
-
-/// Fewest full-power dashes from rest that cover `dist` (0 for `dist <= 0`).
-pub fn dash_cycles(dist: f64) -> usize {
-    if dist <= 0.0 {
-        return 0;
-    }
-    match DASH_DISTANCE.iter().position(|&d| d >= dist) {
-        Some(n) => n,
-        None => 10 + crate::sim::geom::ceil_usize(dist - DASH_DISTANCE[10]),
-    }
-}
-
-/// Largest effective turn (radians) of a player moving at `speed`.
-pub fn max_turn(speed: f64) -> f64 {
-    std::f64::consts::PI / (1.0 + INERTIA_MOMENT * speed)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn dash_table_round_trips() {
-        assert_eq!(dash_cycles(0.0), 0);
-        assert_eq!(dash_cycles(0.6), 1);
-        assert_eq!(dash_cycles(0.61), 2);
-        assert_eq!(dash_cycles(9.333), 10);
-        assert_eq!(dash_cycles(10.0), 11);
-        assert_eq!(dash_distance(12), 11.333);
-    }
 
     #[test]
     fn kickable_areas() {

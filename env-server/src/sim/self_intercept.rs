@@ -12,10 +12,8 @@
 //! Stamina follows librcsc's save-recovery dashing (never below the recovery
 //! threshold), so no entry is `EXHAUST`.
 
-use crate::sim::analysis::DRIFT;
-use crate::sim::geom::{
-    angle_diff, asin_clamped, decay_pow, decay_sum, direction, normalize_angle, unit,
-};
+use crate::sim::geom::{angle_diff, asin_clamped, direction, normalize_angle, unit};
+use crate::sim::kinematics::{DRIFT, dash_cycles, decay_pow, decay_sum};
 use crate::sim::params::*;
 use crate::sim::physics::{dash_dir, dash_dir_rate, kick_rate, update_stamina};
 use crate::sim::world::{Ball, Player};
@@ -956,7 +954,6 @@ pub(crate) fn predict(p: &Player, ball: &Ball, path: &[DVec2], goalie: bool) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::analysis::{Analysis, reach_cycle};
     use crate::sim::world::World;
 
     fn world(ball: (f64, f64, f64, f64), me: (f64, f64, f64, f64), body_deg: f64) -> World {
@@ -969,54 +966,44 @@ mod tests {
         w
     }
 
-    #[test]
-    fn the_cache_resumed_from_the_own_reach_equals_a_full_search() {
-        let (mut short, mut long) = (false, false);
-        for (i, vel) in [(0.0, 0.0), (1.5, 0.3), (-0.8, 0.5), (2.5, -0.4), (0.4, 0.0)]
-            .into_iter()
-            .enumerate()
-        {
-            let near = [(28.5, 0.8), (26.0, -1.5), (29.5, 0.0), (27.0, 2.2)];
-            let far = [(30.0, -3.0), (35.0, 8.0), (20.0, 12.0), (45.0, -10.0)];
-            for me in near.into_iter().chain(far) {
-                let body = 70.0 * i as f64;
-                let w = world((27.0, 0.0, vel.0, vel.1), (me.0, me.1, 0.1, 0.0), body);
-                let a = Analysis::new(&w);
-                let p = &w.offense[0];
-                let (_, found) = reach(p, &w.ball, heading(&w.ball), a.path(), false);
-                short |= matches!(found, Found::Short(_));
-                long |= matches!(found, Found::Long(_));
-                assert_eq!(a.own_cache(&w, 0), predict(p, &w.ball, a.path(), false));
-                assert_eq!(
-                    a.keeper_cache(&w),
-                    predict(&w.keeper, &w.ball, a.path(), true)
-                );
-            }
-        }
-        assert!(short && long, "both kinds of resumption are tried");
+    /// The ball's path without kicks over the longest prediction, as the
+    /// analysis of a ball that keeps moving has it.
+    fn path(ball: &Ball) -> Vec<DVec2> {
+        let (mut pos, mut vel) = (ball.pos, ball.vel);
+        (0..=MAX_CYCLE)
+            .map(|_| {
+                let at = pos;
+                pos += vel;
+                vel *= BALL_DECAY;
+                at
+            })
+            .collect()
+    }
+
+    /// The own reach cycle of attacker 0 in `w` on the path `path`.
+    fn own_reach(w: &World, path: &[DVec2]) -> usize {
+        reach(&w.offense[0], &w.ball, heading(&w.ball), path, false).0
     }
 
     #[test]
     fn a_ball_kicked_on_beside_the_body_takes_five_cycles_as_in_hfo() {
         // A state from HFO's logs where its dribbler's self_min was 5: the
-        // ball 1.1 m ahead at 0.68 m/cycle, 21° off the body. Running
-        // straight at it (the others' estimate) takes 2 cycles or fewer;
-        // dashing along the body leaves
-        // it too far to the side, so the player turns first and gets there
-        // at cycle 5.
+        // ball 1.1 m ahead at 0.68 m/cycle, 21° off the body. Dashing along
+        // the body leaves it too far to the side, so the player turns first
+        // and gets there at cycle 5 (the others' estimate, running straight
+        // at it, says 2 cycles or fewer: the analysis tests).
         let w = world(
             (44.6709, 5.4471, 0.6549, 0.1775),
             (43.5482, 5.2586, 0.1476, -0.0176),
             -6.261,
         );
-        let a = Analysis::new(&w);
-        assert!(reach_cycle(&w.offense[0], a.path(), a.path_heading(), None) <= 2);
-        assert_eq!(a.own_reach[0], 5);
+        let path = path(&w.ball);
+        assert_eq!(own_reach(&w, &path), 5);
         let steps: Vec<_> = short_steps(
             &w.offense[0],
             &w.ball,
             lateral_offset(&w.offense[0], &w.ball, heading(&w.ball)),
-            a.path_len,
+            path.len(),
             false,
             0,
         )
@@ -1035,9 +1022,9 @@ mod tests {
             (20.35, 12.11, 0.14, -0.11),
             -41.0,
         );
-        let a = Analysis::new(&w);
-        assert_eq!(a.own_reach[0], 14);
-        let cache = predict(&w.offense[0], &w.ball, a.path(), false);
+        let path = path(&w.ball);
+        assert_eq!(own_reach(&w, &path), 14);
+        let cache = predict(&w.offense[0], &w.ball, &path, false);
         assert_eq!(cache[0].cycle, 14);
         assert!(cache.windows(2).all(|c| c[1].cycle == c[0].cycle + 1));
         assert!(cache.len() <= LONG_WINDOW);

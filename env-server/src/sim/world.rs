@@ -1,6 +1,6 @@
 //! The world state: ball, offense players and goalkeeper (plain data, no behaviour).
 
-use crate::sim::geom::decay_sum;
+use crate::sim::kinematics::decay_sum;
 use crate::sim::params::*;
 use crate::sim::view::Sight;
 use glam::DVec2;

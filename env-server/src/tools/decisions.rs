@@ -12,12 +12,12 @@ use glam::DVec2;
 use proto::Action;
 use serde::Serialize;
 
-use crate::sim::analysis::MAX_OFFENSE;
+use crate::sim::config::MAX_OFFENSE;
 use crate::sim::env::Env;
 use crate::sim::params::{GOAL_CENTER, KICKABLE_AREA};
 use crate::sim::physics::Command;
 use crate::sim::referee::Outcome;
-use crate::tools::rollout::{Moments, OutcomeCounts};
+use crate::tools::tally::{Moments, OutcomeCounts};
 
 /// Lower edges of the shot-distance bins (m); the last bin is open.
 const SHOT_BINS: [f64; 6] = [0.0, 10.0, 15.0, 20.0, 25.0, 30.0];
@@ -224,8 +224,7 @@ impl DecisionRecorder {
 mod tests {
     use super::*;
     use crate::sim::config::EnvConfig;
-    use crate::tools::policy::BaselinePolicy;
-    use crate::tools::rollout::{play_episode, policy_rng};
+    use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
 
     fn recorded(policy: BaselinePolicy, episodes: u32) -> (DecisionStats, Vec<Outcome>) {
         let mut env = Env::new(EnvConfig::default(), 3).unwrap();

@@ -5,3 +5,4 @@ pub mod decisions;
 pub mod policy;
 pub mod render;
 pub mod rollout;
+pub mod tally;

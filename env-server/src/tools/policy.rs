@@ -1,7 +1,12 @@
-//! Fixed baseline policies for rollouts and calibration (spec 9.2).
+//! Fixed baseline policies for rollouts and calibration (spec 9.2), and
+//! episodes played with them.
 
+use crate::sim::config::MAX_OFFENSE;
+use crate::sim::env::Env;
+use crate::sim::referee::Outcome;
 use proto::Action;
-use rand::Rng;
+use rand::{Rng, SeedableRng};
+use rand_xoshiro::Xoshiro256PlusPlus;
 use std::fmt;
 use std::str::FromStr;
 
@@ -81,5 +86,35 @@ impl FromStr for BaselinePolicy {
             .into_iter()
             .find(|p| p.name() == s)
             .ok_or_else(|| UnknownPolicy(s.to_owned()))
+    }
+}
+
+/// The random stream of a policy, derived from the rollout seed.
+pub fn policy_rng(seed: u64) -> Xoshiro256PlusPlus {
+    Xoshiro256PlusPlus::seed_from_u64(seed ^ 0x5851_f42d_4c95_7f2d)
+}
+
+/// Plays one episode of `env` under `policy`; `observe` sees the env after
+/// the reset (with no actions) and after every step (with the actions it
+/// applied). Returns the outcome and frame count.
+pub fn play_episode(
+    env: &mut Env,
+    policy: BaselinePolicy,
+    rng: &mut Xoshiro256PlusPlus,
+    mut observe: impl FnMut(&Env, &[Action]),
+) -> (Outcome, u32) {
+    env.reset();
+    observe(env, &[]);
+    let mut actions = [Action::Move; MAX_OFFENSE];
+    let n = env.offense();
+    loop {
+        for (i, a) in actions[..n].iter_mut().enumerate() {
+            *a = policy.choose(env.can_kick(i), rng);
+        }
+        let outcome = env.step(&actions[..n]);
+        observe(env, &actions[..n]);
+        if outcome.is_terminal() {
+            return (outcome, env.frame());
+        }
     }
 }

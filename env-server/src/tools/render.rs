@@ -4,14 +4,14 @@
 //! The picture keeps the server's orientation (as rcssmonitor draws it): the
 //! attacked goal is on the right, +y points down.
 
-use crate::sim::analysis::{MAX_OFFENSE, offense_unums};
+use crate::sim::config::MAX_OFFENSE;
 use crate::sim::config::{ConfigError, EnvConfig};
 use crate::sim::env::Env;
+use crate::sim::formation::offense_unums;
 use crate::sim::params::*;
 use crate::sim::physics::Command;
 use crate::sim::referee::Outcome;
-use crate::tools::policy::BaselinePolicy;
-use crate::tools::rollout::{play_episode, policy_rng};
+use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
 use glam::DVec2;
 use std::fmt::Write as _;
 
@@ -669,7 +669,7 @@ mod tests {
         let config = EnvConfig::default();
         let summary =
             crate::tools::rollout::rollout(config.clone(), BaselinePolicy::Random, 4, 7).unwrap();
-        let mut counts = crate::tools::rollout::OutcomeCounts::default();
+        let mut counts = crate::tools::tally::OutcomeCounts::default();
         let mut frames = 0;
         for k in 1..=4 {
             let t = record_episode(config.clone(), BaselinePolicy::Random, 7, k).unwrap();

@@ -4,38 +4,10 @@ use crate::sim::config::{ConfigError, EnvConfig};
 use crate::sim::env::Env;
 use crate::sim::referee::Outcome;
 use crate::tools::decisions::{DecisionRecorder, DecisionStats};
-use crate::tools::policy::BaselinePolicy;
-use proto::Action;
-use rand::SeedableRng;
-use rand_xoshiro::Xoshiro256PlusPlus;
+use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
+use crate::tools::tally::{Moments, OutcomeCounts};
 use serde::Serialize;
 use std::time::Instant;
-
-/// Counts of each terminal outcome.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-pub struct OutcomeCounts {
-    /// Goals.
-    pub goal: u64,
-    /// Balls captured by the keeper.
-    pub captured: u64,
-    /// Balls out of bounds.
-    pub out_of_bounds: u64,
-    /// Time-outs.
-    pub out_of_time: u64,
-}
-
-impl OutcomeCounts {
-    /// Counts one more episode ending in `outcome`.
-    pub fn add(&mut self, outcome: Outcome) {
-        match outcome {
-            Outcome::Goal => self.goal += 1,
-            Outcome::Captured => self.captured += 1,
-            Outcome::OutOfBounds => self.out_of_bounds += 1,
-            Outcome::OutOfTime => self.out_of_time += 1,
-            Outcome::InGame => {}
-        }
-    }
-}
 
 /// Summary of a rollout.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -77,64 +49,6 @@ pub struct Spread {
     pub frames_to_goal: f64,
     /// Of the possessions per episode.
     pub possessions_per_episode: f64,
-}
-
-/// Running sum and sum of squares of a sample.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Moments {
-    n: u64,
-    sum: f64,
-    squares: f64,
-}
-
-impl Moments {
-    /// Adds one value.
-    pub(crate) fn add(&mut self, x: f64) {
-        self.n += 1;
-        self.sum += x;
-        self.squares += x * x;
-    }
-
-    /// The sample standard deviation (0 below two values).
-    pub(crate) fn sd(&self) -> f64 {
-        if self.n < 2 {
-            return 0.0;
-        }
-        let n = self.n as f64;
-        ((self.squares - self.sum * self.sum / n) / (n - 1.0))
-            .max(0.0)
-            .sqrt()
-    }
-}
-
-/// The random stream of a policy, derived from the rollout seed.
-pub fn policy_rng(seed: u64) -> Xoshiro256PlusPlus {
-    Xoshiro256PlusPlus::seed_from_u64(seed ^ 0x5851_f42d_4c95_7f2d)
-}
-
-/// Plays one episode of `env` under `policy`; `observe` sees the env after
-/// the reset (with no actions) and after every step (with the actions it
-/// applied). Returns the outcome and frame count.
-pub fn play_episode(
-    env: &mut Env,
-    policy: BaselinePolicy,
-    rng: &mut Xoshiro256PlusPlus,
-    mut observe: impl FnMut(&Env, &[Action]),
-) -> (Outcome, u32) {
-    env.reset();
-    observe(env, &[]);
-    let mut actions = [Action::Move; crate::sim::analysis::MAX_OFFENSE];
-    let n = env.offense();
-    loop {
-        for (i, a) in actions[..n].iter_mut().enumerate() {
-            *a = policy.choose(env.can_kick(i), rng);
-        }
-        let outcome = env.step(&actions[..n]);
-        observe(env, &actions[..n]);
-        if outcome.is_terminal() {
-            return (outcome, env.frame());
-        }
-    }
 }
 
 /// Plays `episodes` episodes under `policy` with `seed`.

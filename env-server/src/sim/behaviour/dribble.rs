@@ -4,14 +4,12 @@
 //! ball. HFO never shoots here: the chain action's
 //! command replaces any shot `doPreprocess` queued.
 
-use super::Situation;
-use super::body::{
-    kick_to_velocity, max_one_kick_speed, player_reach_cycle, predict_turn_cycles, turn_to_point,
-};
+use super::body::{player_reach_cycle, predict_turn_cycles, turn_to_point};
 use super::hold::hold_ball;
-use crate::sim::geom::{
-    angle_diff, asin_clamped, decay_sum, direction, normalize_angle, polar, unit,
-};
+use super::kick::{kick_to_velocity, max_one_kick_speed};
+use super::situation::Situation;
+use crate::sim::geom::{angle_diff, asin_clamped, direction, normalize_angle, polar, unit};
+use crate::sim::kinematics::{dash_cycles, decay_sum, max_turn};
 use crate::sim::params::*;
 use crate::sim::physics::{Command, max_kick_accel, update_stamina};
 use crate::sim::world::{Player, World};

@@ -3,12 +3,16 @@
 //! lines 225-757, field-player mode) over the cycles of its self-interception
 //! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
 
+use super::body::{go_to_point, turn_to_direction, turn_to_point};
 use crate::sim::analysis::Analysis;
-use crate::sim::geom::{decay_pow, direction};
+use crate::sim::geom::{angle_diff, asin_clamped, direction};
+use crate::sim::kinematics::decay_pow;
 use crate::sim::params::*;
-use crate::sim::self_intercept::Interception;
+use crate::sim::physics::Command;
+use crate::sim::self_intercept::{Interception, SHORT_STEPS};
 use crate::sim::world::{Player, World};
 use glam::DVec2;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Where `getBestIntercept` measures the distance to the goal (line 240).
 const GOAL: DVec2 = DVec2::new(65.0, 0.0);
@@ -45,6 +49,57 @@ impl<'a> Best<'a> {
     fn get(&self) -> Option<&'a Candidate> {
         self.found.map(|(c, _)| c)
     }
+}
+
+/// Where an attacker with the ball, or with the ball coming to it, faces.
+pub fn forward_point(y: f64) -> DVec2 {
+    DVec2::new(50.5, 0.75 * y)
+}
+
+/// Body_Intercept (spec 6.1.3) for offense agent `agent`: towards the
+/// interception `getBestIntercept` picks from its cache; `face` is where to
+/// look when the ball comes to the player.
+///
+/// Simplified: from the chosen cycle on, the turn and the full dash follow
+/// 6.1.2's others' rule with the own estimate's margin (0.15 m up to cycle
+/// 5, 0.2 m later) instead of the cache entry's turns, power and direction
+/// and librcsc's `doWaitTurn` and `doInertiaDash`.
+pub fn intercept(world: &World, analysis: &Analysis, agent: usize, face: DVec2) -> Command {
+    let (p, reach) = (&world.offense[agent], analysis.own_reach[agent]);
+    if reach > 100 {
+        let rest = world.ball_final();
+        return go_to_point(p, rest, 2.0, MAX_DASH_POWER).unwrap_or_else(|| turn_to_point(p, rest));
+    }
+    let cache = analysis.own_cache(world, agent);
+    let cycle = best_interception(p, world, analysis, &cache).map_or(reach, |best| best.cycle);
+    let target = analysis.ball_at(cycle);
+    let rel = target - p.drift(cycle as u32);
+    let d = rel.length();
+    // No dash when the ball comes inside the kickable area by the own
+    // estimate's margin (`control_area_buf`, and 0.2 m in the long step).
+    let margin = if cycle <= SHORT_STEPS { 0.15 } else { 0.2 };
+    if d <= KICKABLE_AREA - margin {
+        return turn_to_point(p, face);
+    }
+    let mut e = angle_diff(direction(rel), p.body);
+    let back = e > FRAC_PI_2 && d < 5.0;
+    if back {
+        e = PI - e;
+    }
+    let threshold = 12f64.to_radians().max(asin_clamped(KICKABLE_AREA / d));
+    if e > threshold {
+        let to_ball = direction(rel);
+        return turn_to_direction(p, if back { to_ball + PI } else { to_ball });
+    }
+    if p.stamina - MAX_DASH_POWER < 0.3 * STAMINA_MAX + 1.0 {
+        return Command::Turn { moment: 0.0 };
+    }
+    let power = if back {
+        -MAX_DASH_POWER
+    } else {
+        MAX_DASH_POWER
+    };
+    Command::Dash { power, dir: 0.0 }
 }
 
 /// The interception attacker `p` goes for (`getBestIntercept`, field-player
@@ -188,10 +243,7 @@ fn chance(p: &Player, world: &World, opp_min: f64, cache: &[Interception]) -> Op
 mod tests {
     use super::*;
     use crate::sim::analysis::update_offside_line;
-    use crate::sim::behaviour::body::intercept;
-    use crate::sim::behaviour::movement::forward_point;
-    use crate::sim::physics::Command;
-    use crate::sim::self_intercept::{self, SHORT_STEPS};
+    use crate::sim::self_intercept;
     use std::f64::consts::FRAC_PI_4;
 
     /// A world with the ball at `ball` moving at `vel`, attacker 0 at `mate`

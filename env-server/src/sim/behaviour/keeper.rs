@@ -4,7 +4,8 @@
 use super::body::{go_to_point, stop_dash, turn_to_direction, turn_to_point};
 use super::tackle::{self, Tackler};
 use crate::sim::analysis::Analysis;
-use crate::sim::geom::{angle_diff, decay_pow, decay_sum, direction, normalize_angle, unit};
+use crate::sim::geom::{angle_diff, direction, normalize_angle, unit};
+use crate::sim::kinematics::{decay_pow, decay_sum};
 use crate::sim::params::*;
 use crate::sim::physics::Command;
 use crate::sim::self_intercept::Interception;

@@ -8,7 +8,7 @@ use glam::DVec2;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
-use super::body::max_one_kick_speed;
+use super::kick::max_one_kick_speed;
 use crate::sim::physics::tackle_probability_at;
 
 /// Ring radii (`calc_near_dist`, `calc_mid_dist`, `calc_far_dist`) and spots per ring.

@@ -8,49 +8,21 @@ mod dribble;
 mod hold;
 mod intercept;
 pub mod keeper;
+mod kick;
 mod kick_table;
 mod movement;
 mod pass;
 mod shoot;
+mod situation;
+mod smart_kick;
 pub mod tackle;
 
-use crate::sim::analysis::Analysis;
-use crate::sim::config::EnvConfig;
 use crate::sim::physics::Command;
 use crate::sim::view::Neck;
-use crate::sim::world::{Player, ShotCourse, World};
+use crate::sim::world::ShotCourse;
 use proto::Action;
 
-/// What an offense behaviour sees: the state, its analysis and who is acting.
-pub struct Situation<'a> {
-    /// The exact state (everyone has full state).
-    pub world: &'a World,
-    /// This cycle's shared analysis.
-    pub analysis: &'a Analysis,
-    /// Simulator settings.
-    pub config: &'a EnvConfig,
-    /// Index of the acting offense agent.
-    pub agent: usize,
-}
-
-impl Situation<'_> {
-    /// The acting agent's body.
-    pub fn me(&self) -> &Player {
-        &self.world.offense[self.agent]
-    }
-
-    /// The teammate nearest to (`farthest == false`) or farthest from the acting agent.
-    fn teammate_by_distance(&self, farthest: bool) -> Option<usize> {
-        let me = self.me().pos;
-        let others = (0..self.world.offense.len()).filter(|&j| j != self.agent);
-        let dist = |j: &usize| self.world.offense[*j].pos.distance(me);
-        if farthest {
-            others.max_by(|a, b| dist(a).total_cmp(&dist(b)))
-        } else {
-            others.min_by(|a, b| dist(a).total_cmp(&dist(b)))
-        }
-    }
-}
+pub use situation::Situation;
 
 /// What a behaviour decides for the acting agent this cycle.
 pub struct Decision {

@@ -1,18 +1,13 @@
 //! MOVE (spec 6.1): tackle if agent2d would, chase the ball if this agent
 //! gets there first, otherwise go to the formation position.
 
-use super::Situation;
-use super::body::{go_to_point, intercept, turn_to_point};
+use super::body::{go_to_point, turn_to_point};
+use super::intercept::{forward_point, intercept};
+use super::situation::Situation;
 use super::tackle::{self, Tackler};
 use crate::sim::params::*;
 use crate::sim::physics::Command;
 use crate::sim::view::Neck;
-use glam::DVec2;
-
-/// Where an attacker with the ball, or with the ball coming to it, faces.
-pub fn forward_point(y: f64) -> DVec2 {
-    DVec2::new(50.5, 0.75 * y)
-}
 
 /// The MOVE command of offense agent `s.agent` and its neck action:
 /// Bhv_BasicTackle's field scan, Neck_OffensiveInterceptNeck when it chases
@@ -88,6 +83,7 @@ mod tests {
     use crate::sim::analysis::Analysis;
     use crate::sim::config::EnvConfig;
     use crate::sim::world::{Player, World};
+    use glam::DVec2;
 
     /// MOVE of agent 0 standing `gap` metres behind a resting ball, facing it.
     fn move_with_ball_at(gap: f64) -> Command {

@@ -1,8 +1,8 @@
 //! PASS (spec 6.4): the best safe direct, lead or through pass to a
 //! teammate, or no command when there is none.
 
-use super::Situation;
-use super::body::{kick_one_step, planned_kick, smart_kick};
+use super::situation::Situation;
+use super::smart_kick::{kick_one_step, planned_kick, smart_kick};
 use crate::sim::geom::{direction, polar, unit};
 use crate::sim::params::*;
 use crate::sim::physics::{Command, kick_rate};

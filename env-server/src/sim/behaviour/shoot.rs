@@ -1,10 +1,11 @@
 //! SHOOT (spec 6.2): the best goal-mouth course the keeper cannot reach;
 //! with none, the course the agent's last non-empty search found first (6.2.2).
 
-use super::Situation;
-use super::body::{max_one_kick_speed, planned_kick, smart_kick};
-use crate::sim::analysis::DRIFT;
+use super::kick::max_one_kick_speed;
+use super::situation::Situation;
+use super::smart_kick::{planned_kick, smart_kick};
 use crate::sim::geom::{angle_diff, asin_clamped, ceil_usize, direction, unit};
+use crate::sim::kinematics::{DRIFT, dash_cycles, dash_distance, max_turn};
 use crate::sim::params::*;
 use crate::sim::physics::{Command, kick_rate, max_kick_accel};
 use crate::sim::world::{Player, ShotCourse};

@@ -4,7 +4,8 @@
 
 use super::body::predict_turn_cycles;
 use crate::sim::analysis::{Analysis, NO_REACH};
-use crate::sim::geom::{angle_diff, ceil_usize, decay_sum, direction, normalize_angle, unit};
+use crate::sim::geom::{angle_diff, ceil_usize, direction, normalize_angle, unit};
+use crate::sim::kinematics::{dash_cycles, decay_sum};
 use crate::sim::params::*;
 use crate::sim::physics::{Command, tackle_accel, tackle_probability};
 use crate::sim::world::{Player, World};

@@ -1,0 +1,37 @@
+//! What an offense behaviour reads: the state, this cycle's analysis, the
+//! settings and who is acting.
+
+use crate::sim::analysis::Analysis;
+use crate::sim::config::EnvConfig;
+use crate::sim::world::{Player, World};
+
+/// What an offense behaviour sees: the state, its analysis and who is acting.
+pub struct Situation<'a> {
+    /// The exact state (everyone has full state).
+    pub world: &'a World,
+    /// This cycle's shared analysis.
+    pub analysis: &'a Analysis,
+    /// Simulator settings.
+    pub config: &'a EnvConfig,
+    /// Index of the acting offense agent.
+    pub agent: usize,
+}
+
+impl Situation<'_> {
+    /// The acting agent's body.
+    pub fn me(&self) -> &Player {
+        &self.world.offense[self.agent]
+    }
+
+    /// The teammate nearest to (`farthest == false`) or farthest from the acting agent.
+    pub fn teammate_by_distance(&self, farthest: bool) -> Option<usize> {
+        let me = self.me().pos;
+        let others = (0..self.world.offense.len()).filter(|&j| j != self.agent);
+        let dist = |j: &usize| self.world.offense[*j].pos.distance(me);
+        if farthest {
+            others.max_by(|a, b| dist(a).total_cmp(&dist(b)))
+        } else {
+            others.min_by(|a, b| dist(a).total_cmp(&dist(b)))
+        }
+    }
+}
