@@ -7,6 +7,7 @@ use crate::sim::behaviour::{Decision, Situation, offense_command};
 use crate::sim::config::{ConfigError, EnvConfig, MAX_OFFENSE};
 use crate::sim::features;
 use crate::sim::geom::uniform;
+use crate::sim::memory::AgentMemory;
 use crate::sim::params::*;
 use crate::sim::physics::{self, BALL_BODY, Command, PLAYER_BODY};
 use crate::sim::referee::{Outcome, Referee};
@@ -41,6 +42,8 @@ const IDLE_CYCLES: u32 = 2;
 pub struct Env {
     config: EnvConfig,
     world: World,
+    /// Every offense agent's memory, which survives episode resets.
+    memories: Vec<AgentMemory>,
     referee: Referee,
     keeper_memory: KeeperMemory,
     offsets: [(f64, f64); 10],
@@ -59,6 +62,7 @@ impl Env {
         let referee = Referee::new(config.frames_per_trial, config.untouched_time);
         Ok(Env {
             world,
+            memories: vec![AgentMemory::default(); config.offense],
             referee,
             keeper_memory: KeeperMemory {
                 since_catch: u32::MAX,
@@ -79,6 +83,11 @@ impl Env {
     /// The current state.
     pub fn world(&self) -> &World {
         &self.world
+    }
+
+    /// Every offense agent's memory, in agent order.
+    pub fn memories(&self) -> &[AgentMemory] {
+        &self.memories
     }
 
     /// Number of offense agents.
@@ -190,14 +199,10 @@ impl Env {
         }
         let analysis = Analysis::new(&self.world);
         let phase = self.world.view_phase;
-        let mut looks = [(0.0, false); MAX_OFFENSE];
-        for (look, (p, sight)) in looks
-            .iter_mut()
-            .zip(self.world.offense.iter().zip(&self.world.sight))
-        {
-            *look = (p.body.to_degrees() + sight.neck, view::moved(p.vel));
+        for (p, memory) in self.world.offense.iter().zip(&mut self.memories) {
+            let sight = &mut memory.sight;
+            sight.before_decision(phase, p.body.to_degrees() + sight.neck, view::moved(p.vel));
         }
-        view::before_decisions(&mut self.world.sight, phase, &looks[..n]);
         let mut searched = [None; MAX_OFFENSE];
         let mut necks = [Neck::Scan; MAX_OFFENSE];
         // The world with the ball held still, made for the first agent that sees it so.
@@ -224,6 +229,7 @@ impl Env {
                             analysis,
                             config: &self.config,
                             agent,
+                            memory: &self.memories[agent],
                         },
                         a[agent],
                     )
@@ -232,9 +238,9 @@ impl Env {
             (self.commands[agent], searched[agent], necks[agent]) =
                 (decision.command, decision.shot, decision.neck);
         }
-        for (memory, course) in self.world.last_shot.iter_mut().zip(searched) {
+        for (memory, course) in self.memories.iter_mut().zip(searched) {
             if course.is_some() {
-                *memory = course;
+                memory.last_shot = course;
             }
         }
         for agent in 0..n {
@@ -243,7 +249,7 @@ impl Env {
                 && self.world.agent_kickable(agent);
             let p = &self.world.offense[agent];
             let (body, moved) = (p.body.to_degrees(), view::moved(p.vel));
-            let sight = &mut self.world.sight[agent];
+            let sight = &mut self.memories[agent].sight;
             sight.chain_ready |= dribbled;
             sight.act(phase, necks[agent], &outlook, body, moved);
         }
@@ -453,15 +459,15 @@ mod tests {
         };
         let mut env = Env::new(config, 1).expect("valid config");
         env.reset();
-        assert_eq!(env.world.last_shot, vec![None]);
+        assert_eq!(env.memories[0].last_shot, None);
         env.world.offense[0] = Player::new(DVec2::new(40.0, 0.0), 0.0);
         env.world.ball.pos = DVec2::new(40.6, 0.0);
         env.world.ball.vel = DVec2::ZERO;
         env.step(&[Action::Dribble]);
-        let remembered = env.world.last_shot[0];
+        let remembered = env.memories[0].last_shot;
         assert!(remembered.is_some(), "DRIBBLE's check within 30 m");
         env.reset();
-        assert_eq!(env.world.last_shot[0], remembered);
+        assert_eq!(env.memories[0].last_shot, remembered);
     }
 
     #[test]

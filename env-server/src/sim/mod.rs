@@ -14,6 +14,7 @@ pub mod features;
 pub mod formation;
 pub mod geom;
 pub mod kinematics;
+pub mod memory;
 pub mod params;
 pub mod physics;
 pub mod referee;

@@ -359,6 +359,21 @@ impl Sight {
         }
     }
 
+    /// Advances the view by one cycle up to the agent's decision: counts
+    /// age, and the sees due before the think message arrive. `face` is the
+    /// body plus neck, degrees; `moved` whether the agent moved over 0.5 m
+    /// last cycle.
+    pub fn before_decision(&mut self, phase: u8, face: f64, moved: bool) {
+        self.new_cycle();
+        for _ in 0..TICKS_BEFORE_THINK[phase as usize] {
+            self.tick(face, moved);
+        }
+        // PlayerAgent::action: a see missed while synchronised breaks the synch.
+        if self.is_synch() && self.cycles_till_see == 0 && !self.seen {
+            self.timing = Timing::NoSynch;
+        }
+    }
+
     /// The view and neck actions after the agent's body command, then the
     /// sees due after the think message (still with this cycle's face).
     /// `body` is the body direction now, degrees; the new neck takes effect
@@ -392,23 +407,6 @@ impl Sight {
             moment = (-MAX_NECK - self.neck).round_ties_even();
         }
         self.neck = (self.neck + moment).clamp(-MAX_NECK, MAX_NECK);
-    }
-}
-
-/// Advances every attacker's view by one cycle up to its decision: counts
-/// age, and the sees due before the think message arrive. `players` holds
-/// each one's face (body plus neck, degrees) and whether it moved over 0.5 m
-/// last cycle.
-pub fn before_decisions(sights: &mut [Sight], phase: u8, players: &[(f64, bool)]) {
-    for (sight, &(face, moved)) in sights.iter_mut().zip(players) {
-        sight.new_cycle();
-        for _ in 0..TICKS_BEFORE_THINK[phase as usize] {
-            sight.tick(face, moved);
-        }
-        // PlayerAgent::action: a see missed while synchronised breaks the synch.
-        if sight.is_synch() && sight.cycles_till_see == 0 && !sight.seen {
-            sight.timing = Timing::NoSynch;
-        }
     }
 }
 
@@ -548,7 +546,7 @@ mod tests {
         let mut widths = Vec::new();
         for cycle in 0..300u32 {
             let phase = (cycle % 3) as u8;
-            before_decisions(std::slice::from_mut(&mut s), phase, &[(0.0, false)]);
+            s.before_decision(phase, 0.0, false);
             assert!(s.seen, "cycle {cycle}: no see");
             s.act(phase, Neck::Scan, &o, 0.0, false);
             widths.push(s.width);
@@ -579,7 +577,7 @@ mod tests {
         let mut sees = 0;
         for cycle in 0..300u32 {
             let phase = (cycle % 3) as u8;
-            before_decisions(std::slice::from_mut(&mut s), phase, &[(0.0, false)]);
+            s.before_decision(phase, 0.0, false);
             sees += u32::from(s.seen);
             s.act(phase, Neck::Scan, &o, 0.0, false);
         }

@@ -2,7 +2,6 @@
 
 use crate::sim::kinematics::decay_sum;
 use crate::sim::params::*;
-use crate::sim::view::Sight;
 use glam::DVec2;
 
 /// The ball.
@@ -67,16 +66,7 @@ impl Player {
     }
 }
 
-/// One shot course: a goal-mouth target and the ball's first speed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ShotCourse {
-    /// Aim point on (or just behind) the goal line.
-    pub target: DVec2,
-    /// First ball speed (m/cycle).
-    pub speed: f64,
-}
-
-/// Everything that moves on the field, and what the agents carry between cycles.
+/// Everything that moves on the field, and the state of play around it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct World {
     /// The ball.
@@ -93,13 +83,6 @@ pub struct World {
     pub catch_mode: bool,
     /// agent2d's offside line as the attackers see it (spec 6.1.1).
     pub offside_line: f64,
-    /// Per offense agent: the first course of its most recent non-empty shot
-    /// search (spec 6.2.2). Like HFO's per-agent `ShootGenerator` storage it
-    /// survives episode resets; `None` until the agent's first such search.
-    pub last_shot: Vec<Option<ShotCourse>>,
-    /// Per offense agent: its view and seen-direction counts (spec 6.6),
-    /// which survive episode resets like the agent's world model.
-    pub sight: Vec<Sight>,
     /// The cycle within rcssserver's 3-cycle period of visual ticks.
     pub view_phase: u8,
 }
@@ -117,8 +100,6 @@ impl World {
             catch_ban: 0,
             catch_mode: false,
             offside_line: 0.0,
-            last_shot: vec![None; offense],
-            sight: vec![Sight::default(); offense],
             view_phase: 0,
         }
     }

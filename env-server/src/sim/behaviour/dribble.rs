@@ -314,6 +314,7 @@ mod tests {
     use super::*;
     use crate::sim::analysis::Analysis;
     use crate::sim::config::EnvConfig;
+    use crate::sim::memory::AgentMemory;
     use crate::sim::world::World;
 
     fn with_situation<T>(world: &World, f: impl FnOnce(&Situation) -> T) -> T {
@@ -324,6 +325,7 @@ mod tests {
             analysis: &analysis,
             config: &config,
             agent: 0,
+            memory: &AgentMemory::default(),
         })
     }
 

@@ -1,7 +1,7 @@
 //! The behaviours that turn high-level actions into one body command per
 //! cycle (spec sections 6 and 7). Every behaviour re-plans from scratch on
 //! the current state; what is carried between cycles is each agent's last
-//! shot course (spec 6.2.2) and view (spec 6.6), which the world stores.
+//! shot course (spec 6.2.2) and view (spec 6.6), its memory.
 
 mod body;
 mod dribble;
@@ -17,9 +17,9 @@ mod situation;
 mod smart_kick;
 pub mod tackle;
 
+use crate::sim::memory::ShotCourse;
 use crate::sim::physics::Command;
 use crate::sim::view::Neck;
-use crate::sim::world::ShotCourse;
 use proto::Action;
 
 pub use situation::Situation;

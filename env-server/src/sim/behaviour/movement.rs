@@ -23,7 +23,7 @@ pub fn command(s: &Situation) -> (Command, Neck) {
     // can kick; the scan once the agent's action chain exists, else nothing.
     let intercept_neck = if keeper_kickable {
         Neck::TurnToBall
-    } else if s.world.sight[s.agent].chain_ready {
+    } else if s.memory.sight.chain_ready {
         Neck::Scan
     } else {
         Neck::Keep
@@ -82,6 +82,7 @@ mod tests {
     use super::*;
     use crate::sim::analysis::Analysis;
     use crate::sim::config::EnvConfig;
+    use crate::sim::memory::AgentMemory;
     use crate::sim::world::{Player, World};
     use glam::DVec2;
 
@@ -99,6 +100,7 @@ mod tests {
             analysis: &analysis,
             config: &config,
             agent: 0,
+            memory: &AgentMemory::default(),
         };
         command(&s).0
     }

@@ -223,7 +223,7 @@ fn through_passes(s: &Situation, mate: &Player, consider: &mut impl FnMut(Route)
 /// within 10° either side of `angle` (radians) lately, every 5° bin within 9
 /// cycles and their average within 3 (`dirRangeCount(angle, 20)`).
 fn seen_lately(s: &Situation, angle: f64) -> bool {
-    let (max, average) = s.world.sight[s.agent].range_count(angle.to_degrees(), 20.0);
+    let (max, average) = s.memory.sight.range_count(angle.to_degrees(), 20.0);
     max <= 9 && average <= 3
 }
 
@@ -270,8 +270,10 @@ fn score(s: &Situation, route: Route) -> f64 {
     if (first - ball.vel).length() < MAX_KICK_POWER * kick_rate(me, ball.pos) {
         score *= 1.2;
     }
-    let (max_count, _) =
-        s.world.sight[s.agent].range_count(direction(q - me.pos).to_degrees(), 20.0);
+    let (max_count, _) = s
+        .memory
+        .sight
+        .range_count(direction(q - me.pos).to_degrees(), 20.0);
     score * 0.95f64.powi(i32::from(max_count))
 }
 
@@ -280,6 +282,8 @@ mod tests {
     use super::*;
     use crate::sim::analysis::Analysis;
     use crate::sim::config::EnvConfig;
+    use crate::sim::memory::AgentMemory;
+    use crate::sim::view::Sight;
     use crate::sim::world::World;
 
     /// Passer 0 at (10, 0) with the ball at its feet, teammate 1 at `mate`,
@@ -296,12 +300,18 @@ mod tests {
 
     /// `f` applied to agent 0's situation in `w`.
     fn in_situation<R>(w: &World, f: impl FnOnce(&Situation) -> R) -> R {
+        remembering(w, &AgentMemory::default(), f)
+    }
+
+    /// `f` applied to agent 0's situation in `w` with its memory `memory`.
+    fn remembering<R>(w: &World, memory: &AgentMemory, f: impl FnOnce(&Situation) -> R) -> R {
         let (a, config) = (Analysis::new(w), EnvConfig::default());
         f(&Situation {
             world: w,
             analysis: &a,
             config: &config,
             agent: 0,
+            memory,
         })
     }
 
@@ -371,10 +381,13 @@ mod tests {
     #[test]
     fn lead_and_through_passes_go_only_where_the_passer_looked_lately() {
         let routes = |count| {
-            let mut w = world(DVec2::new(20.0, 12.0), DVec2::new(50.0, 0.0));
-            w.sight[0] = crate::sim::view::Sight::with_counts(count);
+            let w = world(DVec2::new(20.0, 12.0), DVec2::new(50.0, 0.0));
+            let memory = AgentMemory {
+                sight: Sight::with_counts(count),
+                ..AgentMemory::default()
+            };
             let mut n = 0;
-            in_situation(&w, |s| {
+            remembering(&w, &memory, |s| {
                 lead_passes(s, &w.offense[1], &mut |_| n += 1);
                 through_passes(s, &w.offense[1], &mut |_| n += 1);
             });

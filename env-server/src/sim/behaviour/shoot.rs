@@ -6,9 +6,10 @@ use super::situation::Situation;
 use super::smart_kick::{planned_kick, smart_kick};
 use crate::sim::geom::{angle_diff, asin_clamped, ceil_usize, direction, unit};
 use crate::sim::kinematics::{DRIFT, dash_cycles, dash_distance, max_turn};
+use crate::sim::memory::ShotCourse;
 use crate::sim::params::*;
 use crate::sim::physics::{Command, kick_rate, max_kick_accel};
-use crate::sim::world::{Player, ShotCourse};
+use crate::sim::world::Player;
 use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -51,7 +52,7 @@ struct Search {
 pub fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
     let search = search(s, Want::Best);
     let first = search.first.map(|c| c.shot());
-    let command = match (search.best, s.world.last_shot[s.agent]) {
+    let command = match (search.best, s.memory.last_shot) {
         (Some(c), _) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
         (None, Some(c)) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
         (None, None) => long_shot(s),
@@ -412,6 +413,7 @@ mod tests {
     use super::*;
     use crate::sim::analysis::Analysis;
     use crate::sim::config::EnvConfig;
+    use crate::sim::memory::AgentMemory;
     use crate::sim::world::World;
 
     /// One attacker at `x` on the axis with the ball at its feet, the keeper at `keeper`.
@@ -423,21 +425,27 @@ mod tests {
         w
     }
 
-    fn situation<'a>(w: &'a World, a: &'a Analysis, config: &'a EnvConfig) -> Situation<'a> {
+    fn situation<'a>(
+        w: &'a World,
+        a: &'a Analysis,
+        config: &'a EnvConfig,
+        memory: &'a AgentMemory,
+    ) -> Situation<'a> {
         Situation {
             world: w,
             analysis: a,
             config,
             agent: 0,
+            memory,
         }
     }
 
     #[test]
     fn without_a_course_shoot_kicks_to_the_stale_course() {
-        let config = EnvConfig::default();
-        let mut w = world(5.0, GOAL_CENTER);
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
+        let w = world(5.0, GOAL_CENTER);
         let a = Analysis::new(&w);
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         assert!(
             search(&s, Want::Best).first.is_none(),
             "the keeper reaches every course"
@@ -447,8 +455,11 @@ mod tests {
             target: DVec2::new(PITCH_HALF_LENGTH, -5.5),
             speed: 2.2,
         };
-        w.last_shot[0] = Some(stale);
-        let s = situation(&w, &a, &config);
+        let remembered = AgentMemory {
+            last_shot: Some(stale),
+            ..AgentMemory::default()
+        };
+        let s = situation(&w, &a, &config, &remembered);
         let kick = smart_kick(s.me(), &w, stale.target, stale.speed, 0.99 * stale.speed);
         assert_eq!(command(&s), (kick, None));
         assert_ne!(kick, long_shot(&s));
@@ -456,10 +467,10 @@ mod tests {
 
     #[test]
     fn searches_report_their_first_course() {
-        let config = EnvConfig::default();
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
         let w = world(40.0, GOAL_CENTER);
         let a = Analysis::new(&w);
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         let (_, first) = command(&s);
         let first = first.expect("a course from 12 m");
         // HFO lists courses from the left post, slowest first.
@@ -468,7 +479,7 @@ mod tests {
         // Beyond 30 m only SHOOT's own search looks (the keeper is out of play).
         let w = world(20.0, DVec2::new(0.0, 30.0));
         let a = Analysis::new(&w);
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         assert!(command(&s).1.is_some());
         assert_eq!(check(&s), None);
     }
@@ -486,12 +497,13 @@ mod tests {
         let k = DVec2::new(41.5, 3.0);
         world.keeper = Player::new(k, direction(world.ball.pos - k));
         let analysis = Analysis::new(&world);
-        let config = EnvConfig::default();
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
         let s = Situation {
             world: &world,
             analysis: &analysis,
             config: &config,
             agent: 0,
+            memory: &memory,
         };
         let keeper = Keeper::new(&s);
         let ball = world.ball.pos;
@@ -524,32 +536,32 @@ mod tests {
 
     #[test]
     fn in_the_goalie_catch_mode_searches_stop_at_one_full_power_kick() {
-        let config = EnvConfig::default();
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
         let mut w = world(38.0, DVec2::new(50.0, 0.0));
         let a = Analysis::new(&w);
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         assert_eq!(speed_limit(&s), BALL_SPEED_MAX);
         let fastest = |s: &Situation| search(s, Want::Best).best.map(|c| c.speed);
         assert_eq!(fastest(&s), Some(BALL_SPEED_MAX));
         w.catch_mode = true;
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         let limit = MAX_KICK_POWER * kick_rate(s.me(), w.ball.pos);
         assert_eq!(speed_limit(&s), limit);
         assert!(fastest(&s).is_some_and(|v| v <= limit));
         // Beyond the server's kickable area the kick rate is 0: no course.
         w.ball.pos.x = 38.0 + KICKABLE_AREA + 0.01;
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         assert_eq!(speed_limit(&s), 0.0);
         assert!(search(&s, Want::Best).first.is_none());
     }
 
     #[test]
     fn dribble_in_the_goalie_catch_mode_only_shoots() {
-        let config = EnvConfig::default();
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
         let mut w = world(38.0, DVec2::new(51.0, 6.0));
         w.catch_mode = true;
         let a = Analysis::new(&w);
-        let s = situation(&w, &a, &config);
+        let s = situation(&w, &a, &config, &memory);
         let (kick, first) = strict_check(&s);
         let Command::Kick { power, .. } = kick else {
             panic!("a shot, not {kick:?}");
@@ -558,7 +570,7 @@ mod tests {
         assert!(first.is_some());
         // Beyond 30 m of the goal centre there is no command at all.
         let far = world(20.0, DVec2::new(51.0, 6.0));
-        let s = situation(&far, &a, &config);
+        let s = situation(&far, &a, &config, &memory);
         assert_eq!(strict_check(&s), (Command::None, None));
     }
 }

@@ -1,8 +1,9 @@
 //! What an offense behaviour reads: the state, this cycle's analysis, the
-//! settings and who is acting.
+//! settings and the acting agent's memory.
 
 use crate::sim::analysis::Analysis;
 use crate::sim::config::EnvConfig;
+use crate::sim::memory::AgentMemory;
 use crate::sim::world::{Player, World};
 
 /// What an offense behaviour sees: the state, its analysis and who is acting.
@@ -15,6 +16,8 @@ pub struct Situation<'a> {
     pub config: &'a EnvConfig,
     /// Index of the acting offense agent.
     pub agent: usize,
+    /// The acting agent's memory.
+    pub memory: &'a AgentMemory,
 }
 
 impl Situation<'_> {
