@@ -12,7 +12,7 @@ use crate::sim::params::*;
 use crate::sim::physics::{self, BALL_BODY, Command, PLAYER_BODY};
 use crate::sim::referee::{Outcome, Referee};
 use crate::sim::view::{self, Neck, Outlook};
-use crate::sim::world::World;
+use crate::sim::world::{Player, World};
 use glam::DVec2;
 use proto::{Action, State};
 use rand::SeedableRng;
@@ -188,14 +188,9 @@ impl Env {
 
     /// One server cycle (spec 2.1); `None` means the attackers are idle.
     fn cycle(&mut self, actions: Option<&[Action]>) {
-        let n = self.config.offense;
         update_offside_line(&mut self.world);
         for p in &mut self.world.offense {
-            if p.stamina < 4000.0 {
-                p.recover_mode = true;
-            } else if p.stamina > 5600.0 {
-                p.recover_mode = false;
-            }
+            update_recover_mode(p);
         }
         let analysis = Analysis::new(&self.world);
         let phase = self.world.view_phase;
@@ -203,11 +198,44 @@ impl Env {
             let sight = &mut memory.sight;
             sight.before_decision(phase, p.body.to_degrees() + sight.neck, view::moved(p.vel));
         }
+        let necks = self.decide_offense(&analysis, actions);
+        self.look_after_decisions(&analysis, actions, &necks);
+        self.world.view_phase = (phase + 1) % 3;
+        let n = self.config.offense;
+        self.commands[n] = if self.world.keeper.tackle_freeze > 0 {
+            Command::None
+        } else {
+            keeper::command(&self.world, &analysis, &self.keeper_memory)
+        };
+        let accels = self.apply_commands();
+        self.move_objects(&accels);
+        physics::resolve_collisions(&mut self.world, &mut self.rng);
+        self.outcome = self.referee.judge(&self.world);
+        for p in self
+            .world
+            .offense
+            .iter_mut()
+            .chain([&mut self.world.keeper])
+        {
+            physics::update_stamina(p);
+            p.tackle_freeze = p.tackle_freeze.saturating_sub(1);
+        }
+        self.world.catch_ban = self.world.catch_ban.saturating_sub(1);
+    }
+
+    /// Every attacker's body command for `actions` (none while idle or
+    /// frozen by a tackle), and the neck action each leaves; the courses
+    /// of this cycle's shot searches go to the agents' memories.
+    fn decide_offense(
+        &mut self,
+        analysis: &Analysis,
+        actions: Option<&[Action]>,
+    ) -> [Neck; MAX_OFFENSE] {
         let mut searched = [None; MAX_OFFENSE];
         let mut necks = [Neck::Scan; MAX_OFFENSE];
         // The world with the ball held still, made for the first agent that sees it so.
         let mut still: Option<(World, Analysis)> = None;
-        for agent in 0..n {
+        for agent in 0..self.config.offense {
             let idle = Decision {
                 command: Command::None,
                 shot: None,
@@ -221,7 +249,7 @@ impl Env {
                         let (w, a) = still.get_or_insert_with(|| ball_held_still(&self.world));
                         (&*w, &*a)
                     } else {
-                        (&self.world, &analysis)
+                        (&self.world, analysis)
                     };
                     offense_command(
                         &Situation {
@@ -243,8 +271,20 @@ impl Env {
                 memory.last_shot = course;
             }
         }
-        for agent in 0..n {
-            let outlook = outlook(&self.world, &analysis, agent, self.commands[agent]);
+        necks
+    }
+
+    /// Every attacker's view and neck actions after its body command, with
+    /// the sees due after the think message (spec 6.6).
+    fn look_after_decisions(
+        &mut self,
+        analysis: &Analysis,
+        actions: Option<&[Action]>,
+        necks: &[Neck; MAX_OFFENSE],
+    ) {
+        let phase = self.world.view_phase;
+        for agent in 0..self.config.offense {
+            let outlook = outlook(&self.world, analysis, agent, self.commands[agent]);
             let dribbled = actions.is_some_and(|a| a[agent] == Action::Dribble)
                 && self.world.agent_kickable(agent);
             let p = &self.world.offense[agent];
@@ -253,26 +293,6 @@ impl Env {
             sight.chain_ready |= dribbled;
             sight.act(phase, necks[agent], &outlook, body, moved);
         }
-        self.world.view_phase = (phase + 1) % 3;
-        self.commands[n] = if self.world.keeper.tackle_freeze > 0 {
-            Command::None
-        } else {
-            keeper::command(&self.world, &analysis, &self.keeper_memory)
-        };
-        let accels = self.apply_commands();
-        self.move_objects(&accels);
-        physics::resolve_collisions(&mut self.world, &mut self.rng);
-        self.outcome = self.referee.judge(&self.world);
-        for p in self
-            .world
-            .offense
-            .iter_mut()
-            .chain([&mut self.world.keeper])
-        {
-            physics::update_stamina(p);
-            p.tackle_freeze = p.tackle_freeze.saturating_sub(1);
-        }
-        self.world.catch_ban = self.world.catch_ban.saturating_sub(1);
     }
 
     /// Executes the commands (spec 2.1 step 2): kicks, tackles and the catch
@@ -356,6 +376,16 @@ impl Env {
     }
 }
 
+/// agent2d's recover mode of an attacker (spec 6.1.4): entered when its
+/// stamina runs low, left once it has recovered well above that.
+fn update_recover_mode(p: &mut Player) {
+    if p.stamina < 4000.0 {
+        p.recover_mode = true;
+    } else if p.stamina > 5600.0 {
+        p.recover_mode = false;
+    }
+}
+
 /// Whether agent `agent` takes the keeper to be on a moving ball that it
 /// cannot kick itself: librcsc then holds the ball still in its world model
 /// (`setOpponentControlEffect`), [`ball_held_still`].
@@ -412,7 +442,6 @@ fn outlook(world: &World, analysis: &Analysis, agent: usize, command: Command) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::world::Player;
 
     #[test]
     fn an_attacker_that_takes_the_keeper_to_be_on_the_ball_holds_it_still() {
