@@ -379,9 +379,9 @@ impl Env {
 /// agent2d's recover mode of an attacker (spec 6.1.4): entered when its
 /// stamina runs low, left once it has recovered well above that.
 fn update_recover_mode(p: &mut Player) {
-    if p.stamina < 4000.0 {
+    if p.stamina < RECOVER_MODE_ENTER {
         p.recover_mode = true;
-    } else if p.stamina > 5600.0 {
+    } else if p.stamina > RECOVER_MODE_LEAVE {
         p.recover_mode = false;
     }
 }

@@ -124,6 +124,10 @@ pub const EXTRA_STAMINA: f64 = 50.0;
 pub const EFFORT_MIN: f64 = 0.6;
 /// Recovery lower bound.
 pub const RECOVER_MIN: f64 = 0.5;
+/// Stamina below which an attacker enters agent2d's recover mode (spec 6.1.4).
+pub const RECOVER_MODE_ENTER: f64 = 4000.0;
+/// Stamina above which an attacker leaves agent2d's recover mode.
+pub const RECOVER_MODE_LEAVE: f64 = 5600.0;
 
 /// Normalisation box of the offense's own x (spec 1).
 pub const FEATURE_X_RANGE: (f64, f64) = (-0.1 * PITCH_HALF_LENGTH, 1.1 * PITCH_HALF_LENGTH);
