@@ -339,6 +339,22 @@ fn px(p: DVec2) -> (f64, f64) {
 
 /// Grass, the darker surround outside the HFO area, the lines and the goal.
 fn write_field(s: &mut String) -> std::fmt::Result {
+    write_grass(s)?;
+    write_goal(s)?;
+    write_pitch_lines(s)?;
+    write_coordinates(s)?;
+    for post in GOAL_POSTS {
+        let (x, y) = px(post);
+        writeln!(
+            s,
+            r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="white" stroke="#333" stroke-width="0.8"/>"##
+        )?;
+    }
+    Ok(())
+}
+
+/// The grass with its mowing stripes, darker outside the HFO area.
+fn write_grass(s: &mut String) -> std::fmt::Result {
     let (top, bottom) = (px_y(VIEW_Y.0), px_y(VIEW_Y.1));
     let (left, right) = (px_x(VIEW_X.0), px_x(VIEW_X.1));
     writeln!(
@@ -371,8 +387,11 @@ fn write_field(s: &mut String) -> std::fmt::Result {
     writeln!(
         s,
         r#"<path d="M{left},{top}H{right}V{bottom}H{left}Z M{ax0:.1},{ay0:.1}V{ay1:.1}H{ax1:.1}V{ay0:.1}Z" fill="black" fill-opacity="0.16" fill-rule="evenodd"/>"#
-    )?;
-    // The goal: net behind the line, posts on it.
+    )
+}
+
+/// The goal: its net behind the line and its outline.
+fn write_goal(s: &mut String) -> std::fmt::Result {
     let (gx0, gy0) = px(DVec2::new(PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH));
     let (gx1, gy1) = px(DVec2::new(PITCH_HALF_LENGTH + GOAL_DEPTH, GOAL_HALF_WIDTH));
     writeln!(
@@ -406,8 +425,12 @@ fn write_field(s: &mut String) -> std::fmt::Result {
     writeln!(
         s,
         r#"<path d="M{gx0:.1},{gy0:.1}H{gx1:.1}V{gy1:.1}H{gx0:.1}" fill="none" stroke="{LINE_COLOUR}" stroke-width="2.5"/>"#
-    )?;
-    // Pitch lines.
+    )
+}
+
+/// The HFO area's lines: its boundary, the penalty and goal areas, the
+/// centre circle's attacking half, the penalty arc and the two spots.
+fn write_pitch_lines(s: &mut String) -> std::fmt::Result {
     writeln!(
         s,
         r#"<g fill="none" stroke="{LINE_COLOUR}" stroke-width="2" stroke-opacity="0.92">"#
@@ -455,8 +478,11 @@ fn write_field(s: &mut String) -> std::fmt::Result {
     writeln!(
         s,
         r#"<circle cx="{sx:.1}" cy="{sy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#
-    )?;
-    // Coordinates in the margin: x below the field, y left of it.
+    )
+}
+
+/// Coordinates in the margin: x below the field, y left of it.
+fn write_coordinates(s: &mut String) -> std::fmt::Result {
     writeln!(
         s,
         r#"<g font-size="11" fill="white" fill-opacity="0.65" text-anchor="middle">"#
@@ -489,15 +515,7 @@ fn write_field(s: &mut String) -> std::fmt::Result {
             px_y(y) + 4.0
         )?;
     }
-    writeln!(s, "</g>")?;
-    for post in GOAL_POSTS {
-        let (x, y) = px(post);
-        writeln!(
-            s,
-            r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="white" stroke="#333" stroke-width="0.8"/>"##
-        )?;
-    }
-    Ok(())
+    writeln!(s, "</g>")
 }
 
 /// Radius of the centre circle and the penalty arc.
