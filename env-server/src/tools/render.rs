@@ -1,5 +1,6 @@
-//! Episode pictures: record one episode and draw it on the half field as an
-//! SVG document (writing it to a file, or as PNG, is the binary's job).
+//! Pictures on the half field as SVG documents: a recorded episode's paths
+//! ([`record_episode`], [`Trace::to_svg`]), or an [`Env`] as it stands
+//! ([`frame_svg`]). Writing them to a file, or as PNG, is the binary's job.
 //!
 //! The picture keeps the server's orientation (as rcssmonitor draws it): the
 //! attacked goal is on the right, +y points down.
@@ -15,7 +16,7 @@ use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
 use glam::DVec2;
 use std::fmt::Write as _;
 
-/// Who kicked.
+/// A player: who kicked, or whom a marker shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kicker {
     /// Offense agent `i` (in agent order).
@@ -109,11 +110,8 @@ impl Trace {
     /// "goal after 104 frames" and the like.
     pub fn summary(&self) -> String {
         let what = match self.outcome {
-            Outcome::Goal => "goal",
-            Outcome::Captured => "captured by the keeper",
-            Outcome::OutOfBounds => "ball out of bounds",
-            Outcome::OutOfTime => "out of time",
             Outcome::InGame => "unfinished",
+            ended => outcome_words(ended),
         };
         let s = if self.frames == 1 { "" } else { "s" };
         format!("{what} after {} frame{s}", self.frames)
@@ -128,17 +126,13 @@ impl Trace {
     }
 
     fn write_svg(&self, s: &mut String) -> std::fmt::Result {
-        let (w, h) = (px_x(VIEW_X.1).round(), px_y(VIEW_Y.1).round());
-        writeln!(
-            s,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="{FONT}">"#
-        )?;
+        let w = write_svg_start(s)?;
         self.write_header(s, w)?;
         write_field(s)?;
         // Paths: keeper first, then the offense, the ball on top.
         write_path(s, &self.keeper, KEEPER_COLOUR, 2.4, 1.0)?;
         for (i, path) in self.offense.iter().enumerate() {
-            write_path(s, path, self.colour(Kicker::Offense(i)), 2.4, 1.0)?;
+            write_path(s, path, colour(Kicker::Offense(i)), 2.4, 1.0)?;
         }
         write_path(s, &self.ball, "#111", 4.6, 0.45)?;
         write_path(s, &self.ball, BALL_COLOUR, 2.0, 1.0)?;
@@ -147,7 +141,7 @@ impl Trace {
         }
         for kick in &self.kicks {
             if let Some(&p) = self.ball.get(kick.state) {
-                write_star(s, p, self.colour(kick.by))?;
+                write_star(s, p, colour(kick.by))?;
             }
         }
         // Start markers under the end markers.
@@ -158,7 +152,7 @@ impl Trace {
             .map(|(i, p)| (p, Kicker::Offense(i)));
         let players: Vec<_> = players
             .chain([(&self.keeper, Kicker::Keeper)])
-            .map(|(path, who)| (path, self.colour(who), self.label(who)))
+            .map(|(path, who)| (path, colour(who), label(self.offense.len(), who)))
             .collect();
         for (path, colour, label) in &players {
             if let Some(&p) = path.first() {
@@ -187,63 +181,26 @@ impl Trace {
         writeln!(s, "</svg>")
     }
 
-    /// The colour of a player.
-    fn colour(&self, who: Kicker) -> &'static str {
-        match who {
-            Kicker::Offense(i) => OFFENSE_COLOURS[i % OFFENSE_COLOURS.len()],
-            Kicker::Keeper => KEEPER_COLOUR,
-        }
-    }
-
-    /// The label of a player: its uniform number, "GK" for the keeper.
-    fn label(&self, who: Kicker) -> String {
-        match who {
-            Kicker::Offense(i) => {
-                let unums = offense_unums(self.offense.len().min(MAX_OFFENSE));
-                unums
-                    .get(i)
-                    .map_or_else(|| (i + 1).to_string(), u8::to_string)
-            }
-            Kicker::Keeper => "GK".to_owned(),
-        }
-    }
-
     /// The title band: outcome, run, legend.
     fn write_header(&self, s: &mut String, w: f64) -> std::fmt::Result {
-        writeln!(
-            s,
-            r#"<rect width="{w}" height="{HEADER}" fill="{HEADER_COLOUR}"/>"#
-        )?;
-        let colour = match self.outcome {
-            Outcome::Goal => "#8ef58e",
-            Outcome::Captured => "#ff8080",
-            Outcome::OutOfBounds => "#ffc266",
-            Outcome::OutOfTime | Outcome::InGame => "#d8d8d8",
-        };
-        let mut title = self.summary();
-        title[..1].make_ascii_uppercase();
-        writeln!(
-            s,
-            r#"<text x="18" y="34" font-size="23" font-weight="bold" fill="{colour}">{title}</text>"#
-        )?;
         let n = self.offense.len();
-        writeln!(
-            s,
-            r##"<text x="18" y="58" font-size="14" fill="#e8efe8">policy {} · {n} offense vs keeper · seed {} · episode {} · {} kick{}</text>"##,
+        let detail = format!(
+            "policy {} · {n} offense vs keeper · seed {} · episode {} · {} kick{}",
             self.policy,
             self.seed,
             self.episode,
             self.kicks.len(),
             if self.kicks.len() == 1 { "" } else { "s" }
-        )?;
+        );
+        write_title(s, w, &self.summary(), self.outcome, &detail)?;
         // Legend, one row.
         let y = 86.0;
         let mut x = 18.0;
         let mut items: Vec<_> = (0..n)
             .map(|i| {
                 (
-                    self.colour(Kicker::Offense(i)),
-                    format!("#{}", self.label(Kicker::Offense(i))),
+                    colour(Kicker::Offense(i)),
+                    format!("#{}", label(n, Kicker::Offense(i))),
                 )
             })
             .collect();
@@ -304,6 +261,51 @@ pub fn record_episode(
     Ok(trace)
 }
 
+/// A picture of `env` as it stands: every player (labelled, with a tick
+/// along its body direction) and the ball on the half field, the frame and
+/// the outcome so far in the title band.
+pub fn frame_svg(env: &Env) -> String {
+    let mut out = String::new();
+    write_frame(&mut out, env).expect("writing to a String cannot fail");
+    out
+}
+
+fn write_frame(s: &mut String, env: &Env) -> std::fmt::Result {
+    let w = write_svg_start(s)?;
+    let world = env.world();
+    let n = world.offense.len();
+    let title = match env.outcome() {
+        Outcome::InGame => format!("in play at frame {}", env.frame()),
+        ended => format!("{} at frame {}", outcome_words(ended), env.frame()),
+    };
+    write_title(
+        s,
+        w,
+        &title,
+        env.outcome(),
+        &format!("{n} offense vs keeper"),
+    )?;
+    write_field(s)?;
+    let players = world.offense.iter().enumerate();
+    let players = players.map(|(i, p)| (p, Kicker::Offense(i)));
+    for (p, who) in players.chain([(&world.keeper, Kicker::Keeper)]) {
+        let (x, y) = px(p.pos);
+        let (tx, ty) = px(p.pos + (MARKER + 5.0) / SCALE * DVec2::from_angle(p.body));
+        writeln!(
+            s,
+            r#"<line x1="{x:.1}" y1="{y:.1}" x2="{tx:.1}" y2="{ty:.1}" stroke="{}" stroke-width="3" stroke-linecap="round"/>"#,
+            colour(who)
+        )?;
+        write_end(s, p.pos, colour(who), &label(n, who))?;
+    }
+    let (x, y) = px(world.ball.pos);
+    writeln!(
+        s,
+        r##"<circle cx="{x:.1}" cy="{y:.1}" r="5" fill="{BALL_COLOUR}" stroke="#111" stroke-width="1.5"/>"##
+    )?;
+    writeln!(s, "</svg>")
+}
+
 // ---------------------------------------------------------------------------
 // Drawing.
 
@@ -335,6 +337,80 @@ fn px_y(y: f64) -> f64 {
 
 fn px(p: DVec2) -> (f64, f64) {
     (px_x(p.x), px_y(p.y))
+}
+
+/// The opening `<svg>` tag; returns the picture's width.
+fn write_svg_start(s: &mut String) -> Result<f64, std::fmt::Error> {
+    let (w, h) = (px_x(VIEW_X.1).round(), px_y(VIEW_Y.1).round());
+    writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="{FONT}">"#
+    )?;
+    Ok(w)
+}
+
+/// The title band of a `w`-pixel wide picture: `title` (capitalised) in the
+/// colour of `outcome`, and a line of `detail` below it.
+fn write_title(
+    s: &mut String,
+    w: f64,
+    title: &str,
+    outcome: Outcome,
+    detail: &str,
+) -> std::fmt::Result {
+    writeln!(
+        s,
+        r#"<rect width="{w}" height="{HEADER}" fill="{HEADER_COLOUR}"/>"#
+    )?;
+    let colour = match outcome {
+        Outcome::Goal => "#8ef58e",
+        Outcome::Captured => "#ff8080",
+        Outcome::OutOfBounds => "#ffc266",
+        Outcome::OutOfTime | Outcome::InGame => "#d8d8d8",
+    };
+    let mut title = title.to_owned();
+    title[..1].make_ascii_uppercase();
+    writeln!(
+        s,
+        r#"<text x="18" y="34" font-size="23" font-weight="bold" fill="{colour}">{title}</text>"#
+    )?;
+    writeln!(
+        s,
+        r##"<text x="18" y="58" font-size="14" fill="#e8efe8">{detail}</text>"##
+    )
+}
+
+/// How an episode ended, in words.
+fn outcome_words(outcome: Outcome) -> &'static str {
+    match outcome {
+        Outcome::Goal => "goal",
+        Outcome::Captured => "captured by the keeper",
+        Outcome::OutOfBounds => "ball out of bounds",
+        Outcome::OutOfTime => "out of time",
+        Outcome::InGame => "in play",
+    }
+}
+
+/// The colour of a player.
+fn colour(who: Kicker) -> &'static str {
+    match who {
+        Kicker::Offense(i) => OFFENSE_COLOURS[i % OFFENSE_COLOURS.len()],
+        Kicker::Keeper => KEEPER_COLOUR,
+    }
+}
+
+/// The label of a player among `offense` attackers: its uniform number,
+/// "GK" for the keeper.
+fn label(offense: usize, who: Kicker) -> String {
+    match who {
+        Kicker::Offense(i) => {
+            let unums = offense_unums(offense.min(MAX_OFFENSE));
+            unums
+                .get(i)
+                .map_or_else(|| (i + 1).to_string(), u8::to_string)
+        }
+        Kicker::Keeper => "GK".to_owned(),
+    }
 }
 
 /// Grass, the darker surround outside the HFO area, the lines and the goal.
@@ -650,6 +726,7 @@ fn legend_text(s: &mut String, x: f64, y: f64, text: &str) -> Result<f64, std::f
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proto::Action;
 
     fn trace(seed: u64, episode: u64) -> Trace {
         record_episode(EnvConfig::default(), BaselinePolicy::Random, seed, episode).unwrap()
@@ -680,6 +757,36 @@ mod tests {
             !t.kicks.is_empty(),
             "a random episode has at least the first kick"
         );
+    }
+
+    #[test]
+    fn a_frame_draws_every_player_where_it_stands() {
+        let mut env = Env::new(EnvConfig::default(), 5).unwrap();
+        env.reset();
+        let svg = frame_svg(&env);
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        assert!(svg.contains(">In play at frame 0<"), "{svg}");
+        assert!(svg.contains("3 offense vs keeper"));
+        assert_eq!(svg.matches(r#"class="end""#).count(), 3 + 1);
+        for label in [">7<", ">8<", ">11<", ">GK<"] {
+            assert!(svg.contains(label), "{label}");
+        }
+        let world = env.world();
+        for p in world.players() {
+            let (x, y) = px(p.pos);
+            assert!(svg.contains(&format!(r#"cx="{x:.1}" cy="{y:.1}""#)));
+        }
+        // The picture follows the episode to its end.
+        let mut rng = policy_rng(5);
+        let mut actions = [Action::Move; 3];
+        while !env.step(&actions).is_terminal() {
+            for (i, a) in actions.iter_mut().enumerate() {
+                *a = BaselinePolicy::Shoot.choose(env.can_kick(i), &mut rng);
+            }
+        }
+        let end = frame_svg(&env);
+        let title = format!("{} at frame {}<", outcome_words(env.outcome()), env.frame());
+        assert!(end.contains(&title[1..]), "{title}");
     }
 
     #[test]
