@@ -5,7 +5,8 @@ use crate::sim::world::World;
 use glam::DVec2;
 use serde::Serialize;
 
-/// How a cycle left the episode.
+/// How a cycle left the episode: HFO's statuses (without its
+/// `SERVER_DOWN`), captured meaning `CAPTURED_BY_DEFENSE`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Outcome {
@@ -43,6 +44,17 @@ impl Outcome {
         Outcome::OutOfBounds,
         Outcome::OutOfTime,
     ];
+
+    /// HFO's name of this status, as its `statusToString` prints it.
+    pub fn hfo_status(self) -> &'static str {
+        match self {
+            Outcome::InGame => "InGame",
+            Outcome::Goal => "Goal",
+            Outcome::Captured => "CapturedByDefense",
+            Outcome::OutOfBounds => "OutOfBounds",
+            Outcome::OutOfTime => "OutOfTime",
+        }
+    }
 
     /// Snake-case name used in reports.
     pub fn name(self) -> &'static str {
@@ -180,6 +192,17 @@ mod tests {
         }
         assert_eq!(r.judge(&w), Outcome::OutOfTime);
         assert_eq!(r.cycle, 102);
+    }
+
+    #[test]
+    fn outcomes_are_named_as_hfo_names_its_statuses() {
+        assert_eq!(
+            Outcome::TERMINAL.map(Outcome::hfo_status),
+            ["Goal", "CapturedByDefense", "OutOfBounds", "OutOfTime"]
+        );
+        assert_eq!(Outcome::InGame.hfo_status(), "InGame");
+        assert!(Outcome::TERMINAL.iter().all(|o| o.is_terminal()));
+        assert!(!Outcome::InGame.is_terminal());
     }
 
     #[test]
