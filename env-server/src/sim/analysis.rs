@@ -14,36 +14,36 @@ use glam::DVec2;
 /// Longest ball path considered by the intercept table.
 const CACHE_LEN: usize = 31;
 /// Reach cycles beyond which a player is considered unable to get the ball.
-pub const NO_REACH: usize = 1000;
+pub(crate) const NO_REACH: usize = 1000;
 
 /// The per-cycle analysis of a world.
 #[derive(Clone, Debug)]
-pub struct Analysis {
+pub(crate) struct Analysis {
     /// Ball positions b_0, b_1, ... without kicks (spec 6.1.2).
-    pub ball_path: [DVec2; CACHE_LEN],
+    pub(crate) ball_path: [DVec2; CACHE_LEN],
     /// Number of valid entries of `ball_path`.
-    pub path_len: usize,
+    pub(crate) path_len: usize,
     /// The ball's heading as the own estimates read it ([`self_intercept::heading`]).
     heading: DVec2,
     /// Reach cycle of each offense agent as the other players estimate it.
-    pub reach: [usize; MAX_OFFENSE],
+    pub(crate) reach: [usize; MAX_OFFENSE],
     /// Reach cycle of each offense agent as it estimates its own (`self_min`).
-    pub own_reach: [usize; MAX_OFFENSE],
+    pub(crate) own_reach: [usize; MAX_OFFENSE],
     /// Where each offense agent's own reach was found.
     own_found: [Found; MAX_OFFENSE],
     /// Reach cycle of the goalkeeper as the attackers estimate it.
-    pub keeper_reach: usize,
+    pub(crate) keeper_reach: usize,
     /// Reach cycle of the goalkeeper as it estimates its own (`self_min`).
-    pub keeper_own_reach: usize,
+    pub(crate) keeper_own_reach: usize,
     /// Where the goalkeeper's own reach was found.
     keeper_own_found: Found,
     /// Formation target of each offense agent after the offside clip.
-    pub home: [DVec2; MAX_OFFENSE],
+    pub(crate) home: [DVec2; MAX_OFFENSE],
 }
 
 impl Analysis {
     /// Analyses `world` (whose offside line must be up to date).
-    pub fn new(world: &World) -> Self {
+    pub(crate) fn new(world: &World) -> Self {
         let mut analysis = Analysis::for_keeper(world);
         let path = &analysis.ball_path[..analysis.path_len];
         for (i, p) in world.offense.iter().enumerate() {
@@ -83,7 +83,7 @@ impl Analysis {
     /// What the keeper reads of `world`: the ball's path, every reach cycle
     /// as the others see it and the keeper's own; the attackers' own reach
     /// (`NO_REACH`) and formation targets (zero) are left out.
-    pub fn for_keeper(world: &World) -> Self {
+    pub(crate) fn for_keeper(world: &World) -> Self {
         let (ball_path, path_len) = ball_path(world);
         let path = &ball_path[..path_len];
         let path_heading = path_heading(path);
@@ -111,7 +111,7 @@ impl Analysis {
 
     /// Offense agent `agent`'s self-interception cache in `world`, the
     /// world this analysis was made of ([`self_intercept::predict`]).
-    pub fn own_cache(&self, world: &World, agent: usize) -> Vec<Interception> {
+    pub(crate) fn own_cache(&self, world: &World, agent: usize) -> Vec<Interception> {
         let p = &world.offense[agent];
         let found = self.own_found[agent];
         self_intercept::predict_from(p, &world.ball, self.heading, self.path(), false, found)
@@ -119,13 +119,13 @@ impl Analysis {
 
     /// The goalkeeper's self-interception cache in `world`, the world this
     /// analysis was made of.
-    pub fn keeper_cache(&self, world: &World) -> Vec<Interception> {
+    pub(crate) fn keeper_cache(&self, world: &World) -> Vec<Interception> {
         let (k, path, found) = (&world.keeper, self.path(), self.keeper_own_found);
         self_intercept::predict_from(k, &world.ball, self.heading, path, true, found)
     }
 
     /// The ball's predicted path.
-    pub fn path(&self) -> &[DVec2] {
+    pub(crate) fn path(&self) -> &[DVec2] {
         &self.ball_path[..self.path_len]
     }
 
@@ -136,12 +136,12 @@ impl Analysis {
     }
 
     /// Ball position after `t` cycles (the last known point beyond the path).
-    pub fn ball_at(&self, t: usize) -> DVec2 {
+    pub(crate) fn ball_at(&self, t: usize) -> DVec2 {
         self.ball_path[t.min(self.path_len - 1)]
     }
 
     /// Fastest reach cycle among agent `i`'s teammates.
-    pub fn mate_reach(&self, i: usize) -> usize {
+    pub(crate) fn mate_reach(&self, i: usize) -> usize {
         self.reach
             .iter()
             .enumerate()
@@ -152,13 +152,13 @@ impl Analysis {
     }
 
     /// Fastest reach cycle of any attacker (the keeper's `opp_min`).
-    pub fn attacker_reach(&self) -> usize {
+    pub(crate) fn attacker_reach(&self) -> usize {
         self.reach.iter().copied().min().unwrap_or(NO_REACH)
     }
 }
 
 /// Updates agent2d's offside line as the attackers see it (spec 6.1.1 step 3).
-pub fn update_offside_line(world: &mut World) {
+pub(crate) fn update_offside_line(world: &mut World) {
     let prev = world.offside_line;
     let fallback = if prev > 5.0 && prev <= 13.0 {
         prev - 1.0
@@ -220,7 +220,7 @@ fn path_heading(path: &[DVec2]) -> Option<DVec2> {
 /// keeper's control area inside its penalty area. A ball under control is
 /// reached at once. The walk starts at the cycles the player needs at full
 /// speed to cover its offset from the ball's line of travel.
-pub fn reach_cycle(
+pub(crate) fn reach_cycle(
     p: &Player,
     path: &[DVec2],
     heading: Option<DVec2>,

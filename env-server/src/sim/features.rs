@@ -11,7 +11,7 @@ use proto::State;
 use std::f64::consts::{FRAC_PI_4, PI};
 
 /// `norm(v, lo, hi)`: clamps `v` to `[lo, hi]` and maps it to `[-1, 1]`.
-pub fn norm(v: f64, lo: f64, hi: f64) -> f64 {
+pub(crate) fn norm(v: f64, lo: f64, hi: f64) -> f64 {
     2.0 * (v.clamp(lo, hi) - lo) / (hi - lo) - 1.0
 }
 
@@ -42,7 +42,7 @@ fn largest_open_angle(from: DVec2, bottom: f64, top: f64, keeper: DVec2, max_dis
 }
 
 /// Largest open angle of the goal mouth seen from `p` (radians).
-pub fn goal_opening(p: DVec2, keeper: DVec2) -> f64 {
+pub(crate) fn goal_opening(p: DVec2, keeper: DVec2) -> f64 {
     let bottom = direction(DVec2::new(PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH) - p);
     let top = direction(DVec2::new(PITCH_HALF_LENGTH, GOAL_HALF_WIDTH) - p);
     largest_open_angle(p, bottom, top, keeper, 99999.0)
@@ -75,7 +75,7 @@ pub fn unum_feature_indices(offense: usize) -> impl Iterator<Item = usize> {
 
 /// The full high-level feature vector of offense agent `agent` (spec 5.3);
 /// teammates appear in ascending uniform number.
-pub fn high_level(world: &World, agent: usize) -> Vec<f64> {
+pub(crate) fn high_level(world: &World, agent: usize) -> Vec<f64> {
     let me = &world.offense[agent];
     let s = me.pos;
     let k = world.keeper.pos;
@@ -124,7 +124,7 @@ pub fn high_level(world: &World, agent: usize) -> Vec<f64> {
 }
 
 /// The goal opening (normalised) of every offense player, for [`paper_state`].
-pub fn goal_openings(world: &World) -> [f64; MAX_OFFENSE] {
+pub(crate) fn goal_openings(world: &World) -> [f64; MAX_OFFENSE] {
     let mut openings = [0.0; MAX_OFFENSE];
     for (o, p) in openings.iter_mut().zip(&world.offense) {
         *o = norm_open_angle(goal_opening(p.pos, world.keeper.pos));
@@ -136,7 +136,7 @@ pub fn goal_openings(world: &World) -> [f64; MAX_OFFENSE] {
 /// goal angle, goal opening, then the goal openings of the nearest and the
 /// farthest teammate (docs/algorithms.md section 1; -1 when there is no
 /// teammate); `openings` are [`goal_openings`] of `world`.
-pub fn paper_state(world: &World, openings: &[f64; MAX_OFFENSE], agent: usize) -> State {
+pub(crate) fn paper_state(world: &World, openings: &[f64; MAX_OFFENSE], agent: usize) -> State {
     let me = world.offense[agent].pos;
     let mut nearest: Option<(f64, usize)> = None;
     let mut farthest: Option<(f64, usize)> = None;

@@ -200,7 +200,7 @@ fn sample_homes(i: usize) -> [DVec2; 3] {
 /// Home positions of players 7, 8 and 11 for the focus point `focus`:
 /// barycentric interpolation in the Delaunay triangle holding it, or the
 /// nearest sample outside the hull.
-pub fn home_positions(focus: DVec2) -> [DVec2; 3] {
+pub(crate) fn home_positions(focus: DVec2) -> [DVec2; 3] {
     let f = formation();
     let (cx, cy) = cell_of(focus);
     for &k in &f.cells[cy * GRID_W + cx] {
@@ -223,14 +223,14 @@ pub fn home_positions(focus: DVec2) -> [DVec2; 3] {
 }
 
 /// Uniform numbers of the offense players for each team size (HFO's order [11, 7, 8, 9, ...], sorted).
-pub fn offense_unums(offense: usize) -> &'static [u8] {
+pub(crate) fn offense_unums(offense: usize) -> &'static [u8] {
     const UNUMS: [&[u8]; MAX_OFFENSE + 1] = [&[], &[11], &[7, 11], &[7, 8, 11], &[7, 8, 9, 11]];
     UNUMS[offense]
 }
 
 /// Home positions of players 7, 8, 9 and 11 in the goalie-catch mode (spec
 /// 4.5): HFO's static `goalie-catch-opp.conf`, whatever the ball does.
-pub fn catch_home(unum: u8) -> DVec2 {
+pub(crate) fn catch_home(unum: u8) -> DVec2 {
     match unum {
         7 => DVec2::new(10.0, -12.0),
         8 => DVec2::new(10.0, 12.0),

@@ -5,7 +5,7 @@ use rand::Rng;
 use std::f64::consts::{PI, TAU};
 
 /// Wraps an angle (radians) into `(-π, π]`.
-pub fn normalize_angle(a: f64) -> f64 {
+pub(crate) fn normalize_angle(a: f64) -> f64 {
     let mut a = if a.abs() <= 3.0 * PI { a } else { a % TAU };
     if a > PI {
         a -= TAU;
@@ -19,38 +19,38 @@ pub fn normalize_angle(a: f64) -> f64 {
 // system library here and bit-identical on every platform.
 
 /// The vector of length `r` in direction `angle`.
-pub fn polar(r: f64, angle: f64) -> DVec2 {
+pub(crate) fn polar(r: f64, angle: f64) -> DVec2 {
     let (s, c) = libm::sincos(angle);
     DVec2::new(r * c, r * s)
 }
 
 /// The unit vector in direction `angle`.
-pub fn unit(angle: f64) -> DVec2 {
+pub(crate) fn unit(angle: f64) -> DVec2 {
     polar(1.0, angle)
 }
 
 /// Global direction of `v` (radians).
-pub fn direction(v: DVec2) -> f64 {
+pub(crate) fn direction(v: DVec2) -> f64 {
     libm::atan2(v.y, v.x)
 }
 
 /// `asin(x)` for `x` clamped to at most 1.
-pub fn asin_clamped(x: f64) -> f64 {
+pub(crate) fn asin_clamped(x: f64) -> f64 {
     libm::asin(x.min(1.0))
 }
 
 /// Absolute angle between two directions, in `[0, π]`.
-pub fn angle_diff(a: f64, b: f64) -> f64 {
+pub(crate) fn angle_diff(a: f64, b: f64) -> f64 {
     normalize_angle(a - b).abs()
 }
 
 /// A uniform draw in `[lo, hi)`.
-pub fn uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
+pub(crate) fn uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
     lo + (hi - lo) * rng.random::<f64>()
 }
 
 /// Noise vector `polar(U(0, max), U(-π, π))`, as rcssserver adds to velocities and kicks.
-pub fn polar_noise(rng: &mut impl Rng, max: f64) -> DVec2 {
+pub(crate) fn polar_noise(rng: &mut impl Rng, max: f64) -> DVec2 {
     if max <= 0.0 {
         return DVec2::ZERO;
     }
@@ -61,7 +61,7 @@ pub fn polar_noise(rng: &mut impl Rng, max: f64) -> DVec2 {
 
 /// `x.ceil() as usize` without the call to `ceil` that targets without
 /// SSE4.1 make (bit for bit the same, 0 for negative `x`).
-pub fn ceil_usize(x: f64) -> usize {
+pub(crate) fn ceil_usize(x: f64) -> usize {
     let floor = x as usize;
     floor + usize::from((floor as f64) < x)
 }

@@ -6,13 +6,13 @@ use crate::sim::params::{BALL_DECAY, INERTIA_MOMENT, PLAYER_DECAY};
 
 /// Sum of the geometric series `v0 + v0·d + ... ` over `n` terms: distance a
 /// decaying object travels in `n` cycles per unit of initial speed.
-pub fn decay_sum(decay: f64, n: u32) -> f64 {
+pub(crate) fn decay_sum(decay: f64, n: u32) -> f64 {
     (1.0 - decay_pow(decay, n)) / (1.0 - decay)
 }
 
 /// `decay.powi(n)`, bit for bit, from a table for the ball's and the
 /// players' decay.
-pub fn decay_pow(decay: f64, n: u32) -> f64 {
+pub(crate) fn decay_pow(decay: f64, n: u32) -> f64 {
     let table = if decay == PLAYER_DECAY {
         &PLAYER_POWERS
     } else if decay == BALL_DECAY {
@@ -61,7 +61,7 @@ const DASH_DISTANCE: [f64; 11] = [
 ];
 
 /// Distance covered by `n` full-power dashes from rest.
-pub fn dash_distance(n: usize) -> f64 {
+pub(crate) fn dash_distance(n: usize) -> f64 {
     match DASH_DISTANCE.get(n) {
         Some(d) => *d,
         None => DASH_DISTANCE[10] + (n - 10) as f64,
@@ -69,7 +69,7 @@ pub fn dash_distance(n: usize) -> f64 {
 }
 
 /// Fewest full-power dashes from rest that cover `dist` (0 for `dist <= 0`).
-pub fn dash_cycles(dist: f64) -> usize {
+pub(crate) fn dash_cycles(dist: f64) -> usize {
     if dist <= 0.0 {
         return 0;
     }
@@ -80,7 +80,7 @@ pub fn dash_cycles(dist: f64) -> usize {
 }
 
 /// Largest effective turn (radians) of a player moving at `speed`.
-pub fn max_turn(speed: f64) -> f64 {
+pub(crate) fn max_turn(speed: f64) -> f64 {
     std::f64::consts::PI / (1.0 + INERTIA_MOMENT * speed)
 }
 
@@ -88,7 +88,7 @@ pub fn max_turn(speed: f64) -> f64 {
 const DRIFT_LEN: usize = 31;
 
 /// Precomputed `(1 - 0.4^t) / 0.6`: a player's drift per unit velocity after t cycles.
-pub const DRIFT: [f64; DRIFT_LEN] = {
+pub(crate) const DRIFT: [f64; DRIFT_LEN] = {
     let mut d = [0.0; DRIFT_LEN];
     let mut pow = 1.0;
     let mut t = 0;

@@ -1,23 +1,19 @@
-//! The simulation core. Modules follow one cycle's data flow: [`world`]
-//! holds the state, [`analysis`] derives what every behaviour reads (reach
-//! cycles, formation), [`behaviour`] turns actions into body commands,
-//! [`view`] moves the attackers' necks and counts where they looked,
-//! [`physics`] executes the commands, [`referee`] ends episodes and
-//! [`features`] describes the state to the agents; [`env`](mod@env) ties
-//! them together, with the settings of [`config`].
+//! The simulation core: the state, the agents' and the keeper's
+//! behaviours, the server's models and the referee, tied together by
+//! [`env::Env`].
 
-pub mod analysis;
-pub mod behaviour;
-pub mod config;
-pub mod env;
+pub(crate) mod analysis;
+pub(crate) mod behaviour;
+pub(crate) mod config;
+pub(crate) mod env;
 pub mod features;
-pub mod formation;
-pub mod geom;
-pub mod kinematics;
-pub mod memory;
+pub(crate) mod formation;
+pub(crate) mod geom;
+pub(crate) mod kinematics;
+pub(crate) mod memory;
 pub mod params;
-pub mod physics;
-pub mod referee;
-pub mod self_intercept;
-pub mod view;
-pub mod world;
+pub(crate) mod physics;
+pub(crate) mod referee;
+pub(crate) mod self_intercept;
+pub(crate) mod view;
+pub(crate) mod world;

@@ -137,12 +137,12 @@ pub const FEATURE_Y_RANGE: (f64, f64) = (-1.1 * PITCH_HALF_WIDTH, 1.1 * PITCH_HA
 pub const MAX_HFO_DISTANCE: f64 = 62.547_981_582_142_2;
 
 /// Whether `p` lies inside the HFO play area for the ball (`0 <= x <= 52.5`, `|y| <= 34`).
-pub fn in_hfo_area(p: DVec2) -> bool {
+pub(crate) fn in_hfo_area(p: DVec2) -> bool {
     p.x >= 0.0 && p.x <= PITCH_HALF_LENGTH && p.y.abs() <= PITCH_HALF_WIDTH
 }
 
 /// Whether `p` lies inside the attacked penalty area.
-pub fn in_penalty_area(p: DVec2) -> bool {
+pub(crate) fn in_penalty_area(p: DVec2) -> bool {
     p.x > PENALTY_AREA_X && p.y.abs() < PENALTY_AREA_HALF_WIDTH
 }
 

@@ -13,21 +13,38 @@ pub enum Command {
     /// No body command.
     #[default]
     None,
-    /// Dash with `power` in `[-100, 100]` towards `dir` (radians, relative to the body).
-    Dash { power: f64, dir: f64 },
-    /// Turn by the moment `moment` (radians).
-    Turn { moment: f64 },
-    /// Kick with `power` in `[0, 100]` towards `dir` (radians, relative to the body).
-    Kick { power: f64, dir: f64 },
+    /// Dash.
+    Dash {
+        /// Power, `-100..=100` (negative: backwards).
+        power: f64,
+        /// Direction, radians relative to the body.
+        dir: f64,
+    },
+    /// Turn.
+    Turn {
+        /// Moment, radians.
+        moment: f64,
+    },
+    /// Kick.
+    Kick {
+        /// Power, `0..=100`.
+        power: f64,
+        /// Direction, radians relative to the body.
+        dir: f64,
+    },
     /// Goalkeeper catch aimed at the ball.
     Catch,
-    /// Tackle towards `dir` (radians, relative to the body); `foul` asks for
-    /// the server's foul tackle (spec 3.5).
-    Tackle { dir: f64, foul: bool },
+    /// Tackle.
+    Tackle {
+        /// Direction, radians relative to the body.
+        dir: f64,
+        /// Whether to ask for the server's foul tackle (spec 3.5).
+        foul: bool,
+    },
 }
 
 /// Effective kick power per unit of power for `player` and the ball at `ball` (spec 3.1).
-pub fn kick_rate(player: &Player, ball: DVec2) -> f64 {
+pub(crate) fn kick_rate(player: &Player, ball: DVec2) -> f64 {
     let rel = ball - player.pos;
     let dir_diff = angle_diff(direction(rel), player.body);
     let dist_ball = (rel.length() - PLAYER_SIZE - BALL_SIZE).max(0.0);
@@ -35,12 +52,12 @@ pub fn kick_rate(player: &Player, ball: DVec2) -> f64 {
 }
 
 /// Largest change of ball velocity one kick can make (`min(100·rate, 2.7)`).
-pub fn max_kick_accel(player: &Player, ball: DVec2) -> f64 {
+pub(crate) fn max_kick_accel(player: &Player, ball: DVec2) -> f64 {
     (MAX_KICK_POWER * kick_rate(player, ball)).min(BALL_ACCEL_MAX)
 }
 
 /// The kick command that changes the ball velocity by `accel`, if one kick can.
-pub fn kick_for_accel(player: &Player, ball: &Ball, accel: DVec2) -> Option<Command> {
+pub(crate) fn kick_for_accel(player: &Player, ball: &Ball, accel: DVec2) -> Option<Command> {
     let rate = kick_rate(player, ball.pos);
     let power = accel.length() / rate;
     if power > MAX_KICK_POWER + 1e-9 || accel.length() > BALL_ACCEL_MAX + 1e-9 {
@@ -53,7 +70,7 @@ pub fn kick_for_accel(player: &Player, ball: &Ball, accel: DVec2) -> Option<Comm
 }
 
 /// Applies a kick to the ball's pending acceleration; nothing if the ball is out of reach.
-pub fn kick(
+pub(crate) fn kick(
     player: &Player,
     ball: &Ball,
     accel: &mut DVec2,
@@ -79,7 +96,7 @@ pub fn kick(
 /// Success probability of a tackle by `player` on the ball at `ball` with the
 /// failure exponent `exponent` (rcssserver `Player::tackle`, spec 3.5):
 /// `1 - (bx/2)^e - (|by|/1.25)^e` with the ball in body coordinates, 0 behind.
-pub fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
+pub(crate) fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
     let rel = ball - player.pos;
     // Beyond sqrt(TACKLE_DIST² + TACKLE_WIDTH²) ≈ 2.36 m one term of the
     // failure is at least 1 whatever the body angle: skip the rotation.
@@ -90,7 +107,7 @@ pub fn tackle_probability(player: &Player, ball: DVec2, exponent: f64) -> f64 {
 }
 
 /// [`tackle_probability`] of a ball at `rel` in the tackler's body coordinates.
-pub fn tackle_probability_at(rel: DVec2, exponent: f64) -> f64 {
+pub(crate) fn tackle_probability_at(rel: DVec2, exponent: f64) -> f64 {
     let reach = if rel.x > 0.0 {
         TACKLE_DIST
     } else {
@@ -107,7 +124,7 @@ pub fn tackle_probability_at(rel: DVec2, exponent: f64) -> f64 {
 
 /// Noise-free ball acceleration of a successful tackle towards `dir`
 /// (relative to the body): the protocol v14 model of `Player::tackle` (spec 3.5).
-pub fn tackle_accel(player: &Player, ball: DVec2, dir: f64) -> DVec2 {
+pub(crate) fn tackle_accel(player: &Player, ball: DVec2, dir: f64) -> DVec2 {
     let dir = normalize_angle(dir);
     let power =
         MAX_BACK_TACKLE_POWER + (MAX_TACKLE_POWER - MAX_BACK_TACKLE_POWER) * (1.0 - dir.abs() / PI);
@@ -121,7 +138,7 @@ pub fn tackle_accel(player: &Player, ball: DVec2, dir: f64) -> DVec2 {
 /// adds the push and its noise to the ball's pending acceleration. A `foul`
 /// tackle uses [`FOUL_EXPONENT`] and leaves the player free if an opponent
 /// (`opponent_kickable`) can kick the ball. Returns whether the ball was hit.
-pub fn tackle(
+pub(crate) fn tackle(
     player: &mut Player,
     ball: &Ball,
     accel: &mut DVec2,
@@ -147,7 +164,7 @@ pub fn tackle(
 }
 
 /// Applies a dash: spends stamina and adds to the player's pending acceleration (spec 3.2).
-pub fn dash(player: &mut Player, accel: &mut DVec2, power: f64, dir: f64) {
+pub(crate) fn dash(player: &mut Player, accel: &mut DVec2, power: f64, dir: f64) {
     let mut power = power.clamp(-MAX_DASH_POWER, MAX_DASH_POWER);
     let available = player.stamina + EXTRA_STAMINA;
     if power < 0.0 {
@@ -165,13 +182,13 @@ pub fn dash(player: &mut Player, accel: &mut DVec2, power: f64, dir: f64) {
 
 /// A dash direction (radians, relative to the body) as the server rounds it
 /// to a multiple of 45°.
-pub fn dash_dir(dir: f64) -> f64 {
+pub(crate) fn dash_dir(dir: f64) -> f64 {
     (dir.clamp(-PI, PI) / DASH_ANGLE_STEP).round() * DASH_ANGLE_STEP
 }
 
 /// The share of a dash's power that a dash towards `dir` (radians, relative
 /// to the body) keeps: 1 forward, 0.4 sideways, 0.6 backwards.
-pub fn dash_dir_rate(dir: f64) -> f64 {
+pub(crate) fn dash_dir_rate(dir: f64) -> f64 {
     let a = dash_dir(dir).abs().to_degrees();
     if a <= 90.0 {
         SIDE_DASH_RATE + (1.0 - SIDE_DASH_RATE) * (1.0 - a / 90.0)
@@ -182,7 +199,7 @@ pub fn dash_dir_rate(dir: f64) -> f64 {
 }
 
 /// Applies a turn with the server's ±10% noise and speed-dependent inertia (spec 3.3).
-pub fn turn(player: &mut Player, moment: f64, rng: &mut impl Rng) {
+pub(crate) fn turn(player: &mut Player, moment: f64, rng: &mut impl Rng) {
     let moment = moment.clamp(-PI, PI) * (1.0 + uniform(rng, -0.1, 0.1));
     player.body =
         normalize_angle(player.body + moment / (1.0 + INERTIA_MOMENT * player.vel.length()));
@@ -192,7 +209,7 @@ pub fn turn(player: &mut Player, moment: f64, rng: &mut impl Rng) {
 /// area's diagonal on the ball (librcsc `ActionEffector::setCatch`): on
 /// success the keeper steps next to the ball, faces it and stops. Returns
 /// whether it succeeded.
-pub fn catch(world: &mut World) -> bool {
+pub(crate) fn catch(world: &mut World) -> bool {
     if world.catch_ban > 0 {
         return false;
     }
@@ -215,21 +232,21 @@ pub fn catch(world: &mut World) -> bool {
 
 /// Kinematic constants of one kind of moving object.
 #[derive(Clone, Copy, Debug)]
-pub struct Body {
+pub(crate) struct Body {
     /// Radius.
-    pub size: f64,
+    pub(crate) size: f64,
     /// Acceleration limit.
-    pub accel_max: f64,
+    pub(crate) accel_max: f64,
     /// Speed limit.
-    pub speed_max: f64,
+    pub(crate) speed_max: f64,
     /// Movement noise rate.
-    pub rand: f64,
+    pub(crate) rand: f64,
     /// Velocity decay.
-    pub decay: f64,
+    pub(crate) decay: f64,
 }
 
 /// The ball's constants.
-pub const BALL_BODY: Body = Body {
+pub(crate) const BALL_BODY: Body = Body {
     size: BALL_SIZE,
     accel_max: BALL_ACCEL_MAX,
     speed_max: BALL_SPEED_MAX,
@@ -238,7 +255,7 @@ pub const BALL_BODY: Body = Body {
 };
 
 /// A player's constants.
-pub const PLAYER_BODY: Body = Body {
+pub(crate) const PLAYER_BODY: Body = Body {
     size: PLAYER_SIZE,
     accel_max: PLAYER_ACCEL_MAX,
     speed_max: PLAYER_SPEED_MAX,
@@ -248,7 +265,13 @@ pub const PLAYER_BODY: Body = Body {
 
 /// Moves one object by one cycle (spec 2.1 step 3): clipped acceleration, speed
 /// limit, noise, goal posts, position, decay.
-pub fn move_object(pos: &mut DVec2, vel: &mut DVec2, accel: DVec2, body: Body, rng: &mut impl Rng) {
+pub(crate) fn move_object(
+    pos: &mut DVec2,
+    vel: &mut DVec2,
+    accel: DVec2,
+    body: Body,
+    rng: &mut impl Rng,
+) {
     if accel != DVec2::ZERO {
         *vel += accel.clamp_length_max(body.accel_max);
         *vel = vel.clamp_length_max(body.speed_max);
@@ -307,7 +330,7 @@ fn bounce_off_posts(pos: &mut DVec2, vel: &mut DVec2, size: f64) -> DVec2 {
 
 /// Separates overlapping ball-player and player-player pairs and damps every
 /// object that collided (`v <- -0.1·v`) (spec 2.3).
-pub fn resolve_collisions(world: &mut World, rng: &mut impl Rng) {
+pub(crate) fn resolve_collisions(world: &mut World, rng: &mut impl Rng) {
     let n = world.offense.len() + 1;
     // Object 0 is the ball, 1..n the offense, n the keeper.
     let mut collided = [false; 16];
@@ -375,7 +398,7 @@ fn object_vel_mut(world: &mut World, i: usize) -> &mut DVec2 {
 }
 
 /// End-of-cycle stamina, effort and recovery update (spec 2.4).
-pub fn update_stamina(p: &mut Player) {
+pub(crate) fn update_stamina(p: &mut Player) {
     if p.stamina <= 0.3 * STAMINA_MAX {
         p.recovery = (p.recovery - 0.002).max(RECOVER_MIN);
         p.effort = (p.effort - 0.005).max(EFFORT_MIN);

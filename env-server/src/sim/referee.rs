@@ -70,9 +70,9 @@ impl Outcome {
 
 /// The referee's memory within an episode.
 #[derive(Clone, Debug)]
-pub struct Referee {
+pub(crate) struct Referee {
     /// Cycles since the field was reset (k of spec 4.4).
-    pub cycle: u32,
+    pub(crate) cycle: u32,
     prev_ball: DVec2,
     untouched: u32,
     max_cycles: u32,
@@ -86,7 +86,7 @@ const GOAL_MOUTH_HALF: f64 = GOAL_HALF_WIDTH + GOAL_POST_RADIUS;
 
 impl Referee {
     /// A referee for trials of `max_cycles` cycles and the untouched-ball limit.
-    pub fn new(max_cycles: u32, untouched_limit: u32) -> Self {
+    pub(crate) fn new(max_cycles: u32, untouched_limit: u32) -> Self {
         Referee {
             cycle: 0,
             prev_ball: DVec2::ZERO,
@@ -97,14 +97,14 @@ impl Referee {
     }
 
     /// Starts a new trial with the ball at `ball`.
-    pub fn reset(&mut self, ball: DVec2) {
+    pub(crate) fn reset(&mut self, ball: DVec2) {
         self.cycle = 0;
         self.prev_ball = ball;
         self.untouched = 0;
     }
 
     /// Advances time by one cycle and judges the new state (spec 4.3 order).
-    pub fn judge(&mut self, world: &World) -> Outcome {
+    pub(crate) fn judge(&mut self, world: &World) -> Outcome {
         self.cycle += 1;
         let prev = self.prev_ball;
         let ball = world.ball.pos;

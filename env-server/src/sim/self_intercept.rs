@@ -21,9 +21,9 @@ use glam::DVec2;
 use std::f64::consts::{FRAC_PI_4, PI};
 
 /// Longest prediction (librcsc `InterceptTable::MAX_CYCLE`).
-pub const MAX_CYCLE: usize = 30;
+pub(crate) const MAX_CYCLE: usize = 30;
 /// Last cycle of the short-step prediction (`MAX_SHORT_STEP`).
-pub const SHORT_STEPS: usize = 5;
+pub(crate) const SHORT_STEPS: usize = 5;
 /// How many cycles the long step looks on from its first reachable one
 /// (`max_loop = cycle + 10`).
 const LONG_WINDOW: usize = 10;
@@ -37,26 +37,26 @@ const STAMINA_RESERVE: f64 = 0.3 * STAMINA_MAX + 1.0;
 /// One way for a player to get the ball (librcsc `InterceptInfo`, one entry
 /// of the self-interception cache).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Interception {
+pub(crate) struct Interception {
     /// Cycle at which the ball is reached.
-    pub cycle: usize,
+    pub(crate) cycle: usize,
     /// Turns before the dashes.
-    pub turns: usize,
+    pub(crate) turns: usize,
     /// Dashes after the turns.
-    pub dashes: usize,
+    pub(crate) dashes: usize,
     /// Power of the first dash (negative backwards, 0 with no dash).
-    pub power: f64,
+    pub(crate) power: f64,
     /// Direction of the first dash relative to the body (radians; not 0
     /// only for the one-step and omni-directional dashes).
-    pub dir: f64,
+    pub(crate) dir: f64,
     /// Distance from the player's final position to the ball
     /// (`InterceptInfo::ballDist`).
-    pub ball_dist: f64,
+    pub(crate) ball_dist: f64,
 }
 
 impl Interception {
     /// Whether the dashes go backwards.
-    pub fn back(&self) -> bool {
+    pub(crate) fn back(&self) -> bool {
         self.power < 0.0
     }
 }
@@ -71,7 +71,7 @@ struct Way {
 /// Where [`reach`] found a player's earliest way, so that [`predict_from`]
 /// need not search again what came before it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub enum Found {
+pub(crate) enum Found {
     /// Not searched, or the ball is kickable now: nothing to skip.
     #[default]
     Nothing,
@@ -85,7 +85,7 @@ pub enum Found {
 
 /// The unit vector of the ball's direction of travel (the x axis for a
 /// resting ball), which [`reach`] and [`predict_from`] take.
-pub fn heading(ball: &Ball) -> DVec2 {
+pub(crate) fn heading(ball: &Ball) -> DVec2 {
     unit(direction(ball.vel))
 }
 
@@ -96,7 +96,7 @@ pub fn heading(ball: &Ball) -> DVec2 {
 /// cycles from the first reachable one for 10 cycles, and the ball's
 /// resting point when no long step reaches it. `found` is what [`reach`]
 /// returned on the same arguments: the search it already made is skipped.
-pub fn predict_from(
+pub(crate) fn predict_from(
     p: &Player,
     ball: &Ball,
     heading: DVec2,
@@ -142,7 +142,7 @@ pub fn predict_from(
 /// The own reach cycle (`self_min`) and where it was found: 0 if the player
 /// can kick the ball by its own test (1.03 m), else the earliest way of
 /// [`predict_from`].
-pub fn reach(
+pub(crate) fn reach(
     p: &Player,
     ball: &Ball,
     heading: DVec2,

@@ -27,7 +27,7 @@ const TICKS_AFTER_THINK: [u8; 3] = [1, 1, 1];
 
 /// A view width without `synch_see` (HFO's agents do not ask for it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Width {
+pub(crate) enum Width {
     Narrow,
     Normal,
     Wide,
@@ -77,7 +77,7 @@ impl Timing {
 
 /// The neck action a behaviour leaves for the cycle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Neck {
+pub(crate) enum Neck {
     /// `Neck_ScanField` (also `Neck_TurnToBallOrScan`: with full state the
     /// ball's position count is 0).
     Scan,
@@ -104,7 +104,7 @@ pub struct Sight {
     seen: bool,
     /// Whether the agent has dribbled, which creates its action chain
     /// (`ActionChainHolder`); MOVE's intercept neck does nothing before.
-    pub chain_ready: bool,
+    pub(crate) chain_ready: bool,
     /// Cycles since each 5° direction was last in view.
     counts: [u8; DIRS],
 }
@@ -127,22 +127,22 @@ impl Default for Sight {
 }
 
 /// What the agent's view and neck actions look at this cycle.
-pub struct Outlook {
+pub(crate) struct Outlook {
     /// The agent's position after this cycle's command (`queuedNextSelfPos`).
-    pub next_pos: DVec2,
+    pub(crate) next_pos: DVec2,
     /// Its body direction after the command, degrees (`queuedNextSelfBody`).
-    pub next_body: f64,
+    pub(crate) next_body: f64,
     /// The ball's next position (`queuedNextBallPos`).
-    pub next_ball: DVec2,
+    pub(crate) next_ball: DVec2,
     /// Where the ball is when the first player reaches it.
-    pub reach_point: DVec2,
+    pub(crate) reach_point: DVec2,
     /// Distance from the ball to the nearest teammate and to the keeper.
-    pub mate_ball_dist: f64,
-    pub keeper_ball_dist: f64,
+    pub(crate) mate_ball_dist: f64,
+    pub(crate) keeper_ball_dist: f64,
     /// Distance from the agent to the ball now.
-    pub ball_dist: f64,
+    pub(crate) ball_dist: f64,
     /// The agent's position plus velocity (`calcAngleForWidePitchEdge`).
-    pub drift_pos: DVec2,
+    pub(crate) drift_pos: DVec2,
 }
 
 impl Sight {
@@ -162,7 +162,7 @@ impl Sight {
 
     /// Maximum and (integer) average count over the `width`-degree range
     /// centred on `angle` (`dirRangeCount`).
-    pub fn range_count(&self, angle: f64, width: f64) -> (u8, u8) {
+    pub(crate) fn range_count(&self, angle: f64, width: f64) -> (u8, u8) {
         let mut dir = if width > DIR_STEP {
             angle - width * 0.5
         } else {
@@ -363,7 +363,7 @@ impl Sight {
     /// age, and the sees due before the think message arrive. `face` is the
     /// body plus neck, degrees; `moved` whether the agent moved over 0.5 m
     /// last cycle.
-    pub fn before_decision(&mut self, phase: u8, face: f64, moved: bool) {
+    pub(crate) fn before_decision(&mut self, phase: u8, face: f64, moved: bool) {
         self.new_cycle();
         for _ in 0..TICKS_BEFORE_THINK[phase as usize] {
             self.tick(face, moved);
@@ -378,7 +378,7 @@ impl Sight {
     /// sees due after the think message (still with this cycle's face).
     /// `body` is the body direction now, degrees; the new neck takes effect
     /// with the server's step.
-    pub fn act(&mut self, phase: u8, neck: Neck, o: &Outlook, body: f64, moved: bool) {
+    pub(crate) fn act(&mut self, phase: u8, neck: Neck, o: &Outlook, body: f64, moved: bool) {
         let face = deg_norm(body + self.neck);
         let width = self.tactical_width(o);
         self.change_view(width);
@@ -412,7 +412,7 @@ impl Sight {
 
 /// Whether an agent moving at `vel` (after the server's decay) moved more
 /// than 0.5 m last cycle (`lastMove`, for `updateDirCount`'s margin).
-pub fn moved(vel: DVec2) -> bool {
+pub(crate) fn moved(vel: DVec2) -> bool {
     vel.length() / PLAYER_DECAY > 0.5
 }
 

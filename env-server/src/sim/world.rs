@@ -37,7 +37,7 @@ pub struct Player {
 
 impl Player {
     /// A rested player at `pos` facing `body`.
-    pub fn new(pos: DVec2, body: f64) -> Self {
+    pub(crate) fn new(pos: DVec2, body: f64) -> Self {
         Player {
             pos,
             vel: DVec2::ZERO,
@@ -51,17 +51,17 @@ impl Player {
     }
 
     /// Places the player at `pos` at rest with full stamina, keeping its body angle.
-    pub fn place(&mut self, pos: DVec2) {
+    pub(crate) fn place(&mut self, pos: DVec2) {
         *self = Player::new(pos, self.body);
     }
 
     /// Where the player drifts to after `n` cycles without commands.
-    pub fn drift(&self, n: u32) -> DVec2 {
+    pub(crate) fn drift(&self, n: u32) -> DVec2 {
         self.pos + self.vel * decay_sum(PLAYER_DECAY, n)
     }
 
     /// Where the player comes to rest without commands.
-    pub fn final_drift(&self) -> DVec2 {
+    pub(crate) fn final_drift(&self) -> DVec2 {
         self.pos + self.vel / (1.0 - PLAYER_DECAY)
     }
 }
@@ -89,7 +89,7 @@ pub struct World {
 
 impl World {
     /// A world with `offense` players at the origin facing the goal and the keeper on its line.
-    pub fn new(offense: usize) -> Self {
+    pub(crate) fn new(offense: usize) -> Self {
         World {
             ball: Ball {
                 pos: DVec2::ZERO,
@@ -110,12 +110,12 @@ impl World {
     }
 
     /// Whether offense agent `i` can kick by its own (1.03 m) test.
-    pub fn agent_kickable(&self, i: usize) -> bool {
+    pub(crate) fn agent_kickable(&self, i: usize) -> bool {
         self.offense[i].pos.distance(self.ball.pos) <= AGENT_KICKABLE_AREA
     }
 
     /// Whether some offense player other than `except` has the ball in its server kickable area.
-    pub fn teammate_kickable(&self, except: usize) -> bool {
+    pub(crate) fn teammate_kickable(&self, except: usize) -> bool {
         self.offense
             .iter()
             .enumerate()
@@ -123,7 +123,7 @@ impl World {
     }
 
     /// Whether the keeper has the ball in its kickable area.
-    pub fn keeper_kickable(&self) -> bool {
+    pub(crate) fn keeper_kickable(&self) -> bool {
         self.keeper.pos.distance(self.ball.pos) <= KICKABLE_AREA
     }
 
@@ -132,7 +132,7 @@ impl World {
     /// kickable area plus 2 % of the ball's and of the keeper's distances
     /// from the attacker (each at most 0.25 m), librcsc's allowance for
     /// errors of sight.
-    pub fn keeper_kickable_seen_by(&self, i: usize) -> bool {
+    pub(crate) fn keeper_kickable_seen_by(&self, i: usize) -> bool {
         let (me, k, ball) = (self.offense[i].pos, &self.keeper, self.ball.pos);
         let error = |d: f64| (0.02 * d).min(0.25);
         k.tackle_freeze == 0
@@ -145,7 +145,7 @@ impl World {
     /// ball that is not frozen by a tackle): that attacker within its
     /// kickable area plus 2 % of the ball's and of its own distance from
     /// the keeper (each at most 0.25 m).
-    pub fn attacker_kickable_seen_by_keeper(&self) -> bool {
+    pub(crate) fn attacker_kickable_seen_by_keeper(&self) -> bool {
         let (k, ball) = (self.keeper.pos, self.ball.pos);
         let error = |d: f64| (0.02 * d).min(0.25);
         self.offense
@@ -165,26 +165,26 @@ impl World {
     /// This world with the ball held still: what librcsc's world model
     /// holds while its owner takes an opponent to be on the ball
     /// (`BallObject::setOpponentControlEffect`).
-    pub fn with_ball_still(&self) -> World {
+    pub(crate) fn with_ball_still(&self) -> World {
         let mut still = self.clone();
         still.ball.vel = DVec2::ZERO;
         still
     }
 
     /// Whether any offense player has the ball in its server kickable area.
-    pub fn any_attacker_kickable(&self) -> bool {
+    pub(crate) fn any_attacker_kickable(&self) -> bool {
         self.offense
             .iter()
             .any(|p| p.pos.distance(self.ball.pos) <= KICKABLE_AREA)
     }
 
     /// Ball position after `n` cycles without kicks.
-    pub fn ball_inertia(&self, n: u32) -> DVec2 {
+    pub(crate) fn ball_inertia(&self, n: u32) -> DVec2 {
         self.ball.pos + self.ball.vel * decay_sum(BALL_DECAY, n)
     }
 
     /// Where the ball comes to rest without kicks.
-    pub fn ball_final(&self) -> DVec2 {
+    pub(crate) fn ball_final(&self) -> DVec2 {
         self.ball.pos + self.ball.vel / (1.0 - BALL_DECAY)
     }
 }

@@ -71,7 +71,7 @@ struct Open {
 /// Accumulates [`DecisionStats`] over episodes, fed after the reset and
 /// after every step.
 #[derive(Clone, Debug)]
-pub struct DecisionRecorder {
+pub(crate) struct DecisionRecorder {
     shots: Vec<ShotBin>,
     after_pass: Aftermath,
     after_dribble: Aftermath,
@@ -121,7 +121,7 @@ impl Default for DecisionRecorder {
 impl DecisionRecorder {
     /// Feeds the env after its reset (`actions` empty) or after a step with
     /// `actions`.
-    pub fn observe(&mut self, env: &Env, actions: &[Action]) {
+    pub(crate) fn observe(&mut self, env: &Env, actions: &[Action]) {
         if actions.is_empty() {
             self.episodes += 1;
             (self.shot, self.open, self.last_kicker) = (None, None, None);
@@ -201,12 +201,12 @@ impl DecisionRecorder {
     }
 
     /// The sample standard deviation of the possessions per episode.
-    pub fn possessions_sd(&self) -> f64 {
+    pub(crate) fn possessions_sd(&self) -> f64 {
         self.per_episode.sd()
     }
 
     /// The statistics so far.
-    pub fn stats(&self) -> DecisionStats {
+    pub(crate) fn stats(&self) -> DecisionStats {
         DecisionStats {
             shots: self.shots.clone(),
             after_pass: self.after_pass,

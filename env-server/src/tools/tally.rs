@@ -18,7 +18,7 @@ pub struct OutcomeCounts {
 
 impl OutcomeCounts {
     /// Counts one more episode ending in `outcome`.
-    pub fn add(&mut self, outcome: Outcome) {
+    pub(crate) fn add(&mut self, outcome: Outcome) {
         match outcome {
             Outcome::Goal => self.goal += 1,
             Outcome::Captured => self.captured += 1,

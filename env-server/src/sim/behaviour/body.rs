@@ -10,7 +10,7 @@ use glam::DVec2;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Turn the body to global direction `dir`, compensating for inertia.
-pub fn turn_to_direction(p: &Player, dir: f64) -> Command {
+pub(super) fn turn_to_direction(p: &Player, dir: f64) -> Command {
     let e = normalize_angle(dir - p.body);
     Command::Turn {
         moment: (e * (1.0 + INERTIA_MOMENT * p.vel.length())).clamp(-PI, PI),
@@ -18,12 +18,12 @@ pub fn turn_to_direction(p: &Player, dir: f64) -> Command {
 }
 
 /// Turn the body towards `target`, as seen from the player's next position.
-pub fn turn_to_point(p: &Player, target: DVec2) -> Command {
+pub(super) fn turn_to_point(p: &Player, target: DVec2) -> Command {
     turn_to_direction(p, direction(target - (p.pos + p.vel)))
 }
 
 /// Dash that cancels the player's velocity as far as one dash can.
-pub fn stop_dash(p: &Player) -> Command {
+pub(super) fn stop_dash(p: &Player) -> Command {
     let along = p.vel.dot(unit(p.body));
     Command::Dash {
         power: (-along / (DASH_POWER_RATE * p.effort)).clamp(-MAX_DASH_POWER, MAX_DASH_POWER),
@@ -33,7 +33,12 @@ pub fn stop_dash(p: &Player) -> Command {
 
 /// Body_GoToPoint (spec 6.1.5): a turn or dash towards `target`, or `None`
 /// when the player's drift point is already within `tolerance`.
-pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) -> Option<Command> {
+pub(super) fn go_to_point(
+    p: &Player,
+    target: DVec2,
+    tolerance: f64,
+    max_power: f64,
+) -> Option<Command> {
     let q = p.final_drift();
     let rel = target - q;
     let dist = rel.length();
@@ -63,7 +68,12 @@ pub fn go_to_point(p: &Player, target: DVec2, tolerance: f64, max_power: f64) ->
 
 /// agent2d's `FieldAnalyzer::predict_player_turn_cycle` with back dashes
 /// allowed, for `player` to face `target_dir` at `dist` within `control`.
-pub fn predict_turn_cycles(player: &Player, target_dir: f64, dist: f64, control: f64) -> usize {
+pub(super) fn predict_turn_cycles(
+    player: &Player,
+    target_dir: f64,
+    dist: f64,
+    control: f64,
+) -> usize {
     let mut angle = angle_diff(target_dir, player.body);
     if dist < 5.0 && angle > PI / 2.0 {
         angle = PI - angle;
@@ -87,7 +97,7 @@ pub fn predict_turn_cycles(player: &Player, target_dir: f64, dist: f64, control:
 /// penalty, back dashes allowed): cycles `p` needs to come within
 /// `dist_thr` of `target`. The player's body is taken as seen (librcsc then
 /// counts its turns instead of assuming one).
-pub fn player_reach_cycle(p: &Player, target: DVec2, dist_thr: f64) -> usize {
+pub(super) fn player_reach_cycle(p: &Player, target: DVec2, dist_thr: f64) -> usize {
     let turns =
         |from: DVec2, dist: f64| predict_turn_cycles(p, direction(target - from), dist, dist_thr);
     let rest = p.final_drift();

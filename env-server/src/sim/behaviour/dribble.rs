@@ -28,7 +28,7 @@ struct Candidate {
 }
 
 /// The DRIBBLE command of a kickable agent.
-pub fn command(s: &Situation) -> Command {
+pub(super) fn command(s: &Situation) -> Command {
     let me = s.me();
     let ball = &s.world.ball;
     let forward = DVec2::new(42.0, 0.0);

@@ -22,7 +22,7 @@ const FACE_POINT: DVec2 = DVec2::new(PITCH_HALF_LENGTH - 5.0, 0.0);
 /// Body_HoldBall2008 of a kickable `p`: `face` is the point it turns to
 /// (`do_turn`), `kick_target` where a kick would go next (the ball is kept
 /// on the other side).
-pub fn hold_ball(
+pub(super) fn hold_ball(
     p: &Player,
     world: &World,
     face: Option<DVec2>,

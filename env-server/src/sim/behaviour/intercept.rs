@@ -52,7 +52,7 @@ impl<'a> Best<'a> {
 }
 
 /// Where an attacker with the ball, or with the ball coming to it, faces.
-pub fn forward_point(y: f64) -> DVec2 {
+pub(super) fn forward_point(y: f64) -> DVec2 {
     DVec2::new(50.5, 0.75 * y)
 }
 
@@ -64,7 +64,7 @@ pub fn forward_point(y: f64) -> DVec2 {
 /// 6.1.2's others' rule with the own estimate's margin (0.15 m up to cycle
 /// 5, 0.2 m later) instead of the cache entry's turns, power and direction
 /// and librcsc's `doWaitTurn` and `doInertiaDash`.
-pub fn intercept(world: &World, analysis: &Analysis, agent: usize, face: DVec2) -> Command {
+pub(super) fn intercept(world: &World, analysis: &Analysis, agent: usize, face: DVec2) -> Command {
     let (p, reach) = (&world.offense[agent], analysis.own_reach[agent]);
     if reach > 100 {
         let rest = world.ball_final();
@@ -119,7 +119,7 @@ pub fn intercept(world: &World, analysis: &Analysis, agent: usize, face: DVec2) 
 /// - *nearest*: the ball nearest the player's inertia point.
 ///
 /// The choice among the kinds follows lines 586-753.
-pub fn best_interception(
+pub(super) fn best_interception(
     p: &Player,
     world: &World,
     analysis: &Analysis,

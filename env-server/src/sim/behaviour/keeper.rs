@@ -18,13 +18,13 @@ const IDLE: Command = Command::Turn { moment: 0.0 };
 
 /// What the keeper remembers between cycles.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct KeeperMemory {
+pub(crate) struct KeeperMemory {
     /// Cycles since its last catch command (saturating).
-    pub since_catch: u32,
+    pub(crate) since_catch: u32,
 }
 
 /// The keeper's command this cycle.
-pub fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Command {
+pub(crate) fn command(world: &World, analysis: &Analysis, memory: &KeeperMemory) -> Command {
     // While the keeper takes an attacker to be on the ball its world model
     // holds the ball still (librcsc `setOpponentControlEffect`), and so do
     // its reach, its intercept and its positioning.

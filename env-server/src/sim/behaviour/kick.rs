@@ -9,7 +9,7 @@ use glam::DVec2;
 
 /// Largest speed along `dir` that one kick can give a ball moving at
 /// `ball_vel` with at most `max_accel` (librcsc `calc_max_velocity`).
-pub fn max_one_kick_speed(dir: f64, ball_vel: DVec2, max_accel: f64) -> f64 {
+pub(super) fn max_one_kick_speed(dir: f64, ball_vel: DVec2, max_accel: f64) -> f64 {
     let u = unit(dir);
     let uc = u.dot(ball_vel);
     let disc = uc * uc - ball_vel.length_squared() + max_accel * max_accel;
@@ -20,7 +20,7 @@ pub fn max_one_kick_speed(dir: f64, ball_vel: DVec2, max_accel: f64) -> f64 {
 }
 
 /// Kick the ball so that its new velocity is `vel`, if one kick can.
-pub fn kick_to_velocity(p: &Player, ball: &Ball, vel: DVec2) -> Option<Command> {
+pub(super) fn kick_to_velocity(p: &Player, ball: &Ball, vel: DVec2) -> Option<Command> {
     kick_for_accel(p, ball, vel - ball.vel)
 }
 

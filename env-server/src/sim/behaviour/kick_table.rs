@@ -117,7 +117,7 @@ impl LastKick<'_> {
 /// of at most `max_kicks` kicks that sends the ball towards `target` at
 /// `speed`, if the plan reaches at least `min_speed` (`KickTable::simulate`
 /// with `max_step = max_kicks`, then Body_SmartKick's acceptance test).
-pub fn plan(
+pub(super) fn plan(
     p: &Player,
     world: &World,
     target: DVec2,
@@ -207,7 +207,7 @@ fn spots() -> &'static [Spot; SPOTS] {
 }
 
 /// Kick rate for the ball `dist` from the centre, `dir_diff` off the body (spec 3.1).
-pub fn rate_at(dist: f64, dir_diff: f64) -> f64 {
+pub(super) fn rate_at(dist: f64, dir_diff: f64) -> f64 {
     let dist_ball = (dist - PLAYER_SIZE - BALL_SIZE).max(0.0);
     KICK_POWER_RATE * (1.0 - 0.25 * dir_diff / PI - 0.25 * dist_ball / KICKABLE_MARGIN)
 }

@@ -7,7 +7,7 @@ mod body;
 mod dribble;
 mod hold;
 mod intercept;
-pub mod keeper;
+pub(crate) mod keeper;
 mod kick;
 mod kick_table;
 mod movement;
@@ -15,29 +15,29 @@ mod pass;
 mod shoot;
 mod situation;
 mod smart_kick;
-pub mod tackle;
+pub(crate) mod tackle;
 
 use crate::sim::memory::ShotCourse;
 use crate::sim::physics::Command;
 use crate::sim::view::Neck;
 use proto::Action;
 
-pub use situation::Situation;
+pub(crate) use situation::Situation;
 
 /// What a behaviour decides for the acting agent this cycle.
-pub struct Decision {
+pub(crate) struct Decision {
     /// The body command.
-    pub command: Command,
+    pub(crate) command: Command,
     /// The first course of a non-empty shot search it ran (spec 6.2.2).
-    pub shot: Option<ShotCourse>,
+    pub(crate) shot: Option<ShotCourse>,
     /// The neck action it leaves (spec 6.6).
-    pub neck: Neck,
+    pub(crate) neck: Neck,
 }
 
 /// What `action` makes the acting agent do this cycle. Kick actions issue
 /// nothing when the agent cannot kick (spec 6.0); they and SHOOT, PASS and
 /// DRIBBLE keep HFO's default neck action, the field scan.
-pub fn offense_command(s: &Situation, action: Action) -> Decision {
+pub(crate) fn offense_command(s: &Situation, action: Action) -> Decision {
     let decide = |command, shot| Decision {
         command,
         shot,

@@ -13,7 +13,7 @@ use crate::sim::view::Neck;
 /// Bhv_BasicTackle's field scan, Neck_OffensiveInterceptNeck when it chases
 /// the ball, otherwise the ball when the keeper holds it within 18 m, else
 /// the field scan (spec 6.6).
-pub fn command(s: &Situation) -> (Command, Neck) {
+pub(super) fn command(s: &Situation) -> (Command, Neck) {
     if let Some(cmd) = tackle::command(s.world, s.analysis, Tackler::Attacker(s.agent)) {
         return (cmd, Neck::Scan);
     }

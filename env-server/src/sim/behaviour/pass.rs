@@ -18,7 +18,7 @@ struct Route {
 
 /// The PASS command of a kickable agent; `receiver` restricts the routes to
 /// one teammate (HFO itself ignores the requested receiver).
-pub fn command(s: &Situation, receiver: Option<usize>) -> Command {
+pub(super) fn command(s: &Situation, receiver: Option<usize>) -> Command {
     let mut best: Option<(f64, Route)> = None;
     let mut consider = |route: Route| {
         let score = score(s, route);

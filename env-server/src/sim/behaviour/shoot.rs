@@ -49,7 +49,7 @@ struct Search {
 /// cycle's search if it found any (`Agent::doSmartKick`). With no feasible
 /// course HFO reads the first element of its emptied course vector: the
 /// agent's last non-empty search's first course (spec 6.2.2).
-pub fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
+pub(super) fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
     let search = search(s, Want::Best);
     let first = search.first.map(|c| c.shot());
     let command = match (search.best, s.memory.last_shot) {
@@ -63,7 +63,7 @@ pub fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
 /// The shot searches outside SHOOT (`Bhv_StrictCheckShoot` in DRIBBLE's
 /// `doPreprocess`, `Neck_OffensiveInterceptNeck` in MOVE): nothing beyond
 /// 30 m from the goal centre; else the first course found, if any.
-pub fn check(s: &Situation) -> Option<ShotCourse> {
+pub(super) fn check(s: &Situation) -> Option<ShotCourse> {
     if s.me().pos.distance(GOAL_CENTER) > CHECK_DISTANCE {
         return None;
     }
@@ -75,7 +75,7 @@ pub fn check(s: &Situation) -> Option<ShotCourse> {
 /// of the goal centre it kicks the best course, in one kick if one kick is
 /// fast enough; with no course there is no command. Also returns the
 /// search's first course.
-pub fn strict_check(s: &Situation) -> (Command, Option<ShotCourse>) {
+pub(super) fn strict_check(s: &Situation) -> (Command, Option<ShotCourse>) {
     if s.me().pos.distance(GOAL_CENTER) > CHECK_DISTANCE {
         return (Command::None, None);
     }

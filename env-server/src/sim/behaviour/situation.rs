@@ -7,27 +7,27 @@ use crate::sim::memory::AgentMemory;
 use crate::sim::world::{Player, World};
 
 /// What an offense behaviour sees: the state, its analysis and who is acting.
-pub struct Situation<'a> {
+pub(crate) struct Situation<'a> {
     /// The exact state (everyone has full state).
-    pub world: &'a World,
+    pub(crate) world: &'a World,
     /// This cycle's shared analysis.
-    pub analysis: &'a Analysis,
+    pub(crate) analysis: &'a Analysis,
     /// Simulator settings.
-    pub config: &'a EnvConfig,
+    pub(crate) config: &'a EnvConfig,
     /// Index of the acting offense agent.
-    pub agent: usize,
+    pub(crate) agent: usize,
     /// The acting agent's memory.
-    pub memory: &'a AgentMemory,
+    pub(crate) memory: &'a AgentMemory,
 }
 
 impl Situation<'_> {
     /// The acting agent's body.
-    pub fn me(&self) -> &Player {
+    pub(crate) fn me(&self) -> &Player {
         &self.world.offense[self.agent]
     }
 
     /// The teammate nearest to (`farthest == false`) or farthest from the acting agent.
-    pub fn teammate_by_distance(&self, farthest: bool) -> Option<usize> {
+    pub(crate) fn teammate_by_distance(&self, farthest: bool) -> Option<usize> {
         let me = self.me().pos;
         let others = (0..self.world.offense.len()).filter(|&j| j != self.agent);
         let dist = |j: &usize| self.world.offense[*j].pos.distance(me);

@@ -13,14 +13,20 @@ use glam::DVec2;
 /// Body_SmartKick (spec 6.2.3): the first kick of the KickTable's best plan
 /// of up to three kicks sending the ball towards `target` at `speed`, if it
 /// reaches at least `min_speed`; else hold the ball.
-pub fn smart_kick(p: &Player, world: &World, target: DVec2, speed: f64, min_speed: f64) -> Command {
+pub(super) fn smart_kick(
+    p: &Player,
+    world: &World,
+    target: DVec2,
+    speed: f64,
+    min_speed: f64,
+) -> Command {
     planned_kick(p, world, target, (speed, min_speed), 3)
         .unwrap_or_else(|| hold_ball(p, world, None, Some(target)))
 }
 
 /// Body_SmartKick's kick with plans of at most `max_kicks` kicks, or `None`
 /// where it would fail (and hold the ball).
-pub fn planned_kick(
+pub(super) fn planned_kick(
     p: &Player,
     world: &World,
     target: DVec2,
@@ -33,7 +39,7 @@ pub fn planned_kick(
 
 /// Body_KickOneStep: one kick towards `target` at `speed`, or as fast as one
 /// kick can send it that way; hold the ball if even that needs too much power.
-pub fn kick_one_step(p: &Player, world: &World, target: DVec2, speed: f64) -> Command {
+pub(super) fn kick_one_step(p: &Player, world: &World, target: DVec2, speed: f64) -> Command {
     let ball = &world.ball;
     let dir = direction(target - ball.pos);
     let max = max_one_kick_speed(dir, ball.vel, max_kick_accel(p, ball.pos));

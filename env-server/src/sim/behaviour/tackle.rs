@@ -19,7 +19,7 @@ const ANGLE_DIVS: usize = 40;
 
 /// Who considers tackling.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Tackler {
+pub(crate) enum Tackler {
     /// Offense agent `i` (Bhv_BasicMove).
     Attacker(usize),
     /// The goalkeeper (Bhv_GoalieChaseBall, Bhv_GoalieBasicMove).
@@ -28,7 +28,7 @@ pub enum Tackler {
 
 /// `Bhv_BasicTackle::execute`: the tackle command if the tackle succeeds with
 /// probability >= 0.8 and is needed, aimed by `TackleGenerator`.
-pub fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<Command> {
+pub(crate) fn command(world: &World, analysis: &Analysis, tackler: Tackler) -> Option<Command> {
     let ball = &world.ball;
     // The tackler's own frame: its goal at x = -52.5 (the keeper's is rotated by 180°).
     let (me, frame, self_min, mate_min, opp_min, opponent_kickable) = match tackler {
