@@ -37,14 +37,6 @@ impl Outcome {
         }
     }
 
-    /// Every terminal outcome, in report order.
-    pub const TERMINAL: [Outcome; 4] = [
-        Outcome::Goal,
-        Outcome::Captured,
-        Outcome::OutOfBounds,
-        Outcome::OutOfTime,
-    ];
-
     /// HFO's name of this status, as its `statusToString` prints it.
     pub fn hfo_status(self) -> &'static str {
         match self {
@@ -53,17 +45,6 @@ impl Outcome {
             Outcome::Captured => "CapturedByDefense",
             Outcome::OutOfBounds => "OutOfBounds",
             Outcome::OutOfTime => "OutOfTime",
-        }
-    }
-
-    /// Snake-case name used in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Outcome::InGame => "in_game",
-            Outcome::Goal => "goal",
-            Outcome::Captured => "captured",
-            Outcome::OutOfBounds => "out_of_bounds",
-            Outcome::OutOfTime => "out_of_time",
         }
     }
 }
@@ -196,13 +177,22 @@ mod tests {
 
     #[test]
     fn outcomes_are_named_as_hfo_names_its_statuses() {
+        use Outcome::*;
+        let all = [InGame, Goal, Captured, OutOfBounds, OutOfTime];
         assert_eq!(
-            Outcome::TERMINAL.map(Outcome::hfo_status),
-            ["Goal", "CapturedByDefense", "OutOfBounds", "OutOfTime"]
+            all.map(Outcome::hfo_status),
+            [
+                "InGame",
+                "Goal",
+                "CapturedByDefense",
+                "OutOfBounds",
+                "OutOfTime"
+            ]
         );
-        assert_eq!(Outcome::InGame.hfo_status(), "InGame");
-        assert!(Outcome::TERMINAL.iter().all(|o| o.is_terminal()));
-        assert!(!Outcome::InGame.is_terminal());
+        assert_eq!(
+            all.map(Outcome::is_terminal),
+            [false, true, true, true, true]
+        );
     }
 
     #[test]
