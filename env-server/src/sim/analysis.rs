@@ -110,7 +110,7 @@ impl Analysis {
     }
 
     /// Offense agent `agent`'s self-interception cache in `world`, the
-    /// world this analysis was made of ([`self_intercept::predict`]).
+    /// world this analysis was made of ([`self_intercept::predict_from`]).
     pub(crate) fn own_cache(&self, world: &World, agent: usize) -> Vec<Interception> {
         let p = &world.offense[agent];
         let found = self.own_found[agent];
@@ -215,7 +215,7 @@ fn path_heading(path: &[DVec2]) -> Option<DVec2> {
 }
 
 /// Reach cycle of player `p` for the ball path `path`, whose heading is
-/// `heading` ([`Analysis::path_heading`]), as the other players estimate it
+/// `heading` ([`path_heading`]), as the other players estimate it
 /// (librcsc `PlayerIntercept`, spec 6.1.2); `keeper_control` is the
 /// keeper's control area inside its penalty area. A ball under control is
 /// reached at once. The walk starts at the cycles the player needs at full

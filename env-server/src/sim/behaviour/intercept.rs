@@ -103,7 +103,7 @@ pub(super) fn intercept(world: &World, analysis: &Analysis, agent: usize, face: 
 }
 
 /// The interception attacker `p` goes for (`getBestIntercept`, field-player
-/// mode), given its self-interception cache ([`crate::sim::self_intercept::predict`]);
+/// mode), given its self-interception cache ([`crate::sim::self_intercept::predict_from`]);
 /// `None` for an empty cache.
 ///
 /// Each entry whose ball point lies inside the pitch less 1 m (lines 296-301)
