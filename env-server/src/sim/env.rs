@@ -37,7 +37,8 @@ const START_OFFSETS: [(f64, f64); 10] = [
 /// Cycles the attackers stay idle at the start of every episode (spec 4.4).
 const IDLE_CYCLES: u32 = 2;
 
-/// The simulator: one world, its referee and its random stream.
+/// The simulator: one world, the agents' memories, the referee and the
+/// random stream.
 #[derive(Clone, Debug)]
 pub struct Env {
     config: EnvConfig,

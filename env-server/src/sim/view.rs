@@ -89,7 +89,8 @@ pub(crate) enum Neck {
 }
 
 /// One attacker's view: neck, width, see timing and seen-direction counts.
-/// Like the agent's world model it survives episode resets.
+/// Like the agent's world model it survives episode resets. Only the neck
+/// is public; the Debug output shows the rest.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sight {
     /// Neck angle relative to the body, degrees.

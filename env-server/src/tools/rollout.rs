@@ -1,4 +1,5 @@
-//! Running episodes under a baseline policy and summarising them.
+//! Rollouts: episodes played under a baseline policy from one seed, and
+//! their summary.
 
 use crate::sim::config::{ConfigError, EnvConfig};
 use crate::sim::env::Env;

@@ -6,7 +6,8 @@ use crate::sim::config::EnvConfig;
 use crate::sim::memory::AgentMemory;
 use crate::sim::world::{Player, World};
 
-/// What an offense behaviour sees: the state, its analysis and who is acting.
+/// What an offense behaviour sees: the state, its analysis, who is acting
+/// and what that agent remembers.
 pub(crate) struct Situation<'a> {
     /// The exact state (everyone has full state).
     pub(crate) world: &'a World,
