@@ -182,7 +182,9 @@ impl Env {
             .map(move |agent| features::paper_state(&self.world, &openings, agent))
     }
 
-    /// The full high-level feature vector of agent `agent`.
+    /// HFO's high-level feature vector of agent `agent` (spec 5.3), in HFO's
+    /// order and normalisation;
+    /// [`feature_count`](crate::features::feature_count) long.
     pub fn features(&self, agent: usize) -> Vec<f64> {
         features::high_level(&self.world, agent)
     }
@@ -194,14 +196,10 @@ impl Env {
             update_recover_mode(p);
         }
         let analysis = Analysis::new(&self.world);
-        let phase = self.world.view_phase;
-        for (p, memory) in self.world.offense.iter().zip(&mut self.memories) {
-            let sight = &mut memory.sight;
-            sight.before_decision(phase, p.body.to_degrees() + sight.neck, view::moved(p.vel));
-        }
+        self.see_before_decisions();
         let necks = self.decide_offense(&analysis, actions);
         self.look_after_decisions(&analysis, actions, &necks);
-        self.world.view_phase = (phase + 1) % 3;
+        self.world.view_phase = (self.world.view_phase + 1) % 3;
         let n = self.config.offense;
         self.commands[n] = if self.world.keeper.tackle_freeze > 0 {
             Command::None
@@ -222,6 +220,16 @@ impl Env {
             p.tackle_freeze = p.tackle_freeze.saturating_sub(1);
         }
         self.world.catch_ban = self.world.catch_ban.saturating_sub(1);
+    }
+
+    /// Every attacker's view up to its decision: counts age, and the sees
+    /// due before the think message arrive (spec 6.6).
+    fn see_before_decisions(&mut self) {
+        let phase = self.world.view_phase;
+        for (p, memory) in self.world.offense.iter().zip(&mut self.memories) {
+            let sight = &mut memory.sight;
+            sight.before_decision(phase, p.body.to_degrees() + sight.neck, view::moved(p.vel));
+        }
     }
 
     /// Every attacker's body command for `actions` (none while idle or
