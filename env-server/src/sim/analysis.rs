@@ -220,7 +220,7 @@ fn path_heading(path: &[DVec2]) -> Option<DVec2> {
 /// keeper's control area inside its penalty area. A ball under control is
 /// reached at once. The walk starts at the cycles the player needs at full
 /// speed to cover its offset from the ball's line of travel.
-pub(crate) fn reach_cycle(
+fn reach_cycle(
     p: &Player,
     path: &[DVec2],
     heading: Option<DVec2>,

@@ -11,7 +11,7 @@ use proto::State;
 use std::f64::consts::{FRAC_PI_4, PI};
 
 /// `norm(v, lo, hi)`: clamps `v` to `[lo, hi]` and maps it to `[-1, 1]`.
-pub(crate) fn norm(v: f64, lo: f64, hi: f64) -> f64 {
+fn norm(v: f64, lo: f64, hi: f64) -> f64 {
     2.0 * (v.clamp(lo, hi) - lo) / (hi - lo) - 1.0
 }
 
@@ -42,7 +42,7 @@ fn largest_open_angle(from: DVec2, bottom: f64, top: f64, keeper: DVec2, max_dis
 }
 
 /// Largest open angle of the goal mouth seen from `p` (radians).
-pub(crate) fn goal_opening(p: DVec2, keeper: DVec2) -> f64 {
+fn goal_opening(p: DVec2, keeper: DVec2) -> f64 {
     let bottom = direction(DVec2::new(PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH) - p);
     let top = direction(DVec2::new(PITCH_HALF_LENGTH, GOAL_HALF_WIDTH) - p);
     largest_open_angle(p, bottom, top, keeper, 99999.0)

@@ -21,7 +21,7 @@ use glam::DVec2;
 use std::f64::consts::{FRAC_PI_4, PI};
 
 /// Longest prediction (librcsc `InterceptTable::MAX_CYCLE`).
-pub(crate) const MAX_CYCLE: usize = 30;
+const MAX_CYCLE: usize = 30;
 /// Last cycle of the short-step prediction (`MAX_SHORT_STEP`).
 pub(crate) const SHORT_STEPS: usize = 5;
 /// How many cycles the long step looks on from its first reachable one

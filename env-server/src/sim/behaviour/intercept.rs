@@ -1,7 +1,9 @@
-//! Where an attacker intercepts the ball (spec 6.1.3 step 2): librcsc's
-//! `Body_Intercept2009::getBestIntercept` (rcsc/action/body_intercept2009.cpp,
-//! lines 225-757, field-player mode) over the cycles of its self-interception
-//! cache (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp).
+//! An attacker's Body_Intercept (spec 6.1.3): where it intercepts the ball,
+//! librcsc's `Body_Intercept2009::getBestIntercept`
+//! (rcsc/action/body_intercept2009.cpp, lines 225-757, field-player mode)
+//! over the cycles of its self-interception cache
+//! (`SelfInterceptV13::predict`, rcsc/player/self_intercept_v13.cpp), and
+//! the turn or dash that takes it there.
 
 use super::body::{go_to_point, turn_to_direction, turn_to_point};
 use crate::sim::analysis::Analysis;
@@ -119,7 +121,7 @@ pub(super) fn intercept(world: &World, analysis: &Analysis, agent: usize, face: 
 /// - *nearest*: the ball nearest the player's inertia point.
 ///
 /// The choice among the kinds follows lines 586-753.
-pub(super) fn best_interception(
+fn best_interception(
     p: &Player,
     world: &World,
     analysis: &Analysis,
