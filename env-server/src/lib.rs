@@ -1,34 +1,27 @@
 //! A Rust simulator of RoboCup 2D Half Field Offense: K offense agents
 //! choosing HFO's high-level actions against agent2d's goalkeeper.
 //!
-//! The specification is `docs/hfo-sim-spec.md` ("spec N" in comments). Modules follow one
-//! cycle's data flow: [`world`] holds the state, [`analysis`] derives what
-//! every behaviour reads (reach cycles, formation), [`behaviour`] turns
-//! actions into body commands, [`view`] moves the attackers' necks and
-//! counts where they looked, [`physics`] executes the commands, [`referee`] ends
-//! episodes and [`features`] describes the state to the agents; [`env`](mod@env) ties
-//! them together, with the settings of [`config`].
+//! The specification is `docs/hfo-sim-spec.md` ("spec N" in comments).
+//! [`Env`] runs episodes with the settings of [`EnvConfig`]: it takes one
+//! [`Action`](proto::Action) per agent each step and offers a read-only
+//! view of the [`World`], the [`Outcome`], the paper's state and HFO's
+//! [`features`]. The simulation core is private (`src/sim/`); the
+//! [`tools`] built on it (baseline policies, rollouts, pictures) are
+//! public.
 
-pub mod analysis;
-pub mod behaviour;
-pub mod config;
-pub mod decisions;
-pub mod env;
-pub mod features;
-pub mod formation;
-pub mod geom;
-pub mod params;
-pub mod physics;
-pub mod policy;
-pub mod referee;
-pub mod render;
-pub mod rollout;
-pub mod self_intercept;
-pub mod view;
-pub mod world;
+#![warn(missing_docs, unreachable_pub)]
 
-pub use config::{ConfigError, EnvConfig, LongShot};
-pub use env::Env;
-pub use policy::BaselinePolicy;
-pub use referee::Outcome;
-pub use rollout::{RolloutSummary, rollout};
+mod sim;
+pub mod tools;
+
+pub use sim::config::{ConfigError, EnvConfig, LongShot, MAX_OFFENSE};
+pub use sim::env::Env;
+pub use sim::features;
+pub use sim::memory::{AgentMemory, ShotCourse};
+pub use sim::params;
+pub use sim::physics::Command;
+pub use sim::referee::Outcome;
+pub use sim::view::Sight;
+pub use sim::world::{Ball, Player, World};
+pub use tools::policy::BaselinePolicy;
+pub use tools::rollout::{RolloutSummary, rollout};

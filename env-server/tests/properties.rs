@@ -1,9 +1,9 @@
 //! Invariants of the simulator over many seeds, policies and team sizes.
 
+use env_server::Command;
 use env_server::features::unum_feature_indices;
 use env_server::params::*;
-use env_server::physics::Command;
-use env_server::rollout::{play_episode, policy_rng};
+use env_server::tools::policy::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
 use glam::DVec2;
 use proptest::prelude::*;

@@ -4,7 +4,8 @@
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use env_server::{BaselinePolicy, EnvConfig, render, rollout};
+use env_server::tools::render;
+use env_server::{BaselinePolicy, EnvConfig, rollout};
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
 

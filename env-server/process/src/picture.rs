@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
-use env_server::render::Trace;
+use env_server::tools::render::Trace;
 
 /// Picture formats, told by the file name's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,7 +48,7 @@ pub fn write_picture(trace: &Trace, path: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use env_server::render::record_episode;
+    use env_server::tools::render::record_episode;
     use env_server::{BaselinePolicy, EnvConfig};
 
     fn trace(seed: u64) -> Trace {

@@ -4,7 +4,7 @@
 //! simulator per run seeded at Reset, and an evaluation simulator replaced
 //! by a fresh one whenever `PlayEpisode` carries a seed.
 
-use env_server::analysis::MAX_OFFENSE;
+use env_server::MAX_OFFENSE;
 use env_server::{Env, EnvConfig, Outcome};
 use proto::{
     Action, ActionChoice, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode, Observation,

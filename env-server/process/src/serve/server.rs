@@ -16,7 +16,7 @@ use super::episode::{Batches, Episode, Offer, Simulators};
 use super::link::{Inbox, Link};
 use anyhow::{Result, bail};
 use env_server::Env;
-use env_server::analysis::MAX_OFFENSE;
+use env_server::MAX_OFFENSE;
 use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
     MessageCounters, MessageKind, Mode, ServerReport,
