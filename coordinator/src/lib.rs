@@ -35,6 +35,12 @@
 
 #![warn(missing_docs)]
 
+#[cfg(not(unix))]
+compile_error!(
+    "the coordinator runs on Unix only: it stops the processes it starts with Unix signals \
+     (kill(2), SIGTERM and SIGINT handlers)"
+);
+
 pub mod backend;
 pub mod config;
 pub mod driver;
