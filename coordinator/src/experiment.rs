@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use crate::config::ExperimentConfig;
 use crate::error::Error;
-use crate::seeds::{Role, derive};
+use crate::seeds::{SeedFor, derive};
 
 /// An experiment ready to run: the configuration checked, every snapshot
 /// read, verified and shown to fit its agent.
@@ -84,16 +84,16 @@ impl Experiment {
     pub fn seeds(&self, run: u64) -> RunSeeds {
         let seed = self.config.seed;
         RunSeeds {
-            simulator: derive(seed, run, Role::Simulator),
+            simulator: derive(seed, run, SeedFor::Simulator),
             agents: (0..self.config.team.len())
-                .map(|i| derive(seed, run, Role::Agent(i)))
+                .map(|i| derive(seed, run, SeedFor::Agent(i)))
                 .collect(),
         }
     }
 
     /// The seed of the simulator of evaluation point `point` of run `run`.
     pub fn evaluation_seed(&self, run: u64, point: u64) -> u64 {
-        derive(self.config.seed, run, Role::Evaluation(point))
+        derive(self.config.seed, run, SeedFor::Evaluation(point))
     }
 
     /// The agents of a run at its start, each restored from its snapshot if

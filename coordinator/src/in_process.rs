@@ -40,11 +40,6 @@ impl InProcess {
             observations: Vec::with_capacity(n),
         })
     }
-
-    /// The team.
-    pub fn team(&self) -> &Team {
-        &self.team
-    }
 }
 
 impl Backend for InProcess {

@@ -7,7 +7,7 @@
 //!   [`AgentSpec`] per agent), validated with errors naming the key.
 //! - [`transport`]: where agents and simulator live ([`Transport`]), part of
 //!   an experiment's identity.
-//! - [`seeds`]: every run's and role's seed from `(seed, run, role)`.
+//! - [`seeds`]: the seed of every random stream of a run from `(seed, run, stream)`.
 //! - [`experiment`]: a validated configuration with its snapshots loaded.
 //! - [`backend`]: the [`Backend`] a run is played on; [`in_process`] calls
 //!   the simulator and an `agent::Team` directly, [`remote`] drives
@@ -34,6 +34,12 @@
 //! ```
 
 #![warn(missing_docs)]
+
+#[cfg(not(unix))]
+compile_error!(
+    "the coordinator runs on Unix only: it stops the processes it starts with Unix signals \
+     (kill(2), SIGTERM and SIGINT handlers)"
+);
 
 pub mod backend;
 pub mod config;

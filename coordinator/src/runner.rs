@@ -109,10 +109,6 @@ fn play_runs(
     if let Some(dir) = &options.save_agents {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))?;
     }
-    let bar = match &options.bar {
-        Some(bar) => bar.clone(),
-        None => new_bar(options.progress, config.runs * config.episodes_per_run()),
-    };
     // Runs an earlier invocation finished are kept, not played again.
     let mut finished: Vec<Option<RunResult>> =
         (0..config.runs).map(|r| out.finished_run(r)).collect();
@@ -120,61 +116,17 @@ fn play_runs(
         .filter(|&r| finished[r as usize].is_none() && wanted(r))
         .collect();
     let kept = config.runs - pending.len() as u64;
-    bar.inc(kept * config.episodes_per_run());
     if kept > 0 {
         tracing::info!(runs = kept, "resuming: runs already finished are kept");
     }
-    // Within a study's bar, say which experiment the runs belong to.
-    let label = match (&options.bar, out.path().file_name()) {
-        (Some(_), Some(name)) => format!("{}: ", name.to_string_lossy()),
-        _ => String::new(),
-    };
-    let done = AtomicU64::new(kept);
-    let frames = AtomicU64::new(0);
-    let start = Instant::now();
-    let tick = |n: u64| {
-        bar.inc(1);
-        let total = frames.fetch_add(n, Ordering::Relaxed) + n;
-        if bar.position() % 50 == 0 {
-            let rate = total as f64 / start.elapsed().as_secs_f64().max(1e-9);
-            bar.set_message(format!(
-                "{label}{}/{} runs, {rate:.0} frames/s",
-                done.load(Ordering::Relaxed),
-                config.runs
-            ));
-        }
-    };
-
+    let progress = Progress::new(experiment, out, options, kept);
     let played = if pending.is_empty() {
         Vec::new()
     } else {
-        let driver = driver::open(&config.transport, config.team.len())?;
-        let threads = options
-            .threads
-            .min(driver.max_parallel_runs())
-            .clamp(1, pending.len());
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| Error::Transport(format!("cannot start {threads} worker threads: {e}")))?;
-        pool.install(|| {
-            pending
-                .par_iter()
-                .map(|&run| {
-                    let result = one_run(experiment, out, options, driver.as_ref(), run, &tick)?;
-                    done.fetch_add(1, Ordering::Relaxed);
-                    tracing::info!(
-                        run,
-                        training_frames_per_sec = result.timing.training_frames_per_sec(),
-                        "run finished"
-                    );
-                    Ok(result)
-                })
-                .collect::<Result<Vec<_>, Error>>()
-        })?
+        play_in_parallel(experiment, out, options, &pending, &progress)?
     };
     if options.bar.is_none() {
-        bar.finish_and_clear();
+        progress.bar.finish_and_clear();
     }
     let mut timing = Timing::default();
     let count = played.len();
@@ -184,6 +136,95 @@ fn play_runs(
         finished[run] = Some(result);
     }
     Ok((finished, timing, count))
+}
+
+/// Plays the runs `pending` over a pool of threads; returns their results in
+/// run order.
+fn play_in_parallel(
+    experiment: &Experiment,
+    out: &ExperimentDir,
+    options: &RunOptions,
+    pending: &[u64],
+    progress: &Progress,
+) -> Result<Vec<RunResult>, Error> {
+    let config = experiment.config();
+    let driver = driver::open(&config.transport, config.team.len())?;
+    let threads = options
+        .threads
+        .min(driver.max_parallel_runs())
+        .clamp(1, pending.len());
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::Transport(format!("cannot start {threads} worker threads: {e}")))?;
+    let episode = |frames| progress.episode(frames);
+    pool.install(|| {
+        pending
+            .par_iter()
+            .map(|&run| {
+                let result = one_run(experiment, out, options, driver.as_ref(), run, &episode)?;
+                progress.done.fetch_add(1, Ordering::Relaxed);
+                tracing::info!(
+                    run,
+                    training_frames_per_sec = result.timing.training_frames_per_sec(),
+                    "run finished"
+                );
+                Ok(result)
+            })
+            .collect()
+    })
+}
+
+/// The progress of an experiment's runs: one step of its bar per episode,
+/// and a message with the runs done and the frame rate.
+struct Progress {
+    bar: ProgressBar,
+    /// Within a study's bar, which experiment the runs belong to.
+    label: String,
+    runs: u64,
+    done: AtomicU64,
+    frames: AtomicU64,
+    start: Instant,
+}
+
+impl Progress {
+    /// The experiment's own bar, or the one of `options`, advanced over the
+    /// `kept` runs an earlier invocation finished.
+    fn new(experiment: &Experiment, out: &ExperimentDir, options: &RunOptions, kept: u64) -> Self {
+        let config = experiment.config();
+        let bar = match &options.bar {
+            Some(bar) => bar.clone(),
+            None => new_bar(options.progress, config.runs * config.episodes_per_run()),
+        };
+        bar.inc(kept * config.episodes_per_run());
+        let label = match (&options.bar, out.path().file_name()) {
+            (Some(_), Some(name)) => format!("{}: ", name.to_string_lossy()),
+            _ => String::new(),
+        };
+        Self {
+            bar,
+            label,
+            runs: config.runs,
+            done: AtomicU64::new(kept),
+            frames: AtomicU64::new(0),
+            start: Instant::now(),
+        }
+    }
+
+    /// One episode of `frames` frames was played.
+    fn episode(&self, frames: u64) {
+        self.bar.inc(1);
+        let total = self.frames.fetch_add(frames, Ordering::Relaxed) + frames;
+        if self.bar.position() % 50 == 0 {
+            let rate = total as f64 / self.start.elapsed().as_secs_f64().max(1e-9);
+            self.bar.set_message(format!(
+                "{}{}/{} runs, {rate:.0} frames/s",
+                self.label,
+                self.done.load(Ordering::Relaxed),
+                self.runs
+            ));
+        }
+    }
 }
 
 /// One run: its backend, its CSV and, if asked, its agents saved.

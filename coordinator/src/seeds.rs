@@ -1,5 +1,5 @@
 //! Seeds of every random stream of an experiment, derived from
-//! `(experiment seed, run, role)` with a fixed mixing function, so that a run
+//! `(experiment seed, run, stream)` with a fixed mixing function, so that a run
 //! is the same whatever thread plays it and whatever else runs beside it.
 
 /// SplitMix64's finaliser applied to `x + golden gamma`: a bijection of
@@ -11,9 +11,9 @@ pub fn splitmix64(x: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// Who draws from a random stream within one run.
+/// The random stream of one run a seed is for, named by who draws from it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Role {
+pub enum SeedFor {
     /// The simulator of the training episodes (start positions and noise).
     Simulator,
     /// The simulator of the evaluation at this evaluation point (0 is the
@@ -24,22 +24,22 @@ pub enum Role {
     Agent(usize),
 }
 
-impl Role {
-    /// A code unique to the role: the kind in the top 2 bits, the index below.
+impl SeedFor {
+    /// A code unique to the stream: the kind in the top 2 bits, the index below.
     fn code(self) -> u64 {
         const INDEX: u64 = (1 << 62) - 1;
         match self {
-            Role::Simulator => 0,
-            Role::Evaluation(p) => (1 << 62) | (p & INDEX),
-            Role::Agent(i) => (2 << 62) | (i as u64 & INDEX),
+            SeedFor::Simulator => 0,
+            SeedFor::Evaluation(p) => (1 << 62) | (p & INDEX),
+            SeedFor::Agent(i) => (2 << 62) | (i as u64 & INDEX),
         }
     }
 }
 
-/// The seed of `role`'s stream in run `run` of an experiment seeded `seed`.
-pub fn derive(seed: u64, run: u64, role: Role) -> u64 {
+/// The seed of `stream` in run `run` of an experiment seeded `seed`.
+pub fn derive(seed: u64, run: u64, stream: SeedFor) -> u64 {
     let per_run = splitmix64(splitmix64(seed) ^ run);
-    splitmix64(per_run ^ splitmix64(role.code()))
+    splitmix64(per_run ^ splitmix64(stream.code()))
 }
 
 #[cfg(test)]
@@ -65,11 +65,14 @@ mod tests {
     #[test]
     fn seeds_are_stable() {
         // Pinned: changing the derivation changes every published result.
-        assert_eq!(derive(1, 0, Role::Simulator), derive(1, 0, Role::Simulator));
+        assert_eq!(
+            derive(1, 0, SeedFor::Simulator),
+            derive(1, 0, SeedFor::Simulator)
+        );
         let pinned = [
-            derive(1, 0, Role::Simulator),
-            derive(1, 0, Role::Agent(0)),
-            derive(1, 1, Role::Evaluation(3)),
+            derive(1, 0, SeedFor::Simulator),
+            derive(1, 0, SeedFor::Agent(0)),
+            derive(1, 1, SeedFor::Evaluation(3)),
         ];
         assert_eq!(
             pinned,
@@ -82,19 +85,19 @@ mod tests {
     }
 
     #[test]
-    fn seeds_are_distinct_across_seeds_runs_and_roles() {
+    fn seeds_are_distinct_across_seeds_runs_and_streams() {
         let mut seen = HashSet::new();
-        let roles = |points: u64, agents: usize| {
-            std::iter::once(Role::Simulator)
-                .chain((0..points).map(Role::Evaluation))
-                .chain((0..agents).map(Role::Agent))
+        let streams = |points: u64, agents: usize| {
+            std::iter::once(SeedFor::Simulator)
+                .chain((0..points).map(SeedFor::Evaluation))
+                .chain((0..agents).map(SeedFor::Agent))
         };
         for seed in [0, 1, 2, u64::MAX] {
             for run in 0..50 {
-                for role in roles(251, 4) {
+                for stream in streams(251, 4) {
                     assert!(
-                        seen.insert(derive(seed, run, role)),
-                        "{seed} {run} {role:?}"
+                        seen.insert(derive(seed, run, stream)),
+                        "{seed} {run} {stream:?}"
                     );
                 }
             }
@@ -102,9 +105,9 @@ mod tests {
     }
 
     #[test]
-    fn role_codes_do_not_collide() {
-        assert_ne!(Role::Evaluation(0).code(), Role::Agent(0).code());
-        assert_ne!(Role::Simulator.code(), Role::Evaluation(0).code());
-        assert_ne!(Role::Simulator.code(), Role::Agent(0).code());
+    fn stream_codes_do_not_collide() {
+        assert_ne!(SeedFor::Evaluation(0).code(), SeedFor::Agent(0).code());
+        assert_ne!(SeedFor::Simulator.code(), SeedFor::Evaluation(0).code());
+        assert_ne!(SeedFor::Simulator.code(), SeedFor::Agent(0).code());
     }
 }

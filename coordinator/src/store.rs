@@ -200,17 +200,64 @@ fn first_difference(ours: &Value, theirs: &Value, at: &str) -> Option<String> {
     }
 }
 
+/// A column of a run's CSV, or a group of them: header and value come from
+/// one entry, so that they stay in step.
+enum Column {
+    /// A value of the evaluation point.
+    Point(&'static str, fn(&EvalPoint) -> String),
+    /// `<name>_<i>` for every agent `i`.
+    EachAgent(&'static str, fn(&AgentStats) -> u64),
+    /// The team's total so far.
+    Team(&'static str, fn(&AgentStats) -> u64),
+}
+
+/// The columns of a run's CSV, in order.
+const COLUMNS: &[Column] = &[
+    Column::Point("episode", |p| p.episode.to_string()),
+    Column::Point("goal_pct", |p| p.goal_pct.to_string()),
+    // Empty without a goal.
+    Column::Point("time_to_goal", |p| {
+        p.time_to_goal.map(|t| t.to_string()).unwrap_or_default()
+    }),
+    Column::EachAgent("give_spent", |a| a.spent_give),
+    Column::EachAgent("ask_spent", |a| a.spent_ask),
+    Column::Team("advice_requests", |a| a.requests),
+    Column::Team("advice_given", |a| a.advice_given),
+    // The give budget spent, averaged over agents.
+    Column::Point("spent_budget", |p| p.spent_budget.to_string()),
+    Column::Team("advice_replies_received", |a| a.replies_received),
+    Column::Team("messages_sent", |a| a.messages_sent),
+    Column::Team("bytes_sent", |a| a.bytes_sent),
+    Column::Team("messages_received", |a| a.messages_received),
+    Column::Team("bytes_received", |a| a.bytes_received),
+    // 0 in process.
+    Column::Team("messages_dropped", |a| a.dropped),
+    // Awaited actions that missed the step timeout and were played as Move,
+    // over the run so far (0 in process).
+    Column::Point("actions_timed_out", |p| p.actions_timed_out.to_string()),
+];
+
+impl Column {
+    fn names(&self, agents: usize) -> Vec<String> {
+        match self {
+            Column::Point(name, _) | Column::Team(name, _) => vec![(*name).to_owned()],
+            Column::EachAgent(name, _) => (0..agents).map(|i| format!("{name}_{i}")).collect(),
+        }
+    }
+
+    fn values(&self, p: &EvalPoint) -> Vec<String> {
+        match self {
+            Column::Point(_, value) => vec![value(p)],
+            Column::EachAgent(_, value) => p.agents.iter().map(|a| value(a).to_string()).collect(),
+            Column::Team(_, value) => vec![p.agents.iter().map(value).sum::<u64>().to_string()],
+        }
+    }
+}
+
 /// One run's CSV: a header, then one row per evaluation point, flushed as
-/// soon as it is written.
-///
-/// Columns: `episode, goal_pct, time_to_goal` (empty without a goal),
-/// `give_spent_<i>` and `ask_spent_<i>` for every agent `i`,
-/// `advice_requests` and `advice_given` (team totals), `spent_budget` (the
-/// give budget spent, averaged over agents), then the team's communication
-/// so far: `advice_replies_received`, `messages_sent`, `bytes_sent`,
-/// `messages_received`, `bytes_received`, `messages_dropped` (0 in process),
-/// and `actions_timed_out`: awaited actions that missed the step timeout
-/// and were played as Move, over the run so far (0 in process).
+/// soon as it is written. The columns are those of `COLUMNS`: the point's
+/// goal percentage and time to goal, every agent's spent budgets, then the
+/// team's advice and communication so far.
 #[derive(Debug)]
 pub struct RunWriter {
     path: PathBuf,
@@ -226,26 +273,7 @@ impl RunWriter {
             csv: csv::Writer::from_writer(file),
             agents,
         };
-        let mut header: Vec<String> = ["episode", "goal_pct", "time_to_goal"]
-            .map(String::from)
-            .to_vec();
-        header.extend((0..agents).map(|i| format!("give_spent_{i}")));
-        header.extend((0..agents).map(|i| format!("ask_spent_{i}")));
-        header.extend(
-            [
-                "advice_requests",
-                "advice_given",
-                "spent_budget",
-                "advice_replies_received",
-                "messages_sent",
-                "bytes_sent",
-                "messages_received",
-                "bytes_received",
-                "messages_dropped",
-                "actions_timed_out",
-            ]
-            .map(String::from),
-        );
+        let header: Vec<String> = COLUMNS.iter().flat_map(|c| c.names(agents)).collect();
         w.write_row(&header)?;
         Ok(w)
     }
@@ -253,32 +281,7 @@ impl RunWriter {
     /// Appends one evaluation point and flushes it to the file.
     pub fn write_point(&mut self, p: &EvalPoint) -> Result<(), Error> {
         debug_assert_eq!(p.agents.len(), self.agents);
-        let mut row = vec![
-            p.episode.to_string(),
-            p.goal_pct.to_string(),
-            p.time_to_goal.map(|t| t.to_string()).unwrap_or_default(),
-        ];
-        row.extend(p.agents.iter().map(|a| a.spent_give.to_string()));
-        row.extend(p.agents.iter().map(|a| a.spent_ask.to_string()));
-        row.push(p.agents.iter().map(|a| a.requests).sum::<u64>().to_string());
-        row.push(
-            p.agents
-                .iter()
-                .map(|a| a.advice_given)
-                .sum::<u64>()
-                .to_string(),
-        );
-        row.push(p.spent_budget.to_string());
-        let total = |f: fn(&AgentStats) -> u64| p.agents.iter().map(f).sum::<u64>().to_string();
-        row.extend([
-            total(|a| a.replies_received),
-            total(|a| a.messages_sent),
-            total(|a| a.bytes_sent),
-            total(|a| a.messages_received),
-            total(|a| a.bytes_received),
-            total(|a| a.dropped),
-            p.actions_timed_out.to_string(),
-        ]);
+        let row: Vec<String> = COLUMNS.iter().flat_map(|c| c.values(p)).collect();
         self.write_row(&row)
     }
 

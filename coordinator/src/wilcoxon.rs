@@ -30,8 +30,6 @@
 //! algorithms with identical results (e.g. 0% goals in every run before any
 //! training) are simply not significantly different.
 
-use std::cmp::Ordering;
-
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, Normal};
 
@@ -79,24 +77,6 @@ pub struct SignedRank {
     /// One-sided p-value against the alternative "x tends to be smaller than
     /// y" (small W+; SciPy's `alternative="less"`).
     pub p_less: f64,
-}
-
-impl SignedRank {
-    /// The two-sided statistic min(W+, W-), as SciPy reports it.
-    pub fn statistic(&self) -> f64 {
-        self.w_plus.min(self.w_minus)
-    }
-
-    /// Number of zero differences, dropped before ranking.
-    pub fn zeros(&self) -> usize {
-        self.pairs - self.n
-    }
-
-    /// Which sample tends to be larger, by the sign of W+ - W-: `Greater`
-    /// if `x`, `Less` if `y`, `Equal` if W+ = W-.
-    pub fn direction(&self) -> Ordering {
-        self.w_plus.total_cmp(&self.w_minus)
-    }
 }
 
 /// The Wilcoxon signed-rank test of `x` against `y`, paired by index, with
@@ -637,7 +617,8 @@ mod tests {
                 let r = signed_rank_with(case.x, case.y, corrected).unwrap();
                 assert_eq!(r.method, case.method, "{name}");
                 assert_eq!(r.pairs, case.x.len(), "{name}");
-                assert_eq!(r.statistic(), case.statistic, "{name}");
+                // SciPy's two-sided statistic is min(W+, W-).
+                assert_eq!(r.w_plus.min(r.w_minus), case.statistic, "{name}");
                 assert_eq!(r.w_plus, case.w_plus, "{name}");
                 assert_eq!(r.w_plus + r.w_minus, (r.n * (r.n + 1)) as f64 / 2.0);
                 let got = [r.p_value, r.p_greater, r.p_less];
@@ -673,7 +654,6 @@ mod tests {
             let r = signed_rank(case.x, case.y).unwrap();
             let s = signed_rank(case.y, case.x).unwrap();
             assert_eq!((s.w_plus, s.w_minus), (r.w_minus, r.w_plus));
-            assert_eq!(s.direction(), r.direction().reverse());
             assert_eq!(s.p_value, r.p_value, "{}", case.name);
             assert!(close_rel(s.p_greater, r.p_less, 1e-12), "{}", case.name);
             assert!(close_rel(s.p_less, r.p_greater, 1e-12), "{}", case.name);
@@ -681,19 +661,18 @@ mod tests {
     }
 
     #[test]
-    fn counts_pairs_zeros_and_direction() {
+    fn counts_pairs_and_ranks_non_zero_differences() {
         // gp5: differences 7, 0, 5, 7, 6.
         let r = signed_rank(
             &[42.0, 38.0, 45.0, 40.0, 47.0],
             &[35.0, 38.0, 40.0, 33.0, 41.0],
         )
         .unwrap();
-        assert_eq!((r.pairs, r.n, r.zeros()), (5, 4, 1));
+        assert_eq!((r.pairs, r.n), (5, 4));
         assert_eq!((r.w_plus, r.w_minus), (10.0, 0.0));
-        assert_eq!(r.direction(), Ordering::Greater);
         // Tied at W+ = W- = 1.5: differences 1, -1.
         let r = signed_rank(&[1.0, 2.0], &[2.0, 1.0]).unwrap();
-        assert_eq!(r.direction(), Ordering::Equal);
+        assert_eq!((r.w_plus, r.w_minus), (1.5, 1.5));
         assert_eq!(r.p_value, 1.0);
     }
 
@@ -705,10 +684,9 @@ mod tests {
         for pairs in [1, 5, 13, 14, 20, 50, 51] {
             let r = signed_rank(&vec![40.0; pairs], &vec![40.0; pairs]).unwrap();
             assert_eq!(r.method, Method::Permutation);
-            assert_eq!((r.pairs, r.n, r.zeros()), (pairs, 0, pairs));
-            assert_eq!((r.w_plus, r.w_minus, r.statistic()), (0.0, 0.0, 0.0));
+            assert_eq!((r.pairs, r.n), (pairs, 0));
+            assert_eq!((r.w_plus, r.w_minus), (0.0, 0.0));
             assert_eq!((r.p_value, r.p_greater, r.p_less), (1.0, 1.0, 1.0));
-            assert_eq!(r.direction(), Ordering::Equal);
         }
     }
 

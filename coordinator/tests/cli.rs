@@ -101,56 +101,65 @@ fn writes_run_csvs_and_a_summary_of_the_right_shape() {
             "summary.json"
         ]
     );
-
     for run in 0..2 {
-        let text = fs::read_to_string(out.join(format!("run-{run}.csv"))).unwrap();
-        let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-        assert_eq!(
-            rows[0],
-            [
-                "episode",
-                "goal_pct",
-                "time_to_goal",
-                "give_spent_0",
-                "give_spent_1",
-                "give_spent_2",
-                "ask_spent_0",
-                "ask_spent_1",
-                "ask_spent_2",
-                "advice_requests",
-                "advice_given",
-                "spent_budget",
-                "advice_replies_received",
-                "messages_sent",
-                "bytes_sent",
-                "messages_received",
-                "bytes_received",
-                "messages_dropped",
-                "actions_timed_out"
-            ]
-        );
-        assert_eq!(rows.len(), 4, "header + evaluations at 0, 20, 40");
-        for (row, episode) in rows[1..].iter().zip(["0", "20", "40"]) {
-            assert_eq!(row.len(), 19);
-            assert_eq!(row[0], episode);
-            let gp: f64 = row[1].parse().unwrap();
-            assert!((0.0..=100.0).contains(&gp) && gp % 10.0 == 0.0, "{gp}");
-            // Empty without a goal, else a mean of 1 to 200 frames.
-            assert!(
-                (gp == 0.0) == row[2].is_empty(),
-                "goal_pct {gp}, time_to_goal {:?}",
-                row[2]
-            );
-            if !row[2].is_empty() {
-                let tg: f64 = row[2].parse().unwrap();
-                assert!((1.0..=200.0).contains(&tg), "{tg}");
-            }
-        }
-        // Nothing is spent before training; AdHocTD never gives more than its budget.
-        assert!(rows[1][3..].iter().all(|c| *c == "0"), "{:?}", rows[1]);
+        check_tiny_run_csv(&fs::read_to_string(out.join(format!("run-{run}.csv"))).unwrap());
     }
+    check_tiny_summary(&out);
+}
 
-    let s = summary(&out);
+/// A run CSV of [`TINY`] with a team of three: its header, and an evaluation
+/// at episodes 0, 20 and 40 of 10 episodes each.
+fn check_tiny_run_csv(text: &str) {
+    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        rows[0],
+        [
+            "episode",
+            "goal_pct",
+            "time_to_goal",
+            "give_spent_0",
+            "give_spent_1",
+            "give_spent_2",
+            "ask_spent_0",
+            "ask_spent_1",
+            "ask_spent_2",
+            "advice_requests",
+            "advice_given",
+            "spent_budget",
+            "advice_replies_received",
+            "messages_sent",
+            "bytes_sent",
+            "messages_received",
+            "bytes_received",
+            "messages_dropped",
+            "actions_timed_out"
+        ]
+    );
+    assert_eq!(rows.len(), 4, "header + evaluations at 0, 20, 40");
+    for (row, episode) in rows[1..].iter().zip(["0", "20", "40"]) {
+        assert_eq!(row.len(), 19);
+        assert_eq!(row[0], episode);
+        let gp: f64 = row[1].parse().unwrap();
+        assert!((0.0..=100.0).contains(&gp) && gp % 10.0 == 0.0, "{gp}");
+        // Empty without a goal, else a mean of 1 to 200 frames.
+        assert!(
+            (gp == 0.0) == row[2].is_empty(),
+            "goal_pct {gp}, time_to_goal {:?}",
+            row[2]
+        );
+        if !row[2].is_empty() {
+            let tg: f64 = row[2].parse().unwrap();
+            assert!((1.0..=200.0).contains(&tg), "{tg}");
+        }
+    }
+    // Nothing is spent before training; AdHocTD never gives more than its budget.
+    assert!(rows[1][3..].iter().all(|c| *c == "0"), "{:?}", rows[1]);
+}
+
+/// The summary of [`TINY`] with AdHocTD: its identity and an estimate with
+/// its interval at every evaluation point.
+fn check_tiny_summary(out: &Path) {
+    let s = summary(out);
     assert_eq!(s["seed"], 7);
     assert_eq!(s["runs"], 2);
     assert_eq!(s["config"]["eval_every"], 20);

@@ -1,111 +1,161 @@
 //! Starting and stopping the env-server and agent processes on this host.
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{ExitStatus, Stdio};
+use std::sync::Mutex;
+use std::time::Duration;
+
+use node::sync::lock;
+use tokio::process::{Child, Command};
+use tokio::runtime::Handle;
+use tokio::sync::watch;
+use tokio::time::timeout;
 
 use crate::error::Error;
 
-/// The processes this coordinator started; killed when dropped.
-#[derive(Debug, Default)]
+/// How long a killed process may take to be reaped.
+const KILL_WAIT: Duration = Duration::from_secs(2);
+
+/// The processes this coordinator started. A task of the runtime awaits each
+/// one, sends it the signals asked for and records its exit; a process still
+/// running when the runtime shuts down is killed.
+#[derive(Debug)]
 pub struct Children {
-    processes: Vec<(String, Child)>,
+    runtime: Handle,
+    /// Names of the processes started, in order.
+    names: Mutex<Vec<String>>,
+    /// The signal for every process still running: SIGTERM, then SIGKILL.
+    signal: watch::Sender<Option<libc::c_int>>,
+    /// The processes that exited, in the order they did, with their status.
+    exits: watch::Sender<Vec<(String, ExitStatus)>>,
 }
 
 impl Children {
+    /// No process yet; those started will be awaited on `runtime`.
+    pub fn new(runtime: Handle) -> Self {
+        Self {
+            runtime,
+            names: Mutex::default(),
+            signal: watch::Sender::new(None),
+            exits: watch::Sender::new(Vec::new()),
+        }
+    }
+
     /// Starts `program` with `args`, named `name` in messages. On Linux
     /// the child is killed when this coordinator dies, however it dies.
-    pub fn spawn(&mut self, name: &str, program: &Path, args: &[String]) -> Result<(), Error> {
+    pub fn spawn(&self, name: &str, program: &Path, args: &[String]) -> Result<(), Error> {
         let mut command = Command::new(program);
-        command.args(args).stdin(Stdio::null());
+        command.args(args).stdin(Stdio::null()).kill_on_drop(true);
         die_with_parent(&mut command);
+        // A child is awaited through the runtime it was started in.
+        let _runtime = self.runtime.enter();
         let child = command
             .spawn()
             .map_err(|e| Error::io("start", program, e))?;
         tracing::debug!(name, pid = child.id(), "started");
-        self.processes.push((name.to_owned(), child));
+        lock(&self.names).push(name.to_owned());
+        self.runtime.spawn(supervise(
+            name.to_owned(),
+            child,
+            self.signal.subscribe(),
+            self.exits.clone(),
+        ));
         Ok(())
     }
 
     /// Whether no process was started.
     pub fn is_empty(&self) -> bool {
-        self.processes.is_empty()
+        lock(&self.names).is_empty()
+    }
+
+    /// Whether this coordinator started the process named `name`.
+    pub fn started(&self, name: &str) -> bool {
+        lock(&self.names).iter().any(|n| n == name)
     }
 
     /// What became of the process named `name` within `limit`: `Some(status)`
     /// once it exited, `None` while it runs or when this coordinator did not
     /// start it. (A killed process closes its sockets, which its peers see
     /// at once, a moment before it has exited.)
-    pub fn exit_status(&mut self, name: &str, limit: Duration) -> Option<std::process::ExitStatus> {
-        let (_, child) = self.processes.iter_mut().find(|(n, _)| n == name)?;
-        let deadline = Instant::now() + limit;
-        loop {
-            match child.try_wait() {
-                Ok(Some(status)) => return Some(status),
-                Ok(None) if Instant::now() < deadline => {
-                    std::thread::sleep(Duration::from_millis(10))
-                }
-                _ => return None,
-            }
+    pub async fn exit_status(&self, name: &str, limit: Duration) -> Option<ExitStatus> {
+        if !self.started(name) {
+            return None;
         }
+        let mut exits = self.exits.subscribe();
+        let exited = exits.wait_for(|exits| exits.iter().any(|(n, _)| n == name));
+        let exits = timeout(limit, exited).await.ok()?.ok()?;
+        exits.iter().find(|(n, _)| n == name).map(|(_, s)| *s)
     }
 
-    /// Whether this coordinator started the process named `name`.
-    pub fn started(&self, name: &str) -> bool {
-        self.processes.iter().any(|(n, _)| n == name)
-    }
-
-    /// The first process that has already exited, with its status.
-    pub fn exited(&mut self) -> Option<String> {
-        self.processes.iter_mut().find_map(|(name, child)| {
-            let status = child.try_wait().ok().flatten()?;
-            Some(format!("{name} exited ({status})"))
-        })
+    /// Resolves once a process has exited, saying which and how; never
+    /// without processes.
+    pub async fn first_exit(&self) -> String {
+        let mut exits = self.exits.subscribe();
+        match exits.wait_for(|exits| !exits.is_empty()).await {
+            Ok(exits) => format!("{} exited ({})", exits[0].0, exits[0].1),
+            Err(_) => std::future::pending().await,
+        }
     }
 
     /// Asks every process to stop (SIGTERM), waits up to `grace` for them to
-    /// exit, then kills the rest.
-    pub fn reap(&mut self, grace: Duration) {
-        for (_, child) in &mut self.processes {
-            terminate(child);
+    /// exit, then kills the rest and waits up to `KILL_WAIT` for them.
+    pub async fn reap(&self, grace: Duration) {
+        let names = std::mem::take(&mut *lock(&self.names));
+        let mut exits = self.exits.subscribe();
+        let all_exited = |exits: &Vec<(String, ExitStatus)>| {
+            names.iter().all(|n| exits.iter().any(|(e, _)| e == n))
+        };
+        self.signal.send_replace(Some(libc::SIGTERM));
+        if timeout(grace, exits.wait_for(all_exited)).await.is_ok() {
+            return;
         }
-        let deadline = Instant::now() + grace;
-        for (name, child) in &mut self.processes {
-            while matches!(child.try_wait(), Ok(None)) && Instant::now() < deadline {
-                std::thread::sleep(Duration::from_millis(20));
-            }
-            if matches!(child.try_wait(), Ok(None)) {
-                tracing::warn!(name, "did not stop in time; killing it");
-                let _ = child.kill();
-            }
-            let _ = child.wait();
+        for name in names
+            .iter()
+            .filter(|n| !exits.borrow().iter().any(|(e, _)| e == *n))
+        {
+            tracing::warn!(name, "did not stop in time; killing it");
         }
-        self.processes.clear();
-    }
-}
-
-/// Sends SIGTERM to a child that is still running.
-#[cfg(unix)]
-fn terminate(child: &mut Child) {
-    if matches!(child.try_wait(), Ok(None))
-        && let Ok(pid) = libc::pid_t::try_from(child.id())
-    {
-        // SAFETY: plain kill(2) on our own child, which has not been reaped.
-        unsafe {
-            libc::kill(pid, libc::SIGTERM);
+        self.signal.send_replace(Some(libc::SIGKILL));
+        if timeout(KILL_WAIT, exits.wait_for(all_exited))
+            .await
+            .is_err()
+        {
+            tracing::warn!("a killed process was still not reaped after {KILL_WAIT:?}");
         }
     }
 }
 
-#[cfg(not(unix))]
-fn terminate(_: &mut Child) {}
-
-impl Drop for Children {
-    fn drop(&mut self) {
-        for (_, child) in &mut self.processes {
-            let _ = child.kill();
-            let _ = child.wait();
+/// Awaits `child`, sending it every signal asked for meanwhile, and records
+/// its exit in `exits`.
+async fn supervise(
+    name: String,
+    mut child: Child,
+    mut signal: watch::Receiver<Option<libc::c_int>>,
+    exits: watch::Sender<Vec<(String, ExitStatus)>>,
+) {
+    let status = loop {
+        tokio::select! {
+            status = child.wait() => break status,
+            Ok(()) = signal.changed() => {
+                let signal = *signal.borrow_and_update();
+                // `id` is none once the child is reaped, which only this task does.
+                if let (Some(signal), Some(pid)) = (signal, child.id())
+                    && let Ok(pid) = libc::pid_t::try_from(pid)
+                {
+                    // SAFETY: plain kill(2) on our own child, which has not been reaped.
+                    unsafe {
+                        libc::kill(pid, signal);
+                    }
+                }
+            }
         }
+    };
+    match status {
+        Ok(status) => {
+            tracing::debug!(name, %status, "exited");
+            exits.send_modify(|exits| exits.push((name, status)));
+        }
+        Err(e) => tracing::warn!(name, "cannot await the process: {e}"),
     }
 }
 
@@ -115,7 +165,6 @@ impl Drop for Children {
 /// thread, which lives as long as the coordinator.
 #[cfg(target_os = "linux")]
 fn die_with_parent(command: &mut Command) {
-    use std::os::unix::process::CommandExt;
     // SAFETY: the closure runs in the child between fork and exec and only
     // makes async-signal-safe calls (getppid, prctl, _exit).
     let parent = unsafe { libc::getpid() };

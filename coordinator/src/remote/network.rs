@@ -6,11 +6,13 @@ use std::time::{Duration, Instant};
 
 use node::net::NetConfig;
 use node::secret::Secret;
+use node::sync::lock;
 use proto::keys::{Keys, Role};
 use proto::{
     Body, Control, ControlReply, Direction, Envelope, Header, MessageCounters, MessageKind,
 };
 use tokio::sync::watch;
+use tokio::time::timeout_at;
 use zenoh::liveliness::LivelinessToken;
 use zenoh::pubsub::Subscriber;
 use zenoh::query::{ConsolidationMode, QueryTarget};
@@ -28,10 +30,11 @@ pub struct Network {
     keys: Keys,
     experiment: u64,
     roles: Vec<Role>,
-    alive: Arc<Mutex<HashSet<Role>>>,
+    /// The roles whose liveliness tokens are seen.
+    alive: watch::Sender<HashSet<Role>>,
     /// The first process whose token disappeared; control waits watch it.
-    lost: Arc<watch::Sender<Option<Role>>>,
-    children: Arc<Mutex<Children>>,
+    lost: watch::Sender<Option<Role>>,
+    children: Arc<Children>,
     counters: Mutex<MessageCounters>,
     secret: Option<Secret>,
     /// The private directory of a generated secret, removed when dropped.
@@ -78,11 +81,116 @@ fn secret(options: &Endpoints) -> Result<(Option<Secret>, Option<tempfile::TempD
     }
 }
 
+/// The endpoint this coordinator listens on: the one given to attach, else
+/// loopback `port`. Always listen: a peer that cannot be reached is never
+/// linked to a peer that waits for it to open the link.
+fn listen_endpoint(options: &Endpoints, port: u16) -> Result<String, Error> {
+    match (&options.listen, options.attach) {
+        (Some(endpoint), true) => Ok(endpoint.clone()),
+        (Some(_), false) => Err(ConfigError::new(
+            "listen",
+            "a listen endpoint is for --attach; the processes this coordinator starts use its loopback --port",
+        )
+        .into()),
+        (None, _) => Ok(format!("tcp/127.0.0.1:{port}")),
+    }
+}
+
+/// Follows the liveliness tokens of the experiment `keys` into `alive`; the
+/// first role whose token disappears goes into `lost`.
+async fn follow_liveliness(
+    session: &zenoh::Session,
+    keys: &Keys,
+    alive: watch::Sender<HashSet<Role>>,
+    lost: watch::Sender<Option<Role>>,
+) -> Result<Subscriber<()>, Error> {
+    let keys_of = keys.clone();
+    session
+        .liveliness()
+        .declare_subscriber(keys.alive_all())
+        .history(true)
+        .callback(move |sample| {
+            let Some(role) = keys_of.role_of_alive(sample.key_expr().as_str()) else {
+                return;
+            };
+            let mut removed = false;
+            alive.send_if_modified(|alive| match sample.kind() {
+                SampleKind::Put => alive.insert(role),
+                SampleKind::Delete => {
+                    removed = alive.remove(&role);
+                    removed
+                }
+            });
+            if removed {
+                tracing::warn!(%role, "lost");
+                lost.send_if_modified(|first| first.is_none() && first.replace(role).is_none());
+            }
+        })
+        .await
+        .map_err(|e| net_error(format!("cannot watch liveliness: {e}")))
+}
+
+/// Refuses an experiment that already has a process of `roles` or a
+/// coordinator: asks which of its liveliness tokens exist now, within the
+/// startup timeout. (Tokens of peers not linked yet are not seen, but the
+/// peer or router this session connected to answers with its own and, a
+/// router, with every one it knows.)
+async fn refuse_a_busy_experiment(
+    session: &zenoh::Session,
+    keys: &Keys,
+    roles: &[Role],
+    options: &Endpoints,
+) -> Result<(), Error> {
+    let replies = session
+        .liveliness()
+        .get(keys.alive_all())
+        .timeout(options.startup_timeout)
+        .await
+        .map_err(|e| net_error(format!("cannot query liveliness: {e}")))?;
+    let mut running = HashSet::new();
+    while let Ok(reply) = replies.recv_async().await {
+        let Ok(sample) = reply.result() else {
+            return Err(net_error(format!(
+                "the query for the processes of experiment {} got no complete answer within {:?}",
+                options.experiment, options.startup_timeout
+            )));
+        };
+        running.extend(keys.role_of_alive(sample.key_expr().as_str()));
+    }
+    let mut candidates = roles.iter().chain([&Role::Coordinator]);
+    match candidates.find(|r| running.contains(*r)) {
+        Some(role) => Err(net_error(format!(
+            "experiment {} already has a running {role}; choose another --experiment",
+            options.experiment
+        ))),
+        None => Ok(()),
+    }
+}
+
 impl Network {
     /// Joins the network of `settings.endpoints.experiment`, starts
     /// env-server and `agents` agent processes (unless attaching) and waits
-    /// until every one of them is alive.
+    /// until every one of them is alive and answers control queries.
     pub fn start(settings: &ZenohSettings, agents: usize) -> Result<Self, Error> {
+        let options = &settings.endpoints;
+        let port = match options.port {
+            0 => node::net::free_port().map_err(|e| Error::io("bind", "127.0.0.1:0", e))?,
+            p => p,
+        };
+        let network = Self::join(settings, agents, port)?;
+        if !options.attach {
+            network.stop_on_signals()?;
+            network.launch(agents, port)?;
+        }
+        network.wait_for_everyone()?;
+        Ok(network)
+    }
+
+    /// Opens the session (listening on loopback `port` unless attaching),
+    /// follows the liveliness of env-server and `agents` agents, refuses an
+    /// experiment that already runs (unless attaching) and declares this
+    /// coordinator's token.
+    fn join(settings: &ZenohSettings, agents: usize, port: u16) -> Result<Self, Error> {
         let options = &settings.endpoints;
         let keys = Keys::new(&options.experiment)
             .map_err(|e| ConfigError::new("experiment", e.to_string()))?;
@@ -91,71 +199,34 @@ impl Network {
             .enable_all()
             .build()
             .map_err(|e| net_error(format!("cannot start the async runtime: {e}")))?;
-        // Always listen: a peer that cannot be reached is never linked to a
-        // peer that waits for it to open the link.
-        let port = match options.port {
-            0 => node::net::free_port().map_err(|e| Error::io("bind", "127.0.0.1:0", e))?,
-            p => p,
-        };
-        let listen = match (&options.listen, options.attach) {
-            (Some(endpoint), true) => endpoint.clone(),
-            (Some(_), false) => {
-                return Err(ConfigError::new(
-                    "listen",
-                    "a listen endpoint is for --attach; the processes this coordinator starts use its loopback --port",
-                )
-                .into());
-            }
-            (None, _) => format!("tcp/127.0.0.1:{port}"),
-        };
+        let listen = listen_endpoint(options, port)?;
         let (secret, secret_dir) = secret(options)?;
         let net = NetConfig::peer(vec![listen], options.connect.clone())
             .with_secret(secret.clone())
             .with_base(options.zenoh_config.clone());
-        let session = runtime
-            .block_on(node::net::open(&net))
-            .map_err(|e| net_error(e.to_string()))?;
         let roles: Vec<Role> = std::iter::once(Role::Server)
             .chain((0..agents).map(|i| Role::Agent(i as u8)))
             .collect();
-        let alive = Arc::new(Mutex::new(HashSet::new()));
-        let lost = Arc::new(watch::Sender::new(None));
-        let watch = {
-            let (alive, lost, keys) = (alive.clone(), lost.clone(), keys.clone());
-            let key = keys.alive_all();
-            runtime
-                .block_on(async {
-                    session
-                        .liveliness()
-                        .declare_subscriber(key)
-                        .history(true)
-                        .callback(move |sample| {
-                            let Some(role) = keys.role_of_alive(sample.key_expr().as_str()) else {
-                                return;
-                            };
-                            let mut alive = alive.lock().expect("liveliness set");
-                            if sample.kind() == SampleKind::Put {
-                                alive.insert(role);
-                            } else if alive.remove(&role) {
-                                tracing::warn!(%role, "lost");
-                                lost.send_if_modified(|first| {
-                                    first.is_none() && first.replace(role).is_none()
-                                });
-                            }
-                        })
-                        .await
-                })
-                .map_err(|e| net_error(format!("cannot watch liveliness: {e}")))?
-        };
-        let token = runtime
-            .block_on(async {
-                session
-                    .liveliness()
-                    .declare_token(keys.alive(Role::Coordinator))
-                    .await
-            })
-            .map_err(|e| net_error(format!("cannot declare liveliness: {e}")))?;
-        let network = Network {
+        let alive = watch::Sender::new(HashSet::new());
+        let lost = watch::Sender::new(None);
+        let (session, watch, token) = runtime.block_on(async {
+            let session = node::net::open(&net)
+                .await
+                .map_err(|e| net_error(e.to_string()))?;
+            let watch = follow_liveliness(&session, &keys, alive.clone(), lost.clone()).await?;
+            if !options.attach {
+                // Before this coordinator's token, whose key another's has too.
+                refuse_a_busy_experiment(&session, &keys, &roles, options).await?;
+            }
+            let token = session
+                .liveliness()
+                .declare_token(keys.alive(Role::Coordinator))
+                .await
+                .map_err(|e| net_error(format!("cannot declare liveliness: {e}")))?;
+            Ok::<_, Error>((session, watch, token))
+        })?;
+        Ok(Network {
+            children: Arc::new(Children::new(runtime.handle().clone())),
             settings: settings.clone(),
             runtime,
             session,
@@ -164,34 +235,21 @@ impl Network {
             roles,
             alive,
             lost,
-            children: Arc::new(Mutex::new(Children::default())),
             counters: Mutex::new(MessageCounters::default()),
             secret,
             secret_dir,
             _token: token,
             _watch: watch,
-        };
-        if !options.attach {
-            // Give liveliness history a moment, then refuse a busy experiment.
-            std::thread::sleep(Duration::from_millis(200));
-            if let Some(role) = network.roles.iter().find(|r| network.is_alive(**r)) {
-                return Err(net_error(format!(
-                    "experiment {} already has a running {role}; choose another --experiment",
-                    options.experiment
-                )));
-            }
-            let connect = format!("tcp/127.0.0.1:{port}");
-            network.stop_on_signals()?;
-            network.launch(agents, &connect)?;
-        }
-        network.wait_for_everyone(options)?;
-        Ok(network)
+        })
     }
 
-    fn launch(&self, agents: usize, connect: &str) -> Result<(), Error> {
+    /// Starts env-server and `agents` agents, connecting to this
+    /// coordinator's loopback `port`.
+    fn launch(&self, agents: usize, port: u16) -> Result<(), Error> {
         let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
         let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
+        let connect = format!("tcp/127.0.0.1:{port}");
         let auth: Vec<String> = match &self.secret {
             Some(secret) => vec!["--secret-file".into(), secret.path().display().to_string()],
             None => vec!["--no-auth".into()],
@@ -202,19 +260,18 @@ impl Network {
                 "--experiment".into(),
                 options.experiment.clone(),
                 "--connect".into(),
-                connect.to_owned(),
+                connect.clone(),
             ]);
             args.extend(auth.iter().cloned());
             args
         };
-        let mut children = self.children.lock().expect("children");
-        children.spawn(
+        self.children.spawn(
             "env-server",
             &server,
             &common(&["serve".into(), "--exit-with-coordinator".into()]),
         )?;
         for i in 0..agents {
-            children.spawn(
+            self.children.spawn(
                 &format!("agent {i}"),
                 &agent,
                 &common(&[
@@ -229,37 +286,75 @@ impl Network {
         Ok(())
     }
 
-    fn wait_for_everyone(&self, options: &Endpoints) -> Result<(), Error> {
-        let deadline = Instant::now() + options.startup_timeout;
-        loop {
-            let missing: Vec<String> = self
-                .roles
-                .iter()
-                .filter(|r| !self.is_alive(**r))
-                .map(|r| r.to_string())
-                .collect();
-            if missing.is_empty() {
-                // Declarations propagate asynchronously: let queryables settle.
-                std::thread::sleep(Duration::from_millis(100));
-                self.lost.send_replace(None);
-                return Ok(());
-            }
-            if let Some(exited) = self.children.lock().expect("children").exited() {
-                return Err(net_error(format!(
+    /// Waits, within the startup timeout, until every process has joined:
+    /// its liveliness token is seen and its control queryable reachable.
+    /// Fails at once if a process this coordinator started exits first.
+    fn wait_for_everyone(&self) -> Result<(), Error> {
+        let options = &self.settings.endpoints;
+        let deadline = tokio::time::Instant::now() + options.startup_timeout;
+        self.runtime.block_on(async {
+            tokio::select! {
+                joined = self.joined(deadline) => joined,
+                exited = self.children.first_exit() => Err(net_error(format!(
                     "{exited} before joining experiment {}",
                     options.experiment
-                )));
+                ))),
             }
-            if Instant::now() > deadline {
-                return Err(net_error(format!(
-                    "{} did not join experiment {} within {:?}",
-                    missing.join(", "),
-                    options.experiment,
-                    options.startup_timeout
-                )));
-            }
-            std::thread::sleep(Duration::from_millis(20));
+        })?;
+        self.lost.send_replace(None);
+        Ok(())
+    }
+
+    /// Resolves once every role's token is seen and its control queryable
+    /// is reachable (zenoh's matching status of a querier on its key), or
+    /// fails at `deadline` naming those missing and what they miss.
+    async fn joined(&self, deadline: tokio::time::Instant) -> Result<(), Error> {
+        let options = &self.settings.endpoints;
+        let did_not_join = |missing: &[Role], what: &str| {
+            let missing: Vec<String> = missing.iter().map(Role::to_string).collect();
+            net_error(format!(
+                "{} did not join experiment {} within {:?} ({what})",
+                missing.join(", "),
+                options.experiment,
+                options.startup_timeout
+            ))
+        };
+        let mut alive = self.alive.subscribe();
+        let everyone = alive.wait_for(|alive| self.roles.iter().all(|r| alive.contains(r)));
+        if timeout_at(deadline, everyone).await.is_err() {
+            let missing: Vec<Role> = self
+                .roles
+                .iter()
+                .copied()
+                .filter(|r| !self.is_alive(*r))
+                .collect();
+            return Err(did_not_join(&missing, "no liveliness token seen"));
         }
+        // A process declares its queryables before its token, but they may
+        // reach this session after it.
+        for &role in &self.roles {
+            let querier = self
+                .session
+                .declare_querier(self.keys.control(role))
+                .await
+                .map_err(|e| net_error(format!("cannot declare a querier: {e}")))?;
+            let listener = querier
+                .matching_listener()
+                .await
+                .map_err(|e| net_error(format!("cannot follow the control queryables: {e}")))?;
+            let reachable = async {
+                while let Ok(status) = listener.recv_async().await {
+                    if status.matching() {
+                        return;
+                    }
+                }
+                std::future::pending().await
+            };
+            if timeout_at(deadline, reachable).await.is_err() {
+                return Err(did_not_join(&[role], "its control queryable not reachable"));
+            }
+        }
+        Ok(())
     }
 
     /// On SIGINT (Ctrl-C) or SIGTERM: stop every process this coordinator
@@ -282,10 +377,7 @@ impl Network {
                 _ = terminate.recv() => ("terminated", 143),
             };
             eprintln!("{name}: stopping the experiment's processes");
-            children
-                .lock()
-                .expect("children")
-                .reap(Duration::from_millis(500));
+            children.reap(Duration::from_millis(500)).await;
             // `exit` runs no destructors: the directory would outlive us.
             if let Some(dir) = secret_dir
                 && let Err(e) = std::fs::remove_dir_all(&dir)
@@ -300,15 +392,19 @@ impl Network {
     /// Why `role` counts as lost: its process exited (with its status), or
     /// its liveliness token expired while the process still runs.
     pub fn loss(&self, role: Role) -> String {
+        self.runtime.block_on(self.describe_loss(role))
+    }
+
+    async fn describe_loss(&self, role: Role) -> String {
         let name = match role {
             Role::Server => "env-server".to_owned(),
             Role::Agent(i) => format!("agent {i}"),
             Role::Coordinator => "coordinator".to_owned(),
         };
-        let mut children = self.children.lock().expect("children");
-        match children.exit_status(&name, Duration::from_millis(500)) {
+        let exit = self.children.exit_status(&name, Duration::from_millis(500));
+        match exit.await {
             Some(status) => format!("{role} is gone: its process exited ({status})"),
-            None if children.started(&name) => format!(
+            None if self.children.started(&name) => format!(
                 "{role} stopped answering: its liveliness token expired while its process \
                  still runs (stopped or overloaded?)"
             ),
@@ -323,7 +419,7 @@ impl Network {
 
     /// Whether `role`'s liveliness token is currently seen.
     pub fn is_alive(&self, role: Role) -> bool {
-        self.alive.lock().expect("liveliness set").contains(&role)
+        self.alive.borrow().contains(&role)
     }
 
     /// The first process whose token disappeared after everyone joined.
@@ -353,9 +449,8 @@ impl Network {
         self.count(Direction::Sent, MessageKind::Control, bytes.len());
         let key = self.keys.control(role);
         let mut lost = self.lost.subscribe();
-        let gone = |role: Role| self.loss(role);
         if let Some(gone_role) = *lost.borrow_and_update() {
-            return Err(gone(gone_role));
+            return Err(self.loss(gone_role));
         }
         let sent = Instant::now();
         let reply = self.runtime.block_on(async {
@@ -375,7 +470,7 @@ impl Network {
                         Err(_) => break,
                     },
                     Ok(()) = lost.changed() => match *lost.borrow_and_update() {
-                        Some(gone_role) => return Err(gone(gone_role)),
+                        Some(gone_role) => return Err(self.describe_loss(gone_role).await),
                         None => continue,
                     },
                 };
@@ -393,12 +488,8 @@ impl Network {
                         );
                         return Ok(r);
                     }
-                    Ok(_) => self
-                        .counters
-                        .lock()
-                        .expect("counters")
-                        .record_drop(proto::DropReason::Stale),
-                    Err(e) => self.counters.lock().expect("counters").drop_undecodable(&e),
+                    Ok(_) => lock(&self.counters).record_drop(proto::DropReason::Stale),
+                    Err(e) => lock(&self.counters).drop_undecodable(&e),
                 }
             }
             // All routes answered without a reply: say so, not the timeout.
@@ -419,16 +510,12 @@ impl Network {
     }
 
     fn count(&self, direction: Direction, kind: MessageKind, bytes: usize) {
-        self.counters
-            .lock()
-            .expect("counters")
-            .record(direction, kind, bytes);
+        lock(&self.counters).record(direction, kind, bytes);
     }
 
     /// Stops every process this coordinator started (attached ones keep running).
     pub fn stop(&self) {
-        // Not held across the stops below: describing a loss locks it too.
-        if self.children.lock().expect("children").is_empty() {
+        if self.children.is_empty() {
             return;
         }
         // The stop goes to every process still there, whoever was lost.
@@ -443,10 +530,8 @@ impl Network {
                 );
             }
         }
-        self.children
-            .lock()
-            .expect("children")
-            .reap(Duration::from_secs(2));
+        self.runtime
+            .block_on(self.children.reap(Duration::from_secs(2)));
     }
 }
 

@@ -5,6 +5,7 @@ use std::time::Duration;
 
 use agent::{Mode, Snapshot};
 use env_server::Outcome;
+use node::sync::lock;
 use proto::keys::Role;
 use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
@@ -180,8 +181,7 @@ impl Backend for RemoteBackend<'_> {
 
     fn agent_stats(&self) -> Result<Vec<AgentStats>, Error> {
         let reports = self.reports()?;
-        *self.rtt_ms.lock().expect("rtt samples") =
-            reports.iter().map(|r| r.advice_rtt_ms.clone()).collect();
+        *lock(&self.rtt_ms) = reports.iter().map(|r| r.advice_rtt_ms.clone()).collect();
         Ok(reports.iter().map(stats_of).collect())
     }
 
@@ -205,7 +205,7 @@ impl Backend for RemoteBackend<'_> {
     }
 
     fn advice_rtt_ms(&self) -> Vec<Vec<f32>> {
-        self.rtt_ms.lock().expect("rtt samples").clone()
+        lock(&self.rtt_ms).clone()
     }
 }
 

@@ -1,6 +1,5 @@
 //! The study's `REPORT.md`, `significance.json` and figures.
 
-use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -9,7 +8,7 @@ use agent::StrategyName;
 use super::analysis::{Comparison, EntryResults};
 use super::config::{Entry, StudyConfig};
 use crate::error::Error;
-use crate::figures::{Point, SeriesSet, draw_figures};
+use crate::figures::{Figure, Point, SeriesSet, draw_figures};
 use crate::stats::Estimate;
 use crate::store;
 
@@ -21,33 +20,103 @@ pub fn write_report(
     comparisons: &[Comparison],
 ) -> Result<PathBuf, Error> {
     store::write_json(&out.join("significance.json"), &comparisons)?;
+    let figures = write_figures(out, study, entries)?;
+    let mut md = Markdown::default();
+    introduction(&mut md, study, entries);
+    final_performance(&mut md, study, entries);
+    if let Some(baseline) = &study.baseline {
+        significance_against(&mut md, baseline, comparisons);
+    }
+    significance_between_advising(&mut md, study, entries, comparisons);
+    md.paragraph("Every pair, with the same intervals: `significance.json`.");
+    figure_links(&mut md, &figures);
+    if study.transport.communicates() {
+        communication(&mut md, entries);
+    }
+    cost(&mut md, entries);
+    md.paragraph(
+        "Data: `<algorithm>/summary.json` (every point, mean and interval), `<algorithm>/run-<k>.csv` (every run).",
+    );
+    let path = out.join("REPORT.md");
+    store::write_atomically(&path, md.finish().as_bytes())?;
+    Ok(path)
+}
+
+/// Draws the figures of every entry into `out/figures`.
+fn write_figures(
+    out: &Path,
+    study: &StudyConfig,
+    entries: &[EntryResults],
+) -> Result<Vec<Figure>, Error> {
     let sets: Vec<SeriesSet> = entries
         .iter()
         .map(|e| series_set(e, study.ci_level()))
         .collect();
     let figures = draw_figures(&sets)?;
-    let figures_dir = out.join("figures");
-    fs::create_dir_all(&figures_dir).map_err(|e| Error::io("create", &figures_dir, e))?;
+    let dir = out.join("figures");
+    fs::create_dir_all(&dir).map_err(|e| Error::io("create", &dir, e))?;
     for figure in &figures {
         for (file, bytes) in figure.files() {
-            store::write_atomically(&figures_dir.join(file), bytes)?;
+            store::write_atomically(&dir.join(file), bytes)?;
         }
     }
+    Ok(figures)
+}
 
-    let level = study.ci_level();
-    let pct = 100.0 * level;
-    let points = entries[0].results[0].points.len();
-    let mut md = String::new();
-    let _ = writeln!(md, "# Study `{}`\n", study.name);
-    if !study.description.is_empty() {
-        let _ = writeln!(md, "{}\n", study.description);
+/// Markdown written block by block (headings, paragraphs, tables), each
+/// followed by a blank line.
+#[derive(Default)]
+struct Markdown(String);
+
+impl Markdown {
+    /// A heading of `level` (1 for `#`).
+    fn heading(&mut self, level: usize, text: &str) {
+        self.paragraph(&format!("{} {text}", "#".repeat(level)));
     }
-    let _ = writeln!(
-        md,
+
+    /// A paragraph, or any block of lines.
+    fn paragraph(&mut self, text: &str) {
+        self.0.push_str(text);
+        self.0.push_str("\n\n");
+    }
+
+    /// A table: its header, then one line per row.
+    fn table<const N: usize>(
+        &mut self,
+        header: [&str; N],
+        rows: impl IntoIterator<Item = [String; N]>,
+    ) {
+        let line = |cells: &[&str]| format!("| {} |\n", cells.join(" | "));
+        self.0.push_str(&line(&header));
+        self.0.push_str(&format!("|{}\n", "---|".repeat(N)));
+        for row in rows {
+            self.0.push_str(&line(&row.each_ref().map(String::as_str)));
+        }
+        self.0.push('\n');
+    }
+
+    /// The document, ending with one newline.
+    fn finish(mut self) -> String {
+        if self.0.ends_with("\n\n") {
+            self.0.pop();
+        }
+        self.0
+    }
+}
+
+/// The title, the study's description, its protocol and its pretraining.
+fn introduction(md: &mut Markdown, study: &StudyConfig, entries: &[EntryResults]) {
+    let pct = 100.0 * study.ci_level();
+    let points = entries[0].results[0].points.len();
+    md.heading(1, &format!("Study `{}`", study.name));
+    if !study.description.is_empty() {
+        md.paragraph(&study.description);
+    }
+    md.paragraph(&format!(
         "{} runs x {} training episodes per algorithm; an evaluation of {} episodes with every agent \
          frozen before training and every {} episodes ({points} points); seed {}; transport {}; \
          fidelity profile {} (docs/fidelity.md). Intervals: {pct}% Student's t over runs. Tests: Wilcoxon signed-rank on goal percentage, \
-         paired by run, two-sided, at the {pct}% level.\n",
+         paired by run, two-sided, at the {pct}% level.",
         study.runs,
         study.episodes,
         study.eval_episodes,
@@ -55,66 +124,84 @@ pub fn write_report(
         study.seed,
         study.transport.name(),
         study.profile,
-    );
+    ));
     if let Some(p) = &study.pretrain {
-        let _ = writeln!(
-            md,
+        md.paragraph(&format!(
             "Pretraining: a {} team trained for {} episodes; agent {} was saved as the expert that \
-             starts every run of the entries marked *expert* (it keeps learning and never asks).\n",
+             starts every run of the entries marked *expert* (it keeps learning and never asks).",
             p.algorithm.name(),
             p.episodes,
             p.expert + 1
-        );
+        ));
     }
+}
 
-    let _ = writeln!(md, "## Final performance (episode {})\n", study.episodes);
-    let _ = writeln!(
-        md,
-        "| algorithm | goal % | time to goal (frames) | spent budget (advice given per agent) |"
+/// Goal percentage, time to goal and spent budget at the last point.
+fn final_performance(md: &mut Markdown, study: &StudyConfig, entries: &[EntryResults]) {
+    let level = study.ci_level();
+    md.heading(
+        2,
+        &format!("Final performance (episode {})", study.episodes),
     );
-    let _ = writeln!(md, "|---|---|---|---|");
-    for e in entries {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} |",
-            label(&e.entry),
-            show(&e.last(level, |p| Some(p.goal_pct))),
-            show(&e.last(level, |p| p.time_to_goal)),
-            show(&e.last(level, |p| Some(p.spent_budget))),
-        );
-    }
+    md.table(
+        [
+            "algorithm",
+            "goal %",
+            "time to goal (frames)",
+            "spent budget (advice given per agent)",
+        ],
+        entries.iter().map(|e| {
+            [
+                label(&e.entry),
+                show(&e.last(level, |p| Some(p.goal_pct))),
+                show(&e.last(level, |p| p.time_to_goal)),
+                show(&e.last(level, |p| Some(p.spent_budget))),
+            ]
+        }),
+    );
+}
 
-    if let Some(baseline) = &study.baseline {
-        let _ = writeln!(md, "\n## Significance against `{baseline}`\n");
-        let _ = writeln!(
-            md,
-            "Episodes where the algorithm's goal percentage is significantly higher or lower than `{baseline}`'s.\n"
-        );
-        let _ = writeln!(
-            md,
-            "| algorithm | better (episodes) | worse (episodes) | p at the end |"
-        );
-        let _ = writeln!(md, "|---|---|---|---|");
-        for c in comparisons
-            .iter()
-            .filter(|c| &c.a == baseline || &c.b == baseline)
-        {
-            let (other, better, worse) = if &c.a == baseline {
+/// Where every algorithm is significantly better or worse than `baseline`.
+fn significance_against(md: &mut Markdown, baseline: &str, comparisons: &[Comparison]) {
+    md.heading(2, &format!("Significance against `{baseline}`"));
+    md.paragraph(&format!(
+        "Episodes where the algorithm's goal percentage is significantly higher or lower than `{baseline}`'s."
+    ));
+    let rows = comparisons
+        .iter()
+        .filter(|c| c.a == baseline || c.b == baseline)
+        .map(|c| {
+            let (other, better, worse) = if c.a == baseline {
                 (&c.b, &c.b_better, &c.a_better)
             } else {
                 (&c.a, &c.a_better, &c.b_better)
             };
-            let _ = writeln!(
-                md,
-                "| {other} | {} | {} | {} |",
+            [
+                other.clone(),
                 intervals(better),
                 intervals(worse),
-                p_value(c.final_p)
-            );
-        }
-    }
+                p_value(c.final_p),
+            ]
+        });
+    md.table(
+        [
+            "algorithm",
+            "better (episodes)",
+            "worse (episodes)",
+            "p at the end",
+        ],
+        rows,
+    );
+}
 
-    // Pairs of advising methods with at least one ad hoc method among them.
+/// Pairs of advising methods (the baseline aside) with at least one ad hoc
+/// method among them; nothing without such a pair.
+fn significance_between_advising(
+    md: &mut Markdown,
+    study: &StudyConfig,
+    entries: &[EntryResults],
+    comparisons: &[Comparison],
+) {
     let kind = |name: &str| {
         entries
             .iter()
@@ -130,98 +217,100 @@ pub fn write_report(
         .iter()
         .filter(|c| advising(&c.a) && advising(&c.b) && (ad_hoc(&c.a) || ad_hoc(&c.b)))
         .collect();
-    if !between.is_empty() {
-        let _ = writeln!(
-            md,
-            "\n## Significance between the ad hoc methods and the other advising methods\n"
-        );
-        let _ = writeln!(
-            md,
-            "| A | B | A better (episodes) | B better (episodes) | p at the end |"
-        );
-        let _ = writeln!(md, "|---|---|---|---|---|");
-        for c in between {
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {} | {} |",
-                c.a,
-                c.b,
+    if between.is_empty() {
+        return;
+    }
+    md.heading(
+        2,
+        "Significance between the ad hoc methods and the other advising methods",
+    );
+    md.table(
+        [
+            "A",
+            "B",
+            "A better (episodes)",
+            "B better (episodes)",
+            "p at the end",
+        ],
+        between.iter().map(|c| {
+            [
+                c.a.clone(),
+                c.b.clone(),
                 intervals(&c.a_better),
                 intervals(&c.b_better),
-                p_value(c.final_p)
-            );
-        }
-    }
-    let _ = writeln!(
-        md,
-        "\nEvery pair, with the same intervals: `significance.json`.\n"
+                p_value(c.final_p),
+            ]
+        }),
     );
+}
 
-    let _ = writeln!(md, "## Figures\n");
-    for f in &figures {
-        let _ = writeln!(md, "![{name}.svg](figures/{name}.svg)\n", name = f.name);
+/// Every figure, as an image.
+fn figure_links(md: &mut Markdown, figures: &[Figure]) {
+    md.heading(2, "Figures");
+    for f in figures {
+        md.paragraph(&format!("![{name}.svg](figures/{name}.svg)", name = f.name));
     }
+}
 
-    if study.transport.communicates() {
-        let _ = writeln!(
-            md,
-            "## Communication (per run, team totals, means over runs)\n"
-        );
-        let _ = writeln!(
-            md,
-            "| algorithm | advice requests | replies | advice given | messages sent | bytes sent | advice RTT median / p99 (ms) |"
-        );
-        let _ = writeln!(md, "|---|---|---|---|---|---|---|");
-        for e in entries {
-            let Some(comm) = &e.summary.comm else {
-                continue;
-            };
-            let c = &comm.team;
-            let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.3}"));
-            let _ = writeln!(
-                md,
-                "| {} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {} / {} |",
-                label(&e.entry),
-                c.advice_requests_sent,
-                c.advice_replies_received,
-                c.advice_given,
-                c.messages_sent,
-                c.bytes_sent,
+/// Messages and advice of the entries that communicate.
+fn communication(md: &mut Markdown, entries: &[EntryResults]) {
+    md.heading(2, "Communication (per run, team totals, means over runs)");
+    let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.3}"));
+    let rows = entries.iter().filter_map(|e| {
+        let c = &e.summary.comm.as_ref()?.team;
+        Some([
+            label(&e.entry),
+            format!("{:.0}", c.advice_requests_sent),
+            format!("{:.0}", c.advice_replies_received),
+            format!("{:.0}", c.advice_given),
+            format!("{:.0}", c.messages_sent),
+            format!("{:.0}", c.bytes_sent),
+            format!(
+                "{} / {}",
                 ms(c.advice_rtt_ms.median),
                 ms(c.advice_rtt_ms.p99)
-            );
-        }
-        md.push('\n');
-    }
-    let _ = writeln!(
-        md,
-        "## Cost (all runs; wall time summed over runs, each on one thread)\n"
+            ),
+        ])
+    });
+    md.table(
+        [
+            "algorithm",
+            "advice requests",
+            "replies",
+            "advice given",
+            "messages sent",
+            "bytes sent",
+            "advice RTT median / p99 (ms)",
+        ],
+        rows,
     );
-    let _ = writeln!(
-        md,
-        "| algorithm | training frames | evaluation frames | wall time (s) | frames per second |"
+}
+
+/// Frames played and the time they took.
+fn cost(md: &mut Markdown, entries: &[EntryResults]) {
+    md.heading(
+        2,
+        "Cost (all runs; wall time summed over runs, each on one thread)",
     );
-    let _ = writeln!(md, "|---|---|---|---|---|");
-    for e in entries {
-        let c = &e.summary.cost;
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {:.1} | {:.0} |",
-            label(&e.entry),
-            c.training_frames,
-            c.evaluation_frames,
-            c.wall_s,
-            c.frames_per_sec
-        );
-    }
-    md.push('\n');
-    let _ = writeln!(
-        md,
-        "Data: `<algorithm>/summary.json` (every point, mean and interval), `<algorithm>/run-<k>.csv` (every run)."
+    md.table(
+        [
+            "algorithm",
+            "training frames",
+            "evaluation frames",
+            "wall time (s)",
+            "frames per second",
+        ],
+        entries.iter().map(|e| {
+            let c = &e.summary.cost;
+            [
+                label(&e.entry),
+                c.training_frames.to_string(),
+                c.evaluation_frames.to_string(),
+                format!("{:.1}", c.wall_s),
+                format!("{:.0}", c.frames_per_sec),
+            ]
+        }),
     );
-    let path = out.join("REPORT.md");
-    store::write_atomically(&path, md.as_bytes())?;
-    Ok(path)
 }
 
 /// The figures' input: an experiment's summary, from memory.

@@ -3,10 +3,13 @@
 use std::path::{Component, Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use indicatif::ProgressBar;
+
 use super::analysis::{EntryResults, compare_all};
-use super::config::StudyConfig;
+use super::config::{Pretrain, StudyConfig};
 use super::report::write_report;
 use super::shard::Shard;
+use crate::config::ExperimentConfig;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::runner::{RunOptions, new_bar, run_experiment, run_share};
@@ -62,71 +65,19 @@ pub fn run_study(
     let out = &normalise(out);
     claim_directory(out, study)?;
     let start = Instant::now();
-    let total: u64 = study
-        .pretrain
-        .as_ref()
-        .map_or(0, |p| study.pretraining(p).episodes_per_run())
-        + study.entries.len() as u64
-            * study.runs
-            * study.experiment(&study.entries[0], None).episodes_per_run();
-    let bar = new_bar(options.progress, total);
-    let run_options = |save_agents: Option<PathBuf>| RunOptions {
-        threads: options.threads,
-        save_agents,
-        progress: options.progress,
-        bar: Some(bar.clone()),
+    let invocation = Invocation {
+        study,
+        out,
+        options,
+        bar: new_bar(options.progress, total_episodes(study)),
     };
-    // Over zenoh every experiment gets its own processes and keys.
-    let prepare = |mut config: crate::config::ExperimentConfig, name: &str| {
-        config.transport = config.transport.for_experiment(name);
-        Experiment::prepare(config)
+    let mut runs_played = match &study.pretrain {
+        Some(p) => invocation.pretrain(p)?,
+        None => 0,
     };
-
-    let mut runs_played = 0;
-    let expert = out.join("pretrain").join("expert.qtable");
-    if let Some(p) = &study.pretrain {
-        let dir = out.join("pretrain");
-        let experiment = prepare(study.pretraining(p), "pretrain")?;
-        if expert.is_file() || options.shard.is_some_and(|s| !s.is_first()) {
-            bar.inc(experiment.config().episodes_per_run());
-        } else {
-            let output = ExperimentDir::check(&dir, &experiment.record())?;
-            let agents = dir.join("agents");
-            run_experiment(&experiment, &output, &run_options(Some(agents.clone())))?;
-            let saved = agents.join(agent_file_name(0, p.expert));
-            let bytes = std::fs::read(&saved).map_err(|e| Error::io("read", &saved, e))?;
-            store::write_atomically(&expert, &bytes)?;
-            runs_played += usize::from(options.shard.is_some());
-        }
-    }
-
-    let mut entries = Vec::with_capacity(study.entries.len());
-    for (i, entry) in study.entries.iter().enumerate() {
-        if entry.expert && !expert.is_file() {
-            // Only a shard other than the first gets here: the first pretrains.
-            tracing::warn!(entry = %entry.name, "no expert yet: its runs are left to another invocation");
-            continue;
-        }
-        let config = study.experiment(entry, entry.expert.then_some(expert.as_path()));
-        let experiment = prepare(config, &entry.name)?;
-        let output = ExperimentDir::check(&out.join(&entry.name), &experiment.record())?;
-        let first = i as u64 * study.runs;
-        match options.shard {
-            Some(shard) => {
-                let ours = |run| shard.owns(first, run);
-                runs_played += run_share(&experiment, &output, &run_options(None), &ours)?;
-            }
-            None => {
-                let report = run_experiment(&experiment, &output, &run_options(None))?;
-                entries.push(EntryResults {
-                    entry: entry.clone(),
-                    results: report.results,
-                    summary: report.summary,
-                });
-            }
-        }
-    }
-    bar.finish_and_clear();
+    let (entries, played) = invocation.entries()?;
+    runs_played += played;
+    invocation.bar.finish_and_clear();
     let report = match options.shard {
         Some(_) => None,
         None => {
@@ -139,6 +90,107 @@ pub fn run_study(
         runs_played,
         wall: start.elapsed(),
     })
+}
+
+/// Episodes of the whole study, pretraining included: the progress bar's length.
+fn total_episodes(study: &StudyConfig) -> u64 {
+    study
+        .pretrain
+        .as_ref()
+        .map_or(0, |p| study.pretraining(p).episodes_per_run())
+        + study.entries.len() as u64
+            * study.runs
+            * study.experiment(&study.entries[0], None).episodes_per_run()
+}
+
+/// The experiment of `config`, named `name`: over zenoh every experiment
+/// gets its own processes and keys.
+fn prepare(mut config: ExperimentConfig, name: &str) -> Result<Experiment, Error> {
+    config.transport = config.transport.for_experiment(name);
+    Experiment::prepare(config)
+}
+
+/// One invocation of a study: what its stages share.
+struct Invocation<'a> {
+    study: &'a StudyConfig,
+    out: &'a Path,
+    options: &'a StudyOptions,
+    /// One bar over the whole study.
+    bar: ProgressBar,
+}
+
+impl Invocation<'_> {
+    fn run_options(&self, save_agents: Option<PathBuf>) -> RunOptions {
+        RunOptions {
+            threads: self.options.threads,
+            save_agents,
+            progress: self.options.progress,
+            bar: Some(self.bar.clone()),
+        }
+    }
+
+    /// Where the pretrained expert is saved.
+    fn expert(&self) -> PathBuf {
+        self.out.join("pretrain").join("expert.qtable")
+    }
+
+    /// Pretrains the team of `p` and saves its expert, unless the expert
+    /// exists or a shard other than the first is running; returns the runs
+    /// a shard played (1 if it pretrained).
+    fn pretrain(&self, p: &Pretrain) -> Result<usize, Error> {
+        let dir = self.out.join("pretrain");
+        let experiment = prepare(self.study.pretraining(p), "pretrain")?;
+        let expert = self.expert();
+        if expert.is_file() || self.options.shard.is_some_and(|s| !s.is_first()) {
+            self.bar.inc(experiment.config().episodes_per_run());
+            return Ok(0);
+        }
+        let output = ExperimentDir::check(&dir, &experiment.record())?;
+        let agents = dir.join("agents");
+        run_experiment(
+            &experiment,
+            &output,
+            &self.run_options(Some(agents.clone())),
+        )?;
+        let saved = agents.join(agent_file_name(0, p.expert));
+        let bytes = std::fs::read(&saved).map_err(|e| Error::io("read", &saved, e))?;
+        store::write_atomically(&expert, &bytes)?;
+        Ok(usize::from(self.options.shard.is_some()))
+    }
+
+    /// Plays every entry's runs, or a shard's share of them; returns every
+    /// entry's results (none for a shard) and the runs a shard played.
+    fn entries(&self) -> Result<(Vec<EntryResults>, usize), Error> {
+        let (study, expert) = (self.study, self.expert());
+        let mut entries = Vec::with_capacity(study.entries.len());
+        let mut runs_played = 0;
+        for (i, entry) in study.entries.iter().enumerate() {
+            if entry.expert && !expert.is_file() {
+                // Only a shard other than the first gets here: the first pretrains.
+                tracing::warn!(entry = %entry.name, "no expert yet: its runs are left to another invocation");
+                continue;
+            }
+            let config = study.experiment(entry, entry.expert.then_some(expert.as_path()));
+            let experiment = prepare(config, &entry.name)?;
+            let output = ExperimentDir::check(&self.out.join(&entry.name), &experiment.record())?;
+            let first = i as u64 * study.runs;
+            match self.options.shard {
+                Some(shard) => {
+                    let ours = |run| shard.owns(first, run);
+                    runs_played += run_share(&experiment, &output, &self.run_options(None), &ours)?;
+                }
+                None => {
+                    let report = run_experiment(&experiment, &output, &self.run_options(None))?;
+                    entries.push(EntryResults {
+                        entry: entry.clone(),
+                        results: report.results,
+                        summary: report.summary,
+                    });
+                }
+            }
+        }
+        Ok((entries, runs_played))
+    }
 }
 
 /// Refuses a directory holding another study; records this one in it.

@@ -1,7 +1,8 @@
 //! What every process of an experiment needs, written once: joining the
 //! zenoh network ([`net`]), the common command line, one-line errors and
 //! logging ([`cli`]), following the coordinator's liveliness ([`alive`]),
-//! and atomic file output ([`files`]; SVG to PNG with the `png` feature).
+//! atomic file output ([`files`]; SVG to PNG with the `png` feature) and
+//! one policy for poisoned locks ([`sync`]).
 //!
 //! The wire protocol itself stays in `proto`, which knows nothing of zenoh.
 
@@ -17,3 +18,4 @@ pub mod cli;
 pub mod files;
 pub mod net;
 pub mod secret;
+pub mod sync;
