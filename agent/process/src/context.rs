@@ -2,9 +2,10 @@
 //! learner, the traffic accounting, the live agents and the stop signal.
 
 use std::collections::BTreeSet;
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
+use node::sync::lock;
 use proto::keys::Keys;
 use proto::{Body, Direction, DropReason, Envelope, Header, MessageCounters, MessageKind};
 use tokio::sync::{Notify, watch};
@@ -51,11 +52,6 @@ pub struct Context {
     progress: watch::Sender<Progress>,
     exit: Mutex<Option<Exit>>,
     stop: Notify,
-}
-
-/// Locks a mutex, whatever a panicking holder left in it.
-fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
-    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 impl Context {

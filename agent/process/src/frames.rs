@@ -4,9 +4,10 @@
 //! advice, and whatever arrives until its answer is in, waits for the
 //! stream task, which can wait for the advisors.
 
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Arc, Mutex};
 
 use agent::Transition;
+use node::sync::lock;
 use proto::{
     ActionChoice, Body, DropReason, Envelope, Header, MessageKind, Observation, SharedEpisode,
 };
@@ -119,7 +120,7 @@ impl Stream {
     /// One observation message, as it arrives: stepped here unless the
     /// task is busy; a frame that asks for advice hands the rest to it.
     pub fn on_message(&self, bytes: &[u8]) {
-        let mut backlog = self.backlog.lock().unwrap_or_else(PoisonError::into_inner);
+        let mut backlog = lock(&self.backlog);
         let Some(frames) = Frames::open(&self.ctx, bytes) else {
             return;
         };
@@ -227,10 +228,7 @@ pub async fn run(stream: Arc<Stream>, Tasks(mut pending): Tasks) {
                 None => break,
             }
         }
-        let mut backlog = stream
-            .backlog
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner);
+        let mut backlog = lock(&stream.backlog);
         backlog.busy = !pending.is_empty();
     }
 }

@@ -1,7 +1,6 @@
 //! The figures made and what each shows: its metric, episodes, y range
 //! rule, title and subtitle, and which curves it draws in which colour.
 
-use super::FigureError;
 use super::data::{Metric, Series, SeriesPoint, SeriesSet};
 use super::draw::{self, Captions, Curve, PALETTE};
 use super::layout::{Layout, YRange, zoom_start};
@@ -55,8 +54,8 @@ pub(super) const FIGURES: [FigureKind; 4] = [
 
 impl FigureKind {
     /// The figure of `series` (coloured in order) as an SVG document, with
-    /// the subtitle `note`.
-    pub(super) fn svg(&self, series: &[Series], note: &str) -> Result<String, FigureError> {
+    /// the subtitle `note`, or what went wrong in drawing it.
+    pub(super) fn svg(&self, series: &[Series], note: &str) -> Result<String, String> {
         let from = if self.zoom { zoom_start(series) } else { None };
         let mut skipped = Vec::new();
         let mut shown = Vec::new();
@@ -98,10 +97,7 @@ impl FigureKind {
             note: &note,
             y_axis: self.metric.axis(),
         };
-        draw::svg(&captions, &curves, &layout).map_err(|message| FigureError::Draw {
-            name: self.name,
-            message,
-        })
+        draw::svg(&captions, &curves, &layout)
     }
 
     /// The title.

@@ -92,7 +92,12 @@ pub fn draw_figures(sets: &[SeriesSet]) -> Result<Vec<Figure>, FigureError> {
         .iter()
         .map(|kind| {
             let series: Vec<Series> = sets.iter().map(|s| s.series(kind.metric)).collect();
-            let svg = kind.svg(&series, &note)?;
+            let svg = kind
+                .svg(&series, &note)
+                .map_err(|message| FigureError::Draw {
+                    name: kind.name,
+                    message,
+                })?;
             let png = draw::png(&svg).map_err(|message| FigureError::Raster {
                 name: kind.name,
                 message,

@@ -17,11 +17,12 @@ use super::link::{Inbox, Link};
 use anyhow::{Result, bail};
 use env_server::Env;
 use env_server::MAX_OFFENSE;
+use node::sync::lock;
 use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
     MessageCounters, MessageKind, Mode, ServerReport,
 };
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use tokio::sync::mpsc::unbounded_channel;
 use tracing::{debug, warn};
@@ -501,11 +502,6 @@ pub async fn run(link: Link, mut inbox: Inbox) -> Result<()> {
     // Undeclared first: no callback runs once it is gone.
     drop(listening);
     lock(&server).link.close()
-}
-
-/// Locks the server, whatever a panicking holder left in it.
-fn lock(server: &Mutex<Server>) -> MutexGuard<'_, Server> {
-    server.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// The episode being played and its simulator, if any.
