@@ -14,7 +14,7 @@
 # namespace (no interface, no route, no firewall interplay) and no packet can
 # leave the machine: 10.213.47.0/24 exists only inside these namespaces.
 #
-# Pass: the coordinator exits 0; summary.json has comm.advice_requests_sent
+# Pass: the coordinator exits 0; summary.json has comm.advice_requests
 # > 0 and comm.advice_replies_received > 0; advice crossed hosts both ways
 # (agent 2 on adv-b got replies, all from adv-a, and agents 0 and 1 got more
 # replies than they sent requests, so agent 2 answered them); and both agents
@@ -456,13 +456,13 @@ if [ "$coordinator_rc" != 0 ] || [ ! -s "$summary" ]; then
 fi
 
 num() { jq -r "$1 // 0" "$summary"; }
-requests=$(num .comm.advice_requests_sent)
+requests=$(num .comm.advice_requests)
 replies=$(num .comm.advice_replies_received)
 given=$(num .comm.advice_given)
-b_requests=$(num '.comm.per_agent[2].advice_requests_sent')
+b_requests=$(num '.comm.per_agent[2].advice_requests')
 b_replies=$(num '.comm.per_agent[2].advice_replies_received')
 b_given=$(num '.comm.per_agent[2].advice_given')
-a_requests=$(num '[.comm.per_agent[0,1].advice_requests_sent] | add')
+a_requests=$(num '[.comm.per_agent[0,1].advice_requests] | add')
 a_replies=$(num '[.comm.per_agent[0,1].advice_replies_received] | add')
 rtt=$(jq -r '.comm.advice_rtt_ms | "median \(.median) ms, p99 \(.p99) ms"' "$summary")
 timed_out=$(num .comm.actions_timed_out)

@@ -6,7 +6,7 @@ use rand::{Rng, SeedableRng};
 
 use crate::advice::shared_prefix;
 use crate::config::AgentConfig;
-use crate::config_error::ConfigError;
+use crate::config_error::AgentConfigError;
 use crate::counters::Counters;
 use crate::exchange::{AdviceExchange, Transition};
 use crate::fidelity::{AdvisorTies, SharedBootstrap, TorreyIntent};
@@ -32,7 +32,7 @@ pub struct Observation {
 
 /// The previous step, closed by the next frame's reward and state.
 #[derive(Clone, Copy, Debug)]
-struct Pending {
+struct OpenStep {
     entry: EntryId,
     action: Action,
     state: State,
@@ -86,7 +86,7 @@ pub struct Agent {
     replay: Sarsa,
     rng: AgentRng,
     mode: Mode,
-    pending: Option<Pending>,
+    pending: Option<OpenStep>,
     in_flight: Option<InFlight>,
     advised: Vec<u64>,
     reach: Vec<usize>,
@@ -104,10 +104,10 @@ impl Agent {
         team_size: usize,
         config: AgentConfig,
         seed: u64,
-    ) -> Result<Self, ConfigError> {
+    ) -> Result<Self, AgentConfigError> {
         let tiling = Tiling::new(&config)?;
         if id >= team_size {
-            return Err(ConfigError::new(
+            return Err(AgentConfigError::new(
                 "team_size",
                 format!("agent id {id} is not below the team size {team_size}"),
             ));
@@ -280,7 +280,7 @@ impl Agent {
                     .strategy
                     .mistake_correcting()
                     .then(|| self.intent(entry));
-                self.counters.requests_sent += 1;
+                self.counters.advice_requests += 1;
                 self.in_flight = Some(InFlight {
                     key,
                     entry,
@@ -312,8 +312,8 @@ impl Agent {
         };
         let action = match majority(answers, self.config.fidelity.vote_ties, &mut self.rng) {
             Some(advice) => {
-                self.counters.advice_received += answers.len() as u64;
-                self.counters.advised_steps += 1;
+                self.counters.advice_replies_received += answers.len() as u64;
+                self.counters.ask_spent += 1;
                 self.advised.push(f.key);
                 advice
             }
@@ -330,7 +330,7 @@ impl Agent {
             self.learn(prev, reward, Some((entry, action, state)));
         }
         self.table.entry_mut(entry).visits += 1;
-        self.pending = Some(Pending {
+        self.pending = Some(OpenStep {
             entry,
             action,
             state,
@@ -498,7 +498,7 @@ impl Agent {
     }
 
     /// Learns one step and records it for EpisodeSharing while its budget lasts.
-    fn learn(&mut self, prev: Pending, reward: f64, next: Option<(EntryId, Action, State)>) {
+    fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<(EntryId, Action, State)>) {
         let target = next.map(|(entry, action, _)| (entry, action));
         self.sarsa
             .update(&mut self.table, (prev.entry, prev.action), reward, target);

@@ -6,7 +6,7 @@ mod table;
 
 use proto::STATE_FEATURES;
 
-use crate::config_error::{ConfigError, require, require_unit};
+use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
 use crate::strategy::Strategy;
 
@@ -31,7 +31,7 @@ pub struct AgentConfig {
     pub alpha: f64,
     /// Discount factor gamma, in [0, 1].
     pub gamma: f64,
-    /// Trace decay lambda, in [0, 1].
+    /// EligibilityTrace decay lambda, in [0, 1].
     pub lambda: f64,
     /// Exploration probability epsilon, in [0, 1].
     pub epsilon: f64,
@@ -68,7 +68,7 @@ impl Default for AgentConfig {
 
 impl AgentConfig {
     /// Returns the first invalid value, naming its key.
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    pub fn validate(&self) -> Result<(), AgentConfigError> {
         let (alpha, threshold) = (self.alpha, self.trace_threshold);
         require("alpha", alpha, "in (0, 1]", alpha > 0.0 && alpha <= 1.0)?;
         require_unit("gamma", self.gamma)?;
@@ -84,13 +84,16 @@ impl AgentConfig {
         self.strategy.validate()
     }
 
-    fn validate_tiles(&self) -> Result<(), ConfigError> {
+    fn validate_tiles(&self) -> Result<(), AgentConfigError> {
         let tiles = self.tiles_per_feature as usize;
         if tiles == 0 {
-            return Err(ConfigError::new("tiles_per_feature", "must be at least 1"));
+            return Err(AgentConfigError::new(
+                "tiles_per_feature",
+                "must be at least 1",
+            ));
         }
         if tiles * STATE_FEATURES > 64 {
-            return Err(ConfigError::new(
+            return Err(AgentConfigError::new(
                 "tiles_per_feature",
                 format!("{STATE_FEATURES} features x {tiles} tiles do not fit a 64-bit state key"),
             ));
@@ -108,7 +111,7 @@ impl AgentConfig {
             self.tile_step > 0.0,
         )?;
         if self.tile_step > self.tile_width {
-            return Err(ConfigError::new(
+            return Err(AgentConfigError::new(
                 "tile_step",
                 format!(
                     "{} exceeds tile_width {}: the tiles leave gaps",
@@ -118,7 +121,7 @@ impl AgentConfig {
         }
         let top = TILE_ORIGIN + self.tile_step * (tiles - 1) as f64 + self.tile_width;
         if top < 1.0 {
-            return Err(ConfigError::new(
+            return Err(AgentConfigError::new(
                 "tiles_per_feature",
                 format!("the last tile ends at {top}: the tiles do not cover [-1, 1]"),
             ));

@@ -3,14 +3,14 @@
 /// A configuration value out of its allowed range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("invalid agent config `{key}`: {reason}")]
-pub struct ConfigError {
+pub struct AgentConfigError {
     /// The offending key, as spelled in the configuration.
     pub key: &'static str,
     /// What is wrong with its value.
     pub reason: String,
 }
 
-impl ConfigError {
+impl AgentConfigError {
     pub(crate) fn new(key: &'static str, reason: impl Into<String>) -> Self {
         Self {
             key,
@@ -26,11 +26,11 @@ pub(crate) fn require(
     value: f64,
     rule: &str,
     ok: bool,
-) -> Result<(), ConfigError> {
+) -> Result<(), AgentConfigError> {
     if ok && value.is_finite() {
         Ok(())
     } else {
-        Err(ConfigError::new(
+        Err(AgentConfigError::new(
             key,
             format!("must be {rule}, got {value}"),
         ))
@@ -38,11 +38,11 @@ pub(crate) fn require(
 }
 
 /// A probability-like value in [0, 1].
-pub(crate) fn require_unit(key: &'static str, value: f64) -> Result<(), ConfigError> {
+pub(crate) fn require_unit(key: &'static str, value: f64) -> Result<(), AgentConfigError> {
     require(key, value, "in [0, 1]", (0.0..=1.0).contains(&value))
 }
 
 /// A finite value >= 0.
-pub(crate) fn require_non_negative(key: &'static str, value: f64) -> Result<(), ConfigError> {
+pub(crate) fn require_non_negative(key: &'static str, value: f64) -> Result<(), AgentConfigError> {
     require(key, value, "finite and >= 0", value >= 0.0)
 }

@@ -6,11 +6,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Counters {
     /// Advice requests sent (one per request, whatever the number of recipients).
-    pub requests_sent: u64,
+    pub advice_requests: u64,
     /// Individual answers received.
-    pub advice_received: u64,
+    pub advice_replies_received: u64,
     /// Steps acted on advice: the ad hoc ask budget spent.
-    pub advised_steps: u64,
+    pub ask_spent: u64,
     /// Answers given: the give budget spent (ad hoc advisor or Torrey teacher).
     pub advice_given: u64,
     /// Transitions sent to receivers: the EpisodeSharing budget spent.

@@ -56,7 +56,7 @@ mod tiles;
 pub use advice::{Reachable, p_ask, p_give, psi_td, psi_visit};
 pub use agent::{Agent, Decision, Observation};
 pub use config::AgentConfig;
-pub use config_error::ConfigError;
+pub use config_error::AgentConfigError;
 pub use counters::Counters;
 pub use exchange::{AdviceExchange, Isolated, Transition};
 pub use fidelity::{

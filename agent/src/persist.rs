@@ -115,9 +115,9 @@ impl Snapshot {
         }
         let c = self.counters;
         for x in [
-            c.requests_sent,
-            c.advice_received,
-            c.advised_steps,
+            c.advice_requests,
+            c.advice_replies_received,
+            c.ask_spent,
             c.advice_given,
             c.shared_sent,
             c.shared_received,
@@ -216,7 +216,7 @@ mod tests {
             tiling: TilingParams::of(&AgentConfig::default()),
             entries: vec![(3, entry(0.1, 4)), (1 << 40, entry(-0.7, 1))],
             counters: Counters {
-                requests_sent: 5,
+                advice_requests: 5,
                 advice_given: 2,
                 ..Counters::default()
             },

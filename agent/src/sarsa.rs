@@ -7,7 +7,7 @@ use crate::qtable::{EntryId, QTable};
 
 /// One traced pair and its eligibility.
 #[derive(Clone, Copy, Debug)]
-struct Trace {
+struct EligibilityTrace {
     entry: EntryId,
     action: Action,
     e: f64,
@@ -23,7 +23,7 @@ pub struct Sarsa {
     gamma: f64,
     decay: f64,
     threshold: f64,
-    trace: Vec<Trace>,
+    trace: Vec<EligibilityTrace>,
 }
 
 impl Sarsa {
@@ -60,7 +60,7 @@ impl Sarsa {
         {
             Some(t) => t.e += 1.0,
             None => {
-                self.trace.push(Trace {
+                self.trace.push(EligibilityTrace {
                     entry,
                     action,
                     e: 1.0,

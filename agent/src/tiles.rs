@@ -5,7 +5,7 @@ use proto::State;
 use serde::{Deserialize, Serialize};
 
 use crate::config::{AgentConfig, TILE_ORIGIN};
-use crate::config_error::ConfigError;
+use crate::config_error::AgentConfigError;
 
 /// Slack on the tile bounds, so that a feature exactly on a decimal edge
 /// (e.g. 0.3, the upper edge of tile 4) is inside the tile although the edge
@@ -48,7 +48,7 @@ pub struct Tiling {
 
 impl Tiling {
     /// Builds the tiling of a configuration (validated first).
-    pub fn new(config: &AgentConfig) -> Result<Self, ConfigError> {
+    pub fn new(config: &AgentConfig) -> Result<Self, AgentConfigError> {
         config.validate()?;
         let params = TilingParams::of(config);
         let bounds = (0..params.tiles_per_feature)

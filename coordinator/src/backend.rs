@@ -9,7 +9,7 @@ use crate::error::Error;
 
 /// How one episode ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Episode {
+pub struct EpisodeEnd {
     /// The terminal outcome.
     pub outcome: Outcome,
     /// Agent decisions taken (the authors' "frames").
@@ -23,13 +23,13 @@ pub struct Episode {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub struct AgentStats {
     /// The give budget the paper plots: advice given, or transitions shared.
-    pub spent_give: u64,
+    pub give_spent: u64,
     /// The ask budget spent: steps acted on advice.
-    pub spent_ask: u64,
+    pub ask_spent: u64,
     /// Advice requests sent.
-    pub requests: u64,
+    pub advice_requests: u64,
     /// Replies received to those requests (advice or not).
-    pub replies_received: u64,
+    pub advice_replies_received: u64,
     /// Answers given.
     pub advice_given: u64,
     /// Messages sent (0 in process).
@@ -42,7 +42,7 @@ pub struct AgentStats {
     pub bytes_received: u64,
     /// Received messages dropped as malformed, foreign, stale, duplicate or
     /// unrequested advice.
-    pub dropped: u64,
+    pub messages_dropped: u64,
 }
 
 impl AgentStats {
@@ -50,10 +50,10 @@ impl AgentStats {
     pub fn of(agent: &Agent) -> Self {
         let c = agent.counters();
         Self {
-            spent_give: agent.spent_budget(),
-            spent_ask: c.advised_steps,
-            requests: c.requests_sent,
-            replies_received: c.advice_received,
+            give_spent: agent.spent_budget(),
+            ask_spent: c.ask_spent,
+            advice_requests: c.advice_requests,
+            advice_replies_received: c.advice_replies_received,
             advice_given: c.advice_given,
             ..Self::default()
         }
@@ -69,7 +69,7 @@ pub trait Backend {
     /// Plays one episode: training (learning, exploring, advising) on the
     /// run's training simulator, or evaluation (frozen agents) on the
     /// simulator of the last [`begin_evaluation`](Self::begin_evaluation).
-    fn play_episode(&mut self, mode: Mode) -> Result<Episode, Error>;
+    fn play_episode(&mut self, mode: Mode) -> Result<EpisodeEnd, Error>;
 
     /// Every agent's budgets and communication so far, by id.
     fn agent_stats(&self) -> Result<Vec<AgentStats>, Error>;

@@ -230,8 +230,8 @@ impl ExperimentConfig {
 }
 
 /// Names the key of a rejected simulator setting.
-fn env_error(e: env_server::ConfigError) -> ConfigError {
-    use env_server::ConfigError as E;
+fn env_error(e: env_server::EnvConfigError) -> ConfigError {
+    use env_server::EnvConfigError as E;
     let key = match &e {
         E::Offense(_) => "env.offense".to_owned(),
         E::ZeroLimit(k) => format!("env.{k}"),

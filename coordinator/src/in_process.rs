@@ -4,7 +4,7 @@
 use agent::{Agent, Mode, Observation, Snapshot, Team};
 use env_server::{Env, EnvConfig};
 
-use crate::backend::{AgentStats, Backend, Episode};
+use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::{ConfigError, Error};
 use crate::experiment::{Experiment, RunSeeds};
 
@@ -48,7 +48,7 @@ impl Backend for InProcess {
         Ok(())
     }
 
-    fn play_episode(&mut self, mode: Mode) -> Result<Episode, Error> {
+    fn play_episode(&mut self, mode: Mode) -> Result<EpisodeEnd, Error> {
         let run = self.run;
         let env = match mode {
             Mode::Training => &mut self.training,
@@ -78,7 +78,7 @@ impl Backend for InProcess {
             let outcome = env.step(actions);
             if outcome.is_terminal() {
                 self.team.end_episode(outcome.reward());
-                return Ok(Episode {
+                return Ok(EpisodeEnd {
                     outcome,
                     frames: env.frame(),
                     actions_timed_out: 0,

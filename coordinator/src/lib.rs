@@ -59,7 +59,7 @@ pub mod summary;
 pub mod transport;
 pub mod wilcoxon;
 
-pub use backend::{AgentStats, Backend, Episode};
+pub use backend::{AgentStats, Backend, EpisodeEnd};
 pub use config::{AgentSpec, ExperimentConfig, load_team_file};
 pub use error::{ConfigError, Error};
 pub use experiment::{Experiment, RunSeeds};

@@ -20,13 +20,13 @@ use coordinator::{
     version,
     about = "Ad hoc advising experiments: training, frozen evaluations, many runs, statistics"
 )]
-struct Cli {
+struct CoordinatorCli {
     #[command(subcommand)]
-    command: Command,
+    command: CoordinatorCommand,
 }
 
 #[derive(Subcommand)]
-enum Command {
+enum CoordinatorCommand {
     /// Run one configuration: R runs of N training episodes, an evaluation of
     /// M episodes before training and every K episodes.
     Run(RunArgs),
@@ -265,9 +265,9 @@ impl NetworkArgs {
 
 fn main() -> ExitCode {
     node::cli::init_tracing("error");
-    let cli: Cli = node::cli::parse_or_exit();
+    let cli: CoordinatorCli = node::cli::parse_or_exit();
     // A router forwards for many peers: it keeps zenoh's usual runtimes.
-    if !matches!(cli.command, Command::Router(_)) {
+    if !matches!(cli.command, CoordinatorCommand::Router(_)) {
         node::net::use_one_runtime();
     }
     match run(cli) {
@@ -276,15 +276,15 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(cli: Cli) -> Result<()> {
+fn run(cli: CoordinatorCli) -> Result<()> {
     match cli.command {
-        Command::Run(args) => run_one(args),
-        Command::Study(args) => run_study(args),
-        Command::Secret { file } => {
+        CoordinatorCommand::Run(args) => run_one(args),
+        CoordinatorCommand::Study(args) => run_study(args),
+        CoordinatorCommand::Secret { file } => {
             node::secret::Secret::create(&file)?;
             Ok(())
         }
-        Command::Router(args) => run_router(args),
+        CoordinatorCommand::Router(args) => run_router(args),
     }
 }
 

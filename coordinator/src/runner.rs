@@ -119,7 +119,7 @@ fn play_runs(
     if kept > 0 {
         tracing::info!(runs = kept, "resuming: runs already finished are kept");
     }
-    let progress = Progress::new(experiment, out, options, kept);
+    let progress = RunsProgress::new(experiment, out, options, kept);
     let played = if pending.is_empty() {
         Vec::new()
     } else {
@@ -145,7 +145,7 @@ fn play_in_parallel(
     out: &ExperimentDir,
     options: &RunOptions,
     pending: &[u64],
-    progress: &Progress,
+    progress: &RunsProgress,
 ) -> Result<Vec<RunResult>, Error> {
     let config = experiment.config();
     let driver = driver::open(&config.transport, config.team.len())?;
@@ -177,7 +177,7 @@ fn play_in_parallel(
 
 /// The progress of an experiment's runs: one step of its bar per episode,
 /// and a message with the runs done and the frame rate.
-struct Progress {
+struct RunsProgress {
     bar: ProgressBar,
     /// Within a study's bar, which experiment the runs belong to.
     label: String,
@@ -187,7 +187,7 @@ struct Progress {
     start: Instant,
 }
 
-impl Progress {
+impl RunsProgress {
     /// The experiment's own bar, or the one of `options`, advanced over the
     /// `kept` runs an earlier invocation finished.
     fn new(experiment: &Experiment, out: &ExperimentDir, options: &RunOptions, kept: u64) -> Self {

@@ -139,7 +139,7 @@ pub fn play_run(
         timing.evaluation_s += start.elapsed().as_secs_f64();
 
         let agents = backend.agent_stats()?;
-        let spent: u64 = agents.iter().map(|a| a.spent_give).sum();
+        let spent: u64 = agents.iter().map(|a| a.give_spent).sum();
         let point = EvalPoint {
             episode: at,
             episodes: config.eval_episodes,

@@ -219,19 +219,19 @@ const COLUMNS: &[Column] = &[
     Column::Point("time_to_goal", |p| {
         p.time_to_goal.map(|t| t.to_string()).unwrap_or_default()
     }),
-    Column::EachAgent("give_spent", |a| a.spent_give),
-    Column::EachAgent("ask_spent", |a| a.spent_ask),
-    Column::Team("advice_requests", |a| a.requests),
+    Column::EachAgent("give_spent", |a| a.give_spent),
+    Column::EachAgent("ask_spent", |a| a.ask_spent),
+    Column::Team("advice_requests", |a| a.advice_requests),
     Column::Team("advice_given", |a| a.advice_given),
     // The give budget spent, averaged over agents.
     Column::Point("spent_budget", |p| p.spent_budget.to_string()),
-    Column::Team("advice_replies_received", |a| a.replies_received),
+    Column::Team("advice_replies_received", |a| a.advice_replies_received),
     Column::Team("messages_sent", |a| a.messages_sent),
     Column::Team("bytes_sent", |a| a.bytes_sent),
     Column::Team("messages_received", |a| a.messages_received),
     Column::Team("bytes_received", |a| a.bytes_received),
     // 0 in process.
-    Column::Team("messages_dropped", |a| a.dropped),
+    Column::Team("messages_dropped", |a| a.messages_dropped),
     // Awaited actions that missed the step timeout and were played as Move,
     // over the run so far (0 in process).
     Column::Point("actions_timed_out", |p| p.actions_timed_out.to_string()),

@@ -82,7 +82,7 @@ impl Cost {
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct CommTotals {
     /// Advice requests sent.
-    pub advice_requests_sent: f64,
+    pub advice_requests: f64,
     /// Replies received to them.
     pub advice_replies_received: f64,
     /// Advice given.
@@ -153,14 +153,14 @@ impl CommSummary {
                     continue;
                 };
                 for (i, a) in last.agents.iter().enumerate().filter(|(i, _)| which(*i)) {
-                    t.advice_requests_sent += a.requests as f64 / runs;
-                    t.advice_replies_received += a.replies_received as f64 / runs;
+                    t.advice_requests += a.advice_requests as f64 / runs;
+                    t.advice_replies_received += a.advice_replies_received as f64 / runs;
                     t.advice_given += a.advice_given as f64 / runs;
                     t.messages_sent += a.messages_sent as f64 / runs;
                     t.bytes_sent += a.bytes_sent as f64 / runs;
                     t.messages_received += a.messages_received as f64 / runs;
                     t.bytes_received += a.bytes_received as f64 / runs;
-                    t.messages_dropped += a.dropped as f64 / runs;
+                    t.messages_dropped += a.messages_dropped as f64 / runs;
                     if let Some(samples) = r.advice_rtt_ms.get(i) {
                         rtt.extend(samples.iter().map(|&ms| f64::from(ms)));
                     }

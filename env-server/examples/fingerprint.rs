@@ -13,9 +13,9 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 /// The state of an `Env` as the fingerprint prints it: the world's fields,
 /// with the agents' memories where the world once held them (so the
 /// fingerprint stays comparable across that move).
-struct State<'a>(&'a Env);
+struct FrameState<'a>(&'a Env);
 
-impl fmt::Debug for State<'_> {
+impl fmt::Debug for FrameState<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (w, memories) = (self.0.world(), self.0.memories());
         let last_shot: Vec<_> = memories.iter().map(|m| m.last_shot).collect();
@@ -50,7 +50,7 @@ fn main() {
         for _ in 0..episodes {
             let (outcome, frames) = play_episode(&mut env, policy, &mut rng, |env, _| {
                 // Debug prints every f64 in its shortest round-trip form: one string per bit pattern.
-                format!("{:?}{:?}", State(env), env.last_commands()).hash(&mut hasher);
+                format!("{:?}{:?}", FrameState(env), env.last_commands()).hash(&mut hasher);
             });
             format!("{outcome:?}{frames}").hash(&mut hasher);
         }

@@ -14,7 +14,7 @@
 mod sim;
 pub mod tools;
 
-pub use sim::config::{ConfigError, EnvConfig, LongShot, MAX_OFFENSE};
+pub use sim::config::{EnvConfig, EnvConfigError, LongShot, MAX_OFFENSE};
 pub use sim::env::Env;
 pub use sim::features;
 pub use sim::memory::{AgentMemory, ShotCourse};

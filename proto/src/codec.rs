@@ -123,7 +123,7 @@ mod tests {
                 )
                     .prop_map(
                         |(agent, mode, state, can_kick, positions, reward, terminal)| {
-                            Observation {
+                            AgentFrame {
                                 agent,
                                 mode,
                                 state,
@@ -236,19 +236,19 @@ mod tests {
     #[test]
     fn settings_round_trip_and_leftovers_are_refused() {
         #[derive(Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-        struct Settings {
+        struct Example {
             rate: f64,
             name: String,
         }
-        let settings = Settings {
+        let settings = Example {
             rate: 0.5,
             name: "x".into(),
         };
         let mut bytes = encode_settings(&settings).unwrap();
-        assert_eq!(decode_settings::<Settings>(&bytes), Ok(settings));
-        assert!(decode_settings::<Settings>(&bytes[..bytes.len() - 1]).is_err());
+        assert_eq!(decode_settings::<Example>(&bytes), Ok(settings));
+        assert!(decode_settings::<Example>(&bytes[..bytes.len() - 1]).is_err());
         bytes.push(0);
-        let e = decode_settings::<Settings>(&bytes).unwrap_err();
+        let e = decode_settings::<Example>(&bytes).unwrap_err();
         assert_eq!(e.to_string(), "1 trailing bytes");
     }
 

@@ -71,7 +71,7 @@ pub enum Body {
     /// first of the header's frame, at most [`MAX_FRAMES_PER_MESSAGE`]:
     /// every frame since its last message, up to one where some agent can
     /// kick or the episode ends.
-    Observations(Vec<Observation>),
+    Observations(Vec<AgentFrame>),
     /// agent -> env-server: the action of an agent that was asked to act.
     Action(ActionChoice),
     /// agent -> agents in G: a request for advice (query payload).
@@ -88,7 +88,7 @@ pub enum Body {
 
 /// One agent's observation of a frame.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Observation {
+pub struct AgentFrame {
     /// The observing agent.
     pub agent: u8,
     /// Training or evaluation episode.
@@ -303,7 +303,7 @@ pub struct AgentReport {
     /// Give budget spent (advice given, or transitions shared).
     pub give_spent: u64,
     /// Advice requests sent.
-    pub advice_requests_sent: u64,
+    pub advice_requests: u64,
     /// Advice replies received (with or without advice).
     pub advice_replies_received: u64,
     /// Advice given to others.
@@ -322,7 +322,7 @@ pub struct ServerReport {
     /// Frames stepped.
     pub frames: u64,
     /// Actions that did not arrive within the step timeout (the fallback was used).
-    pub missing_actions: u64,
+    pub actions_timed_out: u64,
     /// Messages and bytes by kind and direction.
     pub messages: MessageCounters,
 }

@@ -267,7 +267,7 @@ impl Reader {
         dir: &Path,
         module: Vec<String>,
     ) -> Result<(), String> {
-        let mut collector = Collector::default();
+        let mut collector = NameCollector::default();
         let mut defines = BTreeSet::new();
         for item in items {
             match item {
@@ -385,14 +385,14 @@ fn absolute(
 /// What one module's items name: its `use` trees and the paths in its code
 /// (nested inline modules are read on their own).
 #[derive(Default)]
-struct Collector {
+struct NameCollector {
     children: BTreeSet<String>,
     /// Each flattened `use`: (segments, bound name), and whether it is a glob.
     use_trees: Vec<((Vec<String>, String), bool)>,
     paths: Vec<Vec<String>>,
 }
 
-impl Collector {
+impl NameCollector {
     fn flatten(&mut self, tree: &syn::UseTree, prefix: &mut Vec<String>) {
         match tree {
             syn::UseTree::Path(p) => {
@@ -428,7 +428,7 @@ impl Collector {
     }
 }
 
-impl<'ast> Visit<'ast> for Collector {
+impl<'ast> Visit<'ast> for NameCollector {
     fn visit_item_mod(&mut self, m: &'ast syn::ItemMod) {
         // A module inside a function or block: read as part of this one.
         if let Some((_, items)) = &m.content {

@@ -96,7 +96,7 @@ fn adhoc_td_run_advises_across_processes() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let comm = &summary["comm"];
     for key in [
-        "advice_requests_sent",
+        "advice_requests",
         "advice_replies_received",
         "messages_sent",
         "bytes_sent",

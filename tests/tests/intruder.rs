@@ -16,17 +16,17 @@ use node::net::{NetConfig, free_port};
 use node::secret::Secret;
 
 /// A process killed when dropped.
-struct Guard(Child);
+struct KillOnDrop(Child);
 
-impl Drop for Guard {
+impl Drop for KillOnDrop {
     fn drop(&mut self) {
         let _ = self.0.kill();
         let _ = self.0.wait();
     }
 }
 
-fn spawn(program: &str, args: &[String]) -> Guard {
-    Guard(
+fn spawn(program: &str, args: &[String]) -> KillOnDrop {
+    KillOnDrop(
         Command::new(bin(program))
             .args(args)
             .stdout(Stdio::null())

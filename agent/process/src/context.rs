@@ -19,7 +19,7 @@ pub struct Traffic {
     /// Messages and bytes by kind and direction, and drops by reason.
     pub messages: MessageCounters,
     /// Advice replies received (with or without advice).
-    pub replies_received: u64,
+    pub advice_replies_received: u64,
     /// Round-trip time of every advice request that got a reply (ms).
     pub rtt_ms: Vec<f32>,
 }

@@ -9,7 +9,7 @@ use std::sync::{Arc, Mutex};
 use agent::Transition;
 use node::sync::lock;
 use proto::{
-    ActionChoice, Body, DropReason, Envelope, Header, MessageKind, Observation, SharedEpisode,
+    ActionChoice, AgentFrame, Body, DropReason, Envelope, Header, MessageKind, SharedEpisode,
 };
 use tokio::runtime::Handle;
 use tokio::sync::mpsc::{UnboundedReceiver, UnboundedSender, unbounded_channel};
@@ -46,7 +46,7 @@ struct Pending {
 struct Frames {
     header: Header,
     /// The frames not stepped yet, and the number of the next one.
-    rest: std::vec::IntoIter<Observation>,
+    rest: std::vec::IntoIter<AgentFrame>,
     next: u32,
     /// The message's size, counted once one of its frames is accepted.
     bytes: usize,
@@ -165,7 +165,7 @@ impl Stream {
         let replies = ask(ctx, header, &request).await;
         let action = ctx.learner().complete(&request, &replies.advice);
         let mut traffic = ctx.traffic();
-        traffic.replies_received += replies.replies;
+        traffic.advice_replies_received += replies.replies;
         traffic.rtt_ms.extend_from_slice(&replies.rtt_ms);
         drop(traffic);
         self.publish_action(header, action);

@@ -113,7 +113,7 @@ impl Learner {
     pub fn observe(
         &mut self,
         header: &Header,
-        obs: &proto::Observation,
+        obs: &proto::AgentFrame,
         reachable: &dyn Fn(usize) -> bool,
     ) -> Result<Step, DropReason> {
         if obs.agent != self.id {
@@ -241,8 +241,8 @@ mod tests {
         Header::new(1, run, episode, frame)
     }
 
-    fn obs(agent: u8, kick: bool, terminal: bool, reward: f64) -> proto::Observation {
-        proto::Observation {
+    fn obs(agent: u8, kick: bool, terminal: bool, reward: f64) -> proto::AgentFrame {
+        proto::AgentFrame {
             agent,
             mode: Mode::Training,
             state: [0.1, 0.2, 0.3, 0.4, 0.5, if kick { 0.6 } else { -0.6 }],

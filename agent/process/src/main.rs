@@ -33,7 +33,7 @@ use serve::Settings;
     version,
     about = "One ad hoc advising agent: learns from env-server's observations, asks and gives advice over zenoh"
 )]
-struct Cli {
+struct AgentCli {
     #[command(flatten)]
     connection: ConnectionArgs,
     /// This agent's id, below the team size.
@@ -47,7 +47,7 @@ struct Cli {
 fn main() {
     node::net::use_one_runtime();
     init_tracing("off");
-    let cli: Cli = parse_or_exit();
+    let cli: AgentCli = parse_or_exit();
     let code = match run(cli) {
         Ok(Exit::Stopped) => 0,
         Ok(Exit::CoordinatorGone) => {
@@ -62,7 +62,7 @@ fn main() {
 }
 
 /// Checks the settings and runs the agent until it stops.
-fn run(cli: Cli) -> Result<Exit> {
+fn run(cli: AgentCli) -> Result<Exit> {
     let keys = cli.connection.keys()?;
     if cli.id >= cli.team_size {
         bail!(

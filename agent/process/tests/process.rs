@@ -11,8 +11,8 @@ use node::net::free_port;
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
-    ActionChoice, AgentReport, Body, Control, ControlReply, Envelope, Header, MessageKind, Mode,
-    Observation, PROTOCOL_VERSION,
+    ActionChoice, AgentFrame, AgentReport, Body, Control, ControlReply, Envelope, Header,
+    MessageKind, Mode, PROTOCOL_VERSION,
 };
 use support::Guard;
 use zenoh::Session;
@@ -206,7 +206,7 @@ impl Fake {
 }
 
 /// An observation message.
-fn observations(header: Header, frames: Vec<Observation>) -> Vec<u8> {
+fn observations(header: Header, frames: Vec<AgentFrame>) -> Vec<u8> {
     proto::encode(&Envelope {
         header,
         body: Body::Observations(frames),
@@ -221,9 +221,9 @@ fn observation(
     kick: bool,
     terminal: bool,
     reward: f64,
-) -> Observation {
+) -> AgentFrame {
     let f = f64::from(frame) / 10.0;
-    Observation {
+    AgentFrame {
         agent: id,
         mode,
         state: [f, 0.5 - f, f64::from(id) / 2.0, 0.1, -0.2, 0.3],
@@ -304,7 +304,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         let r = fake
             .report_until(id, 0, |r| r.alive_peers == vec![1 - id])
             .await;
-        assert_eq!(r.advice_requests_sent, 0);
+        assert_eq!(r.advice_requests, 0);
     }
 
     // Episode 1: both kick at once in fresh states (P_ask = 1): each asks
@@ -319,7 +319,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     let mut reports = Vec::new();
     for id in 0..2 {
         let r = fake.report(id, 1).await;
-        assert!(r.advice_requests_sent > 0, "{r:?}");
+        assert!(r.advice_requests > 0, "{r:?}");
         assert!(r.advice_replies_received > 0, "{r:?}");
         assert_eq!(r.advice_rtt_ms.len() as u64, r.advice_replies_received);
         assert!(sent(&r, MessageKind::AdviceRequest) > 0, "{r:?}");
@@ -333,13 +333,13 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         assert_eq!(r.messages.dropped.total(), 0);
         eprintln!(
             "agent {id}: {} requests, {} replies, advice RTT ms {:?}",
-            r.advice_requests_sent, r.advice_replies_received, r.advice_rtt_ms
+            r.advice_requests, r.advice_replies_received, r.advice_rtt_ms
         );
         reports.push(r);
     }
 
     // Bad messages on obs/0 are counted and change nothing.
-    let frame = Observation {
+    let frame = AgentFrame {
         agent: 0,
         mode: Mode::Training,
         state: [0.9; 6],
@@ -386,7 +386,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         let r = fake.report(id, 2).await;
         let before = &reports[usize::from(id)];
         assert_eq!(r.digest, before.digest);
-        assert_eq!(r.advice_requests_sent, before.advice_requests_sent);
+        assert_eq!(r.advice_requests, before.advice_requests);
     }
 
     // Episode 3: kicks in fresh states published back to back, without
@@ -413,7 +413,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     }
     for id in 0..2u8 {
         let (r, was) = (fake.report(id, 3).await, &before[usize::from(id)]);
-        assert!(r.advice_requests_sent > was.advice_requests_sent, "{r:?}");
+        assert!(r.advice_requests > was.advice_requests, "{r:?}");
         assert_eq!(
             received(&r, MessageKind::Observation),
             received(was, MessageKind::Observation) + 4

@@ -119,7 +119,7 @@ fn advisee_spends_its_ask_budget_only_when_advised() {
     a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
     assert_eq!(silent.asked, vec![(0, vec![1, 2], None)]);
     assert_eq!(
-        (a.counters().requests_sent, a.counters().advised_steps),
+        (a.counters().advice_requests, a.counters().ask_spent),
         (1, 0)
     );
     // Unvisited states ask with P_ask = 1.5^0 = 1. Two advised states spend the budget of 2.
@@ -130,7 +130,7 @@ fn advisee_spends_its_ask_budget_only_when_advised() {
     assert_eq!(ex.asked.len(), 2, "the third state finds the budget spent");
     let c = a.counters();
     assert_eq!(
-        (c.requests_sent, c.advised_steps, c.advice_received),
+        (c.advice_requests, c.ask_spent, c.advice_replies_received),
         (3, 2, 4)
     );
 }
@@ -261,7 +261,7 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
         Dribble
     );
     assert_eq!(silent.asked, vec![(0, vec![1, 2], Some(Dribble))]);
-    assert_eq!(advisee.counters().advised_steps, 0);
+    assert_eq!(advisee.counters().ask_spent, 0);
 }
 
 #[test]
@@ -613,7 +613,7 @@ fn reachable_within_distance_filters_advisors() {
         0.0,
     )
     .unwrap();
-    assert_eq!(team.agents()[0].counters().advised_steps, 0);
+    assert_eq!(team.agents()[0].counters().ask_spent, 0);
     // A new episode with agent 2 at distance 3.
     team.end_episode(0.0);
     team.begin_episode(Mode::Training);
@@ -628,7 +628,7 @@ fn reachable_within_distance_filters_advisors() {
         )
         .unwrap();
     assert_eq!(actions[0], Dribble);
-    assert_eq!(team.agents()[0].counters().advised_steps, 1);
+    assert_eq!(team.agents()[0].counters().ask_spent, 1);
 }
 
 #[test]
@@ -839,11 +839,11 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
         }
     );
     assert_eq!(a.act_complete(&[PassNear]), PassNear);
-    assert_eq!(a.counters().advised_steps, 1);
+    assert_eq!(a.counters().ask_spent, 1);
     // Nobody reachable: the agent acts on its own and sends no request.
     let decision = a.act_begin(&obs(kick_state(1)), 0.0, &[], &|_| false);
     assert!(matches!(decision, Decision::Act(a) if a.is_kick()));
-    assert_eq!(a.counters().requests_sent, 1);
+    assert_eq!(a.counters().advice_requests, 1);
 }
 
 #[test]
@@ -860,7 +860,7 @@ fn an_abandoned_ask_completes_to_nothing() {
     let after_end = a.digest();
     assert_eq!(a.act_complete(&[Dribble]), Move);
     assert_eq!(a.digest(), after_end);
-    assert_eq!(a.counters().advised_steps, 0);
+    assert_eq!(a.counters().ask_spent, 0);
     assert_ne!(before, after_end, "the episode count moved on");
 }
 

@@ -57,7 +57,7 @@ impl Strategy {
         match self {
             Strategy::AdHoc(a) => {
                 at.fresh
-                    && at.counters.advised_steps < a.ask_budget
+                    && at.counters.ask_spent < a.ask_budget
                     && at.training_episodes >= 1
                     && chance(rng, p_ask(at.visits, a.v_a))
             }

@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::name::StrategyName;
 use crate::advice::Reachable;
-use crate::config_error::{ConfigError, require_non_negative};
+use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::fidelity::Profile;
 
 /// The paper's budget of every advising and sharing side.
@@ -162,7 +162,7 @@ impl Strategy {
 
     /// Switches Mistake Correcting on or off; switching it on is an error for
     /// a strategy without that mode.
-    pub fn set_mistake_correcting(&mut self, on: bool) -> Result<(), ConfigError> {
+    pub fn set_mistake_correcting(&mut self, on: bool) -> Result<(), AgentConfigError> {
         match self {
             Strategy::AdHoc(AdHoc {
                 mistake_correcting, ..
@@ -171,7 +171,7 @@ impl Strategy {
                 mistake_correcting, ..
             }) => *mistake_correcting = on,
             _ if on => {
-                return Err(ConfigError::new(
+                return Err(AgentConfigError::new(
                     "mistake_correcting",
                     format!(
                         "only for adhoc-visit, adhoc-td and torrey, not {}",
@@ -185,7 +185,7 @@ impl Strategy {
     }
 
     /// Returns the first invalid constant, naming its key.
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    pub fn validate(&self) -> Result<(), AgentConfigError> {
         match self {
             Strategy::AdHoc(a) => {
                 require_non_negative("v_a", a.v_a)?;
@@ -203,7 +203,7 @@ impl Strategy {
     }
 
     /// Checks the ids of a [`Reachable::Agents`] set against the team size.
-    pub(crate) fn check_team(&self, team_size: usize) -> Result<(), ConfigError> {
+    pub(crate) fn check_team(&self, team_size: usize) -> Result<(), AgentConfigError> {
         let Strategy::AdHoc(AdHoc {
             reachable: Reachable::Agents(ids),
             ..
@@ -213,7 +213,7 @@ impl Strategy {
         };
         for (k, &j) in ids.iter().enumerate() {
             if j >= team_size || ids[..k].contains(&j) {
-                return Err(ConfigError::new(
+                return Err(AgentConfigError::new(
                     "reachable",
                     format!("agent {j} is out of range or repeated"),
                 ));

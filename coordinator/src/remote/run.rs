@@ -10,7 +10,7 @@ use proto::keys::Role;
 use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
 use super::Network;
-use crate::backend::{AgentStats, Backend, Episode};
+use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::Error;
 use crate::experiment::Experiment;
 
@@ -149,7 +149,7 @@ impl Backend for RemoteBackend<'_> {
         Ok(())
     }
 
-    fn play_episode(&mut self, mode: Mode) -> Result<Episode, Error> {
+    fn play_episode(&mut self, mode: Mode) -> Result<EpisodeEnd, Error> {
         let seed = match mode {
             Mode::Training => None,
             Mode::Evaluation => self.evaluation_seed.take(),
@@ -167,7 +167,7 @@ impl Backend for RemoteBackend<'_> {
             )));
         };
         self.check_alive()?;
-        Ok(Episode {
+        Ok(EpisodeEnd {
             outcome: match result.outcome {
                 EpisodeOutcome::Goal => Outcome::Goal,
                 EpisodeOutcome::Captured => Outcome::Captured,
@@ -214,15 +214,15 @@ fn stats_of(r: &AgentReport) -> AgentStats {
     let sent = r.messages.total(proto::Direction::Sent);
     let received = r.messages.total(proto::Direction::Received);
     AgentStats {
-        spent_give: r.give_spent,
-        spent_ask: r.ask_spent,
-        requests: r.advice_requests_sent,
-        replies_received: r.advice_replies_received,
+        give_spent: r.give_spent,
+        ask_spent: r.ask_spent,
+        advice_requests: r.advice_requests,
+        advice_replies_received: r.advice_replies_received,
         advice_given: r.advice_given,
         messages_sent: sent.messages,
         bytes_sent: sent.bytes,
         messages_received: received.messages,
         bytes_received: received.bytes,
-        dropped: r.messages.dropped.total(),
+        messages_dropped: r.messages.dropped.total(),
     }
 }

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::config::{Entry, StudyConfig};
+use super::config::{StudyConfig, StudyEntry};
 use crate::schedule::{EvalPoint, RunResult};
 use crate::stats::{Estimate, estimate};
 use crate::summary::Summary;
@@ -13,7 +13,7 @@ use crate::wilcoxon::{Interval, better_intervals, signed_rank};
 #[derive(Clone, Debug)]
 pub struct EntryResults {
     /// The experiment.
-    pub entry: Entry,
+    pub entry: StudyEntry,
     /// Every run, sorted by run.
     pub results: Vec<RunResult>,
     /// Their summary.

@@ -71,7 +71,7 @@ pub struct StudyConfig {
     pub pretrain: Option<Pretrain>,
     /// The experiments.
     #[serde(rename = "entry")]
-    pub entries: Vec<Entry>,
+    pub entries: Vec<StudyEntry>,
 }
 
 fn default_seed() -> u64 {
@@ -93,7 +93,7 @@ pub struct Pretrain {
 /// One experiment of the study.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Entry {
+pub struct StudyEntry {
     /// Name: the experiment's directory and its label in figures.
     pub name: String,
     /// The team's algorithm.
@@ -234,7 +234,7 @@ impl StudyConfig {
     }
 
     /// The experiment of `entry`; `expert` is the pretrained snapshot when it has one.
-    pub fn experiment(&self, entry: &Entry, expert: Option<&Path>) -> ExperimentConfig {
+    pub fn experiment(&self, entry: &StudyEntry, expert: Option<&Path>) -> ExperimentConfig {
         let mut spec = AgentSpec::of(entry.algorithm, self.profile);
         // `validate` rejects the keys the strategy does not have.
         if let Ok(strategy) = entry.strategy(self.profile) {
@@ -280,16 +280,16 @@ impl StudyConfig {
     }
 }
 
-impl Entry {
+impl StudyEntry {
     /// The team's strategy: the constants of `profile`, with Mistake
     /// Correcting and v_g when asked for (an error for a strategy without
     /// that mode or constant).
-    pub fn strategy(&self, profile: Profile) -> Result<Strategy, agent::ConfigError> {
+    pub fn strategy(&self, profile: Profile) -> Result<Strategy, agent::AgentConfigError> {
         let mut strategy = Strategy::of(self.algorithm, profile);
         strategy.set_mistake_correcting(self.mistake_correcting)?;
         if let Some(v_g) = self.v_g {
             let Strategy::AdHoc(a) = &mut strategy else {
-                return Err(agent::ConfigError {
+                return Err(agent::AgentConfigError {
                     key: "v_g",
                     reason: format!("only for adhoc-visit and adhoc-td, not {}", self.algorithm),
                 });

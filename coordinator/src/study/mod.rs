@@ -13,6 +13,6 @@ mod run;
 mod shard;
 
 pub use analysis::{Comparison, EntryResults, compare};
-pub use config::{Entry, PRESETS, Pretrain, StudyConfig};
+pub use config::{PRESETS, Pretrain, StudyConfig, StudyEntry};
 pub use run::{StudyOptions, StudyOutcome, run_study};
 pub use shard::{MAX_SHARDS, Shard};

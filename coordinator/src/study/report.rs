@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use agent::StrategyName;
 
 use super::analysis::{Comparison, EntryResults};
-use super::config::{Entry, StudyConfig};
+use super::config::{StudyConfig, StudyEntry};
 use crate::error::Error;
 use crate::figures::{Figure, Point, SeriesSet, draw_figures};
 use crate::stats::Estimate;
@@ -260,7 +260,7 @@ fn communication(md: &mut Markdown, entries: &[EntryResults]) {
         let c = &e.summary.comm.as_ref()?.team;
         Some([
             label(&e.entry),
-            format!("{:.0}", c.advice_requests_sent),
+            format!("{:.0}", c.advice_requests),
             format!("{:.0}", c.advice_replies_received),
             format!("{:.0}", c.advice_given),
             format!("{:.0}", c.messages_sent),
@@ -276,7 +276,7 @@ fn communication(md: &mut Markdown, entries: &[EntryResults]) {
         [
             "algorithm",
             "advice requests",
-            "replies",
+            "advice replies received",
             "advice given",
             "messages sent",
             "bytes sent",
@@ -329,7 +329,7 @@ fn series_set(e: &EntryResults, level: f64) -> SeriesSet {
     SeriesSet::new(&e.entry.name, e.summary.runs, level, points)
 }
 
-fn label(e: &Entry) -> String {
+fn label(e: &StudyEntry) -> String {
     let mut s = e.name.clone();
     if e.expert {
         s.push_str(" (expert)");

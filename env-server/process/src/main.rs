@@ -17,13 +17,13 @@ mod serve;
     version,
     about = "Half Field Offense simulator (3 offense agents vs a goalkeeper)"
 )]
-struct Cli {
+struct EnvServerCli {
     #[command(subcommand)]
-    command: Command,
+    command: EnvServerCommand,
 }
 
 #[derive(Subcommand)]
-enum Command {
+enum EnvServerCommand {
     /// Play episodes under a baseline policy and summarise them.
     Rollout {
         /// Policy: random, shoot, dribble, pass or uniform.
@@ -78,15 +78,15 @@ fn main() {
     node::net::use_one_runtime();
     // Without RUST_LOG: errors, and this program's warnings (missing actions).
     init_tracing("error,env_server=warn");
-    let cli: Cli = parse_or_exit();
+    let cli: EnvServerCli = parse_or_exit();
     if let Err(e) = run(cli) {
         exit_with_error(format_args!("{e:#}"));
     }
 }
 
-fn run(cli: Cli) -> Result<()> {
+fn run(cli: EnvServerCli) -> Result<()> {
     match cli.command {
-        Command::Rollout {
+        EnvServerCommand::Rollout {
             policy,
             episodes,
             seed,
@@ -128,7 +128,7 @@ fn run(cli: Cli) -> Result<()> {
                 println!("  speed          {:.0} frames/s", s.frames_per_sec);
             }
         }
-        Command::Render {
+        EnvServerCommand::Render {
             policy,
             seed,
             episode,
@@ -145,7 +145,7 @@ fn run(cli: Cli) -> Result<()> {
             picture::write_picture(&trace, &out)?;
             println!("wrote {}: {}", out.display(), trace.summary());
         }
-        Command::Serve { connection } => serve::run(connection)?,
+        EnvServerCommand::Serve { connection } => serve::run(connection)?,
     }
     Ok(())
 }

@@ -7,8 +7,8 @@ use node::net::{NetConfig, free_port};
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
-    Action, ActionChoice, Body, Control, ControlReply, Envelope, EpisodeOutcome, EpisodeResult,
-    Header, Mode, Observation, PROTOCOL_VERSION, ServerReport,
+    Action, ActionChoice, AgentFrame, Body, Control, ControlReply, Envelope, EpisodeOutcome,
+    EpisodeResult, Header, Mode, PROTOCOL_VERSION, ServerReport,
 };
 use std::net::TcpStream;
 use std::process::{Child, Command, Output, Stdio};
@@ -21,16 +21,16 @@ use zenoh::query::{ConsolidationMode, QueryTarget};
 const AGENTS: u8 = 3;
 
 /// The server process, killed (if still running) when dropped.
-struct Server(Child);
+struct ServerProcess(Child);
 
-impl Drop for Server {
+impl Drop for ServerProcess {
     fn drop(&mut self) {
         let _ = self.0.kill();
         let _ = self.0.wait();
     }
 }
 
-impl Server {
+impl ServerProcess {
     /// Waits up to `limit` for the process to exit.
     fn wait_exit(&mut self, limit: Duration) -> Option<std::process::ExitStatus> {
         let start = Instant::now();
@@ -51,7 +51,7 @@ fn command(args: &[&str]) -> Command {
 }
 
 /// Starts `env-server serve` for `experiment` on `port`, with `extra` flags.
-fn start(experiment: &str, port: u16, extra: &[&str]) -> Server {
+fn start(experiment: &str, port: u16, extra: &[&str]) -> ServerProcess {
     let listen = format!("tcp/127.0.0.1:{port}");
     let mut args = vec!["--experiment", experiment, "--listen", &listen];
     args.extend_from_slice(extra);
@@ -60,13 +60,13 @@ fn start(experiment: &str, port: u16, extra: &[&str]) -> Server {
         .stderr(Stdio::null())
         .spawn()
         .expect("spawn env-server");
-    Server(child)
+    ServerProcess(child)
 }
 
 /// What fake agent `i` saw and did.
 #[derive(Debug, Default)]
 struct Seen {
-    observations: Vec<(Header, Observation)>,
+    observations: Vec<(Header, AgentFrame)>,
     /// Observation messages received, by all agents.
     messages: u64,
     actions_sent: u64,
@@ -86,7 +86,7 @@ enum Behaviour {
 
 /// The in-test session: coordinator and fake agents.
 struct Harness {
-    server: Server,
+    server: ServerProcess,
     session: Session,
     keys: Keys,
     experiment: u64,
@@ -199,10 +199,10 @@ impl Harness {
 
     /// Waits until every agent has seen the terminal frame of `episode`
     /// and returns each agent's observations of it.
-    async fn observations(&self, run: u32, episode: u32) -> Vec<Vec<Observation>> {
+    async fn observations(&self, run: u32, episode: u32) -> Vec<Vec<AgentFrame>> {
         let start = Instant::now();
         loop {
-            let of_episode: Vec<Vec<(Header, Observation)>> = self
+            let of_episode: Vec<Vec<(Header, AgentFrame)>> = self
                 .seen
                 .iter()
                 .map(|s| {
@@ -386,7 +386,7 @@ fn reward(outcome: EpisodeOutcome) -> f64 {
 
 /// Checks that every agent saw frames 0..=frames of an episode, the last
 /// one terminal with the final reward; returns the kicker frames seen.
-fn check_observations(seen: &[Vec<Observation>], result: EpisodeResult, mode: Mode) -> u64 {
+fn check_observations(seen: &[Vec<AgentFrame>], result: EpisodeResult, mode: Mode) -> u64 {
     let mut kicks = 0;
     for (i, obs) in seen.iter().enumerate() {
         assert_eq!(obs.len() as u32, result.frames + 1, "agent {i}");
@@ -434,7 +434,7 @@ async fn episodes_match_the_simulator_and_reach_every_agent() {
     }
     let report = h.report(3).await;
     assert_eq!(report.frames, frames);
-    assert_eq!(report.missing_actions, 0);
+    assert_eq!(report.actions_timed_out, 0);
     assert_eq!(kicks, h.actions_sent());
     let m = &report.messages;
     assert_eq!(
@@ -459,8 +459,8 @@ async fn silent_agents_fall_back_to_move() {
     assert_eq!(result, replay_with(&mut env, Action::Move, true));
     let kicks = check_observations(&h.observations(0, 0).await, result, Mode::Training);
     let report = h.report(0).await;
-    assert!(report.missing_actions > 0);
-    assert_eq!(report.missing_actions, kicks);
+    assert!(report.actions_timed_out > 0);
+    assert_eq!(report.actions_timed_out, kicks);
     assert_eq!(u64::from(result.actions_timed_out), kicks);
     assert_eq!(report.frames, u64::from(result.frames));
 }
@@ -516,7 +516,7 @@ async fn noise_on_act_is_dropped_and_counted() {
         report.messages.received[proto::MessageKind::Action as usize].messages,
         kicks
     );
-    assert_eq!(report.missing_actions, 0);
+    assert_eq!(report.actions_timed_out, 0);
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -696,7 +696,7 @@ async fn frames_per_second() {
         "{episodes} episodes, {frames} frames in {secs:.2} s: {:.0} frames/s, {:.1} episodes/s, {} missing actions, {} actions",
         frames as f64 / secs,
         f64::from(episodes) / secs,
-        report.missing_actions,
+        report.actions_timed_out,
         h.actions_sent()
     );
 }

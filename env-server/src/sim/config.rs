@@ -38,7 +38,7 @@ impl Default for EnvConfig {
 
 /// A rejected simulator setting.
 #[derive(Debug, thiserror::Error, PartialEq)]
-pub enum ConfigError {
+pub enum EnvConfigError {
     /// The offense count is outside the supported range.
     #[error("offense must be between 1 and {MAX_OFFENSE}, got {0}")]
     Offense(usize),
@@ -58,26 +58,26 @@ pub enum ConfigError {
 
 impl EnvConfig {
     /// Checks every setting, naming the first bad one.
-    pub fn validate(&self) -> Result<(), ConfigError> {
+    pub fn validate(&self) -> Result<(), EnvConfigError> {
         if !(1..=MAX_OFFENSE).contains(&self.offense) {
-            return Err(ConfigError::Offense(self.offense));
+            return Err(EnvConfigError::Offense(self.offense));
         }
         if self.frames_per_trial == 0 {
-            return Err(ConfigError::ZeroLimit("frames_per_trial"));
+            return Err(EnvConfigError::ZeroLimit("frames_per_trial"));
         }
         if self.untouched_time == 0 {
-            return Err(ConfigError::ZeroLimit("untouched_time"));
+            return Err(EnvConfigError::ZeroLimit("untouched_time"));
         }
         let speed = self.long_shot.speed;
         if !(speed > 0.0 && speed <= BALL_SPEED_MAX) {
-            return Err(ConfigError::LongShotSpeed(speed));
+            return Err(EnvConfigError::LongShotSpeed(speed));
         }
         let min_speed = self.long_shot.min_speed;
         if !(min_speed > 0.0 && min_speed <= speed) {
-            return Err(ConfigError::LongShotMinSpeed(min_speed));
+            return Err(EnvConfigError::LongShotMinSpeed(min_speed));
         }
         if self.long_shot.sigma_deg.is_nan() || self.long_shot.sigma_deg <= 0.0 {
-            return Err(ConfigError::LongShotSigma(self.long_shot.sigma_deg));
+            return Err(EnvConfigError::LongShotSigma(self.long_shot.sigma_deg));
         }
         Ok(())
     }

@@ -3,8 +3,8 @@
 
 use crate::sim::analysis::{Analysis, update_offside_line};
 use crate::sim::behaviour::keeper::{self, KeeperMemory};
-use crate::sim::behaviour::{Decision, Situation, offense_command};
-use crate::sim::config::{ConfigError, EnvConfig, MAX_OFFENSE};
+use crate::sim::behaviour::{BodyDecision, Situation, offense_command};
+use crate::sim::config::{EnvConfig, EnvConfigError, MAX_OFFENSE};
 use crate::sim::features;
 use crate::sim::geom::uniform;
 use crate::sim::memory::AgentMemory;
@@ -57,7 +57,7 @@ pub struct Env {
 impl Env {
     /// A simulator with `config`, drawing every random choice from `seed`.
     /// Call [`Env::reset`] to start the first episode.
-    pub fn new(config: EnvConfig, seed: u64) -> Result<Self, ConfigError> {
+    pub fn new(config: EnvConfig, seed: u64) -> Result<Self, EnvConfigError> {
         config.validate()?;
         let world = World::new(config.offense);
         let referee = Referee::new(config.frames_per_trial, config.untouched_time);
@@ -245,7 +245,7 @@ impl Env {
         // The world with the ball held still, made for the first agent that sees it so.
         let mut still: Option<(World, Analysis)> = None;
         for agent in 0..self.config.offense {
-            let idle = Decision {
+            let idle = BodyDecision {
                 command: Command::None,
                 shot: None,
                 neck: Neck::Scan,

@@ -232,7 +232,7 @@ pub(crate) fn catch(world: &mut World) -> bool {
 
 /// Kinematic constants of one kind of moving object.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Body {
+pub(crate) struct BodyConstants {
     /// Radius.
     pub(crate) size: f64,
     /// Acceleration limit.
@@ -246,7 +246,7 @@ pub(crate) struct Body {
 }
 
 /// The ball's constants.
-pub(crate) const BALL_BODY: Body = Body {
+pub(crate) const BALL_BODY: BodyConstants = BodyConstants {
     size: BALL_SIZE,
     accel_max: BALL_ACCEL_MAX,
     speed_max: BALL_SPEED_MAX,
@@ -255,7 +255,7 @@ pub(crate) const BALL_BODY: Body = Body {
 };
 
 /// A player's constants.
-pub(crate) const PLAYER_BODY: Body = Body {
+pub(crate) const PLAYER_BODY: BodyConstants = BodyConstants {
     size: PLAYER_SIZE,
     accel_max: PLAYER_ACCEL_MAX,
     speed_max: PLAYER_SPEED_MAX,
@@ -269,7 +269,7 @@ pub(crate) fn move_object(
     pos: &mut DVec2,
     vel: &mut DVec2,
     accel: DVec2,
-    body: Body,
+    body: BodyConstants,
     rng: &mut impl Rng,
 ) {
     if accel != DVec2::ZERO {
@@ -431,7 +431,7 @@ mod tests {
     fn full_dashes_reach_one_metre_per_cycle() {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
         let mut p = Player::new(DVec2::ZERO, 0.0);
-        let body = Body {
+        let body = BodyConstants {
             rand: 0.0,
             ..PLAYER_BODY
         };
@@ -562,7 +562,7 @@ mod tests {
         let post = GOAL_POSTS[1];
         let mut pos = post - DVec2::new(1.0, 0.0);
         let mut vel = DVec2::new(2.0, 0.0);
-        let body = Body {
+        let body = BodyConstants {
             rand: 0.0,
             ..BALL_BODY
         };

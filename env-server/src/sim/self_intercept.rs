@@ -281,7 +281,7 @@ fn back_dash_allowed(p: &Player, ball: &Ball, t: usize, diff: f64, goalie: bool)
 /// The full dashes a player makes after some turns, as its stamina allows
 /// them (half the power backwards); librcsc's speed-limit branch never acts
 /// for this player type (100 · 0.006 < 1.05 · 0.6).
-struct Run {
+struct DashRun {
     turns: usize,
     back: bool,
     /// The player after the dashes so far.
@@ -293,13 +293,13 @@ struct Run {
     len: usize,
 }
 
-impl Run {
+impl DashRun {
     fn new(p: &Player, turns: usize, back: bool) -> Self {
         let mut me = *p;
         for _ in 0..turns {
             update_stamina(&mut me);
         }
-        Run {
+        DashRun {
             turns,
             back,
             me,
@@ -329,7 +329,7 @@ impl Run {
 /// step's dashes depend only on the turns before them and their direction.
 struct Runs {
     player: Player,
-    runs: Vec<Run>,
+    runs: Vec<DashRun>,
 }
 
 impl Runs {
@@ -341,7 +341,7 @@ impl Runs {
     }
 
     /// The run after `turns` turns, backwards if `back`.
-    fn get(&mut self, turns: usize, back: bool) -> &mut Run {
+    fn get(&mut self, turns: usize, back: bool) -> &mut DashRun {
         let i = match self
             .runs
             .iter()
@@ -349,7 +349,7 @@ impl Runs {
         {
             Some(i) => i,
             None => {
-                self.runs.push(Run::new(&self.player, turns, back));
+                self.runs.push(DashRun::new(&self.player, turns, back));
                 self.runs.len() - 1
             }
         };
@@ -365,7 +365,7 @@ fn reach_after_dash(
     p: &Player,
     ball: &Ball,
     ball_pos: DVec2,
-    run: &mut Run,
+    run: &mut DashRun,
     n_dash: usize,
     control: f64,
     dash_angle: f64,

@@ -53,19 +53,19 @@ impl Width {
     }
 }
 
-/// librcsc's estimate of when its sees arrive (`SeeState::Timing`).
+/// librcsc's estimate of when its sees arrive (`SeeState::SeeTiming`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Timing {
+enum SeeTiming {
     At0,
     At50,
     At22,
     NoSynch,
 }
 
-impl Timing {
+impl SeeTiming {
     /// `SeeState::getNextTiming`: the timing of a see after one at `self`.
-    fn next(self, width: Width) -> Timing {
-        use {Timing::*, Width::*};
+    fn next(self, width: Width) -> SeeTiming {
+        use {SeeTiming::*, Width::*};
         match (self, width) {
             (At0, Wide) | (At50, Normal) | (At22, Narrow) => At0,
             (At0, Normal) | (At50, Wide) => At50,
@@ -98,7 +98,7 @@ pub struct Sight {
     width: Width,
     /// Visual ticks since the last see (rcssserver's send count).
     ticks: u8,
-    timing: Timing,
+    timing: SeeTiming,
     /// `SeeState`'s cycles till the next see.
     cycles_till_see: u8,
     /// Whether a see arrived this cycle.
@@ -118,7 +118,7 @@ impl Default for Sight {
             neck: 0.0,
             width: Width::Narrow,
             ticks: 1,
-            timing: Timing::At22,
+            timing: SeeTiming::At22,
             cycles_till_see: 1,
             seen: false,
             chain_ready: false,
@@ -192,7 +192,7 @@ impl Sight {
     }
 
     fn is_synch(&self) -> bool {
-        self.timing != Timing::NoSynch
+        self.timing != SeeTiming::NoSynch
     }
 
     /// One visual tick of the server: a see when the send count reaches the
@@ -206,7 +206,7 @@ impl Sight {
         self.ticks = 0;
         // SeeState::updateBySee, then WorldModel::updateAfterSee (once a cycle).
         if self.seen {
-            self.timing = Timing::NoSynch;
+            self.timing = SeeTiming::NoSynch;
             return;
         }
         self.seen = true;
@@ -247,7 +247,7 @@ impl Sight {
         if !self.seen {
             return;
         }
-        use {Timing::*, Width::*};
+        use {SeeTiming::*, Width::*};
         self.cycles_till_see = match (self.timing, self.width) {
             (_, Wide) => 3,
             (At0, Normal) | (At50 | At22 | NoSynch, Narrow) => 1,
@@ -269,8 +269,8 @@ impl Sight {
     fn can_change_view_to(&self, width: Width) -> bool {
         self.seen
             && match width {
-                Width::Narrow => self.timing != Timing::At0,
-                Width::Normal => matches!(self.timing, Timing::At0 | Timing::At50),
+                Width::Narrow => self.timing != SeeTiming::At0,
+                Width::Normal => matches!(self.timing, SeeTiming::At0 | SeeTiming::At50),
                 Width::Wide => true,
             }
     }
@@ -297,7 +297,7 @@ impl Sight {
             return Width::Normal;
         }
         // View_Synch; unsynchronised in server synch mode: doTimerSynchView.
-        if self.is_synch() && self.timing == Timing::At0 {
+        if self.is_synch() && self.timing == SeeTiming::At0 {
             Width::Normal
         } else {
             Width::Narrow
@@ -371,7 +371,7 @@ impl Sight {
         }
         // PlayerAgent::action: a see missed while synchronised breaks the synch.
         if self.is_synch() && self.cycles_till_see == 0 && !self.seen {
-            self.timing = Timing::NoSynch;
+            self.timing = SeeTiming::NoSynch;
         }
     }
 

@@ -6,7 +6,7 @@
 //! attacked goal is on the right, +y points down.
 
 use crate::sim::config::MAX_OFFENSE;
-use crate::sim::config::{ConfigError, EnvConfig};
+use crate::sim::config::{EnvConfig, EnvConfigError};
 use crate::sim::env::Env;
 use crate::sim::formation::offense_unums;
 use crate::sim::params::*;
@@ -62,7 +62,7 @@ pub struct Trace {
 pub enum RenderError {
     /// Bad simulator settings.
     #[error(transparent)]
-    Config(#[from] ConfigError),
+    Config(#[from] EnvConfigError),
     /// Episodes are numbered from 1.
     #[error("episode must be at least 1")]
     EpisodeZero,

@@ -1,7 +1,7 @@
 //! Rollouts: episodes played under a baseline policy from one seed, and
 //! their summary.
 
-use crate::sim::config::{ConfigError, EnvConfig};
+use crate::sim::config::{EnvConfig, EnvConfigError};
 use crate::sim::env::Env;
 use crate::sim::referee::Outcome;
 use crate::tools::decisions::{DecisionRecorder, DecisionStats};
@@ -58,7 +58,7 @@ pub fn rollout(
     policy: BaselinePolicy,
     episodes: u64,
     seed: u64,
-) -> Result<RolloutSummary, ConfigError> {
+) -> Result<RolloutSummary, EnvConfigError> {
     let offense = config.offense;
     let mut env = Env::new(config, seed)?;
     let mut rng = policy_rng(seed);

@@ -117,14 +117,14 @@ mod tests {
     use super::*;
 
     #[derive(Parser)]
-    struct Cli {
+    struct TestCli {
         #[command(flatten)]
         connection: ConnectionArgs,
     }
 
     #[test]
     fn connection_flags_keep_their_names() {
-        let cli = Cli::try_parse_from([
+        let cli = TestCli::try_parse_from([
             "x",
             "--experiment",
             "e1",
@@ -146,21 +146,21 @@ mod tests {
                 vec!["tcp/127.0.0.1:1".into(), "tcp/127.0.0.1:2".into()]
             )
         );
-        let bad = Cli::try_parse_from(["x", "--experiment", "a/b", "--no-auth"]).unwrap();
+        let bad = TestCli::try_parse_from(["x", "--experiment", "a/b", "--no-auth"]).unwrap();
         assert!(bad.connection.keys().is_err());
-        assert!(Cli::try_parse_from(["x"]).is_err());
+        assert!(TestCli::try_parse_from(["x"]).is_err());
     }
 
     #[test]
     fn a_secret_is_required_unless_refused_explicitly() {
-        let error = |args: &[&str]| Cli::try_parse_from(args).err().map(|e| e.to_string());
+        let error = |args: &[&str]| TestCli::try_parse_from(args).err().map(|e| e.to_string());
         let missing = error(&["x", "--experiment", "e"]).unwrap();
         assert!(missing.contains("--secret-file"), "{missing}");
         assert!(error(&["x", "--experiment", "e", "--secret-file", "s", "--no-auth"]).is_some());
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("secret");
         let secret = Secret::create(&path).unwrap();
-        let cli = Cli::try_parse_from(
+        let cli = TestCli::try_parse_from(
             ["x", "--experiment", "e", "--secret-file"]
                 .map(str::to_owned)
                 .into_iter()
@@ -169,7 +169,7 @@ mod tests {
         .unwrap();
         assert_eq!(cli.connection.net().unwrap().secret, Some(secret));
         let missing_file =
-            Cli::try_parse_from(["x", "--experiment", "e", "--secret-file", "/nonexistent/s"])
+            TestCli::try_parse_from(["x", "--experiment", "e", "--secret-file", "/nonexistent/s"])
                 .unwrap();
         assert!(
             missing_file

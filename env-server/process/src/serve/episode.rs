@@ -7,7 +7,7 @@
 use env_server::MAX_OFFENSE;
 use env_server::{Env, EnvConfig, Outcome};
 use proto::{
-    Action, ActionChoice, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode, Observation,
+    Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode,
     State,
 };
 
@@ -137,8 +137,8 @@ impl Episode {
 
     /// Agent `agent`'s observation of the current frame, whose state is
     /// `state`. The terminal frame carries the final reward and no decision.
-    pub fn observe(&self, env: &Env, agent: usize, state: State) -> Observation {
-        Observation {
+    pub fn observe(&self, env: &Env, agent: usize, state: State) -> AgentFrame {
+        AgentFrame {
             agent: agent as u8,
             mode: self.mode,
             state,
@@ -219,7 +219,7 @@ pub struct Batches {
     /// Run, episode and frame of the first observation held.
     first: Option<Header>,
     /// Per agent, its observations in frame order.
-    frames: Vec<Vec<Observation>>,
+    frames: Vec<Vec<AgentFrame>>,
 }
 
 impl Batches {
@@ -305,7 +305,7 @@ mod tests {
     }
 
     /// Agent `agent`'s message among `messages`, decoded.
-    fn decoded(messages: &[Vec<u8>], agent: usize) -> (Header, Vec<Observation>) {
+    fn decoded(messages: &[Vec<u8>], agent: usize) -> (Header, Vec<AgentFrame>) {
         let envelope = proto::decode(&messages[agent], 1).unwrap();
         let Body::Observations(frames) = envelope.body else {
             panic!("not observations")

@@ -45,7 +45,7 @@ struct Play {
 }
 
 /// The current run.
-struct Run {
+struct CurrentRun {
     run: u32,
     simulators: Simulators,
     /// The last episode played in this run.
@@ -62,12 +62,12 @@ struct Server {
     /// Since when each agent has sent no awaited action (None: it answered
     /// its last decision).
     silent_since: [Option<Instant>; MAX_OFFENSE],
-    run: Option<Run>,
+    run: Option<CurrentRun>,
     play: Option<Play>,
     /// The observations of the frames not sent yet.
     batches: Batches,
     frames: u64,
-    missing_actions: u64,
+    actions_timed_out: u64,
     counters: MessageCounters,
 }
 
@@ -86,7 +86,7 @@ impl Server {
             play: None,
             batches: Batches::default(),
             frames: 0,
-            missing_actions: 0,
+            actions_timed_out: 0,
             counters: MessageCounters::default(),
         }
     }
@@ -200,7 +200,7 @@ impl Server {
         self.silent_since = [None; MAX_OFFENSE];
         self.abandon("its run was reset");
         self.link.set_team(simulators.offense())?;
-        self.run = Some(Run {
+        self.run = Some(CurrentRun {
             run: header.run,
             simulators,
             last_episode: None,
@@ -399,7 +399,7 @@ impl Server {
                 agent,
                 "no action within the step timeout: Move instead"
             );
-            self.missing_actions += 1;
+            self.actions_timed_out += 1;
             let since = *self.silent_since[agent].get_or_insert(now - self.step_timeout);
             if now.duration_since(since) >= self.stall_limit {
                 stalled = Some((agent, now.duration_since(since)));
@@ -444,7 +444,7 @@ impl Server {
     fn report(&self) -> ServerReport {
         ServerReport {
             frames: self.frames,
-            missing_actions: self.missing_actions,
+            actions_timed_out: self.actions_timed_out,
             messages: self.counters.clone(),
         }
     }
@@ -507,7 +507,7 @@ pub async fn run(link: Link, mut inbox: Inbox) -> Result<()> {
 /// The episode being played and its simulator, if any.
 fn playing<'a>(
     play: &'a mut Option<Play>,
-    run: &'a mut Option<Run>,
+    run: &'a mut Option<CurrentRun>,
 ) -> Option<(&'a mut Play, &'a mut Env)> {
     let play = play.as_mut()?;
     let env = run.as_mut()?.simulators.env(play.episode.mode)?;

@@ -24,7 +24,7 @@ const GOAL: DVec2 = DVec2::new(65.0, 0.0);
 const THROUGH_SPEED: f64 = 0.9 * MAX_DASH_POWER * DASH_POWER_RATE / (1.0 - PLAYER_DECAY);
 
 /// What `getBestIntercept` reads of one cache entry.
-struct Candidate {
+struct InterceptCandidate {
     entry: Interception,
     /// Ball position at the entry's cycle.
     ball: DVec2,
@@ -38,17 +38,17 @@ struct Candidate {
 /// score (the first of equals).
 #[derive(Default)]
 struct Best<'a> {
-    found: Option<(&'a Candidate, f64)>,
+    found: Option<(&'a InterceptCandidate, f64)>,
 }
 
 impl<'a> Best<'a> {
-    fn offer(&mut self, c: &'a Candidate, score: f64) {
+    fn offer(&mut self, c: &'a InterceptCandidate, score: f64) {
         if self.found.is_none_or(|(_, s)| score > s) {
             self.found = Some((c, score));
         }
     }
 
-    fn get(&self) -> Option<&'a Candidate> {
+    fn get(&self) -> Option<&'a InterceptCandidate> {
         self.found.map(|(c, _)| c)
     }
 }
@@ -128,9 +128,9 @@ fn best_interception(
     cache: &[Interception],
 ) -> Option<Interception> {
     let first = cache.first()?;
-    let candidates: Vec<Candidate> = cache
+    let candidates: Vec<InterceptCandidate> = cache
         .iter()
-        .map(|&entry| Candidate {
+        .map(|&entry| InterceptCandidate {
             entry,
             ball: analysis.ball_at(entry.cycle),
             vel: world.ball.vel * decay_pow(BALL_DECAY, entry.cycle as u32),
@@ -170,7 +170,7 @@ fn best_interception(
             nearest.offer(c, -c.drift.distance_squared(b));
         }
     }
-    let pick = |c: &Candidate| Some(c.entry);
+    let pick = |c: &InterceptCandidate| Some(c.entry);
     if let Some(a) = attacker.get() {
         return pick(a);
     }
@@ -200,7 +200,10 @@ fn best_interception(
 
 /// Lines 656-732: between the earliest no-turn point `n` and the nearest
 /// other point `m`.
-fn noturn_or_nearest<'a>(n: &'a Candidate, m: &'a Candidate) -> &'a Candidate {
+fn noturn_or_nearest<'a>(
+    n: &'a InterceptCandidate,
+    m: &'a InterceptCandidate,
+) -> &'a InterceptCandidate {
     if n.drift.distance_squared(n.ball) < m.drift.distance_squared(m.ball) {
         return n;
     }

@@ -42,7 +42,7 @@ struct Spot {
 
 /// A spot at a given cycle: field position, kick rate and flags.
 #[derive(Clone, Copy, Debug)]
-struct State {
+struct KickState {
     pos: DVec2,
     dist: f64,
     rate: f64,
@@ -64,7 +64,7 @@ struct Sequence {
 struct LastKick<'a> {
     first: DVec2,
     kicks: usize,
-    from: &'a State,
+    from: &'a KickState,
     vel: DVec2,
     flag: u8,
     miss: u8,
@@ -248,7 +248,7 @@ struct Planner<'a> {
     world: &'a World,
     current: u8,
     current_rate: f64,
-    states: [[State; SPOTS]; 2],
+    states: [[KickState; SPOTS]; 2],
     /// Terms of the kick-miss estimate for a first kick (`my_noise`, position and speed rates).
     miss_terms: (f64, f64),
 }
@@ -257,7 +257,7 @@ impl<'a> Planner<'a> {
     /// `createStateCache`.
     fn new(p: &'a Player, world: &'a World) -> Self {
         let ball = &world.ball;
-        let mut states = [[State {
+        let mut states = [[KickState {
             pos: DVec2::ZERO,
             dist: 0.0,
             rate: 0.0,
@@ -273,7 +273,7 @@ impl<'a> Planner<'a> {
                 if at.x.abs() > PITCH_HALF_LENGTH || at.y.abs() > PITCH_HALF_WIDTH {
                     flag |= OUT_OF_PITCH;
                 }
-                *state = State {
+                *state = KickState {
                     pos: at,
                     dist: spot.dist,
                     rate: spot.rate,
@@ -297,7 +297,7 @@ impl<'a> Planner<'a> {
     }
 
     /// Whether the first kick, moving the ball by `vel` with `accel`, may miss `state`.
-    fn miss(&self, vel: DVec2, accel: f64, state: &State) -> u8 {
+    fn miss(&self, vel: DVec2, accel: f64, state: &KickState) -> u8 {
         let power = accel / self.current_rate;
         let noise = self.miss_terms.0
             + vel.length() * BALL_RAND

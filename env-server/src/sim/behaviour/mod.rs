@@ -25,7 +25,7 @@ use proto::Action;
 pub(crate) use situation::Situation;
 
 /// What a behaviour decides for the acting agent this cycle.
-pub(crate) struct Decision {
+pub(crate) struct BodyDecision {
     /// The body command.
     pub(crate) command: Command,
     /// The first course of a non-empty shot search it ran (spec 6.2.2).
@@ -37,8 +37,8 @@ pub(crate) struct Decision {
 /// What `action` makes the acting agent do this cycle. Kick actions issue
 /// nothing when the agent cannot kick (spec 6.0); they and SHOOT, PASS and
 /// DRIBBLE keep HFO's default neck action, the field scan.
-pub(crate) fn offense_command(s: &Situation, action: Action) -> Decision {
-    let decide = |command, shot| Decision {
+pub(crate) fn offense_command(s: &Situation, action: Action) -> BodyDecision {
+    let decide = |command, shot| BodyDecision {
         command,
         shot,
         neck: Neck::Scan,
@@ -49,7 +49,7 @@ pub(crate) fn offense_command(s: &Situation, action: Action) -> Decision {
     match action {
         Action::Move => {
             let (command, neck) = movement::command(s);
-            Decision {
+            BodyDecision {
                 command,
                 shot: move_shot_check(s),
                 neck,
