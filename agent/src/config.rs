@@ -157,108 +157,50 @@ mod tests {
 
     #[test]
     fn bad_values_name_their_key() {
-        let base = AgentConfig::default;
-        assert_eq!(
-            key_of(AgentConfig {
-                alpha: 0.0,
-                ..base()
-            }),
-            "alpha"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                alpha: 1.5,
-                ..base()
-            }),
-            "alpha"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                gamma: f64::NAN,
-                ..base()
-            }),
-            "gamma"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                epsilon: -0.1,
-                ..base()
-            }),
-            "epsilon"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                trace_threshold: 1.0,
-                ..base()
-            }),
-            "trace_threshold"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                tiles_per_feature: 0,
-                ..base()
-            }),
-            "tiles_per_feature"
-        );
-        // 6 x 11 = 66 bits > 64.
-        assert_eq!(
-            key_of(AgentConfig {
-                tiles_per_feature: 11,
-                ..base()
-            }),
-            "tiles_per_feature"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                tile_width: 0.0,
-                ..base()
-            }),
-            "tile_width"
-        );
-        assert_eq!(
-            key_of(AgentConfig {
-                tile_step: 0.6,
-                ..base()
-            }),
-            "tile_step"
-        );
-        // 5 tiles of step 0.2: the last ends at -1 + 0.8 + 0.5 = 0.3 < 1.
-        assert_eq!(
-            key_of(AgentConfig {
-                tiles_per_feature: 5,
-                ..base()
-            }),
-            "tiles_per_feature"
-        );
-        let v_g = AdHoc {
-            v_g: -1.0,
-            ..AdHoc::td()
-        };
-        assert_eq!(
-            key_of(AgentConfig {
-                strategy: Strategy::AdHoc(v_g),
-                ..base()
-            }),
-            "v_g"
-        );
-        let far = AdHoc {
-            reachable: Reachable::WithinDistance(f64::INFINITY),
-            ..AdHoc::visit()
-        };
-        assert_eq!(
-            key_of(AgentConfig {
-                strategy: Strategy::AdHoc(far),
-                ..base()
-            }),
-            "reachable"
-        );
-        let msg = AgentConfig {
-            alpha: 2.0,
-            ..base()
+        type Change = fn(&mut AgentConfig);
+        let cases: [(Change, &str); 12] = [
+            (|c| c.alpha = 0.0, "alpha"),
+            (|c| c.alpha = 1.5, "alpha"),
+            (|c| c.gamma = f64::NAN, "gamma"),
+            (|c| c.epsilon = -0.1, "epsilon"),
+            (|c| c.trace_threshold = 1.0, "trace_threshold"),
+            (|c| c.tiles_per_feature = 0, "tiles_per_feature"),
+            // 6 x 11 = 66 bits > 64.
+            (|c| c.tiles_per_feature = 11, "tiles_per_feature"),
+            (|c| c.tile_width = 0.0, "tile_width"),
+            (|c| c.tile_step = 0.6, "tile_step"),
+            // 5 tiles of step 0.2: the last ends at -1 + 0.8 + 0.5 = 0.3 < 1.
+            (|c| c.tiles_per_feature = 5, "tiles_per_feature"),
+            (
+                |c| {
+                    c.strategy = Strategy::AdHoc(AdHoc {
+                        v_g: -1.0,
+                        ..AdHoc::td()
+                    })
+                },
+                "v_g",
+            ),
+            (
+                |c| {
+                    let far = Reachable::WithinDistance(f64::INFINITY);
+                    c.strategy = Strategy::AdHoc(AdHoc {
+                        reachable: far,
+                        ..AdHoc::visit()
+                    });
+                },
+                "reachable",
+            ),
+        ];
+        for (change, key) in cases {
+            let mut config = AgentConfig::default();
+            change(&mut config);
+            assert_eq!(key_of(config), key);
         }
-        .validate()
-        .unwrap_err()
-        .to_string();
+        let config = AgentConfig {
+            alpha: 2.0,
+            ..AgentConfig::default()
+        };
+        let msg = config.validate().unwrap_err().to_string();
         assert_eq!(
             msg,
             "invalid agent config `alpha`: must be in (0, 1], got 2"

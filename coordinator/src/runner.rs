@@ -107,7 +107,7 @@ fn play_runs(
     let config = experiment.config();
     out.create()?;
     if let Some(dir) = &options.save_agents {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))?;
+        store::create_dir(dir)?;
     }
     // Runs an earlier invocation finished are kept, not played again.
     let mut finished: Vec<Option<RunResult>> =

@@ -46,6 +46,11 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     node::files::write_atomically(path, bytes).map_err(|e| Error::io("write", path, e))
 }
 
+/// Creates directory `dir` and its parents, as needed.
+pub fn create_dir(dir: &Path) -> Result<(), Error> {
+    fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))
+}
+
 /// Writes `value` as pretty JSON with a final newline, atomically.
 pub fn write_json(path: &Path, value: &impl Serialize) -> Result<(), Error> {
     let mut bytes = serde_json::to_vec_pretty(value).expect("results serialise");
@@ -102,7 +107,7 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
 
 /// Creates `dir` and writes its identity file `name`.
 pub fn claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error> {
-    fs::create_dir_all(dir).map_err(|e| Error::io("create", dir, e))?;
+    create_dir(dir)?;
     write_json(&dir.join(name), identity)
 }
 

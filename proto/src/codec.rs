@@ -109,6 +109,8 @@ mod tests {
         prop::sample::select(vec![Mode::Training, Mode::Evaluation])
     }
 
+    /// Any message body: one `prop_oneof!` arm per kind, each over all its
+    /// fields (long because the macro takes the arms as one expression).
     fn body() -> impl Strategy<Value = Body> {
         prop_oneof![
             prop::collection::vec(

@@ -21,7 +21,8 @@ pub struct ModuleGraph {
     pub files: Vec<PathBuf>,
     /// For each `(from, to)` pair of file indices, the names `from` takes from `to`.
     pub uses: BTreeMap<(usize, usize), BTreeSet<String>>,
-    /// Paths into other crates (`std::fs::write`), with the file naming them.
+    /// Paths into other crates (`std::fs::write`) outside test code, with
+    /// the file naming them.
     pub external: Vec<(usize, String)>,
 }
 
@@ -38,8 +39,11 @@ struct Module {
     globs: Vec<Vec<String>>,
     /// Absolute paths of its `use` items (globs included) and of the paths in its code.
     named: Vec<Vec<String>>,
-    /// Paths into other crates, joined with `::`.
+    /// Paths into other crates, joined with `::`, names bound by `use`
+    /// written out (`File::create` as `std::fs::File::create`).
     external: Vec<String>,
+    /// Whether it is test code (`#[cfg(test)]`, or inside such a module).
+    test: bool,
 }
 
 impl ModuleGraph {
@@ -47,14 +51,16 @@ impl ModuleGraph {
     /// any target's file) and every module file it declares.
     pub fn read(root: &Path) -> Result<Self, String> {
         let mut reader = Reader::default();
-        reader.file(root, Vec::new())?;
+        reader.file(root, Vec::new(), false)?;
         let mut graph = ModuleGraph {
             files: reader.files,
             ..ModuleGraph::default()
         };
         for module in reader.modules.values() {
-            let external = module.external.iter().map(|p| (module.file, p.clone()));
-            graph.external.extend(external);
+            if !module.test {
+                let external = module.external.iter().map(|p| (module.file, p.clone()));
+                graph.external.extend(external);
+            }
             let globbed = module
                 .globs
                 .iter()
@@ -75,7 +81,8 @@ impl ModuleGraph {
         Ok(graph)
     }
 
-    /// Every path into another crate, with the file that names it.
+    /// Every path into another crate outside test code, with the file that
+    /// names it.
     pub fn external_paths(&self) -> impl Iterator<Item = (&Path, &str)> {
         (self.external.iter()).map(|(file, path)| (self.files[*file].as_path(), path.as_str()))
     }
@@ -240,8 +247,9 @@ struct Reader {
 }
 
 impl Reader {
-    /// Reads the module file `path`, whose module path is `module`.
-    fn file(&mut self, path: &Path, module: Vec<String>) -> Result<(), String> {
+    /// Reads the module file `path`, whose module path is `module` (test
+    /// code if `test`).
+    fn file(&mut self, path: &Path, module: Vec<String>, test: bool) -> Result<(), String> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let parsed =
@@ -255,17 +263,18 @@ impl Reader {
             Some(dir) => dir.join(path.file_stem().unwrap_or_default()),
             None => PathBuf::new(),
         };
-        self.items(&parsed.items, file, &own_dir, module)
+        self.items(&parsed.items, file, &own_dir, module, test)
     }
 
-    /// Reads the items of module `module`, which lives in file `file` and
-    /// whose child module files are in `dir`.
+    /// Reads the items of module `module` (test code if `test`), which
+    /// lives in file `file` and whose child module files are in `dir`.
     fn items(
         &mut self,
         items: &[syn::Item],
         file: usize,
         dir: &Path,
         module: Vec<String>,
+        test: bool,
     ) -> Result<(), String> {
         let mut collector = NameCollector::default();
         let mut defines = BTreeSet::new();
@@ -283,11 +292,16 @@ impl Reader {
             file,
             children,
             defines,
+            test,
             ..Module::default()
         };
+        let mut outside = BTreeMap::new();
         for (tree, is_glob) in &collector.use_trees {
             let Some(absolute) = absolute(&module, &own.children, &tree.0) else {
                 own.external.push(tree.0.join("::"));
+                if !is_glob {
+                    outside.insert(tree.1.clone(), tree.0.clone());
+                }
                 continue;
             };
             if *is_glob {
@@ -305,7 +319,12 @@ impl Reader {
                     own.named.push(absolute);
                 }
             } else if path.len() > 1 {
-                own.external.push(path.join("::"));
+                let mut full = outside
+                    .get(&path[0])
+                    .cloned()
+                    .unwrap_or_else(|| vec![path[0].clone()]);
+                full.extend_from_slice(&path[1..]);
+                own.external.push(full.join("::"));
             }
         }
         self.modules.insert(module.clone(), own);
@@ -313,9 +332,10 @@ impl Reader {
             let syn::Item::Mod(m) = item else { continue };
             let mut child = module.clone();
             child.push(m.ident.to_string());
+            let test = test || m.attrs.iter().any(is_cfg_test);
             match &m.content {
                 Some((_, inner)) => {
-                    self.items(inner, file, &dir.join(m.ident.to_string()), child)?
+                    self.items(inner, file, &dir.join(m.ident.to_string()), child, test)?
                 }
                 None => {
                     let name = m.ident.to_string();
@@ -328,12 +348,20 @@ impl Reader {
                             self.files[file].display()
                         )
                     })?;
-                    self.file(&path, child)?;
+                    self.file(&path, child, test)?;
                 }
             }
         }
         Ok(())
     }
+}
+
+/// Whether `attr` is `#[cfg(test)]`.
+fn is_cfg_test(attr: &syn::Attribute) -> bool {
+    attr.path().is_ident("cfg")
+        && attr
+            .parse_args::<syn::Ident>()
+            .is_ok_and(|ident| ident == "test")
 }
 
 /// The name an item defines, if any.
@@ -524,5 +552,21 @@ mod tests {
         assert!(g.circles().is_empty(), "{:?}", g.circles());
         let b_to_a = g.uses.get(&(2, 1)).expect("b uses a");
         assert!(b_to_a.contains("A"));
+    }
+
+    #[test]
+    fn paths_into_other_crates_are_written_out_outside_tests() {
+        let g = graph(&[(
+            "lib.rs",
+            "use std::fs::File;\nfn f() { File::create(\"x\"); std::fs::write(\"y\", b\"\"); }\n\
+             #[cfg(test)]\nmod tests { fn g() { std::fs::remove_file(\"z\"); } }\n",
+        )]);
+        let paths: Vec<&str> = g.external_paths().map(|(_, p)| p).collect();
+        assert!(paths.contains(&"std::fs::File::create"), "{paths:?}");
+        assert!(paths.contains(&"std::fs::write"), "{paths:?}");
+        assert!(
+            !paths.iter().any(|p| p.contains("remove_file")),
+            "{paths:?}"
+        );
     }
 }

@@ -102,3 +102,74 @@ fn the_pure_libraries_use_neither_network_nor_files() {
         }
     }
 }
+
+#[test]
+fn files_are_written_in_one_place() {
+    // What creates or writes files and directories, outside test code.
+    let writes = [
+        "std::fs::write",
+        "std::fs::File::create",
+        "std::fs::OpenOptions",
+        "std::fs::create_dir",
+        "std::fs::rename",
+        "std::fs::copy",
+        "tempfile::Builder",
+        "tempfile::tempdir",
+        "tempfile::NamedTempFile",
+        "fs::write",
+        "fs::File::create",
+        "fs::OpenOptions",
+        "fs::create_dir",
+    ];
+    // node's atomic write and secret file, and the coordinator's results.
+    let allowed = [
+        "proto/node/src/files.rs",
+        "proto/node/src/secret.rs",
+        "coordinator/src/store.rs",
+    ];
+    let workspace = workspace().canonicalize().unwrap();
+    for root in target_roots() {
+        let graph = ModuleGraph::read(&root).unwrap_or_else(|e| panic!("{e}"));
+        for (file, path) in graph.external_paths() {
+            let file = file.strip_prefix(&workspace).unwrap_or(file);
+            let writes_files = writes.iter().any(|w| path.starts_with(w));
+            let allowed = allowed.iter().any(|a| file == Path::new(a));
+            let is_test = file.components().any(|c| {
+                c.as_os_str() == "tests"
+                    || c.as_os_str() == "benches"
+                    || c.as_os_str() == "examples"
+            });
+            assert!(
+                !writes_files || allowed || is_test,
+                "{} writes files: {path}",
+                file.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn advising_is_decided_only_by_the_agent_library() {
+    // The formulas and budgets of the strategies: a transport never names them.
+    let advising = [
+        "p_ask",
+        "p_give",
+        "psi_td",
+        "psi_visit",
+        "ask_budget",
+        "give_budget",
+    ];
+    for krate in [
+        "agent/process/src/main.rs",
+        "env-server/process/src/main.rs",
+        "coordinator/src/lib.rs",
+    ] {
+        let graph = ModuleGraph::read(&workspace().join(krate)).unwrap_or_else(|e| panic!("{e}"));
+        for (file, path) in graph.external_paths() {
+            let decides = advising
+                .iter()
+                .any(|name| path.split("::").any(|s| s == *name));
+            assert!(!decides, "{} decides advice: {path}", file.display());
+        }
+    }
+}

@@ -66,24 +66,9 @@ fn adhoc_td_run_advises_across_processes() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("adhoc-td");
     let output = Command::new(bin("coordinator"))
-        .args([
-            "run",
-            "--algorithm",
-            "adhoc-td",
-            "--runs",
-            "1",
-            "--episodes",
-            "60",
-        ])
-        .args(["--eval-every", "30", "--eval-episodes", "10", "--seed", "3"])
-        .args([
-            "--transport",
-            "zenoh",
-            "--advice-timeout-ms",
-            "20",
-            "--quiet",
-            "--out",
-        ])
+        .args("run --algorithm adhoc-td --runs 1 --episodes 60 --eval-every 30".split(' '))
+        .args("--eval-episodes 10 --seed 3 --transport zenoh --advice-timeout-ms 20".split(' '))
+        .args(["--quiet", "--out"])
         .arg(&out)
         .output()
         .unwrap();

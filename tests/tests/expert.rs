@@ -40,26 +40,12 @@ fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     // Pretraining: after 200 episodes with this seed, agent 2 has given advice.
-    let pretrain = [
-        "run",
-        "--algorithm",
-        "adhoc-td",
-        "--runs",
-        "1",
-        "--episodes",
-        "200",
-        "--eval-every",
-        "200",
-        "--eval-episodes",
-        "1",
-        "--seed",
-        "3",
-        "--transport",
-        "in-process",
-        "--save-agents",
-    ];
     let agents = dir.join("agents");
-    let pretrain = [&pretrain[..], &[agents.to_str().unwrap()]].concat();
+    let pretrain: Vec<&str> = "run --algorithm adhoc-td --runs 1 --episodes 200 --eval-every 200 \
+                               --eval-episodes 1 --seed 3 --transport in-process --save-agents"
+        .split_whitespace()
+        .chain([agents.to_str().unwrap()])
+        .collect();
     coordinator(&pretrain, &dir.join("pretrain"));
     let spent = value_at(&dir.join("pretrain"), 200, "give_spent_2");
     assert!(spent > 0, "the expert must have spent some give budget");
@@ -77,21 +63,16 @@ fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports
         let mut seen = Vec::new();
         for transport in ["in-process", "zenoh"] {
             let out = dir.join(format!("expert-{keep_counters}-{transport}"));
-            let args = [
+            let args: Vec<&str> = [
                 "run",
                 "--team",
                 team.to_str().unwrap(),
-                "--runs",
-                "1",
-                "--episodes",
-                "2",
-                "--eval-every",
-                "2",
-                "--eval-episodes",
-                "1",
                 "--transport",
                 transport,
-            ];
+            ]
+            .into_iter()
+            .chain("--runs 1 --episodes 2 --eval-every 2 --eval-episodes 1".split(' '))
+            .collect();
             coordinator(&args, &out);
             seen.push(value_at(&out, 0, "give_spent_2"));
         }

@@ -273,7 +273,9 @@ impl Drop for Attached {
     }
 }
 
-/// Plays `trial` as experiment `name` in `dir`.
+/// Plays `trial` as experiment `name` in `dir`: starts the coordinator,
+/// injects the fault at its moment, waits for the end within the bound,
+/// then collects what the checks need. One sequence, read top to bottom.
 fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
     let out = dir.join("out");
     let stderr_path = dir.join("stderr");

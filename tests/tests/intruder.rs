@@ -14,6 +14,10 @@ use coordinator::{
 use integration_tests::{bin, bin_dir, experiment_name};
 use node::net::{NetConfig, free_port};
 use node::secret::Secret;
+use zenoh::handlers::FifoChannelHandler;
+use zenoh::pubsub::Subscriber;
+use zenoh::query::Reply;
+use zenoh::sample::Sample;
 
 /// A process killed when dropped.
 struct KillOnDrop(Child);
@@ -44,13 +48,41 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
     let endpoints: Vec<String> = (0..4)
         .map(|_| format!("tcp/127.0.0.1:{}", free_port().unwrap()))
         .collect();
-    // env-server and three agents as services on known endpoints, with the
-    // secret; the coordinator attaches to them.
+    let processes = start_services(&name, &secret, &endpoints);
+    let settings = attached_settings(&name, &secret, &endpoints);
+    let net = Network::start(&settings, 3).expect("the attached processes join");
+    let experiment = Experiment::prepare(ExperimentConfig {
+        runs: 1,
+        episodes: 20,
+        team: vec![AgentSpec::of(StrategyName::AdHocTd, Profile::Paper); 3],
+        ..ExperimentConfig::default()
+    })
+    .unwrap();
+    let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
+    backend.play_episode(Mode::Training).unwrap();
+
+    let runtime = tokio::runtime::Runtime::new().unwrap();
+    let other = Secret::create(&tmp.path().join("other")).unwrap();
+    runtime.block_on(no_session_opens_without_the_secret(&endpoints, other));
+    // A lurker that keeps trying every endpoint while the run goes on
+    // sees no token and no message, and what it sends arrives nowhere.
+    let lurker = runtime.block_on(Lurker::start(&name, &endpoints));
+    for _ in 0..5 {
+        backend.play_episode(Mode::Training).unwrap();
+    }
+    runtime.block_on(lurker.saw_nothing());
+    drop(backend);
+    drop(net);
+    drop(processes);
+}
+
+/// env-server and three agents as services on `endpoints`, with `secret`.
+fn start_services(name: &str, secret: &Secret, endpoints: &[String]) -> Vec<KillOnDrop> {
     let common = |listen: &str| {
         let path = secret.path().display().to_string();
         [
             "--experiment",
-            &name,
+            name,
             "--listen",
             listen,
             "--secret-file",
@@ -66,102 +98,105 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
         let id = ["--id", &i.to_string(), "--team-size", "3"].map(str::to_owned);
         processes.push(spawn("agent", &[&id[..], &common(listen)].concat()));
     }
-    let settings = ZenohSettings {
+    processes
+}
+
+/// A coordinator's settings to attach to the services on `endpoints`.
+fn attached_settings(name: &str, secret: &Secret, endpoints: &[String]) -> ZenohSettings {
+    ZenohSettings {
         advice_timeout_ms: 20,
         step_timeout_ms: 2000,
         stall_limit_ms: 10_000,
         endpoints: Endpoints {
-            experiment: name.clone(),
+            experiment: name.to_owned(),
             port: 0,
             listen: None,
-            connect: endpoints.clone(),
+            connect: endpoints.to_vec(),
             attach: true,
             bin_dir: Some(bin_dir()),
             auth: Auth::File(secret.path().to_owned()),
             zenoh_config: None,
             startup_timeout: Duration::from_secs(60),
         },
-    };
-    let net = Network::start(&settings, 3).expect("the attached processes join");
-    let experiment = Experiment::prepare(ExperimentConfig {
-        runs: 1,
-        episodes: 20,
-        team: vec![AgentSpec::of(StrategyName::AdHocTd, Profile::Paper); 3],
-        ..ExperimentConfig::default()
-    })
-    .unwrap();
-    let mut backend = RemoteBackend::new(&net, &experiment, 0).unwrap();
-    backend.play_episode(Mode::Training).unwrap();
+    }
+}
 
-    let runtime = tokio::runtime::Runtime::new().unwrap();
-    runtime.block_on(async {
-        // Without credentials, or with others, no process opens a session
-        // (all tried at once: each refusal takes the 5 s connect timeout).
-        let other = Secret::create(&tmp.path().join("other")).unwrap();
-        let tries: Vec<_> = endpoints
-            .iter()
-            .flat_map(|endpoint| [None, Some(other.clone())].map(|s| (endpoint.clone(), s)))
-            .map(|(endpoint, secret)| {
-                tokio::spawn(async move {
-                    let guest = NetConfig::loopback_peer(0, vec![endpoint.clone()]);
-                    let result = node::net::open(&guest.with_secret(secret)).await;
-                    (endpoint, result.map(|_| ()))
-                })
+/// Without credentials, or with `other` ones, no process opens a session
+/// (all tried at once: each refusal takes the 5 s connect timeout).
+async fn no_session_opens_without_the_secret(endpoints: &[String], other: Secret) {
+    let tries: Vec<_> = endpoints
+        .iter()
+        .flat_map(|endpoint| [None, Some(other.clone())].map(|s| (endpoint.clone(), s)))
+        .map(|(endpoint, secret)| {
+            tokio::spawn(async move {
+                let guest = NetConfig::loopback_peer(0, vec![endpoint.clone()]);
+                let result = node::net::open(&guest.with_secret(secret)).await;
+                (endpoint, result.map(|_| ()))
             })
-            .collect();
-        for attempt in tries {
-            let (endpoint, result) = attempt.await.unwrap();
-            let e = result.expect_err(&endpoint).to_string();
-            assert!(e.starts_with("cannot join the zenoh network"), "{e}");
-        }
-    });
-    // A lurker that keeps trying every endpoint while the run goes on
-    // sees no token and no message, and what it sends arrives nowhere.
-    let (lurker, tokens, messages, replies) = runtime.block_on(async {
-        let list = endpoints
-            .iter()
-            .map(|e| format!("{e:?}"))
-            .collect::<Vec<_>>()
-            .join(", ");
-        let config = format!(
-            r#"{{ mode: "peer", connect: {{ endpoints: [{list}], timeout_ms: 1000, exit_on_failure: false }}, scouting: {{ multicast: {{ enabled: false }} }} }}"#
-        );
-        let lurker = zenoh::open(zenoh::Config::from_json5(&config).unwrap())
-            .await
-            .unwrap();
-        let tokens = lurker
+        })
+        .collect();
+    for attempt in tries {
+        let (endpoint, result) = attempt.await.unwrap();
+        let e = result.expect_err(&endpoint).to_string();
+        assert!(e.starts_with("cannot join the zenoh network"), "{e}");
+    }
+}
+
+/// A peer without the secret that keeps connecting to every endpoint,
+/// watching tokens and messages, with a control query sent.
+struct Lurker {
+    session: zenoh::Session,
+    tokens: Subscriber<FifoChannelHandler<Sample>>,
+    messages: Subscriber<FifoChannelHandler<Sample>>,
+    replies: FifoChannelHandler<Reply>,
+}
+
+impl Lurker {
+    async fn start(name: &str, endpoints: &[String]) -> Self {
+        let config = serde_json::json!({
+            "mode": "peer",
+            "connect": { "endpoints": endpoints, "timeout_ms": 1000, "exit_on_failure": false },
+            "scouting": { "multicast": { "enabled": false } },
+        });
+        let config = zenoh::Config::from_json5(&config.to_string()).unwrap();
+        let session = zenoh::open(config).await.unwrap();
+        let tokens = session
             .liveliness()
             .declare_subscriber("adv/**")
             .history(true)
             .await
             .unwrap();
-        let messages = lurker.declare_subscriber("adv/**").await.unwrap();
+        let messages = session.declare_subscriber("adv/**").await.unwrap();
         let stop = proto::encode(&proto::Envelope {
-            header: proto::Header::new(proto::experiment_id(&name), 0, 0, 0),
+            header: proto::Header::new(proto::experiment_id(name), 0, 0, 0),
             body: proto::Body::Control(proto::Control::Stop),
         });
-        let replies = lurker
+        let replies = session
             .get(format!("adv/{name}/**"))
             .payload(stop)
             .timeout(Duration::from_millis(500))
             .await
             .unwrap();
-        (lurker, tokens, messages, replies)
-    });
-    for _ in 0..5 {
-        backend.play_episode(Mode::Training).unwrap();
+        Lurker {
+            session,
+            tokens,
+            messages,
+            replies,
+        }
     }
-    runtime.block_on(async {
+
+    /// Asserts that no token, message or reply reached it.
+    async fn saw_nothing(self) {
         tokio::time::sleep(Duration::from_secs(1)).await;
-        assert!(tokens.try_recv().unwrap().is_none(), "a token leaked");
-        assert!(messages.try_recv().unwrap().is_none(), "a message leaked");
+        assert!(self.tokens.try_recv().unwrap().is_none(), "a token leaked");
         assert!(
-            !matches!(replies.try_recv(), Ok(Some(_))),
+            self.messages.try_recv().unwrap().is_none(),
+            "a message leaked"
+        );
+        assert!(
+            !matches!(self.replies.try_recv(), Ok(Some(_))),
             "a query was answered"
         );
-        lurker.close().await.unwrap();
-    });
-    drop(backend);
-    drop(net);
-    drop(processes);
+        self.session.close().await.unwrap();
+    }
 }

@@ -8,6 +8,8 @@ use std::time::Duration;
 use node::net::free_port;
 use support::Guard;
 
+/// One case a few lines long for every kind of bad input, in one test so
+/// that the cases share the busy port and the unreachable endpoint.
 #[test]
 fn bad_input_gives_one_line_and_exit_code_2() {
     let busy = TcpListener::bind("127.0.0.1:0").unwrap();

@@ -236,7 +236,7 @@ fn observation(
 
 /// The next action published, with its header (other messages skipped).
 async fn next_action(
-    actions: &Subscriber<FifoChannelHandler<Sample>>,
+    actions: &Actions,
     fake: &Fake,
     deadline: tokio::time::Instant,
 ) -> (Header, ActionChoice) {
@@ -253,11 +253,7 @@ async fn next_action(
 }
 
 /// Waits for the actions of both agents for `header`'s frame.
-async fn both_actions(
-    actions: &Subscriber<FifoChannelHandler<Sample>>,
-    fake: &Fake,
-    header: Header,
-) {
+async fn both_actions(actions: &Actions, fake: &Fake, header: Header) {
     let mut seen = [false; 2];
     let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
     while seen != [true; 2] {
@@ -275,6 +271,9 @@ fn received(r: &AgentReport, kind: MessageKind) -> u64 {
 fn sent(r: &AgentReport, kind: MessageKind) -> u64 {
     r.messages.sent[kind as usize].messages
 }
+
+/// The actions the agents publish.
+type Actions = Subscriber<FifoChannelHandler<Sample>>;
 
 #[tokio::test(flavor = "multi_thread")]
 async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
@@ -294,8 +293,21 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     for id in 0..2 {
         fake.reset(id, &config).await;
     }
+    let reports = advise_each_other(&fake, &actions).await;
+    bad_messages_change_nothing(&fake, &reports[0]).await;
+    evaluation_is_frozen(&fake, &actions, &reports).await;
+    frames_arriving_while_asking_keep_their_order(&fake, &actions).await;
+    for (id, agent) in agents.iter_mut().enumerate() {
+        fake.stop(id as u8).await;
+        let status = agent.wait_exit(Duration::from_secs(5));
+        assert_eq!(status.map(|s| s.code()), Some(Some(0)), "agent {id}");
+    }
+}
 
-    // Episode 0: one training episode without the ball, so that both may ask.
+/// Episode 0 without the ball (so that both may ask), then episode 1 where
+/// both kick at once in fresh states (P_ask = 1): each asks the other while
+/// answering the other's request. The agents' reports after it.
+async fn advise_each_other(fake: &Fake, actions: &Actions) -> Vec<AgentReport> {
     fake.frame(fake.header(0, 0, 0), Mode::Training, false, false, 0.0)
         .await;
     fake.frame(fake.header(0, 0, 1), Mode::Training, false, true, 0.0)
@@ -306,13 +318,10 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
             .await;
         assert_eq!(r.advice_requests, 0);
     }
-
-    // Episode 1: both kick at once in fresh states (P_ask = 1): each asks
-    // the other while answering the other's request.
     for frame in 0..3 {
         let header = fake.header(0, 1, frame);
         fake.frame(header, Mode::Training, true, false, 0.0).await;
-        both_actions(&actions, &fake, header).await;
+        both_actions(actions, fake, header).await;
     }
     fake.frame(fake.header(0, 1, 3), Mode::Training, false, true, 1.0)
         .await;
@@ -337,8 +346,12 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         );
         reports.push(r);
     }
+    reports
+}
 
-    // Bad messages on obs/0 are counted and change nothing.
+/// Bad messages on agent 0's observations are counted and change nothing
+/// of what it learned (`before`).
+async fn bad_messages_change_nothing(fake: &Fake, before: &AgentReport) {
     let frame = AgentFrame {
         agent: 0,
         mode: Mode::Training,
@@ -373,26 +386,30 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         .await;
     let d = r.messages.dropped;
     assert_eq!((d.malformed, d.foreign, d.version, d.stale), (4, 1, 1, 2));
-    assert_eq!(r.digest, reports[0].digest);
+    assert_eq!(r.digest, before.digest);
     assert_eq!(received(&r, MessageKind::Observation), 6);
+}
 
-    // An evaluation episode: frozen, nobody asks, nothing learned.
+/// An evaluation episode: frozen, nobody asks, nothing learned.
+async fn evaluation_is_frozen(fake: &Fake, actions: &Actions, before: &[AgentReport]) {
     fake.frame(fake.header(0, 2, 0), Mode::Evaluation, true, false, 0.0)
         .await;
-    both_actions(&actions, &fake, fake.header(0, 2, 0)).await;
+    both_actions(actions, fake, fake.header(0, 2, 0)).await;
     fake.frame(fake.header(0, 2, 1), Mode::Evaluation, false, true, 0.0)
         .await;
     for id in 0..2u8 {
         let r = fake.report(id, 2).await;
-        let before = &reports[usize::from(id)];
+        let before = &before[usize::from(id)];
         assert_eq!(r.digest, before.digest);
         assert_eq!(r.advice_requests, before.advice_requests);
     }
+}
 
-    // Episode 3: kicks in fresh states published back to back, without
-    // waiting for the actions, so that frames arrive while an agent waits
-    // for advice: each frame's action comes once, in frame order, and
-    // nothing is dropped.
+/// Episode 3: kicks in fresh states published back to back, without
+/// waiting for the actions, so that frames arrive while an agent waits
+/// for advice: each frame's action comes once, in frame order, and
+/// nothing is dropped.
+async fn frames_arriving_while_asking_keep_their_order(fake: &Fake, actions: &Actions) {
     let before: Vec<AgentReport> = [fake.report(0, 2).await, fake.report(1, 2).await].into();
     for frame in 0..4u32 {
         let last = frame == 3;
@@ -406,7 +423,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
     let mut next = [0u32; 2];
     let deadline = tokio::time::Instant::now() + Duration::from_secs(10);
     while next != [3; 2] {
-        let (h, choice) = next_action(&actions, &fake, deadline).await;
+        let (h, choice) = next_action(actions, fake, deadline).await;
         let id = usize::from(choice.agent);
         assert_eq!(h, fake.header(0, 3, next[id]), "agent {id}");
         next[id] += 1;
@@ -419,12 +436,6 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
             received(was, MessageKind::Observation) + 4
         );
         assert_eq!(r.messages.dropped.total(), was.messages.dropped.total());
-    }
-
-    for (id, agent) in agents.iter_mut().enumerate() {
-        fake.stop(id as u8).await;
-        let status = agent.wait_exit(Duration::from_secs(5));
-        assert_eq!(status.map(|s| s.code()), Some(Some(0)), "agent {id}");
     }
 }
 

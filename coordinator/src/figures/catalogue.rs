@@ -135,7 +135,7 @@ pub(super) fn note(sets: &[SeriesSet]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::super::fixtures::{estimate, set};
+    use super::super::fixtures::{RISING, estimate, set};
     use super::super::layout::{HEADER_H, MARGIN, PLOT};
     use super::*;
     use crate::stats::Estimate;
@@ -198,17 +198,7 @@ mod tests {
 
     #[test]
     fn zoomed_figure_shows_the_last_episodes() {
-        let s = set(
-            "A",
-            &[
-                Some(0.0),
-                Some(10.0),
-                Some(20.0),
-                Some(30.0),
-                Some(40.0),
-                Some(42.0),
-            ],
-        );
+        let s = set("A", &RISING);
         let series = [s.series(Metric::GoalPct)];
         let zoom = &FIGURES[3];
         assert!(zoom.zoom && FIGURES[..3].iter().all(|f| !f.zoom));

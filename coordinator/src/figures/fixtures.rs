@@ -3,6 +3,16 @@
 use super::data::{Point, SeriesSet};
 use crate::stats::Estimate;
 
+/// A goal curve that rises and levels off, at episodes 0 to 500.
+pub(super) const RISING: [Option<f64>; 6] = [
+    Some(0.0),
+    Some(10.0),
+    Some(20.0),
+    Some(30.0),
+    Some(40.0),
+    Some(42.0),
+];
+
 /// An estimate of `mean` ± 5 over 3 runs, or all unknown.
 pub(super) fn estimate(mean: Option<f64>) -> Estimate {
     Estimate {

@@ -243,7 +243,7 @@ fn extent_at(points: &[SeriesPoint], x: f64) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::super::data::Metric;
-    use super::super::fixtures::set;
+    use super::super::fixtures::{RISING, set};
     use super::*;
 
     /// The goal percentage curve of a set with `goal`, labelled "Curve".
@@ -253,14 +253,7 @@ mod tests {
 
     #[test]
     fn zoom_window_is_the_last_fifth_with_a_fitted_range() {
-        let series = [goal(&[
-            Some(0.0),
-            Some(10.0),
-            Some(20.0),
-            Some(30.0),
-            Some(40.0),
-            Some(42.0),
-        ])];
+        let series = [goal(&RISING)];
         assert_eq!(zoom_start(&series), Some(400.0));
         assert_eq!(zoom_start(&[]), None);
         let shown = [Series {

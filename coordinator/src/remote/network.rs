@@ -70,12 +70,7 @@ fn secret(options: &Endpoints) -> Result<(Option<Secret>, Option<tempfile::TempD
         )
         .into()),
         Auth::Generated => {
-            let dir = tempfile::Builder::new()
-                .prefix("adv-secret-")
-                .tempdir()
-                .map_err(|e| net_error(format!("cannot create a private directory for the secret: {e}")))?;
-            let secret = Secret::create(&dir.path().join("secret"))
-                .map_err(|e| net_error(e.to_string()))?;
+            let (secret, dir) = Secret::generate().map_err(|e| net_error(e.to_string()))?;
             Ok((Some(secret), Some(dir)))
         }
     }

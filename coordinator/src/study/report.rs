@@ -1,6 +1,5 @@
 //! The study's `REPORT.md`, `significance.json` and figures.
 
-use std::fs;
 use std::path::{Path, PathBuf};
 
 use agent::StrategyName;
@@ -54,7 +53,7 @@ fn write_figures(
         .collect();
     let figures = draw_figures(&sets)?;
     let dir = out.join("figures");
-    fs::create_dir_all(&dir).map_err(|e| Error::io("create", &dir, e))?;
+    store::create_dir(&dir)?;
     for figure in &figures {
         for (file, bytes) in figure.files() {
             store::write_atomically(&dir.join(file), bytes)?;

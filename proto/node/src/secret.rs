@@ -82,6 +82,20 @@ impl Secret {
         })
     }
 
+    /// A new random secret in a new directory that only its owner may
+    /// enter, both removed when the returned directory is dropped.
+    pub fn generate() -> Result<(Self, tempfile::TempDir), SecretError> {
+        let dir = tempfile::Builder::new()
+            .prefix("adv-secret-")
+            .tempdir()
+            .map_err(|e| {
+                let at = std::env::temp_dir();
+                SecretError::new(&at, format!("cannot create a private directory here: {e}"))
+            })?;
+        let secret = Self::create(&dir.path().join("secret"))?;
+        Ok((secret, dir))
+    }
+
     /// Reads the secret at `path`: a regular file of at most 4 KiB that no
     /// one but its owner may read or write, holding one `user:password` line
     /// (no spaces; the user may not contain ':').
@@ -145,6 +159,17 @@ impl Secret {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_generated_secret_lives_in_a_private_directory_until_dropped() {
+        let (secret, dir) = Secret::generate().unwrap();
+        let mode = fs::metadata(dir.path()).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o700);
+        assert_eq!(Secret::load(secret.path()).unwrap(), secret);
+        let path = dir.path().to_owned();
+        drop(dir);
+        assert!(!path.exists());
+    }
 
     #[test]
     fn a_created_secret_loads_back_and_is_private() {
