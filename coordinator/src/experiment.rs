@@ -39,8 +39,11 @@ pub struct Record<'a> {
     pub snapshot_digests: Vec<Option<String>>,
 }
 
-/// Version of `config.json`, the run CSVs and `summary.json`.
-pub const FORMAT_VERSION: u32 = 1;
+/// Version of the results' formats: `config.json`, the run CSVs, the run
+/// JSONs and `summary.json`. 2: the run JSONs name each agent's counters
+/// as the run CSV's columns do (`give_spent`, `ask_spent`,
+/// `advice_requests`, `advice_replies_received`, `messages_dropped`).
+pub const FORMAT_VERSION: u32 = 2;
 
 impl Experiment {
     /// Validates `config` and loads every agent's snapshot. Writes nothing.
