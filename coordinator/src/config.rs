@@ -235,9 +235,6 @@ fn env_error(e: env_server::EnvConfigError) -> ConfigError {
     let key = match &e {
         E::Offense(_) => "env.offense".to_owned(),
         E::ZeroLimit(k) => format!("env.{k}"),
-        E::LongShotSpeed(_) => "env.long_shot.speed".to_owned(),
-        E::LongShotMinSpeed(_) => "env.long_shot.min_speed".to_owned(),
-        E::LongShotSigma(_) => "env.long_shot.sigma_deg".to_owned(),
     };
     ConfigError::new(key, e.to_string())
 }

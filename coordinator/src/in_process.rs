@@ -2,7 +2,7 @@
 //! own thread, called directly: fast and bit-for-bit deterministic.
 
 use agent::{Agent, Mode, Observation, Snapshot, Team};
-use env_server::{Env, EnvConfig};
+use env_server::RunSimulators;
 
 use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::{ConfigError, Error};
@@ -12,15 +12,9 @@ use crate::experiment::{Experiment, RunSeeds};
 #[derive(Debug)]
 pub struct InProcess {
     run: u64,
-    env_config: EnvConfig,
-    training: Env,
-    evaluation: Option<Env>,
+    simulators: RunSimulators,
     team: Team,
     observations: Vec<Observation>,
-}
-
-fn simulator(config: &EnvConfig, seed: u64) -> Result<Env, Error> {
-    Env::new(config.clone(), seed).map_err(|e| ConfigError::new("env", e.to_string()).into())
 }
 
 impl InProcess {
@@ -28,14 +22,13 @@ impl InProcess {
     pub fn new(experiment: &Experiment, run: u64) -> Result<Self, Error> {
         let seeds: RunSeeds = experiment.seeds(run);
         let env_config = experiment.config().env.clone();
-        let training = simulator(&env_config, seeds.simulator)?;
+        let simulators = RunSimulators::new(env_config, seeds.simulator)
+            .map_err(|e| ConfigError::new("env", e.to_string()))?;
         let team = Team::new(experiment.agents(&seeds)?).map_err(|e| Error::run(run, e))?;
-        let n = env_config.offense;
+        let n = simulators.offense();
         Ok(Self {
             run,
-            env_config,
-            training,
-            evaluation: None,
+            simulators,
             team,
             observations: Vec::with_capacity(n),
         })
@@ -44,19 +37,14 @@ impl InProcess {
 
 impl Backend for InProcess {
     fn begin_evaluation(&mut self, seed: u64) -> Result<(), Error> {
-        self.evaluation = Some(simulator(&self.env_config, seed)?);
+        self.simulators.begin_evaluation(seed);
         Ok(())
     }
 
     fn play_episode(&mut self, mode: Mode) -> Result<EpisodeEnd, Error> {
         let run = self.run;
-        let env = match mode {
-            Mode::Training => &mut self.training,
-            Mode::Evaluation => self
-                .evaluation
-                .as_mut()
-                .ok_or_else(|| Error::run(run, "evaluation episode before begin_evaluation"))?,
-        };
+        let env = (self.simulators.env(mode))
+            .ok_or_else(|| Error::run(run, "evaluation episode before begin_evaluation"))?;
         env.reset();
         self.team.begin_episode(mode);
         let mut reward = 0.0;

@@ -14,7 +14,7 @@
 mod sim;
 pub mod tools;
 
-pub use sim::config::{EnvConfig, EnvConfigError, LongShot, MAX_OFFENSE};
+pub use sim::config::{EnvConfig, EnvConfigError, EvaluationMemory, MAX_OFFENSE};
 pub use sim::env::Env;
 pub use sim::features;
 pub use sim::memory::{AgentMemory, ShotCourse};
@@ -25,3 +25,4 @@ pub use sim::view::Sight;
 pub use sim::world::{Ball, Player, World};
 pub use tools::policy::BaselinePolicy;
 pub use tools::rollout::{RolloutSummary, rollout};
+pub use tools::simulators::RunSimulators;

@@ -5,7 +5,8 @@
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use env_server::tools::render;
-use env_server::{BaselinePolicy, EnvConfig, rollout};
+use env_server::tools::rollout::{Simulators, rollout_on};
+use env_server::{BaselinePolicy, EnvConfig};
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
 
@@ -41,6 +42,10 @@ enum EnvServerCommand {
         /// Simulator settings as JSON (`EnvConfig` fields; missing ones keep their defaults).
         #[arg(long, value_name = "FILE")]
         env_config: Option<PathBuf>,
+        /// Play every episode on a new simulator, as the first episode of a
+        /// freshly started HFO server (default: one long-lived simulator).
+        #[arg(long)]
+        fresh: bool,
         /// Print one JSON object instead of a readable summary.
         #[arg(long)]
         json: bool,
@@ -93,12 +98,18 @@ fn run(cli: EnvServerCli) -> Result<()> {
             offense,
             json,
             env_config,
+            fresh,
         } => {
             let config = EnvConfig {
                 offense: offense.into(),
                 ..load_env_config(env_config.as_deref())?
             };
-            let s = rollout(config, policy, episodes, seed)?;
+            let simulators = if fresh {
+                Simulators::Fresh
+            } else {
+                Simulators::One
+            };
+            let s = rollout_on(config, policy, episodes, seed, simulators)?;
             if json {
                 println!("{}", serde_json::to_string(&s)?);
             } else {

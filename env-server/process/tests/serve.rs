@@ -2,7 +2,7 @@
 //! session that plays the coordinator and three fake agents
 //! (docs/protocol.md).
 
-use env_server::{Env, EnvConfig, Outcome};
+use env_server::{Env, EnvConfig, Outcome, RunSimulators};
 use node::net::{NetConfig, free_port};
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
@@ -409,8 +409,9 @@ fn check_observations(seen: &[Vec<AgentFrame>], result: EpisodeResult, mode: Mod
 async fn episodes_match_the_simulator_and_reach_every_agent() {
     let h = Harness::new("serve-episodes", Behaviour::Shoot, 10000).await;
     let config = EnvConfig::default();
-    let mut training = Env::new(config.clone(), 7).expect("env");
-    let mut evaluation = Env::new(config.clone(), 99).expect("env");
+    // The same run in process: the evaluation block carries the training
+    // simulator's memories there and back.
+    let mut simulators = RunSimulators::new(config.clone(), 7).expect("env");
     h.reset(3, 7).await;
     let plan = [
         (Mode::Training, None),
@@ -422,10 +423,10 @@ async fn episodes_match_the_simulator_and_reach_every_agent() {
     for (episode, (mode, seed)) in plan.into_iter().enumerate() {
         let episode = episode as u32;
         let result = h.play(3, episode, mode, seed).await;
-        let env = match mode {
-            Mode::Training => &mut training,
-            Mode::Evaluation => &mut evaluation,
-        };
+        if let Some(seed) = seed {
+            simulators.begin_evaluation(seed);
+        }
+        let env = simulators.env(mode).expect("a simulator");
         assert_eq!(result, replay(env, Action::Shoot), "episode {episode}");
         assert!((1..=config.frames_per_trial).contains(&result.frames));
         let seen = h.observations(3, episode).await;

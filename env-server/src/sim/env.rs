@@ -91,6 +91,12 @@ impl Env {
         &self.memories
     }
 
+    /// Makes the agents remember what those of `other`, a simulator of the
+    /// same team, remember.
+    pub(crate) fn remember_as(&mut self, other: &Env) {
+        self.memories.clone_from(&other.memories);
+    }
+
     /// Number of offense agents.
     pub fn offense(&self) -> usize {
         self.config.offense

@@ -1,5 +1,5 @@
-//! Rollouts: episodes played under a baseline policy from one seed, and
-//! their summary.
+//! Rollouts: episodes played under a baseline policy from one seed, on one
+//! long-lived simulator or each on a new one, and their summary.
 
 use crate::sim::config::{EnvConfig, EnvConfigError};
 use crate::sim::env::Env;
@@ -7,6 +7,8 @@ use crate::sim::referee::Outcome;
 use crate::tools::decisions::{DecisionRecorder, DecisionStats};
 use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
 use crate::tools::tally::{Moments, OutcomeCounts};
+use rand::{RngCore, SeedableRng};
+use rand_xoshiro::SplitMix64;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -21,6 +23,8 @@ pub struct RolloutSummary {
     pub offense: usize,
     /// Seed of the run.
     pub seed: u64,
+    /// Whether every episode was played on a new simulator.
+    pub fresh_simulators: bool,
     /// Episodes played.
     pub episodes: u64,
     /// Percentage of episodes ending in a goal.
@@ -52,15 +56,40 @@ pub struct Spread {
     pub possessions_per_episode: f64,
 }
 
-/// Plays `episodes` episodes under `policy` with `seed`.
+/// Where a rollout plays its episodes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Simulators {
+    /// All on one simulator seeded with the rollout's seed, whose agents
+    /// remember from episode to episode, as one long-lived HFO server's.
+    #[default]
+    One,
+    /// Each on a new simulator (seeded from a SplitMix64 stream of the
+    /// rollout's seed): every episode is the first of a fresh HFO server.
+    Fresh,
+}
+
+/// Plays `episodes` episodes under `policy` with `seed` on one simulator.
 pub fn rollout(
     config: EnvConfig,
     policy: BaselinePolicy,
     episodes: u64,
     seed: u64,
 ) -> Result<RolloutSummary, EnvConfigError> {
+    rollout_on(config, policy, episodes, seed, Simulators::One)
+}
+
+/// Plays `episodes` episodes under `policy` with `seed` on `simulators`;
+/// the policy draws from one stream throughout.
+pub fn rollout_on(
+    config: EnvConfig,
+    policy: BaselinePolicy,
+    episodes: u64,
+    seed: u64,
+    simulators: Simulators,
+) -> Result<RolloutSummary, EnvConfigError> {
     let offense = config.offense;
-    let mut env = Env::new(config, seed)?;
+    let mut env = Env::new(config.clone(), seed)?;
+    let mut episode_seeds = SplitMix64::seed_from_u64(seed);
     let mut rng = policy_rng(seed);
     let mut outcomes = OutcomeCounts::default();
     let mut decisions = DecisionRecorder::default();
@@ -68,6 +97,9 @@ pub fn rollout(
     let (mut frame_moments, mut goal_moments) = (Moments::default(), Moments::default());
     let start = Instant::now();
     for _ in 0..episodes {
+        if simulators == Simulators::Fresh {
+            env = Env::new(config.clone(), episode_seeds.next_u64())?;
+        }
         let (outcome, n) = play_episode(&mut env, policy, &mut rng, |env, actions| {
             decisions.observe(env, actions)
         });
@@ -86,6 +118,7 @@ pub fn rollout(
         policy: policy.name().to_owned(),
         offense,
         seed,
+        fresh_simulators: simulators == Simulators::Fresh,
         episodes,
         goal_pct: 100.0 * ratio(outcomes.goal, episodes),
         mean_frames: ratio(frames, episodes),

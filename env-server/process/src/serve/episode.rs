@@ -1,11 +1,11 @@
 //! The simulator side of a run, without any I/O: the run's simulators, the
 //! episode being played, the observations it shows and the actions it
-//! awaits. Mirrors the in-process backend of the coordinator: one training
-//! simulator per run seeded at Reset, and an evaluation simulator replaced
-//! by a fresh one whenever `PlayEpisode` carries a seed.
+//! awaits. Its simulators are the in-process backend's (`RunSimulators`):
+//! one training simulator per run seeded at Reset, and an evaluation block
+//! begun whenever `PlayEpisode` carries a seed.
 
 use env_server::MAX_OFFENSE;
-use env_server::{Env, EnvConfig, Outcome};
+use env_server::{Env, EnvConfig, Outcome, RunSimulators};
 use proto::{
     Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode,
     State,
@@ -13,11 +13,7 @@ use proto::{
 
 /// The simulators of one run.
 #[derive(Debug)]
-pub struct Simulators {
-    config: EnvConfig,
-    training: Env,
-    evaluation: Option<Env>,
-}
+pub struct Simulators(RunSimulators);
 
 impl Simulators {
     /// The simulators of a run with settings `config` (an `EnvConfig`
@@ -26,26 +22,21 @@ impl Simulators {
     pub fn new(config: &[u8], seed: u64) -> Result<Self, String> {
         let config: EnvConfig =
             proto::decode_settings(config).map_err(|e| format!("invalid env config: {e}"))?;
-        let training =
-            Env::new(config.clone(), seed).map_err(|e| format!("invalid env config: {e}"))?;
-        Ok(Simulators {
-            config,
-            training,
-            evaluation: None,
-        })
+        RunSimulators::new(config, seed)
+            .map(Simulators)
+            .map_err(|e| format!("invalid env config: {e}"))
     }
 
     /// Number of offense agents.
     pub fn offense(&self) -> usize {
-        self.config.offense
+        self.0.offense()
     }
 
-    /// The simulator of an episode in `mode`: `seed` first replaces the
-    /// evaluation simulator by a fresh one; evaluation needs one.
+    /// The simulator of an episode in `mode`: `seed` first begins a new
+    /// evaluation block; evaluation needs one.
     pub fn prepare(&mut self, mode: Mode, seed: Option<u64>) -> Result<&mut Env, String> {
         if let Some(seed) = seed {
-            let env = Env::new(self.config.clone(), seed).map_err(|e| e.to_string())?;
-            self.evaluation = Some(env);
+            self.0.begin_evaluation(seed);
         }
         self.env(mode)
             .ok_or_else(|| "evaluation episode before any evaluation seed".to_owned())
@@ -53,10 +44,7 @@ impl Simulators {
 
     /// The simulator of `mode`, if there is one (see [`Simulators::prepare`]).
     pub fn env(&mut self, mode: Mode) -> Option<&mut Env> {
-        match mode {
-            Mode::Training => Some(&mut self.training),
-            Mode::Evaluation => self.evaluation.as_mut(),
-        }
+        self.0.env(mode)
     }
 }
 

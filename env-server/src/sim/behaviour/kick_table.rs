@@ -82,7 +82,7 @@ impl LastKick<'_> {
         best_effort: &mut f64,
         out: &mut Vec<Sequence>,
     ) -> bool {
-        let dir = direction(target - self.from.pos);
+        let dir = aim(target - self.from.pos, speed);
         let last = (polar(speed, dir) - self.vel).length();
         let limit = max_accel(self.from.rate);
         if last <= limit {
@@ -111,6 +111,12 @@ impl LastKick<'_> {
         }
         false
     }
+}
+
+/// The direction of librcsc's target velocity `rel.setLength(speed)`:
+/// that of `rel`, but 0° when the speed is 0 (the angle of a zero vector).
+fn aim(rel: DVec2, speed: f64) -> f64 {
+    if speed > 0.0 { direction(rel) } else { 0.0 }
 }
 
 /// The first kick's ball position (after this cycle's move) of the best plan
@@ -312,7 +318,7 @@ impl<'a> Planner<'a> {
     /// `simulateOneStep`.
     fn one_step(&self, target: DVec2, speed: f64, out: &mut Vec<Sequence>) {
         let ball = &self.world.ball;
-        let dir = direction(target - ball.pos);
+        let dir = aim(target - ball.pos, speed);
         let want = polar(speed, dir);
         let limit = max_accel(self.current_rate);
         let vel = if (want - ball.vel).length() > limit {

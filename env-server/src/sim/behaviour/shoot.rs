@@ -16,6 +16,9 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// Number of targets along the goal mouth.
 const TARGETS: usize = 25;
 
+/// librcsc's `EPS` in `calc_length_geom_series`.
+const GEOM_SERIES_EPS: f64 = 1e-10;
+
 /// How far from the goal centre (m) the shot searches outside SHOOT look
 /// (`ShootGenerator::generate` with `consider_shot_distance`).
 const CHECK_DISTANCE: f64 = 30.0;
@@ -48,16 +51,29 @@ struct Search {
 /// The SHOOT command of a kickable agent, and the first course of this
 /// cycle's search if it found any (`Agent::doSmartKick`). With no feasible
 /// course HFO reads the first element of its emptied course vector: the
-/// agent's last non-empty search's first course (spec 6.2.2).
+/// agent's last non-empty search's first course, or, for an agent whose
+/// searches never found one, the zero course of fresh storage (spec 6.2.2).
 pub(super) fn command(s: &Situation) -> (Command, Option<ShotCourse>) {
     let search = search(s, Want::Best);
     let first = search.first.map(|c| c.shot());
     let command = match (search.best, s.memory.last_shot) {
         (Some(c), _) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
         (None, Some(c)) => smart_kick(s.me(), s.world, c.target, c.speed, 0.99 * c.speed),
-        (None, None) => long_shot(s),
+        (None, None) => zero_course(s),
     };
     (command, first)
+}
+
+/// What SHOOT kicks for an agent that never had a course (spec 6.2.2):
+/// HFO's course storage is reserved but never written, and reads as a
+/// zero course: Body_SmartKick to (0, 0) at speed 0 with threshold 0,
+/// which always kicks its best plan: it stops the ball at the agent's feet
+/// (or, if one kick cannot stop it, sends it as fast as one kick can along
+/// 0°). The agent so stands on the ball, kick after kick. Where no plan
+/// exists at all HFO reads an empty plan (undefined); ours then does
+/// nothing.
+fn zero_course(s: &Situation) -> Command {
+    planned_kick(s.me(), s.world, DVec2::ZERO, (0.0, 0.0), 3).unwrap_or(Command::None)
 }
 
 /// The shot searches outside SHOOT (`Bhv_StrictCheckShoot` in DRIBBLE's
@@ -184,33 +200,6 @@ fn speed_limit(s: &Situation) -> f64 {
     }
 }
 
-/// The stand-in for an agent that never found a course, whose stale course
-/// HFO reads from uninitialised storage (spec 6.2.2): the goal-mouth target
-/// farthest in angle from the keeper, at the configured speed.
-fn long_shot(s: &Situation) -> Command {
-    let me = s.me();
-    let ball = s.world.ball.pos;
-    let keeper_dir = direction(s.world.keeper.pos - ball);
-    let cfg = &s.config.long_shot;
-    let target = targets(me, ball)
-        .max_by(|a, b| {
-            let course = |t: DVec2| Course {
-                target: t,
-                speed: cfg.speed,
-                one_kick: false,
-                keeper_never_reaches: false,
-            };
-            score(&course(*a), ball, keeper_dir, cfg.sigma_deg).total_cmp(&score(
-                &course(*b),
-                ball,
-                keeper_dir,
-                cfg.sigma_deg,
-            ))
-        })
-        .unwrap_or(GOAL_CENTER);
-    smart_kick(me, s.world, target, cfg.speed, cfg.min_speed)
-}
-
 /// The 25 aim points along the goal mouth (spec 6.2.1 step 2-3).
 fn targets(me: &Player, ball: DVec2) -> impl Iterator<Item = DVec2> {
     let margin = |post_y: f64| {
@@ -306,10 +295,14 @@ impl<'a> Keeper<'a> {
 /// 6.2.1 step 3): `None` if the keeper catches the ball, else whether it
 /// never even gets close.
 fn keeper_verdict(keeper: &Keeper, ball: DVec2, line: &Line, speed: f64) -> Option<bool> {
-    let ratio = 0.06 * line.length / speed;
-    if ratio >= 1.0 {
-        return None;
+    // A course too slow to reach the target (or of no speed) is, to HFO,
+    // one step to the goal: `calc_length_geom_series` returns -1 for it,
+    // and -1 <= 1.
+    if speed <= GEOM_SERIES_EPS || 1.0 + line.length * (BALL_DECAY - 1.0) / speed <= GEOM_SERIES_EPS
+    {
+        return Some(true);
     }
+    let ratio = 0.06 * line.length / speed;
     let Some(first) = line.first else {
         return Some(true);
     };
@@ -450,7 +443,7 @@ mod tests {
             search(&s, Want::Best).first.is_none(),
             "the keeper reaches every course"
         );
-        assert_eq!(command(&s), (long_shot(&s), None), "the stand-in");
+        assert_eq!(command(&s), (zero_course(&s), None), "the zero course");
         let stale = ShotCourse {
             target: DVec2::new(PITCH_HALF_LENGTH, -5.5),
             speed: 2.2,
@@ -462,7 +455,53 @@ mod tests {
         let s = situation(&w, &a, &config, &remembered);
         let kick = smart_kick(s.me(), &w, stale.target, stale.speed, 0.99 * stale.speed);
         assert_eq!(command(&s), (kick, None));
-        assert_ne!(kick, long_shot(&s));
+        assert_ne!(kick, zero_course(&s));
+    }
+
+    #[test]
+    fn the_zero_course_stops_the_ball_or_sends_it_along_0_degrees() {
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
+        let mut w = world(5.0, GOAL_CENTER);
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config, &memory);
+        // A ball at rest at the agent's feet: a kick of no power.
+        match zero_course(&s) {
+            Command::Kick { power, .. } => assert!(power.abs() < 1e-9, "{power}"),
+            other => panic!("{other:?}"),
+        }
+        // A rolling ball: the kick takes its speed away.
+        w.ball.vel = DVec2::new(0.3, -0.2);
+        let s = situation(&w, &a, &config, &memory);
+        let Command::Kick { power, dir } = zero_course(&s) else {
+            panic!("a kick");
+        };
+        let accel = unit(s.me().body + dir) * power * kick_rate(s.me(), w.ball.pos);
+        assert!((w.ball.vel + accel).length() < 1e-9, "{accel}");
+        // Too fast to stop in one kick: as fast as one kick can, along 0°.
+        w.ball.vel = DVec2::new(2.8, 0.5);
+        let s = situation(&w, &a, &config, &memory);
+        let Command::Kick { power, dir } = zero_course(&s) else {
+            panic!("a kick");
+        };
+        let accel = unit(s.me().body + dir) * power * kick_rate(s.me(), w.ball.pos);
+        let vel = w.ball.vel + accel;
+        assert!(vel.y.abs() < 1e-9 && vel.x > 2.8, "{vel}");
+    }
+
+    #[test]
+    fn a_course_too_slow_to_reach_the_goal_is_one_step_to_it() {
+        // From 55 m no speed reaches the goal line: HFO counts each course
+        // as one step to the goal, which the keeper never reaches.
+        let (config, memory) = (EnvConfig::default(), AgentMemory::default());
+        let w = world(-3.0, GOAL_CENTER);
+        let a = Analysis::new(&w);
+        let s = situation(&w, &a, &config, &memory);
+        let search = search(&s, Want::Best);
+        let best = search.best.expect("every course is feasible");
+        assert!(best.keeper_never_reaches);
+        assert_eq!(best.speed, BALL_SPEED_MAX);
+        let first = search.first.expect("a first course");
+        assert!(first.target.y < 0.0, "from the left post");
     }
 
     #[test]
@@ -548,11 +587,13 @@ mod tests {
         let limit = MAX_KICK_POWER * kick_rate(s.me(), w.ball.pos);
         assert_eq!(speed_limit(&s), limit);
         assert!(fastest(&s).is_some_and(|v| v <= limit));
-        // Beyond the server's kickable area the kick rate is 0: no course.
+        // Beyond the server's kickable area the kick rate is 0: the one
+        // speed tried is 0, which HFO's geometric series counts as one
+        // step to the goal.
         w.ball.pos.x = 38.0 + KICKABLE_AREA + 0.01;
         let s = situation(&w, &a, &config, &memory);
         assert_eq!(speed_limit(&s), 0.0);
-        assert!(search(&s, Want::Best).first.is_none());
+        assert_eq!(fastest(&s), Some(0.0));
     }
 
     #[test]
