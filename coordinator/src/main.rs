@@ -14,6 +14,7 @@ use coordinator::{
     AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
     Transport, ZenohSettings, load_team_file, run_experiment,
 };
+use env_server::EvaluationMemory;
 
 #[derive(Parser)]
 #[command(
@@ -145,6 +146,11 @@ struct RunArgs {
     /// Offense agents (the paper: 3); with --team, the team's size.
     #[arg(long)]
     offense: Option<usize>,
+    /// What the agents of each evaluation block's simulator remember at its
+    /// start: the training simulator's memories, as HFO (carried), or
+    /// nothing (fresh); docs/fidelity.md, item 9.
+    #[arg(long, value_name = "MEMORY", default_value = "carried")]
+    evaluation_memory: EvaluationMemory,
     /// Worker threads, one run each at a time, 1 to 1024 (default: one per core).
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u64).range(1..=1024))]
     threads: Option<u64>,
@@ -397,6 +403,7 @@ fn run_one(args: RunArgs) -> Result<()> {
         ..ExperimentConfig::default()
     };
     config.env.offense = args.offense.unwrap_or(config.team.len());
+    config.env.evaluation_memory = args.evaluation_memory;
     let experiment = Experiment::prepare(config)?;
     let out = ExperimentDir::check(&args.out, &experiment.record())?;
     let options = RunOptions {

@@ -6,6 +6,7 @@ use agent::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, Strategy, StrategyName, TorreyIntent,
     TorreyUnknownState, VoteTies,
 };
+use env_server::EvaluationMemory;
 use serde::{Deserialize, Serialize};
 
 use crate::config::{AgentSpec, EPISODES, ExperimentConfig, check_range};
@@ -66,6 +67,10 @@ pub struct StudyConfig {
     /// The entry every other is compared with in the report.
     #[serde(default)]
     pub baseline: Option<String>,
+    /// What the agents of each evaluation block's simulator remember at
+    /// its start (docs/fidelity.md, item 9).
+    #[serde(default)]
+    pub evaluation_memory: EvaluationMemory,
     /// A pretraining stage that produces an expert agent.
     #[serde(default)]
     pub pretrain: Option<Pretrain>,
@@ -251,7 +256,7 @@ impl StudyConfig {
                 .map(Path::to_path_buf)
                 .or_else(|| Some("expert.qtable".into()));
         }
-        ExperimentConfig {
+        let mut config = ExperimentConfig {
             runs: self.runs,
             episodes: self.episodes,
             eval_every: self.eval_every,
@@ -261,12 +266,14 @@ impl StudyConfig {
             transport: self.transport.clone(),
             team,
             ..ExperimentConfig::default()
-        }
+        };
+        config.env.evaluation_memory = self.evaluation_memory;
+        config
     }
 
     /// The pretraining experiment: one run, evaluated only at its start and end.
     pub fn pretraining(&self, p: &Pretrain) -> ExperimentConfig {
-        ExperimentConfig {
+        let mut config = ExperimentConfig {
             runs: 1,
             episodes: p.episodes,
             eval_every: p.episodes,
@@ -276,7 +283,9 @@ impl StudyConfig {
             transport: self.transport.clone(),
             team: vec![AgentSpec::of(p.algorithm, self.profile); TEAM],
             ..ExperimentConfig::default()
-        }
+        };
+        config.env.evaluation_memory = self.evaluation_memory;
+        config
     }
 }
 

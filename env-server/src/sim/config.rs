@@ -76,3 +76,17 @@ pub enum EvaluationMemory {
     /// Nothing: every evaluation block starts as a new server would.
     Fresh,
 }
+
+impl std::str::FromStr for EvaluationMemory {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "carried" => Ok(EvaluationMemory::Carried),
+            "fresh" => Ok(EvaluationMemory::Fresh),
+            _ => Err(format!(
+                "unknown evaluation memory '{s}' (expected carried or fresh)"
+            )),
+        }
+    }
+}
