@@ -8,7 +8,7 @@ use agent::{Profile, StrategyName};
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
-use coordinator::study::{StudyConfig, StudyOptions};
+use coordinator::study::{StudyConfig, StudyOptions, gains_table, published_gains};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
     AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
@@ -43,6 +43,24 @@ enum CoordinatorCommand {
     /// Run a zenoh router, the rendezvous of processes on many hosts
     /// (deploy/README.md), until Ctrl-C or SIGTERM.
     Router(RouterArgs),
+    /// Gains over a baseline in the authors' published results
+    /// (f-leno/AdHoc_AAMAS-17's ProcessedFiles/), computed as a study's
+    /// report computes them, with Welch's intervals (the runs are unpaired);
+    /// prints a Markdown table.
+    PublishedGains {
+        /// The directory holding one directory per algorithm.
+        #[arg(long, value_name = "DIR")]
+        results: PathBuf,
+        /// The baseline's directory name, e.g. SARSATile.
+        #[arg(long)]
+        baseline: String,
+        /// Confidence level of the intervals (the authors': 0.90).
+        #[arg(long, value_name = "LEVEL", default_value_t = 0.9)]
+        level: f64,
+        /// The algorithms' directory names, e.g. AdHocTD AdHocVisit.
+        #[arg(required = true)]
+        algorithms: Vec<String>,
+    },
 }
 
 #[derive(Args)]
@@ -291,6 +309,19 @@ fn run(cli: CoordinatorCli) -> Result<()> {
             Ok(())
         }
         CoordinatorCommand::Router(args) => run_router(args),
+        CoordinatorCommand::PublishedGains {
+            results,
+            baseline,
+            level,
+            algorithms,
+        } => {
+            if !(level > 0.0 && level < 1.0) {
+                anyhow::bail!("--level must be in (0, 1), got {level}");
+            }
+            let gains = published_gains(&results, &baseline, &algorithms, level)?;
+            print!("{}", gains_table(&gains));
+            Ok(())
+        }
     }
 }
 

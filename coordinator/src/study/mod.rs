@@ -8,11 +8,16 @@
 
 mod analysis;
 mod config;
+mod gains;
+mod published;
 mod report;
 mod run;
 mod shard;
 
 pub use analysis::{Comparison, EntryResults, compare};
 pub use config::{PRESETS, Pretrain, StudyConfig, StudyEntry};
+pub use gains::Gain;
+pub use published::published_gains;
+pub use report::gains_table;
 pub use run::{StudyOptions, StudyOutcome, run_study};
 pub use shard::{MAX_SHARDS, Shard};

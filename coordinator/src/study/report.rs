@@ -4,12 +4,24 @@ use std::path::{Path, PathBuf};
 
 use agent::StrategyName;
 
+use serde::Serialize;
+
 use super::analysis::{Comparison, EntryResults};
 use super::config::{StudyConfig, StudyEntry};
+use super::gains::{Gain, LAST_POINTS, gains};
 use crate::error::Error;
 use crate::figures::{Figure, Point, SeriesSet, draw_figures};
 use crate::stats::Estimate;
 use crate::store;
+
+/// What `significance.json` holds.
+#[derive(Serialize)]
+struct Significance<'a> {
+    /// Every pair of entries, point by point.
+    comparisons: &'a [Comparison],
+    /// Every entry's gain over the baseline (none without one).
+    gains: &'a [Gain],
+}
 
 /// Writes `significance.json`, the figures and `REPORT.md` into `out`.
 pub fn write_report(
@@ -18,12 +30,19 @@ pub fn write_report(
     entries: &[EntryResults],
     comparisons: &[Comparison],
 ) -> Result<PathBuf, Error> {
-    store::write_json(&out.join("significance.json"), &comparisons)?;
+    let level = study.ci_level();
+    let gains = (study.baseline.as_deref()).map_or_else(Vec::new, |b| gains(entries, b, level));
+    let significance = Significance {
+        comparisons,
+        gains: &gains,
+    };
+    store::write_json(&out.join("significance.json"), &significance)?;
     let figures = write_figures(out, study, entries)?;
     let mut md = Markdown::default();
     introduction(&mut md, study, entries);
     final_performance(&mut md, study, entries);
     if let Some(baseline) = &study.baseline {
+        gains_over(&mut md, baseline, &gains);
         significance_against(&mut md, baseline, comparisons);
     }
     significance_between_advising(&mut md, study, entries, comparisons);
@@ -158,6 +177,43 @@ fn final_performance(md: &mut Markdown, study: &StudyConfig, entries: &[EntryRes
             ]
         }),
     );
+}
+
+/// Every algorithm's gain over `baseline` on the last ten evaluations and
+/// on the area under the curve, paired by run.
+fn gains_over(md: &mut Markdown, baseline: &str, gains: &[Gain]) {
+    md.heading(2, &format!("Gains over `{baseline}`"));
+    md.paragraph(&format!(
+        "Goal percentage averaged over the last {LAST_POINTS} evaluations, and over the whole \
+         curve (its area divided by the episodes it spans), each with the algorithm's gain over \
+         `{baseline}`: the mean over runs of the per-run difference, with its interval."
+    ));
+    md.0.push_str(&gains_table(gains));
+}
+
+/// A Markdown table of `gains`: each algorithm's goal % on the last ten
+/// evaluations and on the whole curve, with its gain over the baseline.
+pub fn gains_table(gains: &[Gain]) -> String {
+    let mut md = Markdown::default();
+    md.table(
+        [
+            "algorithm",
+            "last ten: goal %",
+            "gain",
+            "whole curve: goal %",
+            "gain",
+        ],
+        gains.iter().map(|g| {
+            [
+                g.entry.clone(),
+                show(&g.last_ten),
+                show(&g.last_ten_gain),
+                show(&g.area),
+                show(&g.area_gain),
+            ]
+        }),
+    );
+    md.0
 }
 
 /// Where every algorithm is significantly better or worse than `baseline`.

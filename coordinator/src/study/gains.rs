@@ -1,0 +1,145 @@
+//! Each method's gain over the study's baseline, paired by run: on the
+//! mean of its last ten evaluations, and on the area under its learning
+//! curve. Single evaluation points are noisy (100 episodes each); these
+//! two average many of them (docs/reproduction.md, "The gains").
+
+use serde::Serialize;
+
+use super::analysis::EntryResults;
+use crate::schedule::RunResult;
+use crate::stats::{Estimate, estimate};
+
+/// How many of the last evaluation points the "last ten" mean averages.
+pub const LAST_POINTS: usize = 10;
+
+/// One method's level and its gain over the baseline, in goal percentage
+/// points.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Gain {
+    /// The method.
+    pub entry: String,
+    /// The baseline.
+    pub baseline: String,
+    /// Its mean goal % over the last ten evaluation points, over runs.
+    pub last_ten: Estimate,
+    /// That minus the baseline's, paired by run.
+    pub last_ten_gain: Estimate,
+    /// The area under its goal % curve, divided by the episodes it spans:
+    /// the curve's mean height (trapezoids between evaluation points).
+    pub area: Estimate,
+    /// That minus the baseline's, paired by run.
+    pub area_gain: Estimate,
+}
+
+/// The mean goal % of a run's last ten evaluation points (all of them if
+/// it has fewer).
+pub fn last_ten(run: &RunResult) -> Option<f64> {
+    let points = &run.points[run.points.len().saturating_sub(LAST_POINTS)..];
+    (!points.is_empty())
+        .then(|| points.iter().map(|p| p.goal_pct).sum::<f64>() / points.len() as f64)
+}
+
+/// The mean height of a run's goal % curve over the episodes it spans
+/// (its only point's value when it has one).
+pub fn area(run: &RunResult) -> Option<f64> {
+    let (first, last) = (run.points.first()?, run.points.last()?);
+    let span = (last.episode - first.episode) as f64;
+    if span == 0.0 {
+        return Some(first.goal_pct);
+    }
+    let trapezoids: f64 = (run.points.windows(2))
+        .map(|w| 0.5 * (w[0].goal_pct + w[1].goal_pct) * (w[1].episode - w[0].episode) as f64)
+        .sum();
+    Some(trapezoids / span)
+}
+
+/// The per-run values of `metric` for `a` and `b` over the runs both have.
+fn paired(
+    a: &EntryResults,
+    b: &EntryResults,
+    metric: fn(&RunResult) -> Option<f64>,
+) -> Vec<(f64, f64)> {
+    (a.results.iter())
+        .filter_map(|ra| {
+            let rb = b.results.iter().find(|rb| rb.run == ra.run)?;
+            Some((metric(ra)?, metric(rb)?))
+        })
+        .collect()
+}
+
+/// The gain of `entry` over `baseline` with intervals at `level`.
+pub fn gain(entry: &EntryResults, baseline: &EntryResults, level: f64) -> Gain {
+    let level_of = |metric: fn(&RunResult) -> Option<f64>| {
+        let values: Vec<f64> = entry.results.iter().filter_map(metric).collect();
+        estimate(&values, level)
+    };
+    let gain_of = |metric| {
+        let differences: Vec<f64> = (paired(entry, baseline, metric).into_iter())
+            .map(|(x, y)| x - y)
+            .collect();
+        estimate(&differences, level)
+    };
+    Gain {
+        entry: entry.entry.name.clone(),
+        baseline: baseline.entry.name.clone(),
+        last_ten: level_of(last_ten),
+        last_ten_gain: gain_of(last_ten),
+        area: level_of(area),
+        area_gain: gain_of(area),
+    }
+}
+
+/// Every entry's gain over the entry named `baseline`, in entry order
+/// (none if there is no such entry).
+pub fn gains(entries: &[EntryResults], baseline: &str, level: f64) -> Vec<Gain> {
+    let Some(base) = entries.iter().find(|e| e.entry.name == baseline) else {
+        return Vec::new();
+    };
+    (entries.iter())
+        .filter(|e| e.entry.name != baseline)
+        .map(|e| gain(e, base, level))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schedule::EvalPoint;
+
+    fn run(run: u64, goals: &[f64]) -> RunResult {
+        let points = (goals.iter().enumerate())
+            .map(|(i, &goal_pct)| EvalPoint {
+                episode: 20 * i as u64,
+                episodes: 100,
+                goals: goal_pct as u64,
+                goal_pct,
+                time_to_goal: None,
+                agents: Vec::new(),
+                spent_budget: 0.0,
+                actions_timed_out: 0,
+            })
+            .collect();
+        RunResult {
+            run,
+            points,
+            timing: Default::default(),
+            advice_rtt_ms: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn the_last_ten_and_the_area_of_a_run() {
+        let r = run(
+            0,
+            &[
+                0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 90.0, 100.0, 110.0,
+            ],
+        );
+        assert_eq!(last_ten(&r), Some(65.0));
+        // A straight line from 0 to 110: its mean height is 55.
+        assert_eq!(area(&r), Some(55.0));
+        let flat = run(0, &[30.0]);
+        assert_eq!((last_ten(&flat), area(&flat)), (Some(30.0), Some(30.0)));
+        assert_eq!(area(&run(0, &[])), None);
+    }
+}
