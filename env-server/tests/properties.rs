@@ -1,7 +1,7 @@
 //! Invariants of the simulator over many seeds, policies and team sizes.
 
 use env_server::Command;
-use env_server::features::unum_feature_indices;
+use env_server::features::{current_unum_feature_indices, unum_feature_indices};
 use env_server::params::*;
 use env_server::tools::policy::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
@@ -28,6 +28,7 @@ proptest! {
         let mut env = env(seed, offense);
         let mut rng = policy_rng(seed);
         let raw: Vec<usize> = unum_feature_indices(offense).collect();
+        let current_raw: Vec<usize> = current_unum_feature_indices(offense).collect();
         let mut bad = None;
         for _ in 0..3 {
             play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
@@ -35,6 +36,11 @@ proptest! {
                     for (i, f) in env.features(agent).into_iter().enumerate() {
                         if !raw.contains(&i) && !(-1.0..=1.0).contains(&f) {
                             bad.get_or_insert((agent, i, f));
+                        }
+                    }
+                    for (i, f) in env.current_features(agent).into_iter().enumerate() {
+                        if !current_raw.contains(&i) && !(-1.0..=1.0).contains(&f) {
+                            bad.get_or_insert((agent, 100 + i, f));
                         }
                     }
                     if let Some(f) = env.state(agent).into_iter().find(|f| !(-1.0..=1.0).contains(f)) {

@@ -195,6 +195,17 @@ impl Env {
         features::high_level(&self.world, agent)
     }
 
+    /// Today's HFO high-level feature vector of agent `agent` (spec 5.5), in
+    /// HFO's order and normalisation;
+    /// [`current_feature_count`](crate::features::current_feature_count) long.
+    /// Its last-action feature is +1 when the agent's last step issued a
+    /// body command (HFO's actions report success when they do), -1 after a
+    /// reset or a step that issued none.
+    pub fn current_features(&self, agent: usize) -> Vec<f64> {
+        let acted = self.commands[agent] != Command::None;
+        features::current_high_level(&self.world, agent, acted)
+    }
+
     /// One server cycle (spec 2.1); `None` means the attackers are idle.
     fn cycle(&mut self, actions: Option<&[Action]>) {
         update_offside_line(&mut self.world);
@@ -493,6 +504,20 @@ mod tests {
         }
         env.step(&moves);
         assert_ne!(env.last_commands()[n], Command::None);
+    }
+
+    #[test]
+    fn the_last_action_feature_tells_whether_a_body_command_was_issued() {
+        let mut env = Env::new(EnvConfig::default(), 1).expect("valid config");
+        env.reset();
+        let last = features::current_feature_count(env.offense()) - 2;
+        // HFO's NOOPs between episodes fail.
+        assert!((0..3).all(|a| env.current_features(a)[last] == -1.0));
+        // MOVE runs to the formation or the ball; SHOOT without the ball does nothing.
+        assert!((0..3).all(|a| !env.can_kick(a)));
+        env.step(&[Action::Move, Action::Shoot, Action::Move]);
+        assert_eq!(env.current_features(0)[last], 1.0);
+        assert_eq!(env.current_features(1)[last], -1.0);
     }
 
     #[test]

@@ -1,5 +1,6 @@
-//! HFO's high-level feature set of the authors' version (spec 5.3) and the
-//! paper's 6-feature view (spec 5.4, docs/algorithms.md section 1).
+//! HFO's high-level feature sets: the authors' version (spec 5.3), today's
+//! LARG/HFO version (spec 5.5) and the paper's 6-feature view (spec 5.4,
+//! docs/algorithms.md section 1).
 
 use crate::sim::config::MAX_OFFENSE;
 use crate::sim::formation::offense_unums;
@@ -123,6 +124,95 @@ pub(crate) fn high_level(world: &World, agent: usize) -> Vec<f64> {
     f
 }
 
+/// HFO's largest distance in today's feature set, `sqrt(52.5² + 68²)`: the
+/// half length with the full width (HFO: src/feature_extractor.cpp at b8b2a1d).
+const MAX_CURRENT_DISTANCE: f64 = 85.908_381_430_451_83;
+
+/// HFO's `observedStaminaMax`, the stamina feature's upper bound.
+const OBSERVED_STAMINA_MAX: f64 = 8000.0;
+
+/// Number of features of today's HFO high-level set (spec 5.5) for a team
+/// of `offense` players against one keeper: `10 + 6T + 3O + 2`.
+pub fn current_feature_count(offense: usize) -> usize {
+    feature_count(offense) + 2
+}
+
+/// Indices of the raw uniform-number features of today's set.
+pub fn current_unum_feature_indices(offense: usize) -> impl Iterator<Item = usize> {
+    let t = offense - 1;
+    (0..t)
+        .map(move |j| 10 + 3 * t + 3 * j + 2)
+        .chain([10 + 6 * t + 2])
+}
+
+/// Agent `agent`'s teammates nearest first, as librcsc's
+/// `teammatesFromSelf` lists them (ties in agent order): the order of
+/// today's HFO feature set.
+pub fn teammates_from_self(world: &World, agent: usize) -> Vec<usize> {
+    let me = world.offense[agent].pos;
+    let mut mates: Vec<usize> = (0..world.offense.len()).filter(|&j| j != agent).collect();
+    mates.sort_by(|&a, &b| {
+        let d = |j: usize| world.offense[j].pos.distance(me);
+        d(a).total_cmp(&d(b))
+    });
+    mates
+}
+
+/// Today's HFO high-level feature vector of offense agent `agent` (spec 5.5;
+/// HFO: src/highlevel_feature_extractor.cpp at b8b2a1d): positions instead
+/// of distance and angle for the ball and the other players, teammates
+/// nearest first, distances over [`MAX_CURRENT_DISTANCE`], and at the end
+/// whether the agent's last action succeeded and its stamina.
+pub(crate) fn current_high_level(
+    world: &World,
+    agent: usize,
+    last_action_succeeded: bool,
+) -> Vec<f64> {
+    let me = &world.offense[agent];
+    let (s, k, b) = (me.pos, world.keeper.pos, world.ball.pos);
+    let norm_x = |x: f64| norm(x, FEATURE_X_RANGE.0, FEATURE_X_RANGE.1);
+    let norm_y = |y: f64| norm(y, FEATURE_Y_RANGE.0, FEATURE_Y_RANGE.1);
+    let norm_dist = |d: f64| norm(d, 0.0, MAX_CURRENT_DISTANCE);
+    let norm_angle = |a: f64| norm(a, -PI, PI);
+    let unums = offense_unums(world.offense.len());
+    let mates = teammates_from_self(world, agent);
+    let pos = |j: &usize| world.offense[*j].pos;
+    let sign = |b: bool| if b { 1.0 } else { -1.0 };
+    let mut f = Vec::with_capacity(current_feature_count(world.offense.len()));
+    f.extend([
+        norm_x(s.x),
+        norm_y(s.y),
+        norm_angle(me.body),
+        norm_x(b.x),
+        norm_y(b.y),
+        sign(world.agent_kickable(agent)),
+        norm_dist(s.distance(GOAL_CENTER)),
+        norm_angle(direction(GOAL_CENTER - s)),
+        norm_open_angle(goal_opening(s, k)),
+        norm_dist(s.distance(k)),
+    ]);
+    f.extend(
+        mates
+            .iter()
+            .map(|j| norm_open_angle(goal_opening(pos(j), k))),
+    );
+    f.extend(mates.iter().map(|j| norm_dist(pos(j).distance(k))));
+    f.extend(
+        mates
+            .iter()
+            .map(|j| norm_open_angle(pass_opening(s, pos(j), k))),
+    );
+    for j in &mates {
+        f.extend([norm_x(pos(j).x), norm_y(pos(j).y), f64::from(unums[*j])]);
+    }
+    f.extend([norm_x(k.x), norm_y(k.y), 1.0]);
+    f.extend([
+        sign(last_action_succeeded),
+        norm(me.stamina, 0.0, OBSERVED_STAMINA_MAX),
+    ]);
+    f
+}
+
 /// The goal opening (normalised) of every offense player, for [`paper_state`].
 pub(crate) fn goal_openings(world: &World) -> [f64; MAX_OFFENSE] {
     let mut openings = [0.0; MAX_OFFENSE];
@@ -203,5 +293,97 @@ mod tests {
         assert_eq!((f[18], f[21], f[24]), (8.0, 11.0, 1.0));
         let g = high_level(&w, 2);
         assert_eq!((g[18], g[21]), (7.0, 8.0));
+    }
+
+    #[test]
+    fn current_distances_are_normalised_by_half_length_and_full_width() {
+        assert!((MAX_CURRENT_DISTANCE - 52.5f64.hypot(68.0)).abs() < 1e-12);
+    }
+
+    /// A 3v1 world: agent 0 at (30, 0) facing the goal with the ball at its
+    /// feet, agent 1 far away at (10, -20), agent 2 near at (35, 5), the
+    /// keeper on its line.
+    fn three_v_one() -> World {
+        let mut w = World::new(3);
+        w.offense[0].pos = DVec2::new(30.0, 0.0);
+        w.offense[1].pos = DVec2::new(10.0, -20.0);
+        w.offense[2].pos = DVec2::new(35.0, 5.0);
+        w.offense[0].stamina = 6000.0;
+        w.ball.pos = DVec2::new(30.5, 0.0);
+        w.keeper.pos = DVec2::new(52.0, 1.0);
+        w
+    }
+
+    #[test]
+    fn current_set_has_hfo_layout_with_teammates_nearest_first() {
+        let w = three_v_one();
+        assert_eq!(teammates_from_self(&w, 0), vec![2, 1]);
+        assert_eq!(teammates_from_self(&w, 1), vec![0, 2]);
+        let f = current_high_level(&w, 0, true);
+        assert_eq!(f.len(), 10 + 6 * 2 + 3 + 2);
+        assert_eq!(current_feature_count(3), f.len());
+        assert_eq!(
+            current_unum_feature_indices(3).collect::<Vec<_>>(),
+            vec![18, 21, 24]
+        );
+        // Teammate blocks: the nearest (unum 11, agent 2) first.
+        assert_eq!((f[18], f[21], f[24]), (11.0, 8.0, 1.0));
+        let m = w.offense[2].pos;
+        let k = w.keeper.pos;
+        let s = w.offense[0].pos;
+        assert_eq!(f[10], norm_open_angle(goal_opening(m, k)));
+        assert_eq!(f[12], norm(m.distance(k), 0.0, MAX_CURRENT_DISTANCE));
+        assert_eq!(f[14], norm_open_angle(pass_opening(s, m, k)));
+        assert_eq!(f[16], norm(m.x, -5.25, 57.75));
+        assert_eq!(f[17], norm(m.y, -37.4, 37.4));
+    }
+
+    #[test]
+    fn current_set_values_on_a_hand_built_world() {
+        let w = three_v_one();
+        let f = current_high_level(&w, 0, true);
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        // Self position and body: x 30 over [-5.25, 57.75], y 0, facing +x.
+        assert!(close(f[0], 2.0 * 35.25 / 63.0 - 1.0));
+        assert!(close(f[1], 0.0));
+        assert!(close(f[2], 0.0));
+        // The ball's position, not its distance and angle.
+        assert!(close(f[3], 2.0 * 35.75 / 63.0 - 1.0));
+        assert!(close(f[4], 0.0));
+        assert_eq!(f[5], 1.0, "the ball is 0.5 m away");
+        // Goal centre 22.5 m straight ahead.
+        assert!(close(f[6], 2.0 * 22.5 / MAX_CURRENT_DISTANCE - 1.0));
+        assert!(close(f[7], 0.0));
+        assert_eq!(
+            f[8],
+            norm_open_angle(goal_opening(w.offense[0].pos, w.keeper.pos))
+        );
+        let keeper_dist = w.offense[0].pos.distance(w.keeper.pos);
+        assert!(close(f[9], 2.0 * keeper_dist / MAX_CURRENT_DISTANCE - 1.0));
+        // The keeper's block: position and unum 1.
+        assert!(close(f[22], 2.0 * 57.25 / 63.0 - 1.0));
+        assert!(close(f[23], 2.0 * 38.4 / 74.8 - 1.0));
+        // Last action and stamina 6000 of 8000.
+        assert_eq!(f[25], 1.0);
+        assert!(close(f[26], 0.5));
+        let g = current_high_level(&w, 1, false);
+        assert_eq!((g[5], g[25]), (-1.0, -1.0));
+        assert_eq!(g[26], 1.0, "a rested player");
+    }
+
+    #[test]
+    fn current_set_of_a_lone_attacker_has_no_teammate_block() {
+        let mut w = World::new(1);
+        w.offense[0].pos = DVec2::new(60.0, -40.0);
+        w.offense[0].body = PI;
+        let f = current_high_level(&w, 0, false);
+        assert_eq!(f.len(), 15);
+        assert_eq!(
+            current_unum_feature_indices(1).collect::<Vec<_>>(),
+            vec![12]
+        );
+        // Clamped to the box, as HFO's normalize does.
+        assert_eq!((f[0], f[1], f[2]), (1.0, -1.0, 1.0));
+        assert_eq!(f[12], 1.0);
     }
 }
