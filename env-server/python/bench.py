@@ -11,7 +11,9 @@ Measures, each --repeat times alternately, keeping the best:
   episodes, observations of the "hfo" set computed every step), and what
   each step costs on top of the rollout's frame: the binding's and
   Python's overhead;
-- the batch with the paper's random policy drawn in numpy, per core.
+- the batch with the paper's random policy drawn in numpy: on one thread
+  of its own (its speed per core, measured alternately with the rollout
+  so that both see the same load) and on one thread per core.
 """
 
 from __future__ import annotations
@@ -69,9 +71,10 @@ def single_fps(episodes: int) -> tuple[float, int]:
     return frames / (time.perf_counter() - start), frames
 
 
-def batch_fps(n: int, seconds: float) -> float:
-    """The batch's frames per second (all environments) over ``seconds``."""
-    batch = halffield.BatchEnv(n)
+def batch_fps(n: int, seconds: float, threads: int | None = None) -> float:
+    """The batch's frames per second (all environments) over ``seconds``,
+    on ``threads`` threads of its own (rayon's global pool when ``None``)."""
+    batch = halffield.BatchEnv(n, threads=threads)
     rng = np.random.default_rng(1)
     _, infos = batch.reset(seed=1)
     frames = 0
@@ -103,23 +106,28 @@ def main() -> None:
     args = parser.parse_args()
     threads = int(os.environ.get("RAYON_NUM_THREADS") or os.cpu_count() or 1)
 
-    rust, single, batch = [], [], {n: [] for n in args.batch}
+    rust, single = [], []
+    per_core = {n: [] for n in args.batch}
+    all_cores = {n: [] for n in args.batch}
     for _ in range(args.repeat):
         rust.append(rollout_fps(args.env_server, args.episodes)[0])
         single.append(single_fps(args.single_episodes)[0])
         for n in args.batch:
-            batch[n].append(batch_fps(n, args.seconds))
+            per_core[n].append(batch_fps(n, args.seconds, threads=1))
+            all_cores[n].append(batch_fps(n, args.seconds))
     rust_fps, single_best = max(rust), max(single)
 
     def row(label: str, fps: float, per_core: float) -> None:
         print(f"{label:<44} {fps:>10,.0f} {per_core:>10,.0f} {per_core / rust_fps:>10.2f}")
 
-    print(f"{os.cpu_count()} cores, batch on {threads} threads; best of {args.repeat}")
+    print(f"{os.cpu_count()} cores, rayon's pool of {threads} threads; best of {args.repeat}")
     print(f"{'what':<44} {'frames/s':>10} {'per core':>10} {'vs rollout':>10}")
     row("env-server rollout (Rust, 1 thread)", rust_fps, rust_fps)
     row("ParallelEnv + BaselinePolicy (1 thread)", single_best, single_best)
-    for n, values in batch.items():
-        row(f"BatchEnv({n}) + numpy random policy", max(values), max(values) / threads)
+    for n in args.batch:
+        row(f"BatchEnv({n}, threads=1), numpy policy", max(per_core[n]), max(per_core[n]))
+        best = max(all_cores[n])
+        row(f"BatchEnv({n}), {threads} threads, numpy policy", best, best / threads)
     step_us, frame_us = 1e6 / single_best, 1e6 / rust_fps
     print(
         f"single env: {step_us:.1f} µs per step, of which the simulator's frame {frame_us:.1f} µs: "

@@ -12,8 +12,9 @@ from halffield import _core, _halffield
 
 class BatchEnv:
     """``num_envs`` environments of the same settings, stepped together in
-    one call that releases the GIL and spreads them over the cores (rayon's
-    threads; ``RAYON_NUM_THREADS`` sets how many).
+    one call that releases the GIL and spreads them over ``threads``
+    threads of their own, or by default over rayon's global pool (one
+    thread per core; ``RAYON_NUM_THREADS`` sets how many).
 
     It follows Gymnasium's vector conventions for a team: numpy arrays in
     and out, with an agents axis after the environments axis, and
@@ -42,6 +43,7 @@ class BatchEnv:
         frames_per_trial: int = 200,
         untouched_time: int = 100,
         pass_to_named_receiver: bool = False,
+        threads: int | None = None,
     ) -> None:
         self.settings = _core.make_settings(
             offense,
@@ -58,7 +60,13 @@ class BatchEnv:
         ):
             raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
         self.num_envs = int(num_envs)
-        self.simulator = _halffield.BatchSimulator(self.settings, self.num_envs)
+        if threads is not None and (
+            isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1
+        ):
+            raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
+        self.simulator = _halffield.BatchSimulator(
+            self.settings, self.num_envs, None if threads is None else int(threads)
+        )
         self.agents: list[str] = list(self.settings.agents)
         self.single_observation_space = _core.observation_box(self.settings)
         self.single_action_space = spaces.Discrete(self.settings.action_count)

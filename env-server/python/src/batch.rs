@@ -12,9 +12,10 @@ use crate::status;
 use env_server::Outcome;
 use numpy::{PyArray1, PyArray3, PyReadonlyArrayDyn};
 use proto::Action;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use rayon::prelude::*;
+use rayon::{ThreadPool, ThreadPoolBuilder};
 
 /// Observations (envs x agents x features) and action masks (envs x agents x actions).
 type BatchViews<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray3<i8>>);
@@ -32,28 +33,46 @@ type BatchStep<'py> = (
 );
 
 /// `n` simulated HFO tasks of the same settings: `BatchSimulator(settings,
-/// n)`, then `reset(seed)`; environment `i` draws from `seed + i`.
+/// n, threads)`, then `reset(seed)`; environment `i` draws from `seed + i`.
 #[pyclass(module = "halffield._halffield")]
 pub(crate) struct BatchSimulator {
     settings: TaskSettings,
     n: usize,
     games: Vec<Game>,
+    /// A pool of its own when the batch was given a thread count, else
+    /// rayon's global pool (one thread per core, or `RAYON_NUM_THREADS`).
+    pool: Option<ThreadPool>,
 }
 
 #[pymethods]
 impl BatchSimulator {
-    /// `n` environments of `settings`, none started.
+    /// `n` environments of `settings`, none started, stepped on `threads`
+    /// threads of their own (rayon's global pool without).
     #[new]
-    fn new(settings: PyRef<'_, TaskSettings>, n: usize) -> PyResult<Self> {
+    #[pyo3(signature = (settings, n, threads = None))]
+    fn new(settings: PyRef<'_, TaskSettings>, n: usize, threads: Option<usize>) -> PyResult<Self> {
         if n == 0 {
             return Err(PyValueError::new_err(
                 "a batch needs at least one environment, got n=0",
             ));
         }
+        let pool = match threads {
+            Some(0) => return Err(PyValueError::new_err("threads must be at least 1, got 0")),
+            Some(t) => Some(
+                ThreadPoolBuilder::new()
+                    .num_threads(t)
+                    .build()
+                    .map_err(|e| {
+                        PyRuntimeError::new_err(format!("cannot start {t} threads: {e}"))
+                    })?,
+            ),
+            None => None,
+        };
         Ok(BatchSimulator {
             settings: settings.clone(),
             n,
             games: Vec::new(),
+            pool,
         })
     }
 
@@ -72,13 +91,15 @@ impl BatchSimulator {
             .map_err(value_error)?;
         let mut out = Buffers::new(&self.settings, self.n);
         let slots = out.slots(&self.settings);
-        let games = &mut self.games;
+        let (games, pool) = (&mut self.games, &self.pool);
         py.detach(|| {
-            games.par_iter_mut().zip(slots).for_each(|(game, slot)| {
-                game.reset();
-                game.write_observations(slot.obs);
-                game.write_masks(slot.masks);
-            });
+            on(pool, || {
+                games.par_iter_mut().zip(slots).for_each(|(game, slot)| {
+                    game.reset();
+                    game.write_observations(slot.obs);
+                    game.write_masks(slot.masks);
+                });
+            })
         });
         let Buffers { obs, masks, .. } = out;
         Ok((
@@ -115,11 +136,13 @@ impl BatchSimulator {
             .collect::<PyResult<Vec<Vec<Action>>>>()?;
         let mut out = Buffers::new(&self.settings, self.n);
         let slots = out.slots(&self.settings);
-        let games = &mut self.games;
+        let (games, pool) = (&mut self.games, &self.pool);
         let ends: Vec<(Outcome, u32)> = py.detach(|| {
-            (games.par_iter_mut().zip(decoded).zip(slots))
-                .map(|((game, actions), slot)| advance(game, &actions, slot))
-                .collect()
+            on(pool, || {
+                (games.par_iter_mut().zip(decoded).zip(slots))
+                    .map(|((game, actions), slot)| advance(game, &actions, slot))
+                    .collect()
+            })
         });
         let Buffers { obs, masks, last } = out;
         Ok((
@@ -147,6 +170,14 @@ impl BatchSimulator {
             Per::Action => self.settings.action_count(),
         };
         (self.n, self.settings.config.offense, inner)
+    }
+}
+
+/// Runs `work` on `pool`, or on rayon's global pool.
+fn on<T: Send>(pool: &Option<ThreadPool>, work: impl FnOnce() -> T + Send) -> T {
+    match pool {
+        Some(pool) => pool.install(work),
+        None => work(),
     }
 }
 

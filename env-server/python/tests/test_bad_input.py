@@ -214,6 +214,8 @@ def test_bad_seeds_and_policies() -> None:
         halffield.HalfFieldOffenseEnv(teammates=3)
     with pytest.raises(ValueError, match="num_envs must be a positive integer, got 0"):
         halffield.BatchEnv(0)
+    with pytest.raises(ValueError, match="threads must be a positive integer or None, got 0"):
+        halffield.BatchEnv(2, threads=0)
     lone = halffield.parallel_env(offense=1)
     lone.reset(seed=1)
     policy = halffield.BaselinePolicy("pass", 1)

@@ -66,6 +66,22 @@ def test_environment_i_plays_as_a_single_environment_seeded_seed_plus_i() -> Non
     assert ended >= n
 
 
+def test_a_batch_on_its_own_threads_plays_the_same_episodes() -> None:
+    results = []
+    for threads in (None, 1, 3):
+        batch = halffield.BatchEnv(6, threads=threads)
+        observations, _ = batch.reset(seed=4)
+        steps = [observations]
+        for t in range(150):
+            actions = np.full((6, 3), t % 5, dtype=np.int64)
+            observations, rewards, _, _, infos = batch.step(actions)
+            steps += [observations, rewards, infos["status"], infos["final_obs"]]
+        results.append(steps)
+    for other in results[1:]:
+        for a, b in zip(results[0], other):
+            np.testing.assert_array_equal(a, b)
+
+
 def test_the_batch_releases_the_gil() -> None:
     """Another Python thread keeps running while one step of a large batch
     is in Rust: had the step held the GIL, the thread would stop for the
