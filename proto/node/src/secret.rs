@@ -87,6 +87,7 @@ impl Secret {
     pub fn generate() -> Result<(Self, tempfile::TempDir), SecretError> {
         let dir = tempfile::Builder::new()
             .prefix("adv-secret-")
+            .permissions(fs::Permissions::from_mode(0o700))
             .tempdir()
             .map_err(|e| {
                 let at = std::env::temp_dir();
