@@ -51,7 +51,12 @@ NEXT_KEYS = ("teammate", "same", "captured", "out_of_bounds", "goal", "out_of_ti
 RESULT_MAP = {"GOAL": "goal", "CAPTURED_BY_DEFENSE": "captured",
               "OUT_OF_BOUNDS": "out_of_bounds", "OUT_OF_TIME": "out_of_time"}
 # Action codes written by the agents (single letters keep the files small):
-# S = SHOOT, D = DRIBBLE, N = PASS(nearest teammate), F = PASS(farthest).
+# S = SHOOT, D = DRIBBLE, N = PASS(nearest teammate), F = PASS(farthest),
+# M = MOVE (a learned team's kicker may choose it).
+# The codes of our actions by their index (halffield.PAPER_ACTIONS):
+# move, shoot, dribble, pass-near, pass-far.
+TEAM_CODES = "MSDNF"
+ACTION_NAMES = {"M": "move", "S": "shoot", "D": "dribble", "N": "pass_near", "F": "pass_far"}
 AGENT_STATUS = {"Goal": "GOAL", "CapturedByDefense": "CAPTURED_BY_DEFENSE",
                 "OutOfBounds": "OUT_OF_BOUNDS", "OutOfTime": "OUT_OF_TIME"}
 
@@ -63,12 +68,18 @@ AGENT_STATUS = {"Goal": "GOAL", "CapturedByDefense": "CAPTURED_BY_DEFENSE",
 def agent_main(argv):
     p = argparse.ArgumentParser(prog="hfo_oracle.py agent")
     p.add_argument("--port", type=int, required=True)
-    p.add_argument("--policy", choices=POLICIES, required=True)
+    p.add_argument("--policy", choices=POLICIES + ("team",), required=True)
+    p.add_argument("--snapshot", help="with --policy team: this agent's snapshot file")
     p.add_argument("--seed", type=int, required=True)
     p.add_argument("--config-dir", required=True)
     p.add_argument("--out", required=True)
     a = p.parse_args(argv)
     import hfo  # HFO's own interface, from PYTHONPATH=<hfo-dir>
+
+    learner = None
+    if a.policy == "team":
+        import halffield  # our package, installed in this interpreter
+        learner = halffield.GreedyAgent(a.snapshot)
 
     rng = random.Random(a.seed)
     env = hfo.HFOEnvironment()
@@ -99,8 +110,22 @@ def agent_main(argv):
         out.sort()
         return out
 
+    def paper_state(s):
+        """The paper's 6 features as our simulator computes them (its
+        `features::paper_state`), from today's HFO high-level set: able to
+        kick (5); the distance to the goal centre (6: norm(r, 0, maxR) with
+        maxR = |(52.5, 68)|), renormalised as the authors' set does (0 to
+        62.548, clamped); the angle to it (7) and the goal opening (8), as
+        they are; the nearest then the farthest teammate's goal opening
+        (10, 11: HFO lists teammates nearest first)."""
+        max_r = math.hypot(half_len, 2 * half_wid)
+        dist = (s[6] + 1.0) * 0.5 * max_r
+        authors_max = math.hypot(half_len, half_wid)
+        return [s[5], 2.0 * min(dist, authors_max) / authors_max - 1.0, s[7], s[8],
+                s[10], s[11]]
+
     choices = {"random": "DDSSFN", "shoot": "S", "dribble": "D", "pass": "N",
-               "uniform": "SDNF"}[a.policy]
+               "uniform": "SDNF", "team": ""}[a.policy]
     out = open(a.out, "w", buffering=1 << 16)
     out.write("U %d\n" % env.getUnum())
     episode = 0
@@ -111,9 +136,14 @@ def agent_main(argv):
         while status == hfo.IN_GAME:
             s = env.getState()
             if s[5] > 0.5:
-                c = choices[rng.randrange(len(choices))]
+                if learner is not None:
+                    c = TEAM_CODES[learner.act(paper_state(s), True)]
+                else:
+                    c = choices[rng.randrange(len(choices))]
                 target = 0
-                if c == "S":
+                if c == "M":
+                    env.act(hfo.MOVE)
+                elif c == "S":
                     env.act(hfo.SHOOT)
                 elif c == "D":
                     env.act(hfo.DRIBBLE)
@@ -250,6 +280,8 @@ def start_batch(batch, args, procs):
         acmd = [args.python, os.path.abspath(__file__), "agent", "--port=%d" % port,
                 "--policy=%s" % args.policy, "--seed=%d" % (batch.seed * 7 + 1000 * i + 1),
                 "--config-dir=%s" % config_dir, "--out=%s" % batch.agent_files[i]]
+        if args.team:
+            acmd.append("--snapshot=%s" % args.team[i])
         with open(os.path.join(batch.dir, "agent%d.err" % i), "w") as err:
             batch.agents.append(procs.start(acmd, cwd=args.hfo_dir, env=env,
                                             stdout=subprocess.DEVNULL, stderr=err,
@@ -412,6 +444,8 @@ class Stats:
         self.shots = [[0, 0] for _ in SHOT_BINS]
         self.after = {"PASS": {k: 0 for k in NEXT_KEYS}, "DRIBBLE": {k: 0 for k in NEXT_KEYS}}
         self.possessions = []
+        # The kickers' choices, every decision with the ball.
+        self.actions = {name: 0 for name in ACTION_NAMES.values()}
         self.checks = {k: 0 for k in (
             "kicks", "kick_commands_not_kickable", "kicks_without_choice",
             "kick_count_mismatches", "shots_not_released",
@@ -460,6 +494,10 @@ class Stats:
             for (ep, step), code in decisions.items():
                 if ep >= len(hfo_eps):
                     continue
+                if ep > 0:  # trial 0 is the warm-up
+                    self.actions[ACTION_NAMES[code]] += 1
+                if code == "M":
+                    continue  # no kick to join
                 s, e, r = hfo_eps[ep]
                 choice[(unum, e - aeps[ep][0] + step)] = code
 
@@ -604,6 +642,8 @@ class Stats:
                 "after_dribble": dict(self.after["DRIBBLE"]),
                 "possessions_per_episode": mean(self.possessions),
             },
+            # Extra: the kickers' choices (every decision with the ball).
+            "actions": dict(self.actions),
             # Extras (not in the shared schema): standard deviations for the
             # confidence intervals of compare.py, and the log-join checks.
             "sd": {"frames": sd(self.frames), "frames_to_goal": sd(self.frames_goal),
@@ -648,7 +688,12 @@ def harness_main(argv):
                    help="built HFO tree (bin/HFO, bin/rcssserver, hfo/libhfo_c.so); default $HFO_DIR")
     p.add_argument("--python", default=sys.executable,
                    help="Python interpreter with numpy, for HFO's launcher and the agents")
-    p.add_argument("--policy", choices=POLICIES, required=True)
+    who = p.add_mutually_exclusive_group(required=True)
+    who.add_argument("--policy", choices=POLICIES)
+    who.add_argument("--team", nargs=3, metavar="SNAPSHOT",
+                     help="a learned team: our agents' snapshot files (coordinator run "
+                          "--save-agents), played greedily as our evaluations play; --python "
+                          "must have the halffield package")
     p.add_argument("--episodes", type=int, required=True)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--out", required=True, help="output JSON file")
@@ -663,6 +708,12 @@ def harness_main(argv):
     if not args.hfo_dir or not os.path.exists(os.path.join(args.hfo_dir, "bin", "HFO")):
         p.error("--hfo-dir (or $HFO_DIR) must point at a built HFO tree containing bin/HFO")
     args.hfo_dir = os.path.abspath(args.hfo_dir)
+    if args.team:
+        args.team = [os.path.abspath(f) for f in args.team]
+        missing = [f for f in args.team if not os.path.isfile(f)]
+        if missing:
+            p.error("--team: no such file: %s" % ", ".join(missing))
+        args.policy = "team"
     if args.episodes <= 0:
         p.error("--episodes must be positive")
     maybe_enter_netns(args)
@@ -713,6 +764,8 @@ def harness_main(argv):
                   file=sys.stderr, flush=True)
         parse_and_drop(prev, stats, args)
         res = stats.result(args.policy, args.seed)
+        if args.team:
+            res["team"] = args.team
         res["wall_seconds"] = round(time.time() - t0, 1)
         tmp_out = args.out + ".tmp"
         with open(tmp_out, "w") as f:

@@ -7,6 +7,7 @@ against HFO's goalkeeper.
   :class:`HalfFieldOffenseEnv`: one learner among baseline or scripted teammates.
 - :class:`BatchEnv`: many environments stepped in one call.
 - :class:`BaselinePolicy`: the simulator's baseline policies.
+- :class:`GreedyAgent`: a learner of ours frozen from its snapshot file.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from __future__ import annotations
 import gymnasium
 
 from halffield._core import DRIBBLE, MOVE, PASS, SHOOT, STATUS_NAMES
+from halffield._halffield import PAPER_ACTIONS, GreedyAgent
 from halffield.batch import BatchEnv
 from halffield.gym_env import HalfFieldOffenseEnv
 from halffield.parallel import HalfFieldOffenseParallelEnv, parallel_env
@@ -23,11 +25,13 @@ __all__ = [
     "DRIBBLE",
     "GYM_ID",
     "MOVE",
+    "PAPER_ACTIONS",
     "PASS",
     "SHOOT",
     "STATUS_NAMES",
     "BaselinePolicy",
     "BatchEnv",
+    "GreedyAgent",
     "HalfFieldOffenseEnv",
     "HalfFieldOffenseParallelEnv",
     "parallel_env",

@@ -1,5 +1,8 @@
 """Type stubs of the native module (env-server/python/src/)."""
 
+import os
+from collections.abc import Sequence
+
 import numpy as np
 import numpy.typing as npt
 
@@ -71,3 +74,11 @@ class BatchSimulator:
         npt.NDArray[np.uint32],
         npt.NDArray[np.float32],
     ]: ...
+
+PAPER_ACTIONS: list[str]
+
+class GreedyAgent:
+    def __init__(self, path: str | os.PathLike[str]) -> None: ...
+    def act(self, state: Sequence[float], can_kick: bool) -> int: ...
+    @property
+    def digest(self) -> int: ...

@@ -8,6 +8,7 @@ mod arrays;
 mod batch;
 mod errors;
 mod game;
+mod learned;
 mod observation;
 mod policy;
 mod render;
@@ -24,6 +25,8 @@ fn _halffield(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<single::Simulator>()?;
     m.add_class::<batch::BatchSimulator>()?;
     m.add_class::<policy::SeededPolicy>()?;
+    m.add_class::<learned::GreedyAgent>()?;
+    m.add("PAPER_ACTIONS", learned::paper_action_names())?;
     m.add("STATUS_NAMES", status::NAMES.to_vec())?;
     Ok(())
 }
