@@ -10,10 +10,11 @@ use crate::config_error::AgentConfigError;
 use crate::counters::Counters;
 use crate::exchange::{AdviceExchange, Transition};
 use crate::fidelity::{AdvisorTies, SharedBootstrap, TorreyIntent};
-use crate::persist::{PersistError, Snapshot};
-use crate::policy::{AgentRng, RANDOM_DRAW, epsilon_greedy, greedy_first, greedy_random, majority};
-use crate::qtable::{ACTIONS, EntryId, QTable};
-use crate::sarsa::Sarsa;
+use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
+use crate::persist::{Entry, PersistError, Snapshot};
+use crate::policy::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random, majority};
+use crate::sarsa::TabularSarsa;
+use crate::states::StateIndex;
 use crate::strategy::AskContext;
 use crate::strategy::Strategy;
 use crate::tiles::{Tiling, TilingParams};
@@ -33,9 +34,21 @@ pub struct Observation {
 /// The previous step, closed by the next frame's reward and state.
 #[derive(Clone, Copy, Debug)]
 struct OpenStep {
-    entry: EntryId,
+    index: usize,
     action: Action,
     state: State,
+}
+
+impl OpenStep {
+    fn step(&self) -> Step<'_> {
+        Step {
+            at: Seen {
+                state: &self.state,
+                index: Some(self.index),
+            },
+            action: self.action,
+        }
+    }
 }
 
 /// A frame waiting for advice: everything [`Agent::act_complete`] needs to
@@ -43,7 +56,7 @@ struct OpenStep {
 #[derive(Clone, Copy, Debug)]
 struct InFlight {
     key: u64,
-    entry: EntryId,
+    index: usize,
     state: State,
     reward: f64,
     intended: Option<Action>,
@@ -67,7 +80,8 @@ pub enum Decision {
     },
 }
 
-/// A learning agent (or the random baseline) with its advising strategy.
+/// A learning agent (or the random baseline) with its advising strategy:
+/// the advising framework around a [`Learner`] (SARSA(lambda) by default).
 ///
 /// Drive it per episode: [`begin_episode`](Self::begin_episode), one
 /// [`act`](Self::act) per simulator frame, [`end_episode`](Self::end_episode)
@@ -75,15 +89,14 @@ pub enum Decision {
 /// A transport that cannot call the advisors in place splits each frame in
 /// [`act_begin`](Self::act_begin) and [`act_complete`](Self::act_complete)
 /// and ships shared episodes from [`take_shared`](Self::take_shared).
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Agent {
     id: usize,
     team_size: usize,
     config: AgentConfig,
     tiling: Tiling,
-    table: QTable,
-    sarsa: Sarsa,
-    replay: Sarsa,
+    states: StateIndex,
+    learner: Box<dyn Learner>,
     rng: AgentRng,
     mode: Mode,
     pending: Option<OpenStep>,
@@ -98,12 +111,27 @@ pub struct Agent {
 }
 
 impl Agent {
-    /// Agent `id` of a team of `team_size`, its generator seeded with `seed`.
+    /// Agent `id` of a team of `team_size` learning with SARSA(lambda), its
+    /// generator seeded with `seed`.
     pub fn new(
         id: usize,
         team_size: usize,
         config: AgentConfig,
         seed: u64,
+    ) -> Result<Self, AgentConfigError> {
+        let learner = Box::new(TabularSarsa::new(&config));
+        Self::with_learner(id, team_size, config, seed, learner)
+    }
+
+    /// Agent `id` of a team of `team_size` learning with `learner`; the
+    /// learner's own settings in `config` (alpha, gamma, lambda, epsilon,
+    /// trace threshold) are then the learner's affair.
+    pub fn with_learner(
+        id: usize,
+        team_size: usize,
+        config: AgentConfig,
+        seed: u64,
+        learner: Box<dyn Learner>,
     ) -> Result<Self, AgentConfigError> {
         let tiling = Tiling::new(&config)?;
         if id >= team_size {
@@ -116,11 +144,10 @@ impl Agent {
         Ok(Self {
             id,
             team_size,
-            sarsa: Sarsa::new(&config),
-            replay: Sarsa::new(&config),
             config,
             tiling,
-            table: QTable::new(),
+            states: StateIndex::default(),
+            learner,
             rng: AgentRng::seed_from_u64(seed),
             mode: Mode::Training,
             pending: None,
@@ -165,9 +192,24 @@ impl Agent {
         self.training_episodes
     }
 
-    /// The learned Q-table.
-    pub fn table(&self) -> &QTable {
-        &self.table
+    /// What it holds of `state`: its learner's values and its visit count
+    /// (`None` for a state training never met).
+    pub fn entry(&mut self, state: &State) -> Option<Entry> {
+        let index = self.states.get(self.tiling.key(state))?;
+        let values = self.learner.values(Seen {
+            state,
+            index: Some(index),
+        });
+        Some(Entry {
+            q: values.q,
+            tried: values.learned,
+            visits: self.states.visits(index),
+        })
+    }
+
+    /// Number of states training met.
+    pub fn states_met(&self) -> usize {
+        self.states.len()
     }
 
     /// The state key of `state` under this agent's tiling.
@@ -193,7 +235,7 @@ impl Agent {
     fn reset_episode(&mut self) {
         self.pending = None;
         self.in_flight = None;
-        self.sarsa.clear();
+        self.learner.end_episode();
         self.advised.clear();
     }
 
@@ -261,29 +303,29 @@ impl Agent {
             if !obs.can_kick {
                 return Decision::Act(Action::Move);
             }
-            return Decision::Act(
-                self.table
-                    .get(key)
-                    .map_or(Action::Shoot, |e| greedy_first(&e.q)),
-            );
+            let at = Seen {
+                state: &obs.state,
+                index: self.states.get(key),
+            };
+            return Decision::Act(greedy_first(&self.learner.values(at).q));
         }
-        let entry = self.table.id_or_insert(key);
+        let index = self.states.index_or_insert(key);
         if !obs.can_kick {
-            self.step(entry, Action::Move, obs.state, reward);
+            self.step(index, Action::Move, obs.state, reward);
             return Decision::Act(Action::Move);
         }
-        if self.asks(key, entry) {
+        if self.asks(key, index) {
             self.fill_reach(positions, reachable);
             if !self.reach.is_empty() {
                 let intended = self
                     .config
                     .strategy
                     .mistake_correcting()
-                    .then(|| self.intent(entry));
+                    .then(|| self.intent(index, &obs.state));
                 self.counters.advice_requests += 1;
                 self.in_flight = Some(InFlight {
                     key,
-                    entry,
+                    index,
                     state: obs.state,
                     reward,
                     intended,
@@ -295,8 +337,8 @@ impl Agent {
                 };
             }
         }
-        let action = self.explore_in(entry);
-        self.step(entry, action, obs.state, reward);
+        let action = self.choose(index, &obs.state);
+        self.step(index, action, obs.state, reward);
         Decision::Act(action)
     }
 
@@ -317,24 +359,25 @@ impl Agent {
                 self.advised.push(f.key);
                 advice
             }
-            None => f.intended.unwrap_or_else(|| self.explore_in(f.entry)),
+            None => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
         };
-        self.step(f.entry, action, f.state, f.reward);
+        self.step(f.index, action, f.state, f.reward);
         action
     }
 
     /// Completes a training frame: learns the previous step towards this
     /// one, counts the visit and keeps this step open.
-    fn step(&mut self, entry: EntryId, action: Action, state: State, reward: f64) {
-        if let Some(prev) = self.pending.take() {
-            self.learn(prev, reward, Some((entry, action, state)));
-        }
-        self.table.entry_mut(entry).visits += 1;
-        self.pending = Some(OpenStep {
-            entry,
+    fn step(&mut self, index: usize, action: Action, state: State, reward: f64) {
+        let this = OpenStep {
+            index,
             action,
             state,
-        });
+        };
+        if let Some(prev) = self.pending.take() {
+            self.learn(prev, reward, Some(this));
+        }
+        self.states.visit(index);
+        self.pending = Some(this);
     }
 
     /// The terminal frame: a training episode learns its last step with
@@ -396,13 +439,20 @@ impl Agent {
             return None;
         }
         let fidelity = self.config.fidelity;
-        let entry = self
-            .table
-            .get(self.tiling.key(state))
-            .copied()
-            .unwrap_or_default();
+        let index = self.states.get(self.tiling.key(state));
+        let (visits, values) = match index {
+            Some(i) => {
+                let at = Seen {
+                    state,
+                    index: Some(i),
+                };
+                (self.states.visits(i), self.learner.values(at))
+            }
+            None => (0, ActionValues::default()),
+        };
         let confident = self.config.strategy.confident(
-            &entry,
+            visits,
+            &values,
             &self.counters,
             fidelity.torrey_unknown_state,
             &mut self.rng,
@@ -411,8 +461,8 @@ impl Agent {
             return None;
         }
         let answer = match fidelity.advisor_ties {
-            AdvisorTies::First => greedy_first(&entry.q),
-            AdvisorTies::Random => greedy_random(&entry.q, &mut self.rng),
+            AdvisorTies::First => greedy_first(&values.q),
+            AdvisorTies::Random => greedy_random(&values.q, &mut self.rng),
         };
         if intended == Some(answer) {
             return None;
@@ -429,29 +479,50 @@ impl Agent {
             return;
         }
         self.counters.shared_received += transitions.len() as u64;
-        self.replay.clear();
         let bootstrap = self.config.fidelity.shared_bootstrap;
-        for t in transitions {
-            let from = self.table.id_or_insert(self.tiling.key(&t.state));
-            let next = t.next.map(|(s, a)| {
-                let a = match bootstrap {
-                    SharedBootstrap::SharerAction => a,
-                    SharedBootstrap::Move => Action::Move,
+        let indices: Vec<(usize, Option<usize>)> = transitions
+            .iter()
+            .map(|t| {
+                let from = self.states.index_or_insert(self.tiling.key(&t.state));
+                let next = t
+                    .next
+                    .map(|(s, _)| self.states.index_or_insert(self.tiling.key(&s)));
+                (from, next)
+            })
+            .collect();
+        let episode: Vec<Experience<'_>> = transitions
+            .iter()
+            .zip(&indices)
+            .map(|(t, &(from, next))| {
+                let from = Step {
+                    at: Seen {
+                        state: &t.state,
+                        index: Some(from),
+                    },
+                    action: t.action,
                 };
-                (self.table.id_or_insert(self.tiling.key(&s)), a)
-            });
-            self.replay
-                .update(&mut self.table, (from, t.action), t.reward, next);
-        }
-        self.replay.clear();
+                let next = t.next.as_ref().zip(next).map(|((s, a), index)| Step {
+                    at: Seen {
+                        state: s,
+                        index: Some(index),
+                    },
+                    action: match bootstrap {
+                        SharedBootstrap::SharerAction => *a,
+                        SharedBootstrap::Move => Action::Move,
+                    },
+                });
+                (from, t.reward, next)
+            })
+            .collect();
+        self.learner.replay(&episode);
     }
 
     /// Whether a training step with the ball asks for advice (Algorithm 1,
     /// or Torrey's student at every fresh state).
-    fn asks(&mut self, key: u64, entry: EntryId) -> bool {
+    fn asks(&mut self, key: u64, index: usize) -> bool {
         let at = AskContext {
             fresh: !self.advised.contains(&key),
-            visits: self.table.entry(entry).visits,
+            visits: self.states.visits(index),
             training_episodes: self.training_episodes,
             counters: &self.counters,
         };
@@ -467,26 +538,29 @@ impl Agent {
         self.reach.retain(|&j| reachable(j));
     }
 
-    /// The intended action a Mistake Correcting advisee sends along:
-    /// epsilon-greedy, or greedy for a Torrey student whose fidelity says so.
-    fn intent(&mut self, entry: EntryId) -> Action {
+    /// The intended action a Mistake Correcting advisee sends along: its
+    /// learner's choice, or greedy for a Torrey student whose fidelity says so.
+    fn intent(&mut self, index: usize, state: &State) -> Action {
         let greedy = matches!(self.config.strategy, Strategy::Torrey(_))
             && self.config.fidelity.torrey_intent == TorreyIntent::Greedy;
         if greedy {
-            greedy_random(&self.table.entry(entry).q, &mut self.rng)
+            let at = Seen {
+                state,
+                index: Some(index),
+            };
+            greedy_random(&self.learner.values(at).q, &mut self.rng)
         } else {
-            self.explore_in(entry)
+            self.choose(index, state)
         }
     }
 
-    /// Epsilon-greedy over the Q values of a table entry.
-    fn explore_in(&mut self, entry: EntryId) -> Action {
-        let q = self.table.entry(entry).q;
-        self.explore(&q)
-    }
-
-    fn explore(&mut self, q: &[f64; ACTIONS]) -> Action {
-        epsilon_greedy(q, self.config.epsilon, &mut self.rng)
+    /// Its learner's own choice in a training state with the ball.
+    fn choose(&mut self, index: usize, state: &State) -> Action {
+        let at = Seen {
+            state,
+            index: Some(index),
+        };
+        self.learner.choose(at, &mut self.rng)
     }
 
     fn random_action(&mut self, can_kick: bool) -> Action {
@@ -498,26 +572,39 @@ impl Agent {
     }
 
     /// Learns one step and records it for EpisodeSharing while its budget lasts.
-    fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<(EntryId, Action, State)>) {
-        let target = next.map(|(entry, action, _)| (entry, action));
-        self.sarsa
-            .update(&mut self.table, (prev.entry, prev.action), reward, target);
+    fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<OpenStep>) {
+        self.learner
+            .learn((prev.step(), reward, next.as_ref().map(OpenStep::step)));
         if self.config.strategy.sharing_allowance(&self.counters) > 0 {
             self.episode.push(Transition {
                 state: prev.state,
                 action: prev.action,
                 reward,
-                next: next.map(|(_, action, state)| (state, action)),
+                next: next.map(|n| (n.state, n.action)),
             });
         }
     }
 
-    /// The learned state: Q-table with visit counts, counters and finished
-    /// training episodes.
+    /// The learned state: every state met with its visit count and its
+    /// learner's values (all unlearned for a learner that keeps its values
+    /// itself), counters and finished training episodes.
     pub fn snapshot(&self) -> Snapshot {
+        let values = self.learner.table().unwrap_or_default();
+        let mut entries: Vec<(u64, Entry)> = (0..self.states.len())
+            .map(|i| {
+                let v = values.get(i).copied().unwrap_or_default();
+                let entry = Entry {
+                    q: v.q,
+                    tried: v.learned,
+                    visits: self.states.visits(i),
+                };
+                (self.states.key(i), entry)
+            })
+            .collect();
+        entries.sort_unstable_by_key(|&(key, _)| key);
         Snapshot {
             tiling: self.tiling.params(),
-            entries: self.table.sorted_entries(),
+            entries,
             counters: self.counters,
             training_episodes: self.training_episodes,
         }
@@ -534,8 +621,19 @@ impl Agent {
             });
         }
         snapshot.check()?;
-        self.table = QTable::from_entries(snapshot.entries)
-            .map_err(|e| PersistError::Invalid(e.to_string()))?;
+        let rows = snapshot.entries.iter().map(|(key, e)| (*key, e.visits));
+        let states =
+            StateIndex::from_rows(rows).map_err(|e| PersistError::Invalid(e.to_string()))?;
+        let values = (snapshot.entries.iter())
+            .map(|(_, e)| ActionValues {
+                q: e.q,
+                learned: e.tried,
+            })
+            .collect();
+        self.learner
+            .restore(values)
+            .map_err(PersistError::Invalid)?;
+        self.states = states;
         self.counters = snapshot.counters;
         self.training_episodes = snapshot.training_episodes;
         self.begin_episode(self.mode);

@@ -45,10 +45,11 @@ mod config_error;
 mod counters;
 mod exchange;
 mod fidelity;
+mod learner;
 mod persist;
 mod policy;
-mod qtable;
 mod sarsa;
+mod states;
 mod strategy;
 mod team;
 mod tiles;
@@ -62,9 +63,11 @@ pub use exchange::{AdviceExchange, Isolated, Transition};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
-pub use persist::{FORMAT_VERSION, PersistError, Snapshot, snapshot_file};
+pub use learner::{ActionValues, Experience, Learner, Seen, Step};
+pub use persist::{Entry, FORMAT_VERSION, PersistError, Snapshot, snapshot_file};
+pub use policy::{ACTIONS, AgentRng};
 pub use proto::Mode;
-pub use qtable::{Entry, QTable};
+pub use sarsa::TabularSarsa;
 pub use strategy::{AdHoc, Confidence, Strategy, StrategyName, Torrey, UnknownStrategy};
 pub use team::{Team, TeamError};
 pub use tiles::TilingParams;

@@ -10,7 +10,7 @@ use fnv::FnvHasher;
 use serde::{Deserialize, Serialize};
 
 use crate::counters::Counters;
-use crate::qtable::{ACTIONS, Entry};
+use crate::policy::ACTIONS;
 use crate::tiles::TilingParams;
 
 const MAGIC: [u8; 8] = *b"ADVQTAB\0";
@@ -60,6 +60,19 @@ pub enum PersistError {
         /// Tiling of the agent.
         current: TilingParams,
     },
+}
+
+/// What a snapshot holds of one state: the learner's values and the
+/// framework's visit count.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Entry {
+    /// Q(s, a), indexed by [`proto::Action::index`]; 0 until updated.
+    pub q: [f64; ACTIONS],
+    /// Bit `a.index()` is set once Q(s, a) has been updated (the authors'
+    /// "(s, a) is in the Q-table").
+    pub tried: u8,
+    /// n(s): training steps taken in this state.
+    pub visits: u64,
 }
 
 /// An agent's learned state (see [`crate::Agent::snapshot`]).

@@ -6,7 +6,9 @@ use rand::Rng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 
 use crate::fidelity::VoteTies;
-use crate::qtable::ACTIONS;
+
+/// Number of actions, indexed by [`Action::index`].
+pub const ACTIONS: usize = Action::ALL.len();
 
 /// Every agent's own random generator.
 pub type AgentRng = Xoshiro256PlusPlus;

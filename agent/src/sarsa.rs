@@ -1,14 +1,17 @@
-//! SARSA(lambda) with accumulating eligibility traces (docs/algorithms.md 1).
+//! SARSA(lambda) with accumulating eligibility traces over the tile-coded
+//! state (docs/algorithms.md 1): the paper's learner, one implementation of
+//! [`Learner`].
 
 use proto::Action;
 
 use crate::config::AgentConfig;
-use crate::qtable::{EntryId, QTable};
+use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
+use crate::policy::{AgentRng, epsilon_greedy};
 
 /// One traced pair and its eligibility.
 #[derive(Clone, Copy, Debug)]
 struct EligibilityTrace {
-    entry: EntryId,
+    index: usize,
     action: Action,
     e: f64,
 }
@@ -18,7 +21,7 @@ struct EligibilityTrace {
 /// The trace is a small reused `Vec`, pruned below the threshold, so an
 /// update allocates nothing once the `Vec` has grown.
 #[derive(Clone, Debug)]
-pub struct Sarsa {
+struct Sarsa {
     alpha: f64,
     gamma: f64,
     decay: f64,
@@ -28,7 +31,7 @@ pub struct Sarsa {
 
 impl Sarsa {
     /// A learner with the configuration's alpha, gamma, lambda and trace threshold.
-    pub fn new(config: &AgentConfig) -> Self {
+    fn new(config: &AgentConfig) -> Self {
         Self {
             alpha: config.alpha,
             gamma: config.gamma,
@@ -38,39 +41,40 @@ impl Sarsa {
         }
     }
 
-    /// One step for the transition `(s, a) -> r -> (s', a')`; `next = None`
-    /// marks a terminal step, whose target is `r` alone.
+    /// One step for the transition `(s, a) -> r -> (s', a')` over `table`
+    /// (one entry per state index); `next = None` marks a terminal step,
+    /// whose target is `r` alone.
     ///
     /// `delta = r + gamma Q(s', a') - Q(s, a)`, `e(s, a) += 1`, then for every
     /// traced pair `Q += alpha delta e` and `e *= gamma lambda`.
-    pub fn update(
+    fn update(
         &mut self,
-        table: &mut QTable,
-        from: (EntryId, Action),
+        table: &mut [ActionValues],
+        from: (usize, Action),
         reward: f64,
-        next: Option<(EntryId, Action)>,
+        next: Option<(usize, Action)>,
     ) {
-        let (entry, action) = from;
-        let bootstrap = next.map_or(0.0, |(id, a)| self.gamma * table.entry(id).q[a.index()]);
-        let delta = reward + bootstrap - table.entry(entry).q[action.index()];
+        let (index, action) = from;
+        let bootstrap = next.map_or(0.0, |(i, a)| self.gamma * table[i].q[a.index()]);
+        let delta = reward + bootstrap - table[index].q[action.index()];
         match self
             .trace
             .iter_mut()
-            .find(|t| t.entry == entry && t.action == action)
+            .find(|t| t.index == index && t.action == action)
         {
             Some(t) => t.e += 1.0,
             None => {
                 self.trace.push(EligibilityTrace {
-                    entry,
+                    index,
                     action,
                     e: 1.0,
                 });
-                table.entry_mut(entry).tried |= 1 << action.index();
+                table[index].learned |= 1 << action.index();
             }
         }
         let step = self.alpha * delta;
         for t in &mut self.trace {
-            table.entry_mut(t.entry).q[t.action.index()] += step * t.e;
+            table[t.index].q[t.action.index()] += step * t.e;
             t.e *= self.decay;
         }
         let threshold = self.threshold;
@@ -78,13 +82,89 @@ impl Sarsa {
     }
 
     /// Forgets the trace (episode end).
-    pub fn clear(&mut self) {
+    fn clear(&mut self) {
         self.trace.clear();
     }
 
     #[cfg(test)]
     fn trace_len(&self) -> usize {
         self.trace.len()
+    }
+}
+
+/// The paper's learner: a Q-table over the framework's state index,
+/// epsilon-greedy choices, SARSA(lambda) on its own steps and, with a
+/// separate trace, on the goal episodes teammates share.
+#[derive(Clone, Debug)]
+pub struct TabularSarsa {
+    table: Vec<ActionValues>,
+    epsilon: f64,
+    own: Sarsa,
+    replay: Sarsa,
+}
+
+impl TabularSarsa {
+    /// The learner of `config` (alpha, gamma, lambda, epsilon, trace threshold).
+    pub fn new(config: &AgentConfig) -> Self {
+        Self {
+            table: Vec::new(),
+            epsilon: config.epsilon,
+            own: Sarsa::new(config),
+            replay: Sarsa::new(config),
+        }
+    }
+
+    /// The table's index of a step, grown to hold it.
+    fn slot(&mut self, step: Step<'_>) -> (usize, Action) {
+        let index = step.at.index.expect("learning needs indexed states");
+        if index >= self.table.len() {
+            self.table.resize(index + 1, ActionValues::default());
+        }
+        (index, step.action)
+    }
+}
+
+impl Learner for TabularSarsa {
+    fn values(&mut self, at: Seen<'_>) -> ActionValues {
+        (at.index)
+            .and_then(|i| self.table.get(i))
+            .copied()
+            .unwrap_or_default()
+    }
+
+    fn choose(&mut self, at: Seen<'_>, rng: &mut AgentRng) -> Action {
+        epsilon_greedy(&self.values(at).q, self.epsilon, rng)
+    }
+
+    fn learn(&mut self, (from, reward, next): Experience<'_>) {
+        let from = self.slot(from);
+        let next = next.map(|n| self.slot(n));
+        self.own.update(&mut self.table, from, reward, next);
+    }
+
+    fn end_episode(&mut self) {
+        self.own.clear();
+    }
+
+    fn replay(&mut self, episode: &[Experience<'_>]) {
+        self.replay.clear();
+        for &(from, reward, next) in episode {
+            let from = self.slot(from);
+            let next = next.map(|n| self.slot(n));
+            self.replay.update(&mut self.table, from, reward, next);
+        }
+        self.replay.clear();
+    }
+
+    fn table(&self) -> Option<Vec<ActionValues>> {
+        Some(self.table.clone())
+    }
+
+    fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String> {
+        self.table = values;
+        self.own.clear();
+        self.replay.clear();
+        Ok(())
     }
 }
 
@@ -100,17 +180,13 @@ mod tests {
     #[test]
     fn three_steps_ending_terminal() {
         // alpha 0.1, gamma 0.9, lambda 0.9: traces decay by 0.81 per step.
-        let mut table = QTable::new();
-        let (s0, s1, s2) = (
-            table.id_or_insert(1),
-            table.id_or_insert(2),
-            table.id_or_insert(3),
-        );
-        table.entry_mut(s0).q[Shoot.index()] = 0.5;
-        table.entry_mut(s1).q[Move.index()] = 0.2;
-        table.entry_mut(s2).q[Dribble.index()] = -0.4;
+        let mut table = vec![ActionValues::default(); 3];
+        let (s0, s1, s2) = (0, 1, 2);
+        table[s0].q[Shoot.index()] = 0.5;
+        table[s1].q[Move.index()] = 0.2;
+        table[s2].q[Dribble.index()] = -0.4;
         let mut sarsa = Sarsa::new(&AgentConfig::default());
-        let q = |t: &QTable, id, a: Action| t.entry(id).q[a.index()];
+        let q = |t: &[ActionValues], i: usize, a: Action| t[i].q[a.index()];
 
         // Step 1: delta = 0 + 0.9 * 0.2 - 0.5 = -0.32; e(s0,S) = 1;
         // Q(s0,S) = 0.5 + 0.1 * -0.32 = 0.468; then e(s0,S) = 0.81.
@@ -137,24 +213,24 @@ mod tests {
         assert_eq!(sarsa.trace_len(), 0);
 
         // Only updated pairs count as tried.
-        assert!(table.entry(s0).is_tried(Shoot) && !table.entry(s0).is_tried(Dribble));
+        assert!(table[s0].is_learned(Shoot) && !table[s0].is_learned(Dribble));
     }
 
     #[test]
     fn traces_accumulate_and_are_pruned() {
-        let mut table = QTable::new();
-        let s = table.id_or_insert(1);
+        let mut table = vec![ActionValues::default(); 2];
+        let s = 0;
         let mut sarsa = Sarsa::new(&AgentConfig::default());
         // Self-loop with r = 1, Q = 0: delta = 1, e = 1, Q = 0.1, e -> 0.81.
         sarsa.update(&mut table, (s, Dribble), 1.0, Some((s, Dribble)));
         // delta = 1 + 0.9 * 0.1 - 0.1 = 0.99; e = 0.81 + 1 = 1.81;
         // Q = 0.1 + 0.1 * 0.99 * 1.81 = 0.1 + 0.17919 = 0.27919.
         sarsa.update(&mut table, (s, Dribble), 1.0, Some((s, Dribble)));
-        assert!(close(table.entry(s).q[Dribble.index()], 0.27919));
+        assert!(close(table[s].q[Dribble.index()], 0.27919));
         assert_eq!(sarsa.trace_len(), 1);
         // After k updates of another pair, e = 1.81 * 0.81^(k + 1):
         // 1.12e-4 at k = 45 (kept), 9.05e-5 at k = 46 (dropped).
-        let other = table.id_or_insert(2);
+        let other = 1;
         for _ in 0..45 {
             sarsa.update(&mut table, (other, Shoot), 0.0, Some((other, Shoot)));
         }

@@ -41,7 +41,7 @@ pub enum TeamError {
 ///
 /// In a frame, agents act in id order; an advisee asks its advisors in the
 /// order of its reachable set, each advisor answering from its current state.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Team {
     agents: Vec<Agent>,
     actions: Vec<Action>,

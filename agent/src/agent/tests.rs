@@ -2,7 +2,8 @@ use super::*;
 use crate::advice::Reachable;
 use crate::exchange::Isolated;
 use crate::fidelity::{Fidelity, Profile};
-use crate::qtable::Entry;
+use crate::persist::Entry;
+use crate::policy::ACTIONS;
 use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
@@ -415,19 +416,15 @@ fn received_episode_is_replayed_with_a_fresh_trace() {
     ]);
     // t0: delta = 0 + 0.9 * 0 - 0 = 0, e(s0,S) -> 0.81.
     // t1: delta = 1 - 0 = 1: Q(s1,M) = 0.1 * 1 * 1 = 0.1, Q(s0,S) = 0.1 * 1 * 0.81 = 0.081.
-    let q = |a: &Agent, s: &State, x: Action| a.table().get(a.key(s)).unwrap().q[x.index()];
-    assert!((q(&a, &s1, Move) - 0.1).abs() < 1e-12);
-    assert!((q(&a, &s0, Shoot) - 0.081).abs() < 1e-12);
-    assert_eq!(
-        a.table().get(a.key(&s0)).unwrap().visits,
-        0,
-        "replay is not a visit"
-    );
+    let q = |a: &mut Agent, s: &State, x: Action| a.entry(s).unwrap().q[x.index()];
+    assert!((q(&mut a, &s1, Move) - 0.1).abs() < 1e-12);
+    assert!((q(&mut a, &s0, Shoot) - 0.081).abs() < 1e-12);
+    assert_eq!(a.entry(&s0).unwrap().visits, 0, "replay is not a visit");
     assert_eq!(a.counters().shared_received, 2);
     // The own trace only holds the own step: a terminal -1 moves only Q(s4, Move).
     a.end_episode(-1.0);
-    assert!((q(&a, &move_state(4), Move) + 0.1).abs() < 1e-12);
-    assert!((q(&a, &s0, Shoot) - 0.081).abs() < 1e-12);
+    assert!((q(&mut a, &move_state(4), Move) + 0.1).abs() < 1e-12);
+    assert!((q(&mut a, &s0, Shoot) - 0.081).abs() < 1e-12);
 }
 
 #[test]
@@ -438,8 +435,8 @@ fn learns_move_steps_and_counts_visits() {
     assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
     a.end_episode(-1.0);
     // Terminal delta = -1: Q(s1,M) = -0.1, Q(s0,M) = -0.1 * 0.81 = -0.081.
-    let e0 = *a.table().get(a.key(&move_state(0))).unwrap();
-    let e1 = *a.table().get(a.key(&move_state(1))).unwrap();
+    let e0 = a.entry(&move_state(0)).unwrap();
+    let e1 = a.entry(&move_state(1)).unwrap();
     assert!((e0.q[Move.index()] + 0.081).abs() < 1e-12);
     assert!((e1.q[Move.index()] + 0.1).abs() < 1e-12);
     assert_eq!((e0.visits, e1.visits), (1, 1));
@@ -479,7 +476,7 @@ fn random_baseline_never_learns_nor_advises() {
         a.end_episode(1.0);
     }
     assert_eq!(seen, [false, true, true, true, true]);
-    assert!(a.table().is_empty());
+    assert!(a.states_met() == 0);
     assert_eq!(a.advise(&kick_state(0), None), None);
 }
 
@@ -539,14 +536,14 @@ fn evaluation_changes_no_learned_state() {
         let mut rng = AgentRng::seed_from_u64(1);
         play(&mut t, &mut rng, 40, Mode::Training);
         let before = digests(&t);
-        let sizes: Vec<usize> = t.agents().iter().map(|a| a.table().len()).collect();
+        let sizes: Vec<usize> = t.agents().iter().map(|a| a.states_met()).collect();
         // New states included: they must not even get an entry.
         play(&mut t, &mut rng, 20, Mode::Evaluation);
         assert_eq!(digests(&t), before, "{strategy:?}");
         assert_eq!(
             t.agents()
                 .iter()
-                .map(|a| a.table().len())
+                .map(|a| a.states_met())
                 .collect::<Vec<_>>(),
             sizes
         );
@@ -640,10 +637,7 @@ fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
     let mut fresh = agent(2, 3, config(StrategyName::AdHocTd));
     fresh.restore(Snapshot::decode(&bytes).unwrap()).unwrap();
     assert_eq!(fresh.digest(), trained.digest());
-    assert_eq!(
-        fresh.table().sorted_entries(),
-        trained.table().sorted_entries()
-    );
+    assert_eq!(fresh.snapshot().entries, trained.snapshot().entries);
     let five = AgentConfig {
         tiles_per_feature: 5,
         tile_step: 0.4,
@@ -1024,7 +1018,7 @@ fn an_authors_episode_sharing_receiver_bootstraps_on_move() {
             reward: 0.0,
             next: Some((s1, Dribble)),
         }]);
-        a.table().get(a.key(&s0)).unwrap().q[Shoot.index()]
+        a.entry(&s0).unwrap().q[Shoot.index()]
     };
     let sharing = Strategy::from(StrategyName::EpisodeSharing);
     // delta = 0 + 0.9 * Q(s1, next) - 0, times alpha 0.1 and trace 1.

@@ -7,8 +7,8 @@ use super::settings::{AdHoc, Confidence, Strategy, Torrey};
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::counters::Counters;
 use crate::fidelity::TorreyUnknownState;
+use crate::learner::ActionValues;
 use crate::policy::{AgentRng, chance};
-use crate::qtable::Entry;
 
 /// What an advisee knows when it decides whether to ask about a state.
 #[derive(Clone, Copy, Debug)]
@@ -66,14 +66,16 @@ impl Strategy {
         }
     }
 
-    /// Advisor side: whether it is confident enough about a state (`entry`,
-    /// all zero when it never saw the state) to answer (Algorithm 2, or
-    /// Torrey's importance; `unknown` says what Torrey's teacher does where
-    /// it has no kick entry). Draws only for an ad hoc advisor with budget
-    /// left and a visited state.
+    /// Advisor side: whether it is confident enough about a state (visited
+    /// `visits` times, where its learner holds `values`; both zero when it
+    /// never saw the state) to answer (Algorithm 2, or Torrey's importance;
+    /// `unknown` says what Torrey's teacher does where it has no kick
+    /// entry). Draws only for an ad hoc advisor with budget left and a
+    /// visited state.
     pub(crate) fn confident(
         &self,
-        entry: &Entry,
+        visits: u64,
+        values: &ActionValues,
         counters: &Counters,
         unknown: TorreyUnknownState,
         rng: &mut AgentRng,
@@ -86,12 +88,10 @@ impl Strategy {
                 ..
             }) => {
                 let psi = match confidence {
-                    Confidence::Visit => psi_visit(entry.visits),
-                    Confidence::Td => psi_td(entry.visits, entry.kick_spread()),
+                    Confidence::Visit => psi_visit(visits),
+                    Confidence::Td => psi_td(visits, values.kick_spread()),
                 };
-                counters.advice_given < *give_budget
-                    && entry.visits > 0
-                    && chance(rng, p_give(psi, *v_g))
+                counters.advice_given < *give_budget && visits > 0 && chance(rng, p_give(psi, *v_g))
             }
             Strategy::Torrey(Torrey {
                 importance_threshold,
@@ -99,8 +99,8 @@ impl Strategy {
                 ..
             }) => {
                 let importance = match unknown {
-                    TorreyUnknownState::Advise if !entry.any_kick_tried() => f64::INFINITY,
-                    _ => entry.kick_spread(),
+                    TorreyUnknownState::Advise if !values.any_kick_learned() => f64::INFINITY,
+                    _ => values.kick_spread(),
                 };
                 counters.advice_given < *give_budget && importance > *importance_threshold
             }

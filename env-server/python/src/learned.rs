@@ -3,6 +3,7 @@
 //! simulator, or the real HFO through its features).
 
 use std::path::PathBuf;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use agent::{Agent, AgentConfig, Decision, Mode, Observation, Snapshot};
 use proto::{Action, STATE_FEATURES};
@@ -16,7 +17,8 @@ use pyo3::prelude::*;
 /// saw).
 #[pyclass(module = "halffield._halffield")]
 pub(crate) struct GreedyAgent {
-    agent: Agent,
+    /// Behind a lock only so Python threads may share it.
+    agent: Mutex<Agent>,
 }
 
 #[pymethods]
@@ -39,7 +41,9 @@ impl GreedyAgent {
         let mut agent = Agent::new(0, 1, config, 0).map_err(|e| invalid(&e))?;
         agent.restore(snapshot).map_err(|e| invalid(&e))?;
         agent.begin_episode(Mode::Evaluation);
-        Ok(GreedyAgent { agent })
+        Ok(GreedyAgent {
+            agent: Mutex::new(agent),
+        })
     }
 
     /// The index (`halffield.PAPER_ACTIONS`) of its action in `state`, the
@@ -61,7 +65,7 @@ impl GreedyAgent {
             can_kick,
             position: [0.0, 0.0],
         };
-        match self.agent.act_begin(&obs, 0.0, &[], &|_| false) {
+        match self.agent().act_begin(&obs, 0.0, &[], &|_| false) {
             Decision::Act(action) => Ok(action.index()),
             Decision::Ask { .. } => unreachable!("a frozen agent never asks"),
         }
@@ -70,7 +74,14 @@ impl GreedyAgent {
     /// The digest of its learned state (as in `run-<k>.json`'s reports).
     #[getter]
     fn digest(&self) -> u64 {
-        self.agent.digest()
+        self.agent().digest()
+    }
+}
+
+impl GreedyAgent {
+    /// The agent; a panic elsewhere cannot leave a frozen table half-written.
+    fn agent(&self) -> MutexGuard<'_, Agent> {
+        self.agent.lock().unwrap_or_else(PoisonError::into_inner)
     }
 }
 
