@@ -15,7 +15,7 @@ use crate::transport::Transport;
 /// optionally, a saved snapshot it starts from.
 ///
 /// In a file it is one flat table: every [`AgentConfig`] key, plus `load`
-/// (path of a snapshot) and `keep_counters`.
+/// (path of a snapshot), `keep_counters` and `learner`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "serde_json::Map<String, serde_json::Value>")]
 #[serde(into = "serde_json::Map<String, serde_json::Value>")]
@@ -28,6 +28,56 @@ pub struct AgentSpec {
     /// they start at zero: the loaded agent brings its Q-table, visit counts
     /// and finished-episode count, with fresh budgets.
     pub keep_counters: bool,
+    /// A learner process in place of SARSA(lambda) (docs/learners.md).
+    pub learner: Option<LearnerSpec>,
+}
+
+/// A learner that runs as a child of its agent's process: the command, where
+/// it runs, and what it is made of, so that results stay attributable.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LearnerSpec {
+    /// Program and arguments, e.g. `["python3", "my_learner.py"]`.
+    pub command: Vec<String>,
+    /// Its working directory: the team file's, unless given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dir: Option<PathBuf>,
+    /// Its source file, whose digest is recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<PathBuf>,
+    /// FNV-1a (64-bit, hex) of `source`'s bytes when the team was read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source_fnv64: Option<String>,
+}
+
+impl LearnerSpec {
+    /// Resolves `dir` and `source` from `base` (the team file's directory)
+    /// and records the source's digest.
+    fn resolve(&mut self, base: &Path) -> Result<(), String> {
+        if self.command.is_empty() {
+            return Err(
+                "`learner.command` must name a program, e.g. [\"python3\", \"learner.py\"]".into(),
+            );
+        }
+        let dir = base.join(self.dir.take().unwrap_or_default());
+        if let Some(source) = &self.source {
+            let path = dir.join(source);
+            let bytes = std::fs::read(&path)
+                .map_err(|e| format!("cannot read learner.source {}: {e}", path.display()))?;
+            self.source_fnv64 = Some(format!("{:016x}", fnv64(&bytes)));
+        }
+        // A team file in the current directory: the learner runs there too.
+        self.dir = (!dir.as_os_str().is_empty()).then_some(dir);
+        Ok(())
+    }
+}
+
+/// FNV-1a, 64 bits.
+fn fnv64(bytes: &[u8]) -> u64 {
+    use std::hash::Hasher;
+    let mut hasher = fnv::FnvHasher::default();
+    hasher.write(bytes);
+    hasher.finish()
 }
 
 impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
@@ -44,12 +94,21 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
             Some(serde_json::Value::Bool(b)) => b,
             Some(other) => return Err(format!("`keep_counters` must be a boolean, got {other}")),
         };
+        let learner = match map.remove("learner") {
+            None | Some(serde_json::Value::Null) => None,
+            Some(value) => Some(serde_json::from_value(value).map_err(|e| {
+                format!(
+                    "`learner` must be a table with `command` (and optionally `dir`, `source`): {e}"
+                )
+            })?),
+        };
         let config = serde_json::from_value(serde_json::Value::Object(map))
             .map_err(|e| format!("agent config: {e}"))?;
         Ok(Self {
             config,
             load,
             keep_counters,
+            learner,
         })
     }
 }
@@ -68,6 +127,10 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
         }
         if spec.keep_counters {
             map.insert("keep_counters".into(), serde_json::Value::Bool(true));
+        }
+        if let Some(learner) = spec.learner {
+            let learner = serde_json::to_value(learner).expect("a learner spec serialises");
+            map.insert("learner".into(), learner);
         }
         map
     }
@@ -207,6 +270,16 @@ impl ExperimentConfig {
             spec.config
                 .validate()
                 .map_err(|e| ConfigError::new(format!("team[{i}].{}", e.key), e.reason))?;
+            if spec.learner.is_some() {
+                let reason = if self.transport == Transport::InProcess {
+                    "a learner process is its agent's: run with --transport zenoh"
+                } else if spec.load.is_some() {
+                    "a learner process keeps its learned state itself: it cannot `load` a snapshot"
+                } else {
+                    continue;
+                };
+                return Err(ConfigError::new(format!("team[{i}].learner"), reason));
+            }
         }
         Ok(())
     }
@@ -284,6 +357,14 @@ pub fn load_team_file(path: &Path) -> Result<Vec<AgentSpec>, ConfigError> {
             if load.is_relative() {
                 spec.load = Some(base.join(load));
             }
+        }
+        if let Some(learner) = &mut spec.learner {
+            learner.resolve(base).map_err(|reason| {
+                ConfigError::new(
+                    format!("team[{i}].learner"),
+                    format!("{}: {reason}", path.display()),
+                )
+            })?;
         }
         team.push(spec);
     }
@@ -470,5 +551,62 @@ mod tests {
         assert!(!e.to_string().contains('\n'), "{e}");
         let e = load_team_file(&dir.path().join("missing.toml")).unwrap_err();
         assert!(e.reason.contains("missing.toml"), "{e}");
+    }
+
+    #[test]
+    fn a_learner_process_is_resolved_digested_and_checked() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("mine.py"), "print()\n").unwrap();
+        let path = dir.path().join("team.toml");
+        let learner = "learner = { command = [\"python3\", \"mine.py\"], source = \"mine.py\" }";
+        std::fs::write(
+            &path,
+            format!("[[agent]]\n[[agent]]\n[[agent]]\n{learner}\n"),
+        )
+        .unwrap();
+        let team = load_team_file(&path).unwrap();
+        let spec = team[2].learner.clone().unwrap();
+        assert_eq!(spec.command, ["python3", "mine.py"]);
+        assert_eq!(spec.dir.as_deref(), Some(dir.path()));
+        assert_eq!(
+            spec.source_fnv64.unwrap(),
+            format!("{:016x}", fnv64(b"print()\n"))
+        );
+        // config.json carries it, and reads back the same.
+        let map = serde_json::Map::from(team[2].clone());
+        assert_eq!(AgentSpec::try_from(map).unwrap(), team[2]);
+
+        let config = |transport, load: Option<&str>| ExperimentConfig {
+            transport,
+            team: vec![
+                AgentSpec::default(),
+                AgentSpec::default(),
+                AgentSpec {
+                    load: load.map(PathBuf::from),
+                    ..team[2].clone()
+                },
+            ],
+            ..ExperimentConfig::default()
+        };
+        let zenoh = || Transport::Zenoh(Default::default());
+        config(zenoh(), None).validate().unwrap();
+        for bad in [
+            config(Transport::InProcess, None),
+            config(zenoh(), Some("a.qtable")),
+        ] {
+            assert_eq!(bad.validate().unwrap_err().key, "team[2].learner");
+        }
+        for (text, says) in [
+            ("learner = { command = [] }", "must name a program"),
+            (
+                "learner = { command = [\"x\"], source = \"gone.py\" }",
+                "gone.py",
+            ),
+            ("learner = [\"x\"]", "must be a table with `command`"),
+        ] {
+            std::fs::write(&path, format!("[[agent]]\n{text}\n")).unwrap();
+            let e = load_team_file(&path).unwrap_err();
+            assert!(e.reason.contains(says), "{e}");
+        }
     }
 }

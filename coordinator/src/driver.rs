@@ -2,6 +2,7 @@
 //! backend of each run.
 
 use crate::backend::Backend;
+use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::in_process::InProcess;
@@ -17,12 +18,12 @@ pub trait Driver: Sync {
     fn max_parallel_runs(&self) -> usize;
 }
 
-/// Opens `transport` for an experiment with `agents` agents: over zenoh,
-/// joins the network and starts (or finds) the processes.
-pub fn open(transport: &Transport, agents: usize) -> Result<Box<dyn Driver>, Error> {
+/// Opens `transport` for an experiment with `team`: over zenoh, joins the
+/// network and starts (or finds) the processes.
+pub fn open(transport: &Transport, team: &[AgentSpec]) -> Result<Box<dyn Driver>, Error> {
     Ok(match transport {
         Transport::InProcess => Box::new(InProcessDriver),
-        Transport::Zenoh(settings) => Box::new(Network::start(settings, agents)?),
+        Transport::Zenoh(settings) => Box::new(Network::start(settings, team)?),
     })
 }
 

@@ -148,7 +148,7 @@ fn play_in_parallel(
     progress: &RunsProgress,
 ) -> Result<Vec<RunResult>, Error> {
     let config = experiment.config();
-    let driver = driver::open(&config.transport, config.team.len())?;
+    let driver = driver::open(&config.transport, &config.team)?;
     let threads = options
         .threads
         .min(driver.max_parallel_runs())

@@ -47,7 +47,11 @@ fn network(tag: &str, port: u16, auth: Auth) -> Network {
                 startup_timeout: Duration::from_secs(60),
             },
         },
-        3,
+        &[
+            AgentSpec::default(),
+            AgentSpec::default(),
+            AgentSpec::default(),
+        ],
     )
     .expect("processes start and join")
 }

@@ -50,11 +50,12 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
         .collect();
     let processes = start_services(&name, &secret, &endpoints);
     let settings = attached_settings(&name, &secret, &endpoints);
-    let net = Network::start(&settings, 3).expect("the attached processes join");
+    let team = vec![AgentSpec::of(StrategyName::AdHocTd, Profile::Paper); 3];
+    let net = Network::start(&settings, &team).expect("the attached processes join");
     let experiment = Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,
-        team: vec![AgentSpec::of(StrategyName::AdHocTd, Profile::Paper); 3],
+        team,
         ..ExperimentConfig::default()
     })
     .unwrap();

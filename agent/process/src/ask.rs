@@ -9,7 +9,7 @@ use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
 use crate::context::Context;
-use crate::learner::Ask;
+use crate::learning::Ask;
 
 /// The replies collected for one request.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -11,7 +11,8 @@ use proto::{Body, Direction, DropReason, Envelope, Header, MessageCounters, Mess
 use tokio::sync::{Notify, watch};
 use zenoh::Session;
 
-use crate::learner::{Learner, Progress};
+use crate::learning::{Learning, Progress};
+use crate::pipe::LearnerCommand;
 
 /// Messages of this run, and the advice round trips.
 #[derive(Clone, Debug, Default)]
@@ -46,7 +47,7 @@ pub struct Context {
     pub id: u8,
     /// How long to wait for advice in the current run (set by its reset).
     advice_timeout: Mutex<Duration>,
-    learner: Mutex<Learner>,
+    learner: Mutex<Learning>,
     traffic: Mutex<Traffic>,
     alive: Mutex<BTreeSet<u8>>,
     progress: watch::Sender<Progress>,
@@ -55,15 +56,22 @@ pub struct Context {
 }
 
 impl Context {
-    /// The context of agent `id` of a team of `team_size` in experiment `name`.
-    pub fn new(session: Session, name: &str, keys: Keys, id: u8, team_size: u8) -> Self {
+    /// The context of agent `id` of a team of `team_size` in experiment
+    /// `name`, learning through the learner process `command` if given.
+    pub fn new(
+        session: Session,
+        name: &str,
+        keys: Keys,
+        (id, team_size): (u8, u8),
+        command: Option<LearnerCommand>,
+    ) -> Self {
         Self {
             session,
             keys,
             experiment: proto::experiment_id(name),
             id,
             advice_timeout: Mutex::new(Duration::ZERO),
-            learner: Mutex::new(Learner::new(id, team_size)),
+            learner: Mutex::new(Learning::new(id, team_size, command)),
             traffic: Mutex::new(Traffic::default()),
             alive: Mutex::new(BTreeSet::new()),
             progress: watch::Sender::new(Progress::default()),
@@ -83,7 +91,7 @@ impl Context {
     }
 
     /// The learner, locked: never hold it across an `.await`.
-    pub fn learner(&self) -> MutexGuard<'_, Learner> {
+    pub fn learner(&self) -> MutexGuard<'_, Learning> {
         lock(&self.learner)
     }
 
@@ -94,7 +102,7 @@ impl Context {
 
     /// Publishes the learner's progress (call with the learner locked, so
     /// that progress never goes back).
-    pub fn publish_progress(&self, learner: &Learner) {
+    pub fn publish_progress(&self, learner: &Learning) {
         self.progress.send_replace(learner.progress());
     }
 

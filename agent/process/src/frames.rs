@@ -18,7 +18,7 @@ use zenoh::pubsub::Publisher;
 
 use crate::ask::ask;
 use crate::context::Context;
-use crate::learner::{Ask, Step};
+use crate::learning::{Ask, Step};
 
 /// Steps observation messages and publishes what they lead to.
 pub struct Stream {

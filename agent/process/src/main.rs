@@ -15,8 +15,9 @@ mod ask;
 mod context;
 mod control;
 mod frames;
-mod learner;
+mod learning;
 mod order;
+mod pipe;
 mod serve;
 mod shares;
 mod unique;
@@ -25,7 +26,11 @@ use anyhow::{Result, bail};
 use clap::Parser;
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 
+use std::path::PathBuf;
+use std::time::Duration;
+
 use context::Exit;
+use pipe::LearnerCommand;
 use serve::Settings;
 
 #[derive(Parser)]
@@ -42,6 +47,17 @@ struct AgentCli {
     /// Agents in the team.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..))]
     team_size: u8,
+    /// Working directory of the learner command (default: this one's).
+    #[arg(long, value_name = "DIR", requires = "learner")]
+    learner_dir: Option<PathBuf>,
+    /// How long the learner process may take to answer (ms).
+    #[arg(long, value_name = "MS", default_value_t = 1000,
+          value_parser = clap::value_parser!(u64).range(1..=proto::MAX_WAIT_MS))]
+    learner_timeout_ms: u64,
+    /// Learn with this command's process instead of SARSA(lambda), e.g.
+    /// `-- python3 my_learner.py` (docs/learners.md).
+    #[arg(last = true, value_name = "COMMAND")]
+    learner: Vec<String>,
 }
 
 fn main() {
@@ -78,6 +94,11 @@ fn run(cli: AgentCli) -> Result<Exit> {
         id: cli.id,
         team_size: cli.team_size,
         exit_with_coordinator: cli.connection.exit_with_coordinator,
+        learner: (!cli.learner.is_empty()).then(|| LearnerCommand {
+            argv: cli.learner,
+            dir: cli.learner_dir,
+            timeout: Duration::from_millis(cli.learner_timeout_ms),
+        }),
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()

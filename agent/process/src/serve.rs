@@ -9,6 +9,7 @@ use proto::keys::{Keys, Role};
 
 use crate::context::{Context, Exit};
 use crate::frames::Stream;
+use crate::pipe::LearnerCommand;
 use crate::{advise, alive, control, frames, unique};
 
 /// Who this agent is and how it joins the network.
@@ -26,6 +27,8 @@ pub struct Settings {
     pub net: NetConfig,
     /// Exit once the coordinator that was seen is gone.
     pub exit_with_coordinator: bool,
+    /// A learner process in place of SARSA(lambda).
+    pub learner: Option<LearnerCommand>,
 }
 
 /// Joins the network, serves until stopped, and leaves it.
@@ -37,6 +40,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         team_size,
         net,
         exit_with_coordinator,
+        learner,
     } = settings;
     let session = node::net::open(&net).await?;
     unique::ensure_unique(&session, &keys, &name, id).await?;
@@ -51,7 +55,13 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         .declare_publisher(keys.action(id))
         .await
         .map_err(|e| declare("the action publisher", e))?;
-    let ctx = Arc::new(Context::new(session.clone(), &name, keys, id, team_size));
+    let ctx = Arc::new(Context::new(
+        session.clone(),
+        &name,
+        keys,
+        (id, team_size),
+        learner,
+    ));
     let (stream, tasks) = Stream::new(ctx.clone(), actions);
     // Held until the end: dropping them undeclares them.
     let _observations = {

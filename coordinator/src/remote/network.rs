@@ -19,6 +19,7 @@ use zenoh::query::{ConsolidationMode, QueryTarget};
 use zenoh::sample::SampleKind;
 
 use super::launch::{Children, find_binary};
+use crate::config::AgentSpec;
 use crate::error::{ConfigError, Error};
 use crate::transport::{Auth, Endpoints, ZenohSettings};
 
@@ -164,18 +165,18 @@ async fn refuse_a_busy_experiment(
 
 impl Network {
     /// Joins the network of `settings.endpoints.experiment`, starts
-    /// env-server and `agents` agent processes (unless attaching) and waits
+    /// env-server and the agent processes of `team` (unless attaching) and waits
     /// until every one of them is alive and answers control queries.
-    pub fn start(settings: &ZenohSettings, agents: usize) -> Result<Self, Error> {
+    pub fn start(settings: &ZenohSettings, team: &[AgentSpec]) -> Result<Self, Error> {
         let options = &settings.endpoints;
         let port = match options.port {
             0 => node::net::free_port().map_err(|e| Error::io("bind", "127.0.0.1:0", e))?,
             p => p,
         };
-        let network = Self::join(settings, agents, port)?;
+        let network = Self::join(settings, team.len(), port)?;
         if !options.attach {
             network.stop_on_signals()?;
-            network.launch(agents, port)?;
+            network.launch(team, port)?;
         }
         network.wait_for_everyone()?;
         Ok(network)
@@ -238,9 +239,10 @@ impl Network {
         })
     }
 
-    /// Starts env-server and `agents` agents, connecting to this
-    /// coordinator's loopback `port`.
-    fn launch(&self, agents: usize, port: u16) -> Result<(), Error> {
+    /// Starts env-server and one agent per member of `team` (with its
+    /// learner command, if any), connecting to this coordinator's loopback
+    /// `port`.
+    fn launch(&self, team: &[AgentSpec], port: u16) -> Result<(), Error> {
         let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
         let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
@@ -265,18 +267,25 @@ impl Network {
             &server,
             &common(&["serve".into(), "--exit-with-coordinator".into()]),
         )?;
-        for i in 0..agents {
-            self.children.spawn(
-                &format!("agent {i}"),
-                &agent,
-                &common(&[
-                    "--id".into(),
-                    i.to_string(),
-                    "--team-size".into(),
-                    agents.to_string(),
-                    "--exit-with-coordinator".into(),
-                ]),
-            )?;
+        for (i, spec) in team.iter().enumerate() {
+            let mut args = common(&[
+                "--id".into(),
+                i.to_string(),
+                "--team-size".into(),
+                team.len().to_string(),
+                "--exit-with-coordinator".into(),
+            ]);
+            if let Some(learner) = &spec.learner {
+                // It may take as long to answer as env-server waits for an action.
+                let timeout = self.settings.step_timeout_ms.to_string();
+                args.extend(["--learner-timeout-ms".into(), timeout]);
+                if let Some(dir) = &learner.dir {
+                    args.extend(["--learner-dir".into(), dir.display().to_string()]);
+                }
+                args.push("--".into());
+                args.extend(learner.command.iter().cloned());
+            }
+            self.children.spawn(&format!("agent {i}"), &agent, &args)?;
         }
         Ok(())
     }

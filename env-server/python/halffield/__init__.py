@@ -8,6 +8,8 @@ against HFO's goalkeeper.
 - :class:`BatchEnv`: many environments stepped in one call.
 - :class:`BaselinePolicy`: the simulator's baseline policies.
 - :class:`GreedyAgent`: a learner of ours frozen from its snapshot file.
+- :mod:`halffield.learner`: a Python learner as one agent of an advising
+  team, run by the Rust agent process (docs/learners.md).
 """
 
 from __future__ import annotations

@@ -6,6 +6,7 @@ use agent::{Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
 use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
 
 use crate::order::{ObservationOrder, Position};
+use crate::pipe::{LearnerCommand, PipeLearner};
 use crate::shares::PendingShares;
 
 /// What the process does after an accepted observation.
@@ -13,7 +14,7 @@ use crate::shares::PendingShares;
 pub enum Step {
     /// Publish this action (a kicker's choice), or nothing.
     Act(Option<Action>),
-    /// Ask for advice, then call [`Learner::complete`].
+    /// Ask for advice, then call [`Learning::complete`].
     Ask(Ask),
     /// The episode ended: publish these shared episodes (receiver, transitions).
     End(Vec<(usize, Vec<Transition>)>),
@@ -26,7 +27,7 @@ pub struct Ask {
     pub to: Vec<u8>,
     /// The request.
     pub request: AdviceRequest,
-    /// Which learner asked (see [`Learner::complete`]).
+    /// Which learner asked (see [`Learning::complete`]).
     epoch: u64,
 }
 
@@ -41,9 +42,11 @@ pub struct Progress {
 
 /// Agent `id`'s learning state.
 #[derive(Debug)]
-pub struct Learner {
+pub struct Learning {
     id: u8,
     team_size: u8,
+    /// A learner process in place of SARSA(lambda), started at each reset.
+    command: Option<LearnerCommand>,
     agent: Option<Agent>,
     run: u32,
     /// Counts resets and loads, so that answers to an older learner's
@@ -53,12 +56,14 @@ pub struct Learner {
     shares: PendingShares,
 }
 
-impl Learner {
-    /// Agent `id` of a team of `team_size`, waiting for its first reset.
-    pub fn new(id: u8, team_size: u8) -> Self {
+impl Learning {
+    /// Agent `id` of a team of `team_size`, waiting for its first reset,
+    /// learning through the learner process `command` if given.
+    pub fn new(id: u8, team_size: u8, command: Option<LearnerCommand>) -> Self {
         Self {
             id,
             team_size,
+            command,
             agent: None,
             run: 0,
             epoch: 0,
@@ -74,13 +79,22 @@ impl Learner {
         let config: AgentConfig = proto::decode_settings(config)
             .map_err(|e| format!("agent config does not decode: {e}"))?;
         config.validate().map_err(|e| e.to_string())?;
-        let agent = Agent::new(self.id.into(), self.team_size.into(), config, seed)
-            .map_err(|e| e.to_string())?;
+        let (id, team_size) = (self.id.into(), self.team_size.into());
+        let agent = match &self.command {
+            None => Agent::new(id, team_size, config, seed),
+            Some(command) => {
+                // The previous run's learner process ends before the next starts.
+                self.agent = None;
+                let learner = PipeLearner::start(command, self.id, self.team_size, run, seed)?;
+                Agent::with_learner(id, team_size, config, seed, Box::new(learner))
+            }
+        }
+        .map_err(|e| e.to_string())?;
         *self = Self {
             agent: Some(agent),
             run,
             epoch: self.epoch + 1,
-            ..Self::new(self.id, self.team_size)
+            ..Self::new(self.id, self.team_size, self.command.take())
         };
         Ok(())
     }
@@ -253,14 +267,14 @@ mod tests {
         }
     }
 
-    fn reset(id: u8) -> Learner {
-        let mut l = Learner::new(id, 2);
+    fn reset(id: u8) -> Learning {
+        let mut l = Learning::new(id, 2, None);
         l.reset(3, 9, &sharing()).unwrap();
         l
     }
 
     /// Plays a goal episode of two Move frames: the shares it produces.
-    fn goal_episode(l: &mut Learner, episode: u32) -> Vec<(usize, Vec<Transition>)> {
+    fn goal_episode(l: &mut Learning, episode: u32) -> Vec<(usize, Vec<Transition>)> {
         let id = l.id;
         let all = |_| true;
         assert_eq!(
@@ -279,7 +293,7 @@ mod tests {
 
     #[test]
     fn bad_resets_keep_the_current_state() {
-        let mut l = Learner::new(0, 2);
+        let mut l = Learning::new(0, 2, None);
         assert!(l.agent().is_err());
         assert!(l.reset(0, 1, b"{").unwrap_err().contains("does not decode"));
         let mut long = sharing();
@@ -311,7 +325,7 @@ mod tests {
             };
             let bytes = proto::encode_settings(&sent).unwrap();
             assert_eq!(proto::decode_settings::<AgentConfig>(&bytes), Ok(sent));
-            Learner::new(0, 2).reset(0, 1, &bytes).unwrap();
+            Learning::new(0, 2, None).reset(0, 1, &bytes).unwrap();
         }
     }
 
@@ -333,7 +347,7 @@ mod tests {
     #[test]
     fn observations_of_other_runs_agents_or_before_a_reset_are_dropped() {
         let all = |_| true;
-        let mut fresh = Learner::new(0, 2);
+        let mut fresh = Learning::new(0, 2, None);
         assert_eq!(
             fresh.observe(&header(0, 0, 0), &obs(0, true, false, 0.0), &all),
             Err(DropReason::Stale)
@@ -423,7 +437,7 @@ mod tests {
     #[test]
     fn asks_live_advisors_and_ignores_answers_for_a_replaced_learner() {
         let config = config(r#"{"strategy": "torrey"}"#);
-        let mut l = Learner::new(0, 2);
+        let mut l = Learning::new(0, 2, None);
         l.reset(0, 1, &config).unwrap();
         // Torrey students ask their teacher at every fresh kick state, if alive.
         let kick = obs(0, true, false, 0.0);

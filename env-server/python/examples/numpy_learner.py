@@ -1,0 +1,94 @@
+"""A linear SARSA(lambda) learner in numpy, as one agent of an advising team.
+
+Q(s, a) is a sum of weights over a tile coding of the paper's six features
+(each in [-1, 1]): per feature, a few tilings of width ``WIDTH`` offset from
+one another. The agent process runs it as its learner (docs/learners.md):
+
+    agent --id 2 --team-size 3 ... -- python3 examples/numpy_learner.py
+
+or, in a team file, ``learner = ["python3", "examples/numpy_learner.py"]``.
+The advising framework around it (budgets, n(s), the ask and give
+probabilities) is the Rust agent's; this file only acts and learns.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from halffield.learner import Learner, Start, State, Transition, serve
+
+#: Tiles per feature and tiling, their width, and the tilings per feature.
+TILES, WIDTH, TILINGS = 11, 0.2, 4
+KICKS = (1, 2, 3, 4)  # SHOOT, DRIBBLE, PASS_NEAR, PASS_FAR
+
+
+class LinearSarsa(Learner):
+    """SARSA(lambda) with replacing traces over a linear tile coding."""
+
+    name = "numpy-linear-sarsa"
+    version = "1"
+
+    def __init__(
+        self,
+        start: Start,
+        alpha: float = 0.1,
+        gamma: float = 0.9,
+        lam: float = 0.9,
+        epsilon: float = 0.1,
+    ) -> None:
+        self.rng = np.random.default_rng(start.seed)
+        self.actions = len(start.actions)
+        self.features = start.features * TILINGS * TILES
+        self.weights = np.zeros((self.actions, self.features))
+        self.traces = np.zeros_like(self.weights)
+        self.alpha = alpha / (start.features * TILINGS)
+        self.gamma, self.lam, self.epsilon = gamma, lam, epsilon
+        offsets = np.arange(TILINGS) * WIDTH / TILINGS
+        self.offsets = offsets[None, :]
+        self.base = (np.arange(start.features)[:, None] * TILINGS + np.arange(TILINGS)) * TILES
+
+    def active(self, state: State) -> np.ndarray:
+        """The indices of the tiles `state` lies in, one per feature and tiling."""
+        x = np.asarray(state)[:, None] + 1.0 + self.offsets
+        tile = np.clip((x / WIDTH).astype(int), 0, TILES - 1)
+        return (self.base + tile).ravel()
+
+    def q(self, state: State) -> np.ndarray:
+        return self.weights[:, self.active(state)].sum(axis=1)
+
+    def values(self, state: State, index: int | None) -> list[float | None]:
+        q = self.q(state)
+        return [None if a not in KICKS else float(q[a]) for a in range(self.actions)]
+
+    def choose(self, state: State, index: int | None) -> int:
+        if self.rng.random() < self.epsilon:
+            return int(self.rng.choice(KICKS))
+        q = self.q(state)[list(KICKS)]
+        best = np.flatnonzero(q == q.max())
+        return KICKS[int(self.rng.choice(best))]
+
+    def learn(self, t: Transition) -> None:
+        tiles = self.active(t.state)
+        target = t.reward
+        if t.next_state is not None and t.next_action is not None:
+            target += self.gamma * self.weights[t.next_action, self.active(t.next_state)].sum()
+        error = target - self.weights[t.action, tiles].sum()
+        self.traces *= self.gamma * self.lam
+        self.traces[:, tiles] = 0.0
+        self.traces[t.action, tiles] = 1.0
+        self.weights += self.alpha * error * self.traces
+
+    def end_episode(self) -> None:
+        self.traces[:] = 0.0
+
+    def replay(self, episode: Sequence[Transition]) -> None:
+        own = self.traces.copy()
+        self.traces[:] = 0.0
+        super().replay(episode)
+        self.traces = own
+
+
+if __name__ == "__main__":
+    raise SystemExit(serve(LinearSarsa))

@@ -1,0 +1,110 @@
+"""A Python learner as one agent of an advising team over zenoh: two Rust
+AdHocTD agents and the numpy example (examples/numpy_learner.py) learn
+together for 300 episodes, real processes over loopback; then the same
+learner raising mid-run."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import ROOT, env_server_binary
+
+EXAMPLE = ROOT / "env-server" / "python" / "examples" / "numpy_learner.py"
+
+
+def team_file(directory: Path, learner: Path) -> Path:
+    """Agents 0 and 1 Rust AdHocTD, agent 2 AdHocTD around `learner`."""
+    command = json.dumps([sys.executable, str(learner)])
+    path = directory / "team.toml"
+    path.write_text(
+        '[[agent]]\nstrategy = "adhoc-td"\n\n[[agent]]\nstrategy = "adhoc-td"\n\n'
+        f'[[agent]]\nstrategy = "adhoc-td"\n'
+        f'learner = {{ command = {command}, source = "{learner}" }}\n'
+    )
+    return path
+
+
+def run(team: Path, out: Path, episodes: int) -> subprocess.CompletedProcess[str]:
+    """`coordinator run` of one run of `team` over loopback zenoh."""
+    bin_dir = env_server_binary().parent
+    return subprocess.run(
+        [
+            str(bin_dir / "coordinator"),
+            "run",
+            "--team",
+            str(team),
+            "--runs",
+            "1",
+            "--episodes",
+            str(episodes),
+            "--eval-every",
+            "100",
+            "--eval-episodes",
+            "20",
+            "--transport",
+            "zenoh",
+            "--quiet",
+            "--out",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+
+
+def test_advice_flows_both_ways_with_a_python_learner(tmp_path: Path) -> None:
+    result = run(team_file(tmp_path, EXAMPLE), tmp_path / "out", 300)
+    assert result.returncode == 0, result.stderr
+    config = json.loads((tmp_path / "out" / "config.json").read_text())
+    learner = config["config"]["team"][2]["learner"]
+    assert learner["command"][-1] == str(EXAMPLE)
+    assert len(learner["source_fnv64"]) == 16
+    last = json.loads((tmp_path / "out" / "run-0.json").read_text())["points"][-1]["agents"]
+    python, rust = last[2], last[:2]
+    # The Python agent asked and was answered; it answered the Rust agents.
+    assert python["advice_requests"] > 0 and python["advice_replies_received"] > 0
+    assert python["advice_given"] > 0
+    assert sum(a["advice_replies_received"] for a in rust) > 0
+    assert all(a["messages_dropped"] == 0 for a in last)
+
+
+FAULTY = """
+import sys
+sys.path.insert(0, {examples!r})
+from numpy_learner import LinearSarsa
+from halffield.learner import serve
+
+class Faulty(LinearSarsa):
+    learned = 0
+
+    def learn(self, transition):
+        self.learned += 1
+        if self.learned == 200:
+            raise ZeroDivisionError("a planned fault")
+        super().learn(transition)
+
+raise SystemExit(serve(Faulty))
+"""
+
+
+def test_a_learner_that_raises_ends_the_run_with_its_cause(tmp_path: Path) -> None:
+    faulty = tmp_path / "faulty_learner.py"
+    faulty.write_text(FAULTY.format(examples=str(EXAMPLE.parent)))
+    out = tmp_path / "out"
+    result = run(team_file(tmp_path, faulty), out, 300)
+    assert result.returncode != 0
+    line = next(x for x in result.stderr.splitlines() if "ZeroDivisionError" in x)
+    assert "agent 2" in line and "a planned fault" in line, result.stderr
+    # No process of the run is left, and what was written is whole.
+    for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
+        try:
+            assert str(faulty) not in cmdline.read_text(), f"{cmdline.parent} outlived the run"
+        except OSError:
+            pass
+    for written in out.glob("*.json"):
+        json.loads(written.read_text())
+    assert not (out / "run-0.json").exists()
