@@ -63,6 +63,10 @@ pub(crate) struct Game {
     observation: ObservationSet,
     masked: MaskedAction,
     actions: usize,
+    /// The episode ended before its first decision (the ball pushed out in
+    /// the idle cycles): its first step is played and reports the end, as
+    /// HFO's and env-server's first step do.
+    ended_at_reset: bool,
 }
 
 impl Game {
@@ -73,6 +77,7 @@ impl Game {
             observation: settings.observation,
             masked: settings.masked,
             actions: settings.action_count(),
+            ended_at_reset: false,
         })
     }
 
@@ -94,13 +99,14 @@ impl Game {
     /// Starts a new episode.
     pub(crate) fn reset(&mut self) {
         self.env.reset();
+        self.ended_at_reset = self.env.outcome().is_terminal();
     }
 
     /// The simulator's actions for `actions`, one index per agent, or why
     /// they cannot be played now.
     pub(crate) fn decode(&self, actions: &[i64]) -> Result<Vec<Action>, StepError> {
         let outcome = self.env.outcome();
-        if outcome.is_terminal() {
+        if outcome.is_terminal() && !self.ended_at_reset {
             return Err(StepError::Finished {
                 status: status::name(outcome),
                 frame: self.env.frame(),
@@ -148,6 +154,7 @@ impl Game {
 
     /// Plays one step of checked `actions`.
     pub(crate) fn step(&mut self, actions: &[Action]) -> Outcome {
+        self.ended_at_reset = false;
         self.env.step(actions)
     }
 
