@@ -56,10 +56,10 @@ pub fn write_report(
     final_performance(&mut md, study, entries);
     if let Some(baseline) = &study.baseline {
         gains_over(&mut md, baseline, &gains);
+        aggregate_table(&mut md, baseline, &aggregate);
         significance_against(&mut md, baseline, comparisons);
         holm_table(&mut md, baseline, &holm);
     }
-    aggregate_table(&mut md, &aggregate);
     significance_between_advising(&mut md, study, entries, comparisons);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
     figure_links(&mut md, &figures);
@@ -288,19 +288,16 @@ fn holm_table(md: &mut Markdown, baseline: &str, holm: &[HolmComparison]) {
     );
 }
 
-/// Every algorithm's mean, IQM and probability of improvement over the
-/// baseline, on the last ten evaluations and on the whole curve.
-fn aggregate_table(md: &mut Markdown, a: &Aggregates) {
+/// Every algorithm's mean, IQM and probability of improvement over
+/// `baseline`, on the last ten evaluations and on the whole curve.
+fn aggregate_table(md: &mut Markdown, baseline: &str, a: &Aggregates) {
     md.heading(2, "Aggregate statistics (Agarwal et al. 2021)");
-    let over = a
-        .baseline
-        .as_deref()
-        .map_or(String::new(), |b| format!(", and P(> `{b}`)"));
     md.paragraph(&format!(
-        "Per-run scores (last {LAST_POINTS} evaluations; whole curve): their mean and \
-         interquartile mean{over}, the probability that a run of the algorithm scores more than a \
-         run of the baseline (ties count half). Intervals: {}% stratified bootstrap percentile \
-         intervals over runs ({} resamples, seed {}), as rliable computes them.",
+        "The same per-run scores (last {LAST_POINTS} evaluations; whole curve): their mean, their \
+         interquartile mean (IQM), and P(> `{baseline}`), the probability that a run of the \
+         algorithm scores more than a run of `{baseline}` (ties count half). Intervals: {}% \
+         stratified bootstrap percentile intervals over runs ({} resamples, seed {}), as rliable \
+         computes them.",
         100.0 * a.level,
         a.resamples,
         a.seed,
