@@ -15,6 +15,8 @@
 //! - [`driver`]: a transport opened for one experiment, handing out backends.
 //! - [`schedule`]: one run: evaluate, train K, evaluate, ..., through N.
 //! - [`stats`] and [`summary`]: mean and Student's t interval over runs.
+//! - [`bootstrap`]: mean, IQM and probability of improvement with
+//!   stratified bootstrap intervals (Agarwal et al. 2021, `rliable`).
 //! - [`wilcoxon`]: signed-rank test between algorithms, intervals where one is better.
 //! - [`store`]: the results directory: claim, resume, atomic writes.
 //! - [`runner`]: R runs over T threads, then the summary.
@@ -42,6 +44,7 @@ compile_error!(
 );
 
 pub mod backend;
+pub mod bootstrap;
 pub mod config;
 pub mod driver;
 pub mod error;

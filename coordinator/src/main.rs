@@ -1,5 +1,6 @@
 //! `coordinator`: run advising experiments from the command line.
 
+use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -8,7 +9,8 @@ use agent::{Profile, StrategyName};
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
-use coordinator::study::{StudyConfig, StudyOptions, gains_table, published_gains};
+use coordinator::bootstrap::{RESAMPLES, SEED};
+use coordinator::study::{Scores, StudyConfig, StudyOptions, gains_table, published_gains};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
     AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
@@ -60,6 +62,22 @@ enum CoordinatorCommand {
         /// The algorithms' directory names, e.g. AdHocTD AdHocVisit.
         #[arg(required = true)]
         algorithms: Vec<String>,
+    },
+    /// Mean, IQM and probability of improvement over a baseline of per-run
+    /// scores, with the stratified bootstrap intervals a study's report
+    /// gives them (Agarwal et al. 2021); prints JSON. The scores: a JSON
+    /// object mapping each algorithm to its runs' scores, e.g.
+    /// {"no-advice": [20.5, 31.0], "AdHocTD": [25.0, 40.5]}.
+    Aggregate {
+        /// The scores' file.
+        #[arg(long, value_name = "FILE")]
+        scores: PathBuf,
+        /// The algorithm the others are compared with.
+        #[arg(long)]
+        baseline: String,
+        /// Confidence level of the intervals.
+        #[arg(long, value_name = "LEVEL", default_value_t = 0.95)]
+        level: f64,
     },
 }
 
@@ -322,7 +340,52 @@ fn run(cli: CoordinatorCli) -> Result<()> {
             print!("{}", gains_table(&gains));
             Ok(())
         }
+        CoordinatorCommand::Aggregate {
+            scores,
+            baseline,
+            level,
+        } => aggregate(&scores, &baseline, level),
     }
+}
+
+/// Prints the aggregate statistics of the scores in `path` as JSON.
+fn aggregate(path: &std::path::Path, baseline: &str, level: f64) -> Result<()> {
+    if !(level > 0.0 && level < 1.0) {
+        anyhow::bail!("--level must be in (0, 1), got {level}");
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
+    let runs: BTreeMap<String, Vec<f64>> = serde_json::from_str(&text).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: expected an object of arrays of scores: {e}",
+            path.display()
+        )
+    })?;
+    if let Some((name, _)) = runs.iter().find(|(_, v)| v.is_empty()) {
+        anyhow::bail!("{}: {name} has no score", path.display());
+    }
+    let Some(base) = runs.get(baseline) else {
+        let names: Vec<&str> = runs.keys().map(String::as_str).collect();
+        anyhow::bail!(
+            "{}: no baseline {baseline:?} among {names:?}",
+            path.display()
+        );
+    };
+    let algorithms: BTreeMap<&str, Option<Scores>> = (runs.iter())
+        .map(|(name, x)| {
+            let y = (name != baseline).then_some(base.as_slice());
+            (name.as_str(), Scores::of(x, y, level))
+        })
+        .collect();
+    let out = serde_json::json!({
+        "level": level,
+        "resamples": RESAMPLES,
+        "seed": SEED,
+        "baseline": baseline,
+        "algorithms": algorithms,
+    });
+    println!("{}", serde_json::to_string_pretty(&out)?);
+    Ok(())
 }
 
 fn run_router(args: RouterArgs) -> Result<()> {

@@ -375,3 +375,59 @@ fn no_advice_learns() {
     let (first, last) = (gp(&points[0]), gp(&points[2]));
     assert!(last >= first + 10.0, "goal_pct {first} -> {last}");
 }
+
+#[test]
+fn aggregate_prints_the_same_statistics_every_time() {
+    let fixture = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/scores.json");
+    let args = ["aggregate", "--scores", fixture, "--baseline", "no-advice"];
+    let (first, again) = (coordinator(&args), coordinator(&args));
+    ok(&first);
+    assert_eq!(first.stdout, again.stdout);
+    let out: Value = serde_json::from_slice(&first.stdout).unwrap();
+    let td = &out["algorithms"]["AdHocTD"];
+    assert_eq!(td["mean"], 27.208333333333332);
+    assert!(td["p_improvement"]["estimate"].is_f64(), "{out}");
+}
+
+#[test]
+fn aggregate_refuses_bad_scores() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_owned()
+    };
+    let run = |path: &str, baseline: &str| {
+        coordinator(&["aggregate", "--scores", path, "--baseline", baseline])
+    };
+    let good = file("good.json", r#"{"a": [1, 2], "b": [3]}"#);
+    refused(&run(&good, "c"), "no baseline \"c\"");
+    refused(
+        &run(&file("empty.json", r#"{"a": [], "b": [3]}"#), "b"),
+        "a has no score",
+    );
+    refused(
+        &run(&file("text.json", r#"{"a": ["x"]}"#), "a"),
+        "expected an object",
+    );
+    refused(
+        &run(&file("huge.json", r#"{"a": [1e999]}"#), "a"),
+        "expected an object",
+    );
+    refused(
+        &run(&dir.path().join("missing.json").to_string_lossy(), "a"),
+        "cannot read",
+    );
+    refused(
+        &coordinator(&[
+            "aggregate",
+            "--scores",
+            &good,
+            "--baseline",
+            "a",
+            "--level",
+            "1",
+        ]),
+        "--level",
+    );
+}

@@ -107,11 +107,24 @@ fn an_interrupted_study_resumes_to_the_same_results() {
         read(&resumed.join("significance.json")),
         read(&whole.join("significance.json"))
     );
+    let significance: serde_json::Value =
+        serde_json::from_str(&read(&resumed.join("significance.json"))).unwrap();
+    let aggregate = &significance["aggregate"]["entries"];
+    assert_eq!(aggregate[0]["entry"], "no-advice");
+    assert!(aggregate[0]["last_ten"]["iqm_ci"].is_array(), "{aggregate}");
+    assert!(aggregate[0]["last_ten"].get("p_improvement").is_none());
+    assert!(
+        aggregate[1]["area"]["p_improvement"]["ci"].is_array(),
+        "{aggregate}"
+    );
+    assert_eq!(significance["holm"][0]["baseline"], "no-advice");
     let report = read(&resumed.join("REPORT.md"));
     for needle in [
         "| no-advice |",
         "| adhoc-td |",
         "Significance against `no-advice`",
+        "The same with Holm's correction",
+        "## Aggregate statistics (Agarwal et al. 2021)",
         "figures/goal_pct.svg",
     ] {
         assert!(report.contains(needle), "{needle:?} missing from REPORT.md");

@@ -47,9 +47,10 @@ pub struct Comparison {
     pub final_p: Option<f64>,
 }
 
-/// Compares the goal percentages of `a` and `b` (every run, sorted by run)
-/// point by point at level `alpha`.
-pub fn compare(a: &EntryResults, b: &EntryResults, alpha: f64) -> Comparison {
+/// The signed-rank tests of the goal percentages of `a` and `b` (every run,
+/// sorted by run) at every evaluation point that has one: its episode, the
+/// two-sided p-value and the difference of the means, `a` minus `b`.
+pub fn point_tests(a: &EntryResults, b: &EntryResults) -> Vec<(u64, f64, f64)> {
     let (ra, rb) = (&a.results, &b.results);
     let points = ra.first().map_or(0, |r| r.points.len());
     let mut tests = Vec::with_capacity(points);
@@ -67,6 +68,13 @@ pub fn compare(a: &EntryResults, b: &EntryResults, alpha: f64) -> Comparison {
         let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
         tests.push((ra[0].points[p].episode, test.p_value, mean(&x) - mean(&y)));
     }
+    tests
+}
+
+/// Compares the goal percentages of `a` and `b` (every run, sorted by run)
+/// point by point at level `alpha`.
+pub fn compare(a: &EntryResults, b: &EntryResults, alpha: f64) -> Comparison {
+    let tests = point_tests(a, b);
     let (a_better, b_better) = better_intervals(&tests, alpha);
     Comparison {
         a: a.entry.name.clone(),

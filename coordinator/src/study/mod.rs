@@ -6,14 +6,17 @@
 //! many sharing a file system, play their shares into one directory at the
 //! same time; an invocation without a shard then completes it.
 
+mod aggregates;
 mod analysis;
 mod config;
 mod gains;
+mod holm;
 mod published;
 mod report;
 mod run;
 mod shard;
 
+pub use aggregates::{Aggregates, EntryAggregate, Scores};
 pub use analysis::{Comparison, EntryResults, compare};
 pub use config::{PRESETS, Pretrain, StudyConfig, StudyEntry};
 pub use gains::Gain;

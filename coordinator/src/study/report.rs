@@ -6,9 +6,11 @@ use agent::StrategyName;
 
 use serde::Serialize;
 
+use super::aggregates::{Aggregates, Scores, aggregates};
 use super::analysis::{Comparison, EntryResults};
 use super::config::{StudyConfig, StudyEntry};
 use super::gains::{Gain, LAST_POINTS, gains};
+use super::holm::{HolmComparison, holm_against};
 use crate::error::Error;
 use crate::figures::{Figure, Point, SeriesSet, draw_figures};
 use crate::stats::Estimate;
@@ -21,6 +23,12 @@ struct Significance<'a> {
     comparisons: &'a [Comparison],
     /// Every entry's gain over the baseline (none without one).
     gains: &'a [Gain],
+    /// Every entry's mean, IQM and probability of improvement over the
+    /// baseline, with bootstrap intervals.
+    aggregate: &'a Aggregates,
+    /// Every entry's tests against the baseline, Holm-corrected across
+    /// entries (none without a baseline).
+    holm: &'a [HolmComparison],
 }
 
 /// Writes `significance.json`, the figures and `REPORT.md` into `out`.
@@ -32,9 +40,14 @@ pub fn write_report(
 ) -> Result<PathBuf, Error> {
     let level = study.ci_level();
     let gains = (study.baseline.as_deref()).map_or_else(Vec::new, |b| gains(entries, b, level));
+    let aggregate = aggregates(entries, study.baseline.as_deref(), level);
+    let holm = (study.baseline.as_deref())
+        .map_or_else(Vec::new, |b| holm_against(entries, b, 1.0 - level));
     let significance = Significance {
         comparisons,
         gains: &gains,
+        aggregate: &aggregate,
+        holm: &holm,
     };
     store::write_json(&out.join("significance.json"), &significance)?;
     let figures = write_figures(out, study, entries)?;
@@ -43,7 +56,9 @@ pub fn write_report(
     final_performance(&mut md, study, entries);
     if let Some(baseline) = &study.baseline {
         gains_over(&mut md, baseline, &gains);
+        aggregate_table(&mut md, baseline, &aggregate);
         significance_against(&mut md, baseline, comparisons);
+        holm_table(&mut md, baseline, &holm);
     }
     significance_between_advising(&mut md, study, entries, comparisons);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
@@ -247,6 +262,76 @@ fn significance_against(md: &mut Markdown, baseline: &str, comparisons: &[Compar
         ],
         rows,
     );
+}
+
+/// The tests against `baseline` with Holm's correction across algorithms.
+fn holm_table(md: &mut Markdown, baseline: &str, holm: &[HolmComparison]) {
+    md.paragraph(&format!(
+        "The same with Holm's correction: at every evaluation point, the p-values of every \
+         algorithm against `{baseline}` adjusted together."
+    ));
+    md.table(
+        [
+            "algorithm",
+            "better (episodes, Holm)",
+            "worse (episodes, Holm)",
+            "p at the end (Holm)",
+        ],
+        holm.iter().map(|h| {
+            [
+                h.entry.clone(),
+                intervals(&h.better),
+                intervals(&h.worse),
+                p_value(h.final_p),
+            ]
+        }),
+    );
+}
+
+/// Every algorithm's mean, IQM and probability of improvement over
+/// `baseline`, on the last ten evaluations and on the whole curve.
+fn aggregate_table(md: &mut Markdown, baseline: &str, a: &Aggregates) {
+    md.heading(2, "Aggregate statistics (Agarwal et al. 2021)");
+    md.paragraph(&format!(
+        "The same per-run scores (last {LAST_POINTS} evaluations; whole curve): their mean, their \
+         interquartile mean (IQM), and P(> `{baseline}`), the probability that a run of the \
+         algorithm scores more than a run of `{baseline}` (ties count half). Intervals: {}% \
+         stratified bootstrap percentile intervals over runs ({} resamples, seed {}), as rliable \
+         computes them.",
+        100.0 * a.level,
+        a.resamples,
+        a.seed,
+    ));
+    let cells = |s: &Option<Scores>| match s {
+        Some(s) => [
+            interval(s.aggregate.mean, s.aggregate.mean_ci, 1),
+            interval(s.aggregate.iqm, s.aggregate.iqm_ci, 1),
+            s.p_improvement
+                .map_or("-".into(), |p| interval(p.estimate, p.ci, 2)),
+        ],
+        None => ["-".into(), "-".into(), "-".into()],
+    };
+    md.table(
+        [
+            "algorithm",
+            "last ten: mean",
+            "IQM",
+            "P(> baseline)",
+            "whole curve: mean",
+            "IQM",
+            "P(> baseline)",
+        ],
+        a.entries.iter().map(|e| {
+            let [m, i, p] = cells(&e.last_ten);
+            let [am, ai, ap] = cells(&e.area);
+            [e.entry.clone(), m, i, p, am, ai, ap]
+        }),
+    );
+}
+
+/// `value [low, high]` with `digits` decimals.
+fn interval(value: f64, [low, high]: [f64; 2], digits: usize) -> String {
+    format!("{value:.digits$} [{low:.digits$}, {high:.digits$}]")
 }
 
 /// Pairs of advising methods (the baseline aside) with at least one ad hoc
