@@ -227,6 +227,19 @@ fn normal_p_values(
     )
 }
 
+/// Whether A is significantly better at a point with two-sided p-value `p`
+/// and difference of the means `mean_diff` (A minus B) at level `alpha`:
+/// `Some(true)` if A is, `Some(false)` if B is, else `None`.
+pub fn better_side(p: f64, mean_diff: f64, alpha: f64) -> Option<bool> {
+    if p < alpha && mean_diff > 0.0 {
+        Some(true)
+    } else if p < alpha && mean_diff < 0.0 {
+        Some(false)
+    } else {
+        None
+    }
+}
+
 /// Episodes `(first, last)` of a maximal run of consecutive evaluation
 /// points, both inclusive; serialized as `[first, last]`.
 pub type Interval = (u64, u64);
@@ -238,8 +251,7 @@ pub type Interval = (u64, u64);
 /// `points` holds, in evaluation order, `(episode, p, mean_diff)`: the
 /// two-sided p-value of the test between A and B at that episode (e.g.
 /// [`SignedRank::p_value`]) and the mean of A minus the mean of B. A point
-/// counts for A if `p < alpha` and `mean_diff > 0`, for B if `p < alpha` and
-/// `mean_diff < 0`, for neither otherwise (a NaN p included). "Better" is
+/// counts for A or B by [`better_side`] (for neither with a NaN p). "Better" is
 /// "larger": for a metric where smaller is better (time to goal), pass the
 /// negated difference.
 pub fn better_intervals(points: &[(u64, f64, f64)], alpha: f64) -> (Vec<Interval>, Vec<Interval>) {
@@ -247,14 +259,7 @@ pub fn better_intervals(points: &[(u64, f64, f64)], alpha: f64) -> (Vec<Interval
     // The current run: whether A is the better one, first and last episode.
     let mut run: Option<(bool, u64, u64)> = None;
     for &(episode, p, mean_diff) in points {
-        // Some(true) if A is better here, Some(false) if B is, else None.
-        let side = if p < alpha && mean_diff > 0.0 {
-            Some(true)
-        } else if p < alpha && mean_diff < 0.0 {
-            Some(false)
-        } else {
-            None
-        };
+        let side = better_side(p, mean_diff, alpha);
         match (run, side) {
             (Some((a, first, _)), Some(b)) if a == b => run = Some((a, first, episode)),
             _ => {

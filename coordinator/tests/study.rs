@@ -126,10 +126,17 @@ fn an_interrupted_study_resumes_to_the_same_results() {
         "The same with Holm's correction",
         "## Aggregate statistics (Agarwal et al. 2021)",
         "figures/goal_pct.svg",
+        "figures/goal_pct_difference.svg",
     ] {
         assert!(report.contains(needle), "{needle:?} missing from REPORT.md");
     }
-    for figure in ["goal_pct", "time_to_goal", "spent_budget", "goal_pct_last"] {
+    for figure in [
+        "goal_pct",
+        "goal_pct_difference",
+        "time_to_goal",
+        "spent_budget",
+        "goal_pct_last",
+    ] {
         for ext in ["svg", "png"] {
             assert!(
                 resumed

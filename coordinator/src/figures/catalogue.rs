@@ -90,7 +90,11 @@ impl FigureKind {
         let curves: Vec<Curve> = shown
             .iter()
             .zip(colours)
-            .map(|(series, colour)| Curve { colour, series })
+            .map(|(series, colour)| Curve {
+                colour,
+                series,
+                marks: &[],
+            })
             .collect();
         let captions = Captions {
             title: &self.title(),
@@ -113,9 +117,14 @@ impl FigureKind {
 /// The subtitle of every figure of `sets`: runs behind the means and the
 /// level of the bands.
 pub(super) fn note(sets: &[SeriesSet]) -> String {
+    note_of(sets.iter().map(|s| (s.runs, s.ci_level)))
+}
+
+/// The subtitle of a figure of sets of `(runs, confidence level)`.
+pub(super) fn note_of(sets: impl Iterator<Item = (u64, f64)> + Clone) -> String {
     let (Some(min), Some(max)) = (
-        sets.iter().map(|s| s.runs).min(),
-        sets.iter().map(|s| s.runs).max(),
+        sets.clone().map(|s| s.0).min(),
+        sets.clone().map(|s| s.0).max(),
     ) else {
         return String::new();
     };
@@ -124,8 +133,8 @@ pub(super) fn note(sets: &[SeriesSet]) -> String {
         (true, n) => format!("{n} runs"),
         (false, _) => format!("{min}\u{2013}{max} runs"),
     };
-    let level = sets[0].ci_level;
-    let band = if sets.iter().all(|s| s.ci_level == level) {
+    let level = sets.clone().next().map_or(0.0, |s| s.1);
+    let band = if sets.clone().all(|s| s.1 == level) {
         format!("{}% confidence interval", (level * 1e4).round() / 100.0)
     } else {
         "confidence interval".to_owned()

@@ -108,22 +108,27 @@ impl SeriesSet {
 
     /// The curve of `metric`; non-finite values count as unknown.
     pub fn series(&self, metric: Metric) -> Series {
-        let known = |v: Option<f64>| v.filter(|v| v.is_finite());
         Series {
             label: self.label.clone(),
             points: self
                 .points
                 .iter()
-                .map(|p| {
-                    let e = metric.of(p);
-                    SeriesPoint {
-                        episode: p.episode as f64,
-                        mean: known(e.mean),
-                        low: known(e.ci_low),
-                        high: known(e.ci_high),
-                    }
-                })
+                .map(|p| SeriesPoint::of(p.episode, metric.of(p)))
                 .collect(),
+        }
+    }
+}
+
+impl SeriesPoint {
+    /// The point of `estimate` at `episode`; non-finite values count as
+    /// unknown.
+    pub(super) fn of(episode: u64, estimate: &Estimate) -> Self {
+        let known = |v: Option<f64>| v.filter(|v| v.is_finite());
+        Self {
+            episode: episode as f64,
+            mean: known(estimate.mean),
+            low: known(estimate.ci_low),
+            high: known(estimate.ci_high),
         }
     }
 }

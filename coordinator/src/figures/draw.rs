@@ -43,12 +43,25 @@ const LINE_WIDTH: u32 = 2;
 /// The x axis title of every figure.
 const X_AXIS: &str = "Training episodes";
 
-/// A series as drawn: its colour and the points shown.
+/// A series as drawn: its colour, the points shown and its marks.
 pub(super) struct Curve<'a> {
     /// Line and band colour.
     pub colour: RGBColor,
     /// The points shown.
     pub series: &'a Series,
+    /// Points marked on the line.
+    pub marks: &'a [Mark],
+}
+
+/// A marked point of a curve: a triangle pointing up or down.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Mark {
+    /// Training episodes.
+    pub episode: f64,
+    /// The value marked.
+    pub value: f64,
+    /// Up (else down).
+    pub up: bool,
 }
 
 /// The texts of a figure besides its legend.
@@ -124,6 +137,10 @@ fn draw(
         .y_label_formatter(&|y| format!("{y:.y_decimals$}"))
         .draw()?;
 
+    if let Some(y) = layout.rule {
+        let rule = vec![(ranges.x.0, y), (ranges.x.1, y)];
+        chart.draw_series([PathElement::new(rule, INK.stroke_width(1))])?;
+    }
     let clamp = |y: f64| y.clamp(ranges.y.0, ranges.y.1);
     for c in curves {
         for run in runs(&c.series.points, |p| p.low.zip(p.high)) {
@@ -143,6 +160,18 @@ fn draw(
                 chart.draw_series([PathElement::new(run, style)])?;
             }
         }
+    }
+    for c in curves {
+        // A triangle outlined in white, centred on the mark.
+        let triangle = |m: &Mark| {
+            let (tip, base) = if m.up { (-7, 4) } else { (7, -4) };
+            let corners = vec![(0, tip), (6, base), (-6, base)];
+            let outline = vec![(0, tip), (6, base), (-6, base), (0, tip)];
+            EmptyElement::at((m.episode, m.value))
+                + Polygon::new(corners, c.colour.filled())
+                + PathElement::new(outline, WHITE.stroke_width(1))
+        };
+        chart.draw_series(c.marks.iter().map(triangle))?;
     }
     if let Some(legend) = &layout.legend {
         let area = chart.plotting_area().strip_coord_spec();

@@ -46,6 +46,9 @@ pub(super) enum YRange {
     FromZero,
     /// Around the values with a margin, within zero and the ceiling.
     Fitted(Option<f64>),
+    /// Around the values and this reference, with a margin, marked by a
+    /// horizontal line (a difference's zero).
+    Around(f64),
 }
 
 /// Data ranges of a chart.
@@ -73,6 +76,8 @@ pub(super) struct Layout {
     pub ranges: Ranges,
     /// The legend, `None` without curves.
     pub legend: Option<Legend>,
+    /// The value of a horizontal reference line, if any.
+    pub rule: Option<f64>,
 }
 
 impl Layout {
@@ -97,7 +102,15 @@ impl Layout {
                 place: best_place(shown, ranges, size).0,
             }
         });
-        Self { ranges, legend }
+        let rule = match y {
+            YRange::Around(reference) => Some(reference),
+            _ => None,
+        };
+        Self {
+            ranges,
+            legend,
+            rule,
+        }
     }
 }
 
@@ -162,6 +175,12 @@ fn y_range(rule: YRange, shown: &[Series]) -> (f64, f64) {
             let lo = (min - margin).max(0.0);
             let hi = max + margin;
             (lo, ceiling.map_or(hi, |c| hi.min(c).max(lo + 1.0)))
+        }
+        YRange::Around(reference) => {
+            let min = lo.map_or(reference, |lo| lo.min(reference));
+            let max = hi.map_or(reference, |hi| hi.max(reference));
+            let margin = ((max - min) * 0.08).max(0.5);
+            (min - margin, max + margin)
         }
     }
 }

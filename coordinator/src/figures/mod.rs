@@ -1,7 +1,9 @@
 //! Figures of experiments in the style of the paper's: goal percentage with
 //! a confidence band per algorithm (its Figures 3, 5, 7), time to goal
 //! (Figure 2), spent budget (Figures 4a, 6a, 8a) and the goal percentage of
-//! the last training episodes zoomed in (Figures 4b, 6b, 8b).
+//! the last training episodes zoomed in (Figures 4b, 6b, 8b); and, beyond
+//! the paper, each method's goal percentage minus the baseline's, paired by
+//! run ([`draw_difference`]).
 //!
 //! Pure: the input is every algorithm's estimates in memory
 //! ([`SeriesSet`]), the output every figure as an SVG document drawn with
@@ -32,12 +34,14 @@
 
 mod catalogue;
 mod data;
+mod difference;
 mod draw;
 #[cfg(test)]
 mod fixtures;
 mod layout;
 
 pub use data::{Metric, Point, Series, SeriesPoint, SeriesSet};
+pub use difference::{DIFFERENCE, DifferencePoint, DifferenceSet, draw_difference};
 pub use layout::SIZE;
 
 use catalogue::{FIGURES, note};
@@ -54,6 +58,14 @@ pub struct Figure {
 }
 
 impl Figure {
+    /// The figure `name` of the SVG document `svg` (or what went wrong in
+    /// drawing it), with its PNG.
+    fn drawn(name: &'static str, svg: Result<String, String>) -> Result<Self, FigureError> {
+        let svg = svg.map_err(|message| FigureError::Draw { name, message })?;
+        let png = draw::png(&svg).map_err(|message| FigureError::Raster { name, message })?;
+        Ok(Self { name, svg, png })
+    }
+
     /// The figure's files: `<name>.svg` and `<name>.png` with their bytes.
     pub fn files(&self) -> [(String, &[u8]); 2] {
         [
@@ -92,21 +104,7 @@ pub fn draw_figures(sets: &[SeriesSet]) -> Result<Vec<Figure>, FigureError> {
         .iter()
         .map(|kind| {
             let series: Vec<Series> = sets.iter().map(|s| s.series(kind.metric)).collect();
-            let svg = kind
-                .svg(&series, &note)
-                .map_err(|message| FigureError::Draw {
-                    name: kind.name,
-                    message,
-                })?;
-            let png = draw::png(&svg).map_err(|message| FigureError::Raster {
-                name: kind.name,
-                message,
-            })?;
-            Ok(Figure {
-                name: kind.name,
-                svg,
-                png,
-            })
+            Figure::drawn(kind.name, kind.svg(&series, &note))
         })
         .collect()
 }

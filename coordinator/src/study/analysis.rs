@@ -50,8 +50,7 @@ pub struct Comparison {
 /// The signed-rank tests of the goal percentages of `a` and `b` (every run,
 /// sorted by run) at every evaluation point that has one: its episode, the
 /// two-sided p-value and the difference of the means, `a` minus `b`.
-pub fn point_tests(a: &EntryResults, b: &EntryResults) -> Vec<(u64, f64, f64)> {
-    let (ra, rb) = (&a.results, &b.results);
+pub fn point_tests(ra: &[RunResult], rb: &[RunResult]) -> Vec<(u64, f64, f64)> {
     let points = ra.first().map_or(0, |r| r.points.len());
     let mut tests = Vec::with_capacity(points);
     for p in 0..points {
@@ -74,7 +73,7 @@ pub fn point_tests(a: &EntryResults, b: &EntryResults) -> Vec<(u64, f64, f64)> {
 /// Compares the goal percentages of `a` and `b` (every run, sorted by run)
 /// point by point at level `alpha`.
 pub fn compare(a: &EntryResults, b: &EntryResults, alpha: f64) -> Comparison {
-    let tests = point_tests(a, b);
+    let tests = point_tests(&a.results, &b.results);
     let (a_better, b_better) = better_intervals(&tests, alpha);
     Comparison {
         a: a.entry.name.clone(),

@@ -35,8 +35,10 @@ pub fn holm_against(entries: &[EntryResults], baseline: &str, alpha: f64) -> Vec
     let others: Vec<&EntryResults> = (entries.iter())
         .filter(|e| e.entry.name != baseline)
         .collect();
-    let mut tests: Vec<Vec<(u64, f64, f64)>> =
-        others.iter().map(|e| point_tests(e, base)).collect();
+    let mut tests: Vec<Vec<(u64, f64, f64)>> = others
+        .iter()
+        .map(|e| point_tests(&e.results, &base.results))
+        .collect();
     // Every episode's family: (method, test) of the methods tested there.
     let mut families: BTreeMap<u64, Vec<(usize, usize)>> = BTreeMap::new();
     for (m, t) in tests.iter().enumerate() {

@@ -9,6 +9,7 @@
 mod aggregates;
 mod analysis;
 mod config;
+mod difference;
 mod gains;
 mod holm;
 mod published;

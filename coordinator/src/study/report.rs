@@ -9,10 +9,11 @@ use serde::Serialize;
 use super::aggregates::{Aggregates, Scores, aggregates};
 use super::analysis::{Comparison, EntryResults};
 use super::config::{StudyConfig, StudyEntry};
+use super::difference::difference_sets;
 use super::gains::{Gain, LAST_POINTS, gains};
 use super::holm::{HolmComparison, holm_against};
 use crate::error::Error;
-use crate::figures::{Figure, Point, SeriesSet, draw_figures};
+use crate::figures::{DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures};
 use crate::stats::Estimate;
 use crate::store;
 
@@ -62,7 +63,7 @@ pub fn write_report(
     }
     significance_between_advising(&mut md, study, entries, comparisons);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
-    figure_links(&mut md, &figures);
+    figure_links(&mut md, study, &figures);
     if study.transport.communicates() {
         communication(&mut md, entries);
     }
@@ -75,7 +76,8 @@ pub fn write_report(
     Ok(path)
 }
 
-/// Draws the figures of every entry into `out/figures`.
+/// Draws the figures of every entry into `out/figures`, with a baseline
+/// the difference from it after the goal percentage.
 fn write_figures(
     out: &Path,
     study: &StudyConfig,
@@ -85,7 +87,14 @@ fn write_figures(
         .iter()
         .map(|e| series_set(e, study.ci_level()))
         .collect();
-    let figures = draw_figures(&sets)?;
+    let mut figures = draw_figures(&sets)?;
+    let runs: Vec<_> = (entries.iter())
+        .map(|e| (e.entry.name.as_str(), &e.results[..]))
+        .collect();
+    let differences = difference_sets(&runs, study.baseline.as_deref(), study.ci_level());
+    if let (Some(baseline), false) = (&study.baseline, differences.is_empty()) {
+        figures.insert(1, draw_difference(baseline, &differences)?);
+    }
     let dir = out.join("figures");
     store::create_dir(&dir)?;
     for figure in &figures {
@@ -384,10 +393,17 @@ fn significance_between_advising(
     );
 }
 
-/// Every figure, as an image.
-fn figure_links(md: &mut Markdown, figures: &[Figure]) {
+/// Every figure, as an image; the difference from the baseline with what
+/// it shows.
+fn figure_links(md: &mut Markdown, study: &StudyConfig, figures: &[Figure]) {
     md.heading(2, "Figures");
     for f in figures {
+        if let (DIFFERENCE, Some(baseline)) = (f.name, &study.baseline) {
+            md.paragraph(&format!(
+                "Each method's goal percentage minus `{baseline}`'s, paired by run (mean and interval over runs); \
+                 triangles mark where the signed-rank test against `{baseline}` above finds it better (up) or worse (down)."
+            ));
+        }
         md.paragraph(&format!("![{name}.svg](figures/{name}.svg)", name = f.name));
     }
 }

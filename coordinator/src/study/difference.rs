@@ -1,0 +1,132 @@
+//! Each method's goal % minus the baseline's at every evaluation point,
+//! paired by run, with the verdicts of the study's signed-rank tests
+//! against the baseline: the input of the difference figure.
+
+use super::analysis::point_tests;
+use crate::figures::{DifferencePoint, DifferenceSet};
+use crate::schedule::RunResult;
+use crate::stats::estimate;
+use crate::wilcoxon::better_side;
+
+/// The differences of every method in `entries` (name and every run,
+/// sorted by run) from the one named `baseline`, with intervals at `level`
+/// and tests at `1 - level`; none without a baseline among them.
+pub fn difference_sets(
+    entries: &[(&str, &[RunResult])],
+    baseline: Option<&str>,
+    level: f64,
+) -> Vec<DifferenceSet> {
+    let Some(&(name, base)) = baseline.and_then(|b| entries.iter().find(|e| e.0 == b)) else {
+        return Vec::new();
+    };
+    (entries.iter().enumerate())
+        .filter(|(_, e)| e.0 != name)
+        .map(|(slot, &(label, runs))| DifferenceSet {
+            label: label.to_owned(),
+            slot,
+            runs: (runs.iter())
+                .filter(|r| base.iter().any(|b| b.run == r.run))
+                .count() as u64,
+            ci_level: level,
+            points: differences(runs, base, level),
+        })
+        .collect()
+}
+
+/// The differences of `runs` from `base` at every evaluation point of the
+/// first run, paired by run number.
+fn differences(runs: &[RunResult], base: &[RunResult], level: f64) -> Vec<DifferencePoint> {
+    let tests = point_tests(runs, base);
+    let goal = |r: &RunResult, episode| {
+        (r.points.iter())
+            .find(|p| p.episode == episode)
+            .map(|p| p.goal_pct)
+    };
+    let episodes = runs.first().map_or(&[][..], |r| &r.points);
+    (episodes.iter())
+        .map(|p| {
+            let differences: Vec<f64> = (runs.iter())
+                .filter_map(|r| {
+                    let b = base.iter().find(|b| b.run == r.run)?;
+                    Some(goal(r, p.episode)? - goal(b, p.episode)?)
+                })
+                .collect();
+            let better = (tests.iter())
+                .find(|t| t.0 == p.episode)
+                .and_then(|&(_, p, mean_diff)| better_side(p, mean_diff, 1.0 - level));
+            DifferencePoint {
+                episode: p.episode,
+                difference: estimate(&differences, level),
+                better,
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schedule::EvalPoint;
+
+    /// Run `run` with goal percentages `goals` at episodes 0, 50, ...
+    fn run(run: u64, goals: &[f64]) -> RunResult {
+        let points = (goals.iter().enumerate())
+            .map(|(i, &goal_pct)| EvalPoint {
+                episode: 50 * i as u64,
+                episodes: 100,
+                goals: goal_pct as u64,
+                goal_pct,
+                time_to_goal: None,
+                agents: Vec::new(),
+                spent_budget: 0.0,
+                actions_timed_out: 0,
+            })
+            .collect();
+        RunResult {
+            run,
+            points,
+            timing: Default::default(),
+            advice_rtt_ms: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn differences_are_paired_by_run_with_the_tests_verdicts() {
+        // The baseline varies a lot between runs; each method run is its
+        // baseline run plus 1..6 at episode 0, minus that at 50, plus 0 at
+        // 100.
+        let base: Vec<RunResult> = (0..6)
+            .map(|k| run(k, &[10.0 * k as f64, 20.0 * k as f64, 5.0]))
+            .collect();
+        let method: Vec<RunResult> = (0..6)
+            .map(|k| {
+                let d = k as f64 + 1.0;
+                run(k, &[10.0 * k as f64 + d, 20.0 * k as f64 - d, 5.0])
+            })
+            .collect();
+        let entries = [("base", &base[..]), ("method", &method[..])];
+        let sets = difference_sets(&entries, Some("base"), 0.95);
+        assert_eq!(sets.len(), 1);
+        let set = &sets[0];
+        assert_eq!((set.label.as_str(), set.slot, set.runs), ("method", 1, 6));
+        let ds = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+        let negated: Vec<f64> = ds.iter().map(|d| -d).collect();
+        let expected = [
+            (0, estimate(&ds, 0.95), Some(true)),
+            (50, estimate(&negated, 0.95), Some(false)),
+            (100, estimate(&[0.0; 6], 0.95), None),
+        ];
+        for (p, (episode, difference, better)) in set.points.iter().zip(expected) {
+            assert_eq!(
+                (p.episode, p.difference, p.better),
+                (episode, difference, better)
+            );
+        }
+        // The interval is the paired one: narrow despite the spread.
+        let d = set.points[0].difference;
+        assert!(d.ci_high.unwrap() - d.ci_low.unwrap() < 5.0, "{d:?}");
+        // Without a baseline, or one not among the entries, nothing.
+        assert!(difference_sets(&entries, None, 0.95).is_empty());
+        assert!(difference_sets(&entries, Some("other"), 0.95).is_empty());
+    }
+}
