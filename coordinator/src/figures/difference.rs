@@ -5,8 +5,8 @@
 use super::catalogue::note_of;
 use super::data::{Series, SeriesPoint};
 use super::draw::{self, Captions, Curve, Mark, PALETTE};
+use super::figure::{Figure, FigureError};
 use super::layout::{Layout, YRange};
-use super::{Figure, FigureError};
 use crate::stats::Estimate;
 
 /// The figure's file name, without extension.
