@@ -23,8 +23,9 @@ use serde_json::{Value, json};
 const MAX_LINE: u64 = 1 << 20;
 
 /// How long a learner may take to start (imports, a model on a GPU) and
-/// answer `start`, if longer than its timeout.
-const START_TIMEOUT: Duration = Duration::from_secs(60);
+/// answer `start`, if longer than its timeout: within the coordinator's
+/// 10 s for a reset, so that the agent names the cause.
+const START_TIMEOUT: Duration = Duration::from_secs(8);
 
 /// How to start an agent's learner process.
 #[derive(Clone, Debug, PartialEq)]
