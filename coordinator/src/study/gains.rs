@@ -104,27 +104,11 @@ pub fn gains(entries: &[EntryResults], baseline: &str, level: f64) -> Vec<Gain> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schedule::EvalPoint;
+    use crate::study::fixtures::run_with_goals;
 
+    /// Run `run` with goal percentages `goals` every 20 episodes.
     fn run(run: u64, goals: &[f64]) -> RunResult {
-        let points = (goals.iter().enumerate())
-            .map(|(i, &goal_pct)| EvalPoint {
-                episode: 20 * i as u64,
-                episodes: 100,
-                goals: goal_pct as u64,
-                goal_pct,
-                time_to_goal: None,
-                agents: Vec::new(),
-                spent_budget: 0.0,
-                actions_timed_out: 0,
-            })
-            .collect();
-        RunResult {
-            run,
-            points,
-            timing: Default::default(),
-            advice_rtt_ms: Vec::new(),
-        }
+        run_with_goals(run, 20, goals)
     }
 
     #[test]

@@ -10,6 +10,8 @@ mod aggregates;
 mod analysis;
 mod config;
 mod difference;
+#[cfg(test)]
+mod fixtures;
 mod gains;
 mod holm;
 mod published;

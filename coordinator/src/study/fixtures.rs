@@ -1,0 +1,25 @@
+//! Test inputs shared by the study's modules.
+
+use crate::schedule::{EvalPoint, RunResult};
+
+/// Run `run` with goal percentages `goals` at episodes 0, `every`, 2 `every`, ...
+pub(super) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
+    let points = (goals.iter().enumerate())
+        .map(|(i, &goal_pct)| EvalPoint {
+            episode: every * i as u64,
+            episodes: 100,
+            goals: goal_pct as u64,
+            goal_pct,
+            time_to_goal: None,
+            agents: Vec::new(),
+            spent_budget: 0.0,
+            actions_timed_out: 0,
+        })
+        .collect();
+    RunResult {
+        run,
+        points,
+        timing: Default::default(),
+        advice_rtt_ms: Vec::new(),
+    }
+}
