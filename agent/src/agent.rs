@@ -11,6 +11,7 @@ use crate::counters::Counters;
 use crate::exchange::{AdviceExchange, Transition};
 use crate::fidelity::{AdvisorTies, SharedBootstrap, TorreyIntent};
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
+use crate::network::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
 use crate::policy::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random, majority};
 use crate::sarsa::TabularSarsa;
@@ -108,6 +109,7 @@ pub struct Agent {
     share_ready: bool,
     training_episodes: u64,
     counters: Counters,
+    link: Option<Link>,
 }
 
 impl Agent {
@@ -141,7 +143,11 @@ impl Agent {
             ));
         }
         config.strategy.check_team(team_size)?;
+        if let Some(network) = &config.network {
+            network.validate()?;
+        }
         Ok(Self {
+            link: config.network.map(|n| Link::new(n, seed)),
             id,
             team_size,
             config,
@@ -180,6 +186,12 @@ impl Agent {
     /// The mode of the current episode.
     pub fn mode(&self) -> Mode {
         self.mode
+    }
+
+    /// The link its advice messages go out on, under its network
+    /// conditions (none without them).
+    pub fn link(&self) -> Option<&Link> {
+        self.link.as_ref()
     }
 
     /// Communication and budget counters.

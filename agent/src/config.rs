@@ -8,6 +8,7 @@ use proto::STATE_FEATURES;
 
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
+use crate::network::NetworkConditions;
 use crate::strategy::Strategy;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
@@ -47,6 +48,9 @@ pub struct AgentConfig {
     pub strategy: Strategy,
     /// The rules where the paper and the authors' code differ.
     pub fidelity: Fidelity,
+    /// Network conditions of its advice messages; none: every message
+    /// arrives at once.
+    pub network: Option<NetworkConditions>,
 }
 
 impl Default for AgentConfig {
@@ -62,6 +66,7 @@ impl Default for AgentConfig {
             trace_threshold: 1e-4,
             strategy: Strategy::NoAdvice,
             fidelity: Fidelity::default(),
+            network: None,
         }
     }
 }
@@ -81,6 +86,9 @@ impl AgentConfig {
             threshold > 0.0 && threshold < 1.0,
         )?;
         self.validate_tiles()?;
+        if let Some(network) = &self.network {
+            network.validate()?;
+        }
         self.strategy.validate()
     }
 

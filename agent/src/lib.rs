@@ -46,6 +46,7 @@ mod counters;
 mod exchange;
 mod fidelity;
 mod learner;
+mod network;
 mod persist;
 mod policy;
 mod sarsa;
@@ -64,10 +65,11 @@ pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 pub use learner::{ActionValues, Experience, Learner, Seen, Step};
+pub use network::{Direction, Latency, Link, MAX_NETWORK_MS, Message, NetworkConditions};
 pub use persist::{Entry, FORMAT_VERSION, PersistError, Snapshot, snapshot_file};
 pub use policy::{ACTIONS, AgentRng};
 pub use proto::Mode;
 pub use sarsa::TabularSarsa;
 pub use strategy::{AdHoc, Confidence, Strategy, StrategyName, Torrey, UnknownStrategy};
-pub use team::{Team, TeamError};
+pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

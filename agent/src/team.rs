@@ -1,10 +1,13 @@
 //! The in-process backend: all agents in one `Vec`, advising by direct calls
 //! in a fixed order, so a run is bit-for-bit deterministic.
 
-use proto::{Action, Mode, State};
+use proto::{
+    Action, AdviceReply, AdviceRequest, Body, Envelope, Header, Mode, SharedEpisode, State,
+};
 
 use crate::agent::{Agent, Observation};
 use crate::exchange::{AdviceExchange, Transition};
+use crate::network::{Direction, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -41,11 +44,37 @@ pub enum TeamError {
 ///
 /// In a frame, agents act in id order; an advisee asks its advisors in the
 /// order of its reachable set, each advisor answering from its current state.
+/// Advice messages meet each sender's network conditions, if it has any
+/// ([`Agent::link`]): a lost request reaches nobody, a lost reply or one
+/// arriving after the asker's timeout is not counted by the asker.
 #[derive(Debug)]
 pub struct Team {
     agents: Vec<Agent>,
     actions: Vec<Action>,
     positions: Vec<[f64; 2]>,
+    /// Episodes begun, training and evaluation alike.
+    episodes: u32,
+    /// Frames played in the current episode.
+    frame: u32,
+    /// Advising messages each agent sent.
+    traffic: Vec<AdvisingTraffic>,
+}
+
+/// The advising messages an agent sent (advice requests, replies and shared
+/// episodes) and their bytes, encoded as the zenoh transport sends them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AdvisingTraffic {
+    /// Messages sent.
+    pub messages: u64,
+    /// Their encoded bytes.
+    pub bytes: u64,
+}
+
+impl AdvisingTraffic {
+    fn count(&mut self, header: Header, body: Body) {
+        self.messages += 1;
+        self.bytes += proto::encode(&Envelope { header, body }).len() as u64;
+    }
 }
 
 impl Team {
@@ -68,6 +97,9 @@ impl Team {
             actions: vec![Action::Move; size],
             positions: Vec::with_capacity(size),
             agents,
+            episodes: 0,
+            frame: 0,
+            traffic: vec![AdvisingTraffic::default(); size],
         })
     }
 
@@ -76,8 +108,15 @@ impl Team {
         &self.agents
     }
 
+    /// The advising messages each agent sent so far, by id.
+    pub fn traffic(&self) -> &[AdvisingTraffic] {
+        &self.traffic
+    }
+
     /// Starts an episode for every agent.
     pub fn begin_episode(&mut self, mode: Mode) {
+        self.episodes += 1;
+        self.frame = 0;
         for a in &mut self.agents {
             a.begin_episode(mode);
         }
@@ -100,10 +139,14 @@ impl Team {
         self.positions.clear();
         self.positions
             .extend(observations.iter().map(|o| o.position));
+        let (episode, frame) = (self.episodes.saturating_sub(1), self.frame);
         for (i, obs) in observations.iter().enumerate() {
-            let (me, mut peers) = Peers::split(&mut self.agents, i);
+            let (me, mut peers) = Peers::split(&mut self.agents, &mut self.traffic, i);
+            peers.clock = (episode, frame);
+            peers.link = me.link().copied();
             self.actions[i] = me.act(obs, reward, &self.positions, &mut peers);
         }
+        self.frame += 1;
         Ok(&self.actions)
     }
 
@@ -113,23 +156,33 @@ impl Team {
         for a in &mut self.agents {
             a.end_episode(final_reward);
         }
+        let episode = self.episodes.saturating_sub(1);
         for i in 0..self.agents.len() {
-            let (me, mut peers) = Peers::split(&mut self.agents, i);
+            let (me, mut peers) = Peers::split(&mut self.agents, &mut self.traffic, i);
+            peers.clock = (episode, self.frame);
             me.share_episode(&mut peers);
         }
     }
 }
 
-/// Every agent but one, reachable by id.
+/// Every agent but one, reachable by id, and that one's link at the
+/// frame's (episode, frame).
 struct Peers<'a> {
     before: &'a mut [Agent],
     after: &'a mut [Agent],
     me: usize,
+    link: Option<Link>,
+    clock: (u32, u32),
+    traffic: &'a mut [AdvisingTraffic],
 }
 
 impl<'a> Peers<'a> {
     /// Agent `i` and the others.
-    fn split(agents: &'a mut [Agent], i: usize) -> (&'a mut Agent, Self) {
+    fn split(
+        agents: &'a mut [Agent],
+        traffic: &'a mut [AdvisingTraffic],
+        i: usize,
+    ) -> (&'a mut Agent, Self) {
         let (before, rest) = agents.split_at_mut(i);
         let (me, after) = rest.split_first_mut().expect("index below the team size");
         (
@@ -138,8 +191,30 @@ impl<'a> Peers<'a> {
                 before,
                 after,
                 me: i,
+                link: None,
+                clock: (0, 0),
+                traffic,
             },
         )
+    }
+
+    /// The message from `from` to `to` in this frame.
+    fn message(&self, from: usize, to: usize, direction: Direction) -> Message {
+        let (episode, frame) = self.clock;
+        Message {
+            episode,
+            frame,
+            from,
+            to,
+            direction,
+        }
+    }
+
+    /// The header of this frame's messages, as the zenoh transport's of a
+    /// run 0 of an experiment named `in-process`.
+    fn header(&self) -> Header {
+        let (episode, frame) = self.clock;
+        Header::new(proto::experiment_id("in-process"), 0, episode, frame)
     }
 
     fn get(&mut self, id: usize) -> Option<&mut Agent> {
@@ -154,20 +229,52 @@ impl<'a> Peers<'a> {
 impl AdviceExchange for Peers<'_> {
     fn ask(
         &mut self,
-        _from: usize,
+        from: usize,
         to: &[usize],
         state: &State,
         intended: Option<Action>,
         answers: &mut Vec<Action>,
     ) {
+        let delay = |link: Option<&Link>, message| link.map_or(Some(0.0), |l| l.delay(message));
+        let asker = self.link;
+        let header = self.header();
+        let request = Body::AdviceRequest(AdviceRequest {
+            from: from as u8,
+            state: *state,
+            intended,
+        });
         for &j in to {
-            if let Some(advice) = self.get(j).and_then(|a| a.advise(state, intended)) {
+            self.traffic[from].count(header, request.clone());
+            let Some(sent) = delay(asker.as_ref(), self.message(from, j, Direction::Request))
+            else {
+                continue;
+            };
+            let back = self.message(j, from, Direction::Reply);
+            let Some(advisor) = self.get(j) else {
+                continue;
+            };
+            let advice = advisor.advise(state, intended);
+            let arrives = delay(advisor.link(), back)
+                .is_some_and(|b| asker.is_none_or(|l| sent + b <= l.timeout_ms()));
+            let reply = AdviceReply {
+                from: j as u8,
+                advice,
+            };
+            self.traffic[j].count(header, Body::AdviceReply(reply));
+            if let (Some(advice), true) = (advice, arrives) {
                 answers.push(advice);
             }
         }
     }
 
-    fn share(&mut self, _from: usize, to: usize, transitions: &[Transition]) {
+    fn share(&mut self, from: usize, to: usize, transitions: &[Transition]) {
+        let share = SharedEpisode {
+            from: from as u8,
+            to: to as u8,
+            transitions: transitions.to_vec(),
+        };
+        let header = self.header();
+        self.traffic[from].count(header, Body::SharedEpisode(share));
         if let Some(a) = self.get(to) {
             a.receive_shared(transitions);
         }

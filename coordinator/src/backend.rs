@@ -1,7 +1,7 @@
 //! The seam between the schedule and where agents and simulator live: the
 //! schedule drives a [`Backend`] episode by episode, whatever the transport.
 
-use agent::{Agent, Mode, Snapshot};
+use agent::{AdvisingTraffic, Agent, Mode, Snapshot};
 use env_server::Outcome;
 use serde::Serialize;
 
@@ -21,6 +21,7 @@ pub struct EpisodeEnd {
 
 /// One agent's budgets and communication so far.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct AgentStats {
     /// The give budget the paper plots: advice given, or transitions shared.
     pub give_spent: u64,
@@ -43,13 +44,20 @@ pub struct AgentStats {
     /// Received messages dropped as malformed, foreign, stale, duplicate or
     /// unrequested advice.
     pub messages_dropped: u64,
+    /// Advising messages sent: advice requests, replies and shared episodes
+    /// (in process, those the zenoh transport would send).
+    pub advising_messages: u64,
+    /// Their encoded bytes.
+    pub advising_bytes: u64,
 }
 
 impl AgentStats {
-    /// The statistics of a local agent.
-    pub fn of(agent: &Agent) -> Self {
+    /// The statistics of a local agent that sent `traffic`.
+    pub fn of(agent: &Agent, traffic: &AdvisingTraffic) -> Self {
         let c = agent.counters();
         Self {
+            advising_messages: traffic.messages,
+            advising_bytes: traffic.bytes,
             give_spent: agent.spent_budget(),
             ask_spent: c.ask_spent,
             advice_requests: c.advice_requests,

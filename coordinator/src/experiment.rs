@@ -43,7 +43,10 @@ pub struct Record<'a> {
 /// JSONs and `summary.json`. 2: the run JSONs name each agent's counters
 /// as the run CSV's columns do (`give_spent`, `ask_spent`,
 /// `advice_requests`, `advice_replies_received`, `messages_dropped`).
-pub const FORMAT_VERSION: u32 = 2;
+/// 3: the advising traffic (`advising_messages`, `advising_bytes`) in the
+/// runs, and per training episode in the summary's points; agents' network
+/// conditions (`network`) in the configuration.
+pub const FORMAT_VERSION: u32 = 3;
 
 impl Experiment {
     /// Validates `config` and loads every agent's snapshot. Writes nothing.

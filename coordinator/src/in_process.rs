@@ -77,7 +77,11 @@ impl Backend for InProcess {
     }
 
     fn agent_stats(&self) -> Result<Vec<AgentStats>, Error> {
-        Ok(self.team.agents().iter().map(AgentStats::of).collect())
+        let agents = self.team.agents().iter();
+        Ok(agents
+            .zip(self.team.traffic())
+            .map(|(a, t)| AgentStats::of(a, t))
+            .collect())
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {

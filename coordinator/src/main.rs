@@ -5,7 +5,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use agent::{Profile, StrategyName};
+use agent::{Latency, NetworkConditions, Profile, StrategyName};
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
@@ -102,7 +102,7 @@ struct RouterArgs {
 #[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
 struct StudyArgs {
     /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
-    /// fidelity-sensitivity.
+    /// fidelity-sensitivity, advice-network.
     #[arg(long, value_name = "NAME")]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).
@@ -194,6 +194,16 @@ struct RunArgs {
     /// library calls in this process (in-process: fast, bit-for-bit deterministic).
     #[arg(long, value_parser = TRANSPORT_NAMES, default_value = "zenoh")]
     transport: String,
+    /// Network conditions of every agent's advice messages: the latency of
+    /// each, fixed:MS, uniform:MIN,MAX or lognormal:MEDIAN,SIGMA (ms), in
+    /// both transports (docs/algorithms.md section 6).
+    #[arg(long, value_name = "DIST")]
+    advice_latency: Option<Latency>,
+    /// With network conditions: the probability that an advice message is
+    /// lost (0 to 1). Either option sets the conditions, whose advice
+    /// timeout is --advice-timeout-ms in both transports.
+    #[arg(long, value_name = "P")]
+    advice_loss: Option<f64>,
     #[command(flatten)]
     network: NetworkArgs,
     /// Output directory: config.json, run-<k>.csv, summary.json.
@@ -465,7 +475,7 @@ fn strategy_names() -> impl TypedValueParser<Value = StrategyName> {
 }
 
 fn run_one(args: RunArgs) -> Result<()> {
-    let (team, label) = match (&args.team, args.algorithm) {
+    let (mut team, label) = match (&args.team, args.algorithm) {
         (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
         (None, Some(algorithm)) => {
             let offense = args.offense.unwrap_or(3);
@@ -483,6 +493,20 @@ fn run_one(args: RunArgs) -> Result<()> {
         }
         (None, None) => unreachable!("clap requires --algorithm or --team"),
     };
+    if args.advice_latency.is_some() || args.advice_loss.is_some() {
+        let base = NetworkConditions::default();
+        let conditions = NetworkConditions {
+            latency: args.advice_latency.unwrap_or(base.latency),
+            loss: args.advice_loss.unwrap_or(base.loss),
+            timeout_ms: args
+                .network
+                .advice_timeout_ms
+                .map_or(base.timeout_ms, |ms| ms as f64),
+        };
+        for spec in &mut team {
+            spec.config.network = Some(conditions);
+        }
+    }
     let mut config = ExperimentConfig {
         runs: args.runs,
         episodes: args.episodes,

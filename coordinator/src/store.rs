@@ -240,6 +240,10 @@ const COLUMNS: &[Column] = &[
     // Awaited actions that missed the step timeout and were played as Move,
     // over the run so far (0 in process).
     Column::Point("actions_timed_out", |p| p.actions_timed_out.to_string()),
+    // Advice requests, replies and shared episodes sent (in process: as
+    // the zenoh transport would encode them).
+    Column::Team("advising_messages", |a| a.advising_messages),
+    Column::Team("advising_bytes", |a| a.advising_bytes),
 ];
 
 impl Column {
@@ -359,8 +363,9 @@ mod tests {
             csv,
             "episode,goal_pct,time_to_goal,give_spent_0,give_spent_1,ask_spent_0,ask_spent_1,\
              advice_requests,advice_given,spent_budget,advice_replies_received,messages_sent,\
-             bytes_sent,messages_received,bytes_received,messages_dropped,actions_timed_out\n\
-             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4\n"
+             bytes_sent,messages_received,bytes_received,messages_dropped,actions_timed_out,\
+             advising_messages,advising_bytes\n\
+             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4,0,0\n"
         );
         ExperimentDir::check(&dir, &ours).unwrap();
         let theirs = json!({"format": 1, "config": {"runs": 3}});

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::backend::AgentStats;
 use crate::config::ExperimentConfig;
 use crate::experiment::Record;
 use crate::schedule::{EvalPoint, RunResult, Timing};
@@ -19,6 +20,11 @@ pub struct SummaryPoint {
     pub time_to_goal: Estimate,
     /// Give budget spent, averaged over agents.
     pub spent_budget: Estimate,
+    /// Advising messages the team sent per training episode since the
+    /// previous point (unknown at the first).
+    pub advising_messages: Estimate,
+    /// Their bytes per training episode.
+    pub advising_bytes: Estimate,
 }
 
 /// What `summary.json` holds. It depends only on the configuration, the
@@ -195,6 +201,18 @@ pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
             .filter_map(|r| r.points.get(p).and_then(f))
             .collect::<Vec<f64>>()
     };
+    // Per run, the team's count per training episode between points p - 1 and p.
+    let rates = |p: usize, count: fn(&AgentStats) -> u64| {
+        let team = |e: &EvalPoint| e.agents.iter().map(count).sum::<u64>() as f64;
+        results
+            .iter()
+            .filter_map(|r| {
+                let (before, now) = (r.points.get(p.checked_sub(1)?)?, r.points.get(p)?);
+                let episodes = now.episode.checked_sub(before.episode).filter(|&n| n > 0)?;
+                Some((team(now) - team(before)) / episodes as f64)
+            })
+            .collect::<Vec<f64>>()
+    };
     let eval_points = config
         .eval_points()
         .into_iter()
@@ -204,6 +222,8 @@ pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
             goal_pct: estimate(&column(p, &|e| Some(e.goal_pct)), level),
             time_to_goal: estimate(&column(p, &|e| e.time_to_goal), level),
             spent_budget: estimate(&column(p, &|e| Some(e.spent_budget)), level),
+            advising_messages: estimate(&rates(p, |a| a.advising_messages), level),
+            advising_bytes: estimate(&rates(p, |a| a.advising_bytes), level),
         })
         .collect();
     Summary {

@@ -148,6 +148,14 @@ impl MessageCounters {
         }
     }
 
+    /// Messages and bytes sent of `kinds`.
+    pub fn sent_of(&self, kinds: &[MessageKind]) -> Tally {
+        kinds.iter().fold(Tally::default(), |a, &k| Tally {
+            messages: a.messages + self.sent[k as usize].messages,
+            bytes: a.bytes + self.sent[k as usize].bytes,
+        })
+    }
+
     /// Total messages and bytes in one direction.
     pub fn total(&self, direction: Direction) -> Tally {
         let table = match direction {

@@ -1,15 +1,19 @@
 //! The advisor side: the agent's advice queryable, answered in zenoh's
 //! callback, concurrently with the agent's own decisions (docs/protocol.md §6).
 
+use agent::Direction;
 use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind};
 use zenoh::Wait;
 use zenoh::query::Query;
 
+use crate::conditions;
 use crate::context::Context;
 
 /// Answers one request: advice, or `None` when the agent gives none (or the
 /// request belongs to another run). Undecodable requests get no answer.
-pub fn answer(ctx: &Context, query: &Query) {
+/// Under network conditions the reply is lost or delayed as this agent's
+/// link draws it; a delayed reply is sent from a task on `runtime`.
+pub fn answer(ctx: &Context, query: Query, runtime: &tokio::runtime::Handle) {
     let bytes = query.payload().map(|p| p.to_bytes()).unwrap_or_default();
     let Some(Envelope { header, body }) = ctx.decode(&bytes) else {
         return;
@@ -34,7 +38,27 @@ pub fn answer(ctx: &Context, query: &Query) {
         advice,
     };
     let bytes = ctx.encode(header, Body::AdviceReply(reply));
-    if let Err(e) = query.reply(ctx.keys.advice(ctx.id), bytes).wait() {
-        tracing::warn!(error = %e, "cannot answer an advice request");
+    let key = ctx.keys.advice(ctx.id);
+    match conditions::fate(
+        ctx.advice().1,
+        &header,
+        ctx.id,
+        request.from,
+        Direction::Reply,
+    ) {
+        None => tracing::trace!(asker = request.from, "the network lost an advice reply"),
+        Some(ms) if ms > 0.0 => {
+            runtime.spawn(async move {
+                conditions::delay(ms).await;
+                if let Err(e) = query.reply(key, bytes).await {
+                    tracing::debug!(error = %e, "cannot send a delayed advice reply");
+                }
+            });
+        }
+        Some(_) => {
+            if let Err(e) = query.reply(key, bytes).wait() {
+                tracing::warn!(error = %e, "cannot answer an advice request");
+            }
+        }
     }
 }

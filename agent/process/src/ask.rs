@@ -4,10 +4,12 @@
 
 use std::time::{Duration, Instant};
 
+use agent::Direction;
 use proto::{Action, Body, DropReason, Header, MessageKind};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
+use crate::conditions;
 use crate::context::Context;
 use crate::learning::Ask;
 
@@ -67,34 +69,38 @@ impl Collector {
 type Arrival = (u8, Vec<u8>, Duration);
 
 /// Sends `ask` (for the frame of `header`) to its advisors and collects
-/// their replies.
+/// their replies. Under network conditions each request is lost or delayed
+/// as this agent's link draws it; the asker waits for a lost one all the
+/// same, as it cannot know.
 pub async fn ask(ctx: &Context, header: Header, ask: &Ask) -> Collector {
-    let timeout = ctx.advice_timeout();
-    let deadline = tokio::time::Instant::now() + timeout;
+    let (timeout, link) = ctx.advice();
+    let asked = Instant::now();
+    let deadline = tokio::time::Instant::from_std(asked) + timeout;
     let (tx, mut rx) = mpsc::unbounded_channel::<Arrival>();
     let mut collector = Collector::new(&[]);
     for &j in &ask.to {
-        let bytes = ctx.encode(header, Body::AdviceRequest(ask.request));
-        let tx = tx.clone();
-        let sent = Instant::now();
-        let query = ctx
-            .session
-            .get(ctx.keys.advice(j))
-            .payload(bytes)
-            .consolidation(ConsolidationMode::None)
-            .target(QueryTarget::All)
-            .timeout(timeout)
-            .callback(move |reply| {
-                if let Ok(sample) = reply.result() {
-                    // The receiver is gone once the request is settled.
-                    let _ = tx.send((j, sample.payload().to_bytes().into_owned(), sent.elapsed()));
+        let request = Request {
+            session: ctx.session.clone(),
+            key: ctx.keys.advice(j),
+            bytes: ctx.encode(header, Body::AdviceRequest(ask.request)),
+            advisor: j,
+            asked,
+            deadline,
+            tx: tx.clone(),
+        };
+        match conditions::fate(link, &header, ctx.id, j, Direction::Request) {
+            None => tracing::trace!(advisor = j, "the network lost an advice request"),
+            Some(ms) if ms > 0.0 => {
+                tokio::spawn(request.send_after(ms));
+            }
+            Some(_) => {
+                if let Err(e) = request.send().await {
+                    tracing::warn!(advisor = j, error = %e, "cannot send an advice request");
+                    continue;
                 }
-            })
-            .await;
-        match query {
-            Ok(()) => collector.waiting.push(j),
-            Err(e) => tracing::warn!(advisor = j, error = %e, "cannot send an advice request"),
+            }
         }
+        collector.waiting.push(j);
     }
     drop(tx);
     while !collector.done() {
@@ -104,6 +110,61 @@ pub async fn ask(ctx: &Context, header: Header, ask: &Ask) -> Collector {
         take_reply(ctx, header, &mut collector, j, &bytes, rtt);
     }
     collector
+}
+
+/// One advice request on its way to one advisor.
+struct Request {
+    session: zenoh::Session,
+    key: String,
+    bytes: Vec<u8>,
+    advisor: u8,
+    /// When the asker sent it (round trips count from here).
+    asked: Instant,
+    /// When the asker stops waiting.
+    deadline: tokio::time::Instant,
+    tx: mpsc::UnboundedSender<Arrival>,
+}
+
+impl Request {
+    /// Sends the query; its replies go to the collector until the deadline.
+    async fn send(self) -> zenoh::Result<()> {
+        let Request {
+            session,
+            key,
+            bytes,
+            advisor,
+            asked,
+            deadline,
+            tx,
+        } = self;
+        session
+            .get(key)
+            .payload(bytes)
+            .consolidation(ConsolidationMode::None)
+            .target(QueryTarget::All)
+            .timeout(deadline.saturating_duration_since(tokio::time::Instant::now()))
+            .callback(move |reply| {
+                if let Ok(sample) = reply.result() {
+                    // The receiver is gone once the request is settled.
+                    let payload = sample.payload().to_bytes().into_owned();
+                    let _ = tx.send((advisor, payload, asked.elapsed()));
+                }
+            })
+            .await
+    }
+
+    /// Sends it after the network's delay of `ms`, unless the asker stopped
+    /// waiting by then.
+    async fn send_after(self, ms: f64) {
+        conditions::delay(ms).await;
+        if tokio::time::Instant::now() >= self.deadline {
+            return;
+        }
+        let advisor = self.advisor;
+        if let Err(e) = self.send().await {
+            tracing::warn!(advisor, error = %e, "cannot send a delayed advice request");
+        }
+    }
 }
 
 /// Checks one reply and hands it to the collector, counting it.

@@ -5,6 +5,7 @@ use std::collections::BTreeSet;
 use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
+use agent::Link;
 use node::sync::lock;
 use proto::keys::Keys;
 use proto::{Body, Direction, DropReason, Envelope, Header, MessageCounters, MessageKind};
@@ -45,8 +46,9 @@ pub struct Context {
     pub experiment: u64,
     /// This agent's id.
     pub id: u8,
-    /// How long to wait for advice in the current run (set by its reset).
-    advice_timeout: Mutex<Duration>,
+    /// How long to wait for advice in the current run, and the network
+    /// conditions of this agent's advice messages (set by its reset).
+    advice: Mutex<(Duration, Option<Link>)>,
     learner: Mutex<Learning>,
     traffic: Mutex<Traffic>,
     alive: Mutex<BTreeSet<u8>>,
@@ -70,7 +72,7 @@ impl Context {
             keys,
             experiment: proto::experiment_id(name),
             id,
-            advice_timeout: Mutex::new(Duration::ZERO),
+            advice: Mutex::new((Duration::ZERO, None)),
             learner: Mutex::new(Learning::new(id, team_size, command)),
             traffic: Mutex::new(Traffic::default()),
             alive: Mutex::new(BTreeSet::new()),
@@ -80,14 +82,15 @@ impl Context {
         }
     }
 
-    /// How long to wait for advice in the current run.
-    pub fn advice_timeout(&self) -> Duration {
-        *lock(&self.advice_timeout)
+    /// How long to wait for advice in the current run, and the link its
+    /// advice messages go out on (none without network conditions).
+    pub fn advice(&self) -> (Duration, Option<Link>) {
+        *lock(&self.advice)
     }
 
-    /// Sets the advice timeout of the run that starts.
-    pub fn set_advice_timeout(&self, timeout: Duration) {
-        *lock(&self.advice_timeout) = timeout;
+    /// Sets the advice timeout and link of the run that starts.
+    pub fn set_advice(&self, timeout: Duration, link: Option<Link>) {
+        *lock(&self.advice) = (timeout, link);
     }
 
     /// The learner, locked: never hold it across an `.await`.

@@ -77,7 +77,12 @@ async fn execute(ctx: &Context, header: Header, control: Control) -> ControlRepl
             let mut learner = ctx.learner();
             let result = learner.reset(header.run, seed, &config);
             if result.is_ok() {
-                ctx.set_advice_timeout(Duration::from_millis(wait_ms));
+                // Network conditions bring their own advice timeout.
+                let link = learner.agent().ok().and_then(|a| a.link().copied());
+                let timeout = link.map_or(Duration::from_millis(wait_ms), |l| {
+                    Duration::from_secs_f64(l.timeout_ms() / 1000.0)
+                });
+                ctx.set_advice(timeout, link);
             }
             ctx.publish_progress(&learner);
             done(result)

@@ -12,6 +12,7 @@
 mod advise;
 mod alive;
 mod ask;
+mod conditions;
 mod context;
 mod control;
 mod frames;

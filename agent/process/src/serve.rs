@@ -82,9 +82,10 @@ pub async fn run(settings: Settings) -> Result<Exit> {
     };
     let _advice = {
         let ctx = ctx.clone();
+        let runtime = tokio::runtime::Handle::current();
         session
             .declare_queryable(ctx.keys.advice(id))
-            .callback(move |q| advise::answer(&ctx, &q))
+            .callback(move |q| advise::answer(&ctx, q, &runtime))
             .await
             .map_err(|e| declare("the advice queryable", e))?
     };

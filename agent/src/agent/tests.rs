@@ -2,6 +2,7 @@ use super::*;
 use crate::advice::Reachable;
 use crate::exchange::Isolated;
 use crate::fidelity::{Fidelity, Profile};
+use crate::network::NetworkConditions;
 use crate::persist::Entry;
 use crate::policy::ACTIONS;
 use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
@@ -577,6 +578,53 @@ fn same_seed_same_run_bit_for_bit() {
             "{strategy:?}"
         );
     }
+}
+
+#[test]
+fn network_conditions_lose_late_and_lost_advice_and_nothing_else() {
+    let run = |latency: &str, loss: f64| {
+        let network = NetworkConditions {
+            latency: latency.parse().unwrap(),
+            loss,
+            timeout_ms: 5.0,
+        };
+        let c = AgentConfig {
+            network: Some(network),
+            ..config(StrategyName::AdHocTd)
+        };
+        let agents = (0..3).map(|i| Agent::new(i, 3, c.clone(), 11 + i as u64).unwrap());
+        let mut t = Team::new(agents.collect()).unwrap();
+        let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
+        let sum = |f: fn(&Counters) -> u64| t.agents().iter().map(|a| f(a.counters())).sum();
+        let counts: [u64; 3] = [
+            sum(|c| c.advice_requests),
+            sum(|c| c.advice_given),
+            sum(|c| c.advice_replies_received),
+        ];
+        (log, digests(&t), counts)
+    };
+    let free = {
+        let mut t = team(StrategyName::AdHocTd, 11);
+        let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
+        (log, digests(&t))
+    };
+    // No loss and every round trip within the timeout: bit for bit.
+    for latency in ["fixed:0", "fixed:2.5", "uniform:0,2.5"] {
+        let (log, digests, counts) = run(latency, 0.0);
+        assert_eq!((log, digests), free, "{latency}");
+        assert!(counts[2] > 0);
+    }
+    // Every request lost: the advisors never hear of them.
+    let [asked, given, received] = run("fixed:0", 1.0).2;
+    assert!(asked > 0);
+    assert_eq!((given, received), (0, 0));
+    // Every reply late (3 + 3 ms > 5): given, never received.
+    let [_, given, received] = run("fixed:3", 0.0).2;
+    assert!(given > 0);
+    assert_eq!(received, 0);
+    // Some lost: fewer received than given.
+    let [_, given, received] = run("lognormal:2,0.5", 0.2).2;
+    assert!(0 < received && received < given, "{received} of {given}");
 }
 
 #[test]

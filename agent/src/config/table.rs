@@ -10,6 +10,7 @@ use crate::advice::Reachable;
 use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
+use crate::network::NetworkConditions;
 use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
 
 impl Serialize for AgentConfig {
@@ -48,6 +49,7 @@ struct Plain {
     trace_threshold: f64,
     strategy: Strategy,
     fidelity: Fidelity,
+    network: Option<NetworkConditions>,
 }
 
 /// The flat table: the learner's keys, `strategy`, and the keys of that
@@ -91,6 +93,8 @@ struct Table {
     vote_ties: Option<VoteTies>,
     #[serde(skip_serializing_if = "Option::is_none")]
     shared_bootstrap: Option<SharedBootstrap>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    network: Option<NetworkConditions>,
 }
 
 impl Default for Table {
@@ -133,6 +137,7 @@ impl From<&AgentConfig> for Table {
             advisor_ties: Some(c.fidelity.advisor_ties),
             vote_ties: Some(c.fidelity.vote_ties),
             shared_bootstrap: Some(c.fidelity.shared_bootstrap),
+            network: c.network,
         };
         match &c.strategy {
             Strategy::AdHoc(a) => {
@@ -236,6 +241,7 @@ impl Table {
             trace_threshold: self.trace_threshold,
             strategy,
             fidelity,
+            network: self.network,
         })
     }
 
@@ -269,6 +275,7 @@ fn has_key(name: StrategyName, key: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::network::Latency;
     use crate::strategy::Confidence;
 
     /// One configuration of every strategy, none with only its defaults.
@@ -403,6 +410,31 @@ mod tests {
                 ..AgentConfig::default()
             }
         );
+    }
+
+    #[test]
+    fn network_conditions_read_write_and_travel() {
+        let text = "strategy = \"adhoc-td\"\nnetwork = { latency = \"uniform:1,4\", loss = 0.1 }\n";
+        let c: AgentConfig = toml::from_str(text).unwrap();
+        let n = c.network.unwrap();
+        assert_eq!(
+            (n.latency, n.loss, n.timeout_ms),
+            (Latency::Uniform(1.0, 4.0), 0.1, 5.0)
+        );
+        // The flat table and the binary form both keep them.
+        let json = serde_json::to_string(&c).unwrap();
+        assert!(
+            json.contains(r#""network":{"latency":"uniform:1,4","loss":0.1,"timeout_ms":5.0}"#),
+            "{json}"
+        );
+        assert_eq!(serde_json::from_str::<AgentConfig>(&json).unwrap(), c);
+        let bytes = postcard::to_allocvec(&c).unwrap();
+        assert_eq!(postcard::from_bytes::<AgentConfig>(&bytes).unwrap(), c);
+        // Without conditions the table has no `network` key.
+        let plain = serde_json::to_string(&AgentConfig::default()).unwrap();
+        assert!(!plain.contains("network"));
+        let e = toml::from_str::<AgentConfig>("network = { jitter = 1 }\n").unwrap_err();
+        assert!(e.to_string().contains("jitter"), "{e}");
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub(super) struct FigureKind {
 }
 
 /// Every figure made, in order.
-pub(super) const FIGURES: [FigureKind; 4] = [
+pub(super) const FIGURES: [FigureKind; 6] = [
     FigureKind {
         name: "goal_pct",
         metric: Metric::GoalPct,
@@ -49,6 +49,20 @@ pub(super) const FIGURES: [FigureKind; 4] = [
         zoom: true,
         y: YRange::Fitted(Some(100.0)),
         skip_zero: false,
+    },
+    FigureKind {
+        name: "advising_messages",
+        metric: Metric::AdvisingMessages,
+        zoom: false,
+        y: YRange::FromZero,
+        skip_zero: true,
+    },
+    FigureKind {
+        name: "advising_bytes",
+        metric: Metric::AdvisingBytes,
+        zoom: false,
+        y: YRange::FromZero,
+        skip_zero: true,
     },
 ];
 
@@ -99,6 +113,7 @@ impl FigureKind {
         let captions = Captions {
             title: &self.title(),
             note: &note,
+            x_axis: draw::EPISODES_AXIS,
             y_axis: self.metric.axis(),
         };
         draw::svg(&captions, &curves, &layout)
@@ -210,7 +225,7 @@ mod tests {
         let s = set("A", &RISING);
         let series = [s.series(Metric::GoalPct)];
         let zoom = &FIGURES[3];
-        assert!(zoom.zoom && FIGURES[..3].iter().all(|f| !f.zoom));
+        assert!(zoom.zoom && FIGURES.iter().filter(|f| f.zoom).count() == 1);
         // Drawn, the zoomed figure's x axis starts at episode 400.
         let svg = zoom.svg(&series, "").unwrap();
         assert!(svg.contains(">\n400\n</text>") && !svg.contains(">\n300\n</text>"));

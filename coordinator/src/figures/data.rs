@@ -13,6 +13,10 @@ pub enum Metric {
     TimeToGoal,
     /// Advice given, averaged over agents.
     SpentBudget,
+    /// Advising messages the team sent per training episode.
+    AdvisingMessages,
+    /// Their bytes per training episode.
+    AdvisingBytes,
 }
 
 impl Metric {
@@ -22,6 +26,8 @@ impl Metric {
             Metric::GoalPct => &point.goal_pct,
             Metric::TimeToGoal => &point.time_to_goal,
             Metric::SpentBudget => &point.spent_budget,
+            Metric::AdvisingMessages => &point.advising_messages,
+            Metric::AdvisingBytes => &point.advising_bytes,
         }
     }
 
@@ -31,6 +37,8 @@ impl Metric {
             Metric::GoalPct => "Goal percentage",
             Metric::TimeToGoal => "Time to goal",
             Metric::SpentBudget => "Spent budget",
+            Metric::AdvisingMessages => "Advising messages",
+            Metric::AdvisingBytes => "Advising bytes",
         }
     }
 
@@ -40,6 +48,8 @@ impl Metric {
             Metric::GoalPct => "Goal percentage (%)",
             Metric::TimeToGoal => "Time to goal (frames)",
             Metric::SpentBudget => "Spent budget (advice given, per agent)",
+            Metric::AdvisingMessages => "Messages sent per training episode (team)",
+            Metric::AdvisingBytes => "Bytes sent per training episode (team)",
         }
     }
 }
@@ -56,6 +66,11 @@ pub struct Point {
     pub time_to_goal: Estimate,
     /// Advice given, averaged over agents.
     pub spent_budget: Estimate,
+    /// Advising messages (requests, replies, shared episodes) the team sent
+    /// per training episode since the previous point.
+    pub advising_messages: Estimate,
+    /// Their bytes per training episode.
+    pub advising_bytes: Estimate,
 }
 
 /// One algorithm's results: the input of the figures.
@@ -123,9 +138,14 @@ impl SeriesPoint {
     /// The point of `estimate` at `episode`; non-finite values count as
     /// unknown.
     pub(super) fn of(episode: u64, estimate: &Estimate) -> Self {
+        Self::at(episode as f64, estimate)
+    }
+
+    /// The point of `estimate` at `x` (which need not be an episode).
+    pub(super) fn at(x: f64, estimate: &Estimate) -> Self {
         let known = |v: Option<f64>| v.filter(|v| v.is_finite());
         Self {
-            episode: episode as f64,
+            episode: x,
             mean: known(estimate.mean),
             low: known(estimate.ci_low),
             high: known(estimate.ci_high),
@@ -154,6 +174,8 @@ mod tests {
                 goal_pct: estimate(Some(0.0), Some(0.0), Some(0.0)),
                 time_to_goal: estimate(None, None, None),
                 spent_budget: estimate(Some(1.5), Some(f64::NAN), None),
+                advising_messages: estimate(None, None, None),
+                advising_bytes: estimate(None, None, None),
             }],
         );
         assert_eq!((set.label.as_str(), set.runs, set.ci_level), ("X", 2, 0.9));

@@ -87,6 +87,7 @@ pub fn draw_difference(baseline: &str, sets: &[DifferenceSet]) -> Result<Figure,
     let captions = Captions {
         title: &format!("Goal percentage minus {baseline}'s, paired by run"),
         note: &note,
+        x_axis: draw::EPISODES_AXIS,
         y_axis: "Difference in goal percentage (points)",
     };
     let layout = Layout::of(&series, YRange::Around(0.0));

@@ -40,8 +40,8 @@ const BAND_ALPHA: f64 = 0.2;
 /// Width of the mean lines.
 const LINE_WIDTH: u32 = 2;
 
-/// The x axis title of every figure.
-const X_AXIS: &str = "Training episodes";
+/// The x axis title of the figures over training.
+pub(super) const EPISODES_AXIS: &str = "Training episodes";
 
 /// A series as drawn: its colour, the points shown and its marks.
 pub(super) struct Curve<'a> {
@@ -56,7 +56,7 @@ pub(super) struct Curve<'a> {
 /// A marked point of a curve: a triangle pointing up or down.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Mark {
-    /// Training episodes.
+    /// Training episodes (the x value).
     pub episode: f64,
     /// The value marked.
     pub value: f64,
@@ -70,6 +70,8 @@ pub(super) struct Captions<'a> {
     pub title: &'a str,
     /// The subtitle below it.
     pub note: &'a str,
+    /// The x axis title.
+    pub x_axis: &'a str,
     /// The y axis title.
     pub y_axis: &'a str,
 }
@@ -124,7 +126,7 @@ fn draw(
     let y_decimals = decimals(ranges.y.1 - ranges.y.0);
     chart
         .configure_mesh()
-        .x_desc(X_AXIS)
+        .x_desc(captions.x_axis)
         .y_desc(captions.y_axis)
         .axis_desc_style(font(16.0, &INK))
         .label_style(font(14.0, &MUTED))

@@ -35,6 +35,8 @@ pub(super) fn set(label: &str, goal: &[Option<f64>]) -> SeriesSet {
             goal_pct: estimate(g),
             time_to_goal: estimate(g.map(|g| 120.0 - g)),
             spent_budget: estimate(Some(10.0 * i as f64)),
+            advising_messages: estimate((i > 0).then_some(2.0)),
+            advising_bytes: estimate((i > 0).then_some(80.0)),
         })
         .collect();
     SeriesSet::new(label, 3, 0.95, points)

@@ -3,7 +3,8 @@
 //! (Figure 2), spent budget (Figures 4a, 6a, 8a) and the goal percentage of
 //! the last training episodes zoomed in (Figures 4b, 6b, 8b); and, beyond
 //! the paper, each method's goal percentage minus the baseline's, paired by
-//! run ([`draw_difference`]).
+//! run ([`draw_difference`]), and what advising costs in messages and bytes
+//! per training episode.
 //!
 //! Pure: the input is every algorithm's estimates in memory
 //! ([`SeriesSet`]), the output every figure as an SVG document drawn with
@@ -22,6 +23,8 @@
 //!     goal_pct: goal(pct),
 //!     time_to_goal: goal(100.0 - pct),
 //!     spent_budget: goal(0.0),
+//!     advising_messages: goal(0.0),
+//!     advising_bytes: goal(0.0),
 //! };
 //! let sets = [SeriesSet::new("NoAdvice", 1, 0.95, vec![point(0, 5.0), point(100, 30.0)])];
 //! for figure in draw_figures(&sets)? {
@@ -40,16 +43,19 @@ mod figure;
 #[cfg(test)]
 mod fixtures;
 mod layout;
+mod network;
 
 pub use data::{Metric, Point, Series, SeriesPoint, SeriesSet};
 pub use difference::{DIFFERENCE, DifferencePoint, DifferenceSet, draw_difference};
 pub use figure::{Figure, FigureError};
 pub use layout::SIZE;
+pub use network::{Condition, ConditionPoint, ConditionSet, draw_sweep};
 
 use catalogue::{FIGURES, note};
 
 /// Every figure of `sets`, one colour per set in order: `goal_pct`,
-/// `time_to_goal`, `spent_budget` and `goal_pct_last`.
+/// `time_to_goal`, `spent_budget`, `goal_pct_last`, and the communication
+/// cost: `advising_messages` and `advising_bytes` per training episode.
 pub fn draw_figures(sets: &[SeriesSet]) -> Result<Vec<Figure>, FigureError> {
     let note = note(sets);
     FIGURES
@@ -76,7 +82,14 @@ mod tests {
         let names: Vec<_> = figures.iter().map(|f| f.name).collect();
         assert_eq!(
             names,
-            ["goal_pct", "time_to_goal", "spent_budget", "goal_pct_last"]
+            [
+                "goal_pct",
+                "time_to_goal",
+                "spent_budget",
+                "goal_pct_last",
+                "advising_messages",
+                "advising_bytes"
+            ]
         );
         for (figure, axis) in figures.iter().zip([
             "Goal percentage (%)",

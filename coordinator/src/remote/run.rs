@@ -6,6 +6,7 @@ use std::time::Duration;
 use agent::{Mode, Snapshot};
 use env_server::Outcome;
 use node::sync::lock;
+use proto::MessageKind;
 use proto::keys::Role;
 use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
@@ -213,6 +214,11 @@ impl Backend for RemoteBackend<'_> {
 fn stats_of(r: &AgentReport) -> AgentStats {
     let sent = r.messages.total(proto::Direction::Sent);
     let received = r.messages.total(proto::Direction::Received);
+    let advising = r.messages.sent_of(&[
+        MessageKind::AdviceRequest,
+        MessageKind::AdviceReply,
+        MessageKind::SharedEpisode,
+    ]);
     AgentStats {
         give_spent: r.give_spent,
         ask_spent: r.ask_spent,
@@ -224,5 +230,7 @@ fn stats_of(r: &AgentReport) -> AgentStats {
         messages_received: received.messages,
         bytes_received: received.bytes,
         messages_dropped: r.messages.dropped.total(),
+        advising_messages: advising.messages,
+        advising_bytes: advising.bytes,
     }
 }

@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use agent::{
-    AdvisorTies, Fidelity, Profile, SharedBootstrap, Strategy, StrategyName, TorreyIntent,
-    TorreyUnknownState, VoteTies,
+    AdvisorTies, Fidelity, NetworkConditions, Profile, SharedBootstrap, Strategy, StrategyName,
+    TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use env_server::EvaluationMemory;
 use serde::{Deserialize, Serialize};
@@ -14,7 +14,7 @@ use crate::error::ConfigError;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 5] = [
+pub const PRESETS: [(&str, &str); 6] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -31,6 +31,10 @@ pub const PRESETS: [(&str, &str); 5] = [
     (
         "fidelity-sensitivity",
         include_str!("../../presets/fidelity-sensitivity.toml"),
+    ),
+    (
+        "advice-network",
+        include_str!("../../presets/advice-network.toml"),
     ),
 ];
 
@@ -128,6 +132,9 @@ pub struct StudyEntry {
     /// See [`Fidelity::shared_bootstrap`].
     #[serde(default)]
     pub shared_bootstrap: Option<SharedBootstrap>,
+    /// Network conditions of every agent's advice messages.
+    #[serde(default)]
+    pub network: Option<NetworkConditions>,
 }
 
 /// Team size of every study (the paper's 3 offense agents).
@@ -246,6 +253,7 @@ impl StudyConfig {
             spec.config.strategy = strategy;
         }
         spec.config.fidelity = entry.fidelity(self.profile);
+        spec.config.network = entry.network;
         let mut team = vec![spec; TEAM];
         if let (true, Some(p)) = (entry.expert, &self.pretrain) {
             let agent = &mut team[p.expert];

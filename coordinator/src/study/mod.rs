@@ -14,6 +14,7 @@ mod difference;
 mod fixtures;
 mod gains;
 mod holm;
+mod network;
 mod published;
 mod report;
 mod run;

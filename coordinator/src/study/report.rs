@@ -12,8 +12,11 @@ use super::config::{StudyConfig, StudyEntry};
 use super::difference::difference_sets;
 use super::gains::{Gain, LAST_POINTS, gains};
 use super::holm::{HolmComparison, holm_against};
+use super::network::{EPISODES, advised, condition_sets, conditions, goal_at};
 use crate::error::Error;
-use crate::figures::{DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures};
+use crate::figures::{
+    Condition, DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures, draw_sweep,
+};
 use crate::stats::Estimate;
 use crate::store;
 
@@ -62,6 +65,7 @@ pub fn write_report(
         holm_table(&mut md, baseline, &holm);
     }
     significance_between_advising(&mut md, study, entries, comparisons);
+    network_conditions(&mut md, study, entries);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
     figure_links(&mut md, study, &figures);
     if study.transport.communicates() {
@@ -94,6 +98,30 @@ fn write_figures(
     let differences = difference_sets(&runs, study.baseline.as_deref(), study.ci_level());
     if let (Some(baseline), false) = (&study.baseline, differences.is_empty()) {
         figures.insert(1, draw_difference(baseline, &differences)?);
+    }
+    let baseline =
+        (study.baseline.as_ref()).and_then(|b| entries.iter().find(|e| &e.entry.name == b));
+    let baseline_note = baseline.map_or_else(String::new, |b| {
+        let goals: Vec<String> = (EPISODES.iter())
+            .map(|&ep| {
+                goal_at(b, ep)
+                    .mean
+                    .map_or("-".to_owned(), |m| format!("{m:.1}"))
+            })
+            .collect();
+        let episodes: Vec<String> = EPISODES.iter().map(u64::to_string).collect();
+        format!(
+            "{}: {} % at {}",
+            b.entry.name,
+            goals.join(" / "),
+            episodes.join(" / ")
+        )
+    });
+    for condition in Condition::ALL {
+        let sets = condition_sets(entries, condition, study.ci_level());
+        if !sets.is_empty() {
+            figures.extend(draw_sweep(condition, &EPISODES, &sets, &baseline_note)?);
+        }
     }
     let dir = out.join("figures");
     store::create_dir(&dir)?;
@@ -393,6 +421,62 @@ fn significance_between_advising(
     );
 }
 
+/// The entries under network conditions: their conditions, goal
+/// percentage at [`EPISODES`], the advice acted on and the messages sent.
+fn network_conditions(md: &mut Markdown, study: &StudyConfig, entries: &[EntryResults]) {
+    if entries.iter().all(|e| conditions(e).is_none()) {
+        return;
+    }
+    let level = study.ci_level();
+    md.heading(2, "Network conditions of advice messages");
+    md.paragraph(
+        "Each advice request and reply is lost with the given probability or delayed by a latency \
+         drawn from its distribution; a reply whose round trip exceeds the timeout is lost to the \
+         asker (docs/algorithms.md section 6). Acted on: steps taken on advice per agent by the \
+         end; messages: advising messages the team sent per training episode, over the last \
+         evaluation interval.",
+    );
+    let goal_heads: Vec<String> = EPISODES
+        .iter()
+        .map(|ep| format!("goal % at {ep}"))
+        .collect();
+    md.table(
+        [
+            "entry",
+            "latency (ms)",
+            "loss",
+            "timeout (ms)",
+            &goal_heads[0],
+            &goal_heads[1],
+            &goal_heads[2],
+            "acted on advice",
+            "messages / episode",
+        ],
+        entries.iter().map(|e| {
+            let (latency, loss, timeout) =
+                conditions(e).map_or(("none".to_owned(), "0".to_owned(), "-".to_owned()), |n| {
+                    (
+                        n.latency.to_string(),
+                        n.loss.to_string(),
+                        n.timeout_ms.to_string(),
+                    )
+                });
+            let messages = e.summary.eval_points.last().map(|p| p.advising_messages);
+            [
+                label(&e.entry),
+                latency,
+                loss,
+                timeout,
+                show(&goal_at(e, EPISODES[0])),
+                show(&goal_at(e, EPISODES[1])),
+                show(&goal_at(e, EPISODES[2])),
+                show(&advised(e, level)),
+                messages.as_ref().map_or("-".to_owned(), show),
+            ]
+        }),
+    );
+}
+
 /// Every figure, as an image; the difference from the baseline with what
 /// it shows.
 fn figure_links(md: &mut Markdown, study: &StudyConfig, figures: &[Figure]) {
@@ -480,6 +564,8 @@ fn series_set(e: &EntryResults, level: f64) -> SeriesSet {
             goal_pct: p.goal_pct,
             time_to_goal: p.time_to_goal,
             spent_budget: p.spent_budget,
+            advising_messages: p.advising_messages,
+            advising_bytes: p.advising_bytes,
         })
         .collect();
     SeriesSet::new(&e.entry.name, e.summary.runs, level, points)
