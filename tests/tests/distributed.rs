@@ -97,6 +97,45 @@ fn adhoc_td_run_advises_across_processes() {
     assert_eq!(summary["eval_points"].as_array().unwrap().len(), 3);
 }
 
+/// The `comm` of a 60-episode AdHocTD run over zenoh with `conditions`.
+fn comm_under(conditions: &str) -> Value {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("run");
+    let output = Command::new(bin("coordinator"))
+        .args("run --algorithm adhoc-td --runs 1 --episodes 60 --eval-every 30".split(' '))
+        .args("--eval-episodes 10 --seed 3 --transport zenoh".split(' '))
+        .args(conditions.split(' '))
+        .args(["--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    summary["comm"].clone()
+}
+
+#[test]
+fn network_conditions_are_injected_at_the_sender() {
+    let number = |comm: &Value, key: &str| comm[key].as_f64().unwrap();
+    // Every request lost: asked, never answered.
+    let lost = comm_under("--advice-loss 1 --advice-timeout-ms 20");
+    assert!(number(&lost, "advice_requests") > 0.0, "{lost}");
+    assert_eq!(number(&lost, "advice_replies_received"), 0.0, "{lost}");
+    assert_eq!(number(&lost, "advice_given"), 0.0, "{lost}");
+    // 4 ms each way within a 20 ms timeout: answered, round trips over 8 ms.
+    let late = comm_under("--advice-latency fixed:4 --advice-timeout-ms 20");
+    assert!(number(&late, "advice_replies_received") > 0.0, "{late}");
+    assert!(
+        late["advice_rtt_ms"]["median"].as_f64().unwrap() >= 8.0,
+        "{late}"
+    );
+}
+
 #[test]
 fn evaluation_changes_no_learned_state() {
     let experiment = adhoc_td_experiment();
