@@ -43,6 +43,16 @@ impl Width {
         }
     }
 
+    /// The unit vectors of a 5° step and of half the view cone, as the
+    /// scan turns its cone (`unit` of those angles, computed once).
+    fn step_and_half(self) -> (DVec2, DVec2) {
+        static UNITS: std::sync::LazyLock<[(DVec2, DVec2); 3]> = std::sync::LazyLock::new(|| {
+            [Width::Narrow, Width::Normal, Width::Wide]
+                .map(|w| (unit(DIR_STEP.to_radians()), unit((w.degrees() * 0.5).to_radians())))
+        });
+        UNITS[self as usize]
+    }
+
     /// Visual ticks between two sees (rcssserver's `visual_send_interval`).
     fn interval(self) -> u8 {
         match self {
@@ -340,7 +350,7 @@ impl Sight {
         let (mut best_sum, mut front, mut added) = (0, 0, shrunk);
         // The cone's centre as a unit vector, turned 5° a step.
         let mut facing = unit((dir - shrunk * 0.5).to_radians());
-        let (step, half) = (unit(DIR_STEP.to_radians()), unit((view * 0.5).to_radians()));
+        let (step, half) = self.width.step_and_half();
         loop {
             let angle = dir - shrunk * 0.5;
             if sum > best_sum && (!consider_pitch || faces_pitch(o.next_pos, facing, half)) {
