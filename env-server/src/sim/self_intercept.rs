@@ -185,6 +185,7 @@ fn long_start(lateral: f64) -> usize {
 
 /// `predictLongStep` at cycle `t` (the ball at `ball_pos`):
 /// `canReachAfterTurnDash`; `runs` holds player `p`'s dashes.
+#[inline(always)]
 fn long_step(
     p: &Player,
     ball: &Ball,
@@ -201,6 +202,21 @@ fn long_step(
     if control + REAL_SPEED_MAX * (t as f64) < p.pos.distance(ball_pos) {
         return None;
     }
+    long_step_near(p, ball, ball_pos, t, control, goalie, runs)
+}
+
+/// [`long_step`] past its distance test (which most cycles fail, so it is
+/// inlined into the loops and this is not).
+#[inline(never)]
+fn long_step_near(
+    p: &Player,
+    ball: &Ball,
+    ball_pos: DVec2,
+    t: usize,
+    control: f64,
+    goalie: bool,
+    runs: &mut Runs,
+) -> Option<Interception> {
     let (n_turn, dash_angle, back) = long_turns(p, ball, ball_pos, t, control, goalie);
     if n_turn > t {
         return None;
