@@ -307,6 +307,9 @@ struct DashRun {
     /// Each dash's acceleration along the dash line.
     accel: [f64; MAX_CYCLE],
     len: usize,
+    /// Without turns, the unit vector of the dash line (the body's or its
+    /// back's, the same at every cycle), once computed.
+    line: Option<DVec2>,
 }
 
 impl DashRun {
@@ -322,6 +325,7 @@ impl DashRun {
             first: 0.0,
             accel: [0.0; MAX_CYCLE],
             len: 0,
+            line: None,
         }
     }
 
@@ -388,7 +392,12 @@ fn reach_after_dash(
 ) -> Option<Interception> {
     run.extend(n_dash);
     let (n_turn, back) = (run.turns, run.back);
-    let u = unit(dash_angle);
+    // Without turns the dash angle is the body's (or its back's) at every cycle.
+    let u = if n_turn == 0 {
+        *run.line.get_or_insert_with(|| unit(dash_angle))
+    } else {
+        unit(dash_angle)
+    };
     let inertia = p.drift((n_turn + n_dash) as u32);
     let ball_rel = in_frame(ball_pos - p.pos, u);
     let ball_noise = ball.pos.distance(ball_pos) * BALL_RAND * 0.5;
