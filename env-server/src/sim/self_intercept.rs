@@ -68,6 +68,42 @@ struct Way {
     stamina: f64,
 }
 
+/// The ways of one cycle's search, on the stack: a short step finds at
+/// most 15 (two per turn-then-dash way, one per omni-directional dash
+/// direction), a one-dash step at most 8.
+struct Ways {
+    ways: [Way; 16],
+    len: usize,
+}
+
+impl Default for Ways {
+    fn default() -> Self {
+        let none = Way {
+            entry: entry(0, 0, 0.0, 0.0, 0.0),
+            stamina: 0.0,
+        };
+        Ways {
+            ways: [none; 16],
+            len: 0,
+        }
+    }
+}
+
+impl Ways {
+    fn push(&mut self, way: Way) {
+        self.ways[self.len] = way;
+        self.len += 1;
+    }
+
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    fn as_slice(&self) -> &[Way] {
+        &self.ways[..self.len]
+    }
+}
+
 /// Where [`reach`] found a player's earliest way, so that [`predict_from`]
 /// need not search again what came before it.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -352,12 +388,16 @@ struct Runs {
     runs: Vec<DashRun>,
 }
 
+thread_local! {
+    /// The storage of the last [`Runs`] dropped, reused by the next.
+    static RUNS: std::cell::Cell<Vec<DashRun>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
 impl Runs {
     fn new(p: &Player) -> Self {
-        Runs {
-            player: *p,
-            runs: Vec::new(),
-        }
+        let mut runs = RUNS.take();
+        runs.clear();
+        Runs { player: *p, runs }
     }
 
     /// The run after `turns` turns, backwards if `back`.
@@ -374,6 +414,12 @@ impl Runs {
             }
         };
         &mut self.runs[i]
+    }
+}
+
+impl Drop for Runs {
+    fn drop(&mut self) {
+        RUNS.set(std::mem::take(&mut self.runs));
     }
 }
 
@@ -494,7 +540,7 @@ fn short_steps<'a>(
         ball_vel *= BALL_DECAY;
         *slot = ball_pos;
     }
-    let mut ways = Vec::new();
+    let mut ways = Ways::default();
     let later = cycles
         .filter_map(move |cycle| short_step(p, ball, cycle, positions[cycle], goalie, &mut ways));
     first.chain(later)
@@ -510,7 +556,7 @@ fn short_step(
     cycle: usize,
     ball_pos: DVec2,
     goalie: bool,
-    ways: &mut Vec<Way>,
+    ways: &mut Ways,
 ) -> Option<Interception> {
     // Goalie mode inside the area less 0.5 m.
     let deep =
@@ -547,7 +593,7 @@ fn short_step(
     }
     let safety = (control - 0.2 - ball.pos.distance(ball_pos) * BALL_RAND)
         .max(PLAYER_SIZE + BALL_SIZE + KICKABLE_MARGIN * 0.4);
-    pick_short(ways, safety).map(|w| w.entry)
+    pick_short(ways.as_slice(), safety).map(|w| w.entry)
 }
 
 /// `predictOneStep`: the ball comes to the player by itself, or one dash
@@ -595,7 +641,7 @@ fn one_dash(p: &Player, ball: &Ball, control: f64) -> Option<Way> {
     let forward = (p.stamina - STAMINA_RESERVE).clamp(0.0, MAX_DASH_POWER);
     let back = ((p.stamina - STAMINA_RESERVE) * -0.5).clamp(-MAX_DASH_POWER, 0.0);
     let full = (forward - MAX_DASH_POWER).abs() < 1.0 && (back + MAX_DASH_POWER).abs() < 1.0;
-    let mut ways = Vec::new();
+    let mut ways = Ways::default();
     for dir in dash_dirs() {
         let u = unit(p.body + dir);
         let rate = p.effort * DASH_POWER_RATE * dash_dir_rate(dir);
@@ -610,10 +656,13 @@ fn one_dash(p: &Player, ball: &Ball, control: f64) -> Option<Way> {
             let max_back = limit_accel(p.vel, u * (b * rate));
             one_dash_adjust(p, ball, dir, u, max_forward, max_back, control)
         });
-        ways.extend(way);
+        if let Some(w) = way {
+            ways.push(w);
+        }
     }
     let safety = (control - 0.2 - ball.vel.length() * BALL_RAND)
         .max(PLAYER_SIZE + BALL_SIZE + KICKABLE_MARGIN * 0.4);
+    let ways = ways.as_slice();
     let mut best = *ways.first()?;
     for &w in &ways[1..] {
         let both_safe = best.entry.ball_dist < safety && w.entry.ball_dist < safety;
@@ -728,7 +777,7 @@ impl Chase<'_> {
 
     /// `predictTurnDashShort`: turn (if the ball is more than `turn_margin`
     /// off), then dash along the body or its back.
-    fn turn_dash(&self, back: bool, turn_margin: f64, ways: &mut Vec<Way>) {
+    fn turn_dash(&self, back: bool, turn_margin: f64, ways: &mut Ways) {
         let (p, target_angle) = (self.p, self.target_angle);
         let body = if back {
             normalize_angle(p.body + PI)
@@ -755,7 +804,7 @@ impl Chase<'_> {
 
     /// `predictDashCycleShort`: after `n_turn` turns, the dashes along
     /// `dash_angle` that stop the player at the ball, if they get there.
-    fn dash_cycle(&self, n_turn: usize, dash_angle: f64, back: bool, ways: &mut Vec<Way>) {
+    fn dash_cycle(&self, n_turn: usize, dash_angle: f64, back: bool, ways: &mut Ways) {
         let (p, ball_pos, cycle) = (self.p, self.ball_pos, self.cycle);
         let max_dash = cycle - n_turn;
         let inertia = self.inertia;
@@ -792,7 +841,7 @@ impl Chase<'_> {
 
     /// `predictOmniDashShort` (cycles 1-2, forward): up to two dashes sideways
     /// onto the ball's line along the body, then dashes along the body.
-    fn omni_dash(&self, ways: &mut Vec<Way>) {
+    fn omni_dash(&self, ways: &mut Ways) {
         let (p, ball_pos, cycle) = (self.p, self.ball_pos, self.cycle);
         let body = unit(p.body);
         let line_dist = |q: DVec2| body.perp_dot(q - ball_pos).abs();
