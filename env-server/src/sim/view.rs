@@ -242,6 +242,36 @@ impl Sight {
         let left_limit = deg_norm(face - half + buf);
         let right_limit = deg_norm(face + half - buf);
         let left = deg_norm(face - half);
+        // The directions tried are whole multiples of 5°, `5 * step` (-36 to
+        // 36), exact in floating point; `deg_norm` wraps them from 180° to
+        // -175°, and their bin is `step + 35`, 0 for -180°.
+        let mut step = dir_index(left) as i32 - 36;
+        let mut dir = DIR_STEP * f64::from(step);
+        let next = |step: i32| if step == 36 { -35 } else { step + 1 };
+        while is_left_of(dir, left_limit) {
+            step = next(step);
+            dir = DIR_STEP * f64::from(step);
+        }
+        while is_left_of(dir, right_limit) {
+            self.counts[(step + 35).max(0) as usize] = 0;
+            step = next(step);
+            dir = DIR_STEP * f64::from(step);
+        }
+    }
+
+    /// [`Sight::clear_view_cone`] as librcsc writes it: the reference the
+    /// tests compare with.
+    #[cfg(test)]
+    fn clear_view_cone_by_angles(&mut self, face: f64, moved: bool) {
+        let half = self.width.degrees() * 0.5;
+        let buf = if moved {
+            DIR_STEP * 0.5 + 1.0
+        } else {
+            DIR_STEP * 0.5
+        };
+        let left_limit = deg_norm(face - half + buf);
+        let right_limit = deg_norm(face + half - buf);
+        let left = deg_norm(face - half);
         let mut dir = deg_norm(-180.0 + DIR_STEP * dir_index(left) as f64);
         while is_left_of(dir, left_limit) {
             dir = deg_norm(dir + DIR_STEP);
@@ -498,7 +528,41 @@ mod tests {
         }
     }
 
+    #[test]
+    fn the_cone_steps_are_the_bins_of_their_directions() {
+        for step in -36..=36 {
+            let dir = DIR_STEP * f64::from(step);
+            assert_eq!(dir_index(dir), (step + 35).max(0) as usize, "{dir}");
+            assert_eq!(deg_norm(-180.0 + DIR_STEP * f64::from(step + 36)), dir.max(-180.0));
+        }
+    }
+
     proptest::proptest! {
+        #[test]
+        fn a_cone_clears_the_bins_librcsc_clears(
+            face in -1000.0..1000.0f64,
+            width in 0..3usize,
+            moved: bool,
+            fill in 1..11u8,
+        ) {
+            let width = [Width::Narrow, Width::Normal, Width::Wide][width];
+            let mut ours = Sight { width, counts: [fill; DIRS], ..Sight::default() };
+            let mut reference = ours.clone();
+            ours.clear_view_cone(face, moved);
+            reference.clear_view_cone_by_angles(face, moved);
+            proptest::prop_assert_eq!(ours.counts, reference.counts);
+            for edge in [-180.0, 180.0, -177.5, 177.5, 0.0, 2.5, -2.5] {
+                for delta in [-1e-9, 0.0, 1e-9] {
+                    let face = edge + delta + [22.5, 45.0, 90.0][width as usize];
+                    let mut ours = Sight { width, counts: [fill; DIRS], ..Sight::default() };
+                    let mut reference = ours.clone();
+                    ours.clear_view_cone(face, moved);
+                    reference.clear_view_cone_by_angles(face, moved);
+                    proptest::prop_assert_eq!(ours.counts, reference.counts);
+                }
+            }
+        }
+
         #[test]
         fn dir_index_is_the_saturating_bin(angle in -1000.0..1000.0f64) {
             let bin = (deg_norm(angle) - 0.5 + 180.0) / DIR_STEP;
