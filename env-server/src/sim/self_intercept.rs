@@ -540,7 +540,8 @@ fn short_steps<'a>(
         ball_vel *= BALL_DECAY;
         *slot = ball_pos;
     }
-    let mut ways = Ways::default();
+    // Made by the first cycle that needs it.
+    let mut ways = None;
     let later = cycles
         .filter_map(move |cycle| short_step(p, ball, cycle, positions[cycle], goalie, &mut ways));
     first.chain(later)
@@ -549,14 +550,14 @@ fn short_steps<'a>(
 /// `predictShortStep` at cycle `cycle` (2 to 5), the ball then at
 /// `ball_pos`: the best of the turn-then-dash ways (forward and backward,
 /// each with two turn margins) and, up to cycle 2, the omni-directional
-/// dashes; `ways` is scratch space.
+/// dashes; `ways` is scratch space, made by the first cycle that needs it.
 fn short_step(
     p: &Player,
     ball: &Ball,
     cycle: usize,
     ball_pos: DVec2,
     goalie: bool,
-    ways: &mut Ways,
+    ways: &mut Option<Ways>,
 ) -> Option<Interception> {
     // Goalie mode inside the area less 0.5 m.
     let deep =
@@ -582,6 +583,7 @@ fn short_step(
         target_angle: direction(rel),
     };
     let turn_margins = [control - 0.4, control - CONTROL_BUF].map(|m| c.turn_margin(m.max(0.1)));
+    let ways = ways.get_or_insert_with(Ways::default);
     ways.clear();
     for back in [false, true] {
         for turn_margin in turn_margins {
