@@ -277,16 +277,64 @@ struct Keeper<'a> {
     facing: DVec2,
     /// Distance from the shooter to the keeper.
     from_shooter: f64,
+    /// What [`keeper_verdict`] reads of the keeper at each cycle below
+    /// [`NEAR_CYCLES`], the same for every course of the search.
+    near: [Near; NEAR_CYCLES],
+}
+
+/// Cycles of a course for which [`Keeper::near`] holds the keeper's tests.
+const NEAR_CYCLES: usize = 32;
+
+/// The keeper at one cycle of a course ([`Keeper::near`]).
+#[derive(Clone, Copy, Default)]
+struct Near {
+    /// Where it drifts to.
+    drift: DVec2,
+    /// The squared distances beyond which it neither catches the ball nor
+    /// comes close, with the ball inside its penalty area and outside.
+    far_in_sq: f64,
+    far_out_sq: f64,
+}
+
+impl Near {
+    /// Keeper `k0`, `from_shooter` from the shooter, at cycle `c`.
+    fn new(k0: &Player, from_shooter: f64, c: usize) -> Self {
+        let far = |in_area: bool| {
+            let control = if in_area {
+                KEEPER_CONTROL_AREA
+            } else {
+                KICKABLE_AREA
+            };
+            let margin = if in_area { 0.02 * from_shooter } else { 0.0 };
+            let far = (dash_distance(c) + 0.9 * control) / 0.999 + margin;
+            far * far
+        };
+        Near {
+            drift: k0.pos + k0.vel * DRIFT[c.min(DRIFT.len() - 1)],
+            far_in_sq: far(true),
+            far_out_sq: far(false),
+        }
+    }
 }
 
 impl<'a> Keeper<'a> {
     fn new(s: &'a Situation) -> Self {
         let player = &s.world.keeper;
         let to_keeper = player.pos - s.me().pos;
+        Keeper::at(player, to_keeper.length())
+    }
+
+    /// The keeper `player`, `from_shooter` from the shooter.
+    fn at(player: &'a Player, from_shooter: f64) -> Self {
+        let mut near = [Near::default(); NEAR_CYCLES];
+        for (c, n) in near.iter_mut().enumerate() {
+            *n = Near::new(player, from_shooter, c);
+        }
         Keeper {
             player,
             facing: unit(player.body),
-            from_shooter: to_keeper.length(),
+            from_shooter,
+            near,
         }
     }
 }
@@ -329,16 +377,19 @@ fn keeper_verdict(keeper: &Keeper, ball: DVec2, line: &Line, speed: f64) -> Opti
         } else {
             KICKABLE_AREA
         };
-        let k = k0.pos + k0.vel * DRIFT[c.min(DRIFT.len() - 1)];
         let margin = if in_area {
             0.02 * keeper.from_shooter
         } else {
             0.0
         };
-        // Beyond this the keeper neither catches nor comes close (the tests below).
-        let far = (dash_distance(c) + 0.9 * control) / 0.999 + margin;
+        // Beyond `far` the keeper neither catches nor comes close (the tests below).
+        let near = match keeper.near.get(c) {
+            Some(&near) => near,
+            None => Near::new(k0, keeper.from_shooter, c),
+        };
+        let (k, far_sq) = (near.drift, if in_area { near.far_in_sq } else { near.far_out_sq });
         let dist_sq = b.distance_squared(k);
-        if dist_sq > far * far {
+        if dist_sq > far_sq {
             continue;
         }
         let dist = dist_sq.sqrt() - margin;
@@ -564,7 +615,7 @@ mod tests {
             let mut player = Player::new(DVec2::new(45.0, 0.0), body);
             player.vel = unit(dir + 1.0) * speed;
             let rel = unit(dir) * (dist + 0.3);
-            let keeper = Keeper { player: &player, facing: unit(body), from_shooter: 10.0 };
+            let keeper = Keeper::at(&player, 10.0);
             let ratio = (control + 0.1) / dist;
             proptest::prop_assert_eq!(
                 turn_cycles(&keeper, rel, dist, control),
