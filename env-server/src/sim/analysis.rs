@@ -84,29 +84,30 @@ impl Analysis {
     /// as the others see it and the keeper's own; the attackers' own reach
     /// (`NO_REACH`) and formation targets (zero) are left out.
     pub(crate) fn for_keeper(world: &World) -> Self {
-        let (ball_path, path_len) = ball_path(world);
-        let path = &ball_path[..path_len];
-        let path_heading = path_heading(path);
-        let mut reach = [NO_REACH; MAX_OFFENSE];
-        for (r, p) in reach.iter_mut().zip(&world.offense) {
-            *r = reach_cycle(p, path, path_heading, None);
-        }
-        let heading = self_intercept::heading(&world.ball);
-        let (keeper_own_reach, keeper_own_found) =
-            self_intercept::reach(&world.keeper, &world.ball, heading, path, true);
-        let keeper_control = Some(KEEPER_CONTROL_AREA);
-        Analysis {
-            ball_path,
-            path_len,
-            heading,
-            reach,
+        // Filled in place: the path is the largest part.
+        let mut analysis = Analysis {
+            ball_path: [DVec2::ZERO; CACHE_LEN],
+            path_len: 0,
+            heading: self_intercept::heading(&world.ball),
+            reach: [NO_REACH; MAX_OFFENSE],
             own_reach: [NO_REACH; MAX_OFFENSE],
             own_found: [Found::Nothing; MAX_OFFENSE],
-            keeper_reach: reach_cycle(&world.keeper, path, path_heading, keeper_control),
-            keeper_own_reach,
-            keeper_own_found,
+            keeper_reach: NO_REACH,
+            keeper_own_reach: NO_REACH,
+            keeper_own_found: Found::Nothing,
             home: [DVec2::ZERO; MAX_OFFENSE],
+        };
+        analysis.path_len = ball_path(world, &mut analysis.ball_path);
+        let path = &analysis.ball_path[..analysis.path_len];
+        let path_heading = path_heading(path);
+        for (r, p) in analysis.reach.iter_mut().zip(&world.offense) {
+            *r = reach_cycle(p, path, path_heading, None);
         }
+        (analysis.keeper_own_reach, analysis.keeper_own_found) =
+            self_intercept::reach(&world.keeper, &world.ball, analysis.heading, path, true);
+        let keeper_control = Some(KEEPER_CONTROL_AREA);
+        analysis.keeper_reach = reach_cycle(&world.keeper, path, path_heading, keeper_control);
+        analysis
     }
 
     /// Offense agent `agent`'s self-interception cache in `world`, the
@@ -168,8 +169,8 @@ pub(crate) fn update_offside_line(world: &mut World) {
     world.offside_line = fallback.max(world.ball.pos.x + world.ball.vel.x);
 }
 
-fn ball_path(world: &World) -> ([DVec2; CACHE_LEN], usize) {
-    let mut path = [DVec2::ZERO; CACHE_LEN];
+/// Fills `path` with the ball's path without kicks; returns its length.
+fn ball_path(world: &World, path: &mut [DVec2; CACHE_LEN]) -> usize {
     let (mut pos, mut vel) = (world.ball.pos, world.ball.vel);
     let mut len = 0;
     while len < CACHE_LEN {
@@ -182,7 +183,7 @@ fn ball_path(world: &World) -> ([DVec2; CACHE_LEN], usize) {
         pos += vel;
         vel *= BALL_DECAY;
     }
-    (path, len)
+    len
 }
 
 /// cos(12°): the smallest turn threshold of the reach estimate.
