@@ -47,8 +47,12 @@ impl Width {
     /// scan turns its cone (`unit` of those angles, computed once).
     fn step_and_half(self) -> (DVec2, DVec2) {
         static UNITS: std::sync::LazyLock<[(DVec2, DVec2); 3]> = std::sync::LazyLock::new(|| {
-            [Width::Narrow, Width::Normal, Width::Wide]
-                .map(|w| (unit(DIR_STEP.to_radians()), unit((w.degrees() * 0.5).to_radians())))
+            [Width::Narrow, Width::Normal, Width::Wide].map(|w| {
+                (
+                    unit(DIR_STEP.to_radians()),
+                    unit((w.degrees() * 0.5).to_radians()),
+                )
+            })
         });
         UNITS[self as usize]
     }
@@ -533,7 +537,10 @@ mod tests {
         for step in -36..=36 {
             let dir = DIR_STEP * f64::from(step);
             assert_eq!(dir_index(dir), (step + 35).max(0) as usize, "{dir}");
-            assert_eq!(deg_norm(-180.0 + DIR_STEP * f64::from(step + 36)), dir.max(-180.0));
+            assert_eq!(
+                deg_norm(-180.0 + DIR_STEP * f64::from(step + 36)),
+                dir.max(-180.0)
+            );
         }
     }
 

@@ -7,7 +7,7 @@ use crate::sim::analysis::Analysis;
 use crate::sim::geom::{angle_diff, direction, normalize_angle, unit};
 use crate::sim::kinematics::{decay_pow, decay_sum};
 use crate::sim::params::*;
-use crate::sim::physics::Command;
+use crate::sim::physics::{Command, dash_dir_rate};
 use crate::sim::self_intercept::Interception;
 use crate::sim::world::{Player, World};
 use glam::DVec2;
@@ -181,19 +181,91 @@ impl<'a> View<'a> {
             return turn_to_point(k, face);
         }
         if best.turns > 0 {
-            return turn_to_direction(k, direction(target - k.drift(best.cycle as u32)));
+            // The body, or for a backward run its back, to the target.
+            let mut angle = direction(target - k.drift(best.cycle as u32));
+            if best.back() {
+                angle += PI;
+            }
+            return turn_to_direction(k, angle);
         }
-        let full = if best.back() {
-            -MAX_DASH_POWER
+        if let Some(cmd) = self.wait_turn(target, best) {
+            return cmd;
+        }
+        // The entry's own first dash: its power and direction (the
+        // omni-directional dashes of the short step go sideways).
+        let consumed = if best.back() {
+            -2.0 * best.power
         } else {
-            MAX_DASH_POWER
+            best.power
         };
-        let consumed = if best.back() { -2.0 * full } else { full };
         if save_recovery && k.stamina - consumed < 0.3 * STAMINA_MAX + 1.0 {
             return IDLE;
         }
-        self.inertia_dash(target, best, full)
+        if best.cycle == 1 {
+            return Command::Dash {
+                power: best.power,
+                dir: best.dir,
+            };
+        }
+        self.inertia_dash(target, best)
             .unwrap_or_else(|| turn_to_point(k, face))
+    }
+
+    /// librcsc `Body_Intercept2009::doWaitTurn`: when no attacker is within
+    /// 3 m, the attackers need 5 cycles more, and the ball comes within
+    /// reach of where the keeper drifts to, turn (to face across the ball's
+    /// approach) instead of dashing. Its one-step case needs a turn entry,
+    /// which `intercept` has already turned for.
+    fn wait_turn(&self, target: DVec2, best: Interception) -> Option<Command> {
+        let k = self.keeper;
+        let ball = &self.world.ball;
+        if self
+            .world
+            .offense
+            .iter()
+            .any(|a| a.pos.distance(k.pos) < 3.0)
+        {
+            return None;
+        }
+        if best.cycle + 5 > self.opp_min {
+            return None;
+        }
+        let my_inertia = k.drift(best.cycle as u32);
+        let target_dist = (target - my_inertia).length();
+        let ball_travel = ball.vel.length() * decay_sum(BALL_DECAY, best.cycle as u32);
+        let ball_noise = ball_travel * BALL_RAND;
+        let mut extra_buf = 0.1 * (best.cycle as f64 - 1.0).clamp(0.0, 4.0);
+        let diff = angle_diff(direction(ball.vel), k.body);
+        if diff < 10f64.to_radians() || diff > 170f64.to_radians() {
+            extra_buf = 0.0;
+        }
+        // Full state: the ball is seen every cycle (seenPosCount 0).
+        let dist_buf = KICKABLE_AREA - 0.3 + extra_buf;
+        if target_dist > dist_buf {
+            return None;
+        }
+        let face = if best.cycle > 2 {
+            // The ball's direction turned by 90°, or by -90° when that
+            // faces the goal (x below the keeper's in its own frame).
+            let to_ball = ball.pos - my_inertia;
+            let p = my_inertia + DVec2::from_angle(FRAC_PI_2).rotate(to_ball);
+            if p.x > my_inertia.x {
+                my_inertia + DVec2::from_angle(-FRAC_PI_2).rotate(to_ball)
+            } else {
+                p
+            }
+        } else {
+            // (50.5, 0.9·y) in the keeper's frame.
+            DVec2::new(-50.5, 0.9 * k.pos.y)
+        };
+        let face_angle = direction(face - my_inertia);
+        // librcsc rotates by +face_angle (not -): the |y| it tests is the
+        // same in either frame.
+        let faced = DVec2::from_angle(face_angle).rotate(target - my_inertia);
+        if faced.y.abs() > KICKABLE_AREA - ball_noise - 0.2 {
+            return None;
+        }
+        Some(turn_to_point(k, face))
     }
 
     /// The keeper's interception (librcsc `Body_Intercept2009::getBestIntercept`,
@@ -231,30 +303,141 @@ impl<'a> View<'a> {
                 }
             }
         }
-        aggressive.or(goalie).map_or(cache[0], |(_, c)| c)
+        if let Some((_, c)) = aggressive.or(goalie) {
+            return c;
+        }
+        self.field_player_interception(&cache)
+    }
+
+    /// The rest of librcsc `Body_Intercept2009::getBestIntercept` (after its
+    /// goalie modes): the no-turn, forward and nearest candidates among the
+    /// entries before 0.7 of the attackers' reach, in the keeper's frame
+    /// (x and y mirrored). Its "attacker" class needs the ball beyond the
+    /// keeper's x = 35 or its offside line (never below 0): never in HFO.
+    fn field_player_interception(&self, cache: &[Interception]) -> Interception {
+        let ball = &self.world.ball;
+        let k = self.keeper;
+        let ball_at = |t: usize| self.analysis.ball_at(t);
+        let ball_vel = |t: usize| ball.vel * decay_pow(BALL_DECAY, t as u32);
+        // (65, 0) in the keeper's frame.
+        let goal_pos = DVec2::new(-65.0, 0.0);
+        let speed_max = 0.9 * REAL_SPEED_MAX;
+        let opp_min = self.opp_min;
+        let mut noturn: Option<(f64, Interception)> = None;
+        let mut forward: Option<(f64, Interception)> = None;
+        let mut nearest: Option<(f64, Interception)> = None;
+        for &c in cache {
+            let (t, b, v) = (c.cycle, ball_at(c.cycle), ball_vel(c.cycle));
+            if b.x.abs() > PITCH_HALF_LENGTH - 1.0 || b.y.abs() > PITCH_HALF_WIDTH - 1.0 {
+                continue;
+            }
+            if t as f64 >= opp_min as f64 * 0.7 {
+                continue;
+            }
+            if c.turns == 0 {
+                let score = t as f64;
+                if noturn.is_none_or(|(s, _)| score < s) {
+                    noturn = Some((score, c));
+                }
+                continue;
+            }
+            if -v.x > 0.1 && t + 5 <= opp_min && v.length_squared() > 0.6 * 0.6 {
+                let score = 100.0 * 100.0 - (100.0f64 * 100.0).min(b.distance_squared(goal_pos));
+                if forward.is_none_or(|(s, _)| score > s) {
+                    forward = Some((score, c));
+                }
+                continue;
+            }
+            let d = k.drift(t as u32).distance_squared(b);
+            if nearest.is_none_or(|(s, _)| d < s) {
+                nearest = Some((d, c));
+            }
+        }
+        let noturn = noturn.map(|(_, c)| c);
+        let forward = forward.map(|(_, c)| c);
+        let nearest = nearest.map(|(_, c)| c);
+        if let (Some(n), Some(f)) = (noturn, forward) {
+            let nv = ball_vel(n.cycle);
+            if -nv.x > 0.1 && (nv.length() > speed_max || n.cycle <= f.cycle + 2) {
+                return n;
+            }
+        }
+        if let Some(f) = forward {
+            return f;
+        }
+        let fastest = cache[0];
+        let fastest_pos = ball_at(fastest.cycle);
+        if (fastest_pos.x < 33.0 || fastest_pos.y.abs() > 20.0)
+            && (fastest.cycle >= 10 || ball_vel(fastest.cycle).length() < 1.2)
+        {
+            return fastest;
+        }
+        match (noturn, nearest) {
+            (Some(n), Some(m)) => {
+                let (n_ball, m_ball) = (ball_at(n.cycle), ball_at(m.cycle));
+                let m_self = k.drift(m.cycle as u32);
+                if k.drift(n.cycle as u32).distance_squared(n_ball)
+                    < m_self.distance_squared(m_ball)
+                {
+                    return n;
+                }
+                if m.cycle <= n.cycle + 2 {
+                    let m_speed = ball_vel(m.cycle).length();
+                    if m_speed < 0.7 {
+                        return m;
+                    }
+                    let nv = ball_vel(n.cycle);
+                    if m.ball_dist < KICKABLE_AREA - 0.4
+                        && m.ball_dist < n.ball_dist
+                        && -nv.x < 0.5
+                        && nv.length_squared() > 1.0
+                        && n_ball.x < m_ball.x
+                    {
+                        return m;
+                    }
+                    if m_speed > 0.7 && m_self.distance(m_ball) < KICKABLE_AREA {
+                        return m;
+                    }
+                }
+                n
+            }
+            (Some(n), None) => n,
+            (None, Some(m)) => m,
+            // Its "chance" candidates need the keeper beyond x = 40 of its
+            // frame (here x < -40): never.
+            (None, None) => fastest,
+        }
     }
 
     /// librcsc `Body_Intercept2009::doInertiaDash` for the keeper: dash
     /// towards `target` at `full` power, or with just the power that arrives
     /// in time when the ball is slow and near; `None` (look at the field)
     /// when from cycle 4 on it is already there along its body.
-    fn inertia_dash(&self, target: DVec2, best: Interception, full: f64) -> Option<Command> {
+    fn inertia_dash(&self, target: DVec2, best: Interception) -> Option<Command> {
         let k = self.keeper;
         let forward = unit(k.body);
         let along = (target - k.pos).dot(forward);
         let ball_speed = self.world.ball.vel.length() * decay_pow(BALL_DECAY, best.cycle as u32);
         let accel_max = DASH_POWER_RATE * k.effort * MAX_DASH_POWER;
-        let mut power = full;
-        if ball_speed < 1.5 * KICKABLE_AREA && along.abs() < KICKABLE_AREA + 0.8 * accel_max {
+        let mut power = best.power;
+        if ball_speed < 1.5 * KICKABLE_AREA
+            && best.dir.abs() < 5f64.to_radians()
+            && along.abs() < KICKABLE_AREA + 0.8 * accel_max
+        {
             let first_speed = (along / decay_sum(PLAYER_DECAY, best.cycle as u32))
                 .clamp(-PLAYER_SPEED_MAX, PLAYER_SPEED_MAX);
-            power = ((first_speed - k.vel.dot(forward)) / (DASH_POWER_RATE * k.effort))
-                .clamp(-MAX_DASH_POWER, MAX_DASH_POWER);
+            power = ((first_speed - k.vel.dot(forward))
+                / (DASH_POWER_RATE * k.effort)
+                / dash_dir_rate(best.dir))
+            .clamp(-MAX_DASH_POWER, MAX_DASH_POWER);
         }
         if best.cycle >= 4 && (along.abs() < 0.5 || power.abs() < 5.0) {
             return None;
         }
-        Some(Command::Dash { power, dir: 0.0 })
+        Some(Command::Dash {
+            power,
+            dir: best.dir,
+        })
     }
 
     /// `Bhv_GoalieChaseBall::execute` after its tackle (spec 7.3).
@@ -422,19 +605,33 @@ impl<'a> View<'a> {
         if correct_x && let Some(cmd) = go_to_point(k, target, 0.5, power) {
             return cmd;
         }
-        let side = if self.ball_next.y > k.pos.y {
+        // `doCorrectBodyDir`: face the half of the field (the sign of
+        // ball_next.y, not the ball's side of the keeper) unless an attacker
+        // is within 7 m of the ball (and the ball within 20 m, and the y
+        // error 1 m or more or an attacker on the ball).
+        let side = if self.ball_next.y > 0.0 {
             FRAC_PI_2
         } else {
             -FRAC_PI_2
         };
-        let body_off = angle_diff(k.body, side) > 5f64.to_radians();
-        if body_off && !ball_off_axis && (self.opp_min > 7 || self.ball_dist > 20.0) {
+        let body_off = angle_diff(k.body, side) >= 5f64.to_radians();
+        let nearest_attacker = self
+            .world
+            .offense
+            .iter()
+            .map(|a| a.pos.distance(ball))
+            .fold(100.0, f64::min);
+        let free = nearest_attacker > 7.0
+            || self.ball_dist > 20.0
+            || ((target.y - k.pos.y).abs() < 1.0 && !self.attacker_kickable);
+        if body_off && !ball_off_axis && free {
             return turn_to_direction(k, side);
         }
         if let Some(cmd) = go_to_y(k, target, self.ball_dist, power) {
             return cmd;
         }
-        if body_off {
+        // Its second call: the same danger-area (60°) test, no attacker test.
+        if body_off && !ball_off_axis {
             return turn_to_direction(k, side);
         }
         Command::Turn { moment: 0.0 }

@@ -387,7 +387,14 @@ fn keeper_verdict(keeper: &Keeper, ball: DVec2, line: &Line, speed: f64) -> Opti
             Some(&near) => near,
             None => Near::new(k0, keeper.from_shooter, c),
         };
-        let (k, far_sq) = (near.drift, if in_area { near.far_in_sq } else { near.far_out_sq });
+        let (k, far_sq) = (
+            near.drift,
+            if in_area {
+                near.far_in_sq
+            } else {
+                near.far_out_sq
+            },
+        );
         let dist_sq = b.distance_squared(k);
         if dist_sq > far_sq {
             continue;
