@@ -6,7 +6,7 @@
 use agent::{NetworkConditions, StrategyName};
 
 use super::analysis::EntryResults;
-use crate::figures::{Condition, ConditionPoint, ConditionSet};
+use crate::figures::{Condition, ConditionPoint, ConditionSet, Figure, FigureError, draw_sweep};
 use crate::schedule::EvalPoint;
 use crate::stats::Estimate;
 
@@ -55,13 +55,44 @@ pub fn advised(e: &EntryResults, level: f64) -> Estimate {
     })
 }
 
+/// The figures of every condition the study sweeps, the `baseline`
+/// entry's goal percentages at [`EPISODES`] in their subtitle.
+pub fn sweep_figures(
+    entries: &[EntryResults],
+    baseline: Option<&str>,
+    level: f64,
+) -> Result<Vec<Figure>, FigureError> {
+    let note = (entries.iter())
+        .find(|e| Some(e.entry.name.as_str()) == baseline)
+        .map_or_else(String::new, |b| {
+            let goals: Vec<String> = (EPISODES.iter())
+                .map(|&ep| {
+                    goal_at(b, ep)
+                        .mean
+                        .map_or("-".to_owned(), |m| format!("{m:.1}"))
+                })
+                .collect();
+            let episodes: Vec<String> = EPISODES.iter().map(u64::to_string).collect();
+            format!(
+                "{}: {} % at {}",
+                b.entry.name,
+                goals.join(" / "),
+                episodes.join(" / ")
+            )
+        });
+    let mut figures = Vec::new();
+    for condition in Condition::ALL {
+        let sets = condition_sets(entries, condition, level);
+        if !sets.is_empty() {
+            figures.extend(draw_sweep(condition, &EPISODES, &sets, &note)?);
+        }
+    }
+    Ok(figures)
+}
+
 /// One set per advising method along `condition`, if the study sweeps it:
 /// some method has points at two values of it.
-pub fn condition_sets(
-    entries: &[EntryResults],
-    condition: Condition,
-    level: f64,
-) -> Vec<ConditionSet> {
+fn condition_sets(entries: &[EntryResults], condition: Condition, level: f64) -> Vec<ConditionSet> {
     let advising = |e: &&EntryResults| {
         !matches!(
             e.entry.algorithm,

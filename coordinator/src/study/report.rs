@@ -12,11 +12,9 @@ use super::config::{StudyConfig, StudyEntry};
 use super::difference::difference_sets;
 use super::gains::{Gain, LAST_POINTS, gains};
 use super::holm::{HolmComparison, holm_against};
-use super::network::{EPISODES, advised, condition_sets, conditions, goal_at};
+use super::network::{EPISODES, advised, conditions, goal_at, sweep_figures};
 use crate::error::Error;
-use crate::figures::{
-    Condition, DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures, draw_sweep,
-};
+use crate::figures::{DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures};
 use crate::stats::Estimate;
 use crate::store;
 
@@ -99,30 +97,8 @@ fn write_figures(
     if let (Some(baseline), false) = (&study.baseline, differences.is_empty()) {
         figures.insert(1, draw_difference(baseline, &differences)?);
     }
-    let baseline =
-        (study.baseline.as_ref()).and_then(|b| entries.iter().find(|e| &e.entry.name == b));
-    let baseline_note = baseline.map_or_else(String::new, |b| {
-        let goals: Vec<String> = (EPISODES.iter())
-            .map(|&ep| {
-                goal_at(b, ep)
-                    .mean
-                    .map_or("-".to_owned(), |m| format!("{m:.1}"))
-            })
-            .collect();
-        let episodes: Vec<String> = EPISODES.iter().map(u64::to_string).collect();
-        format!(
-            "{}: {} % at {}",
-            b.entry.name,
-            goals.join(" / "),
-            episodes.join(" / ")
-        )
-    });
-    for condition in Condition::ALL {
-        let sets = condition_sets(entries, condition, study.ci_level());
-        if !sets.is_empty() {
-            figures.extend(draw_sweep(condition, &EPISODES, &sets, &baseline_note)?);
-        }
-    }
+    let baseline = study.baseline.as_deref();
+    figures.extend(sweep_figures(entries, baseline, study.ci_level())?);
     let dir = out.join("figures");
     store::create_dir(&dir)?;
     for figure in &figures {
