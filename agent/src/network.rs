@@ -1,7 +1,8 @@
 //! Network conditions for advice traffic (docs/algorithms.md section 6): each
-//! request and reply is lost or delayed by a drawn latency, the draw keyed by
-//! the message itself (run-independent of any learner's generator), so that
-//! the in-process model and the zenoh transport draw the same fates.
+//! request and reply is lost or delayed by a drawn latency. Each draw comes
+//! from a generator of its own, seeded by the sender's seed and the message
+//! itself (never a learner's generator), so that the in-process model and the
+//! zenoh transport draw the same fates.
 
 use std::fmt;
 use std::str::FromStr;
