@@ -15,7 +15,7 @@ use crate::policy::AgentRng;
 
 /// The longest latency or advice timeout accepted (ms): one minute, the
 /// protocol's longest wait.
-pub const MAX_NETWORK_MS: f64 = proto::MAX_WAIT_MS as f64;
+const MAX_NETWORK_MS: f64 = proto::MAX_WAIT_MS as f64;
 
 /// A message's one-way latency distribution, in milliseconds.
 ///
@@ -214,11 +214,6 @@ impl Link {
             conditions,
             seed: splitmix64(agent_seed ^ LINK_STREAM),
         }
-    }
-
-    /// The conditions.
-    pub fn conditions(&self) -> &NetworkConditions {
-        &self.conditions
     }
 
     /// The advice timeout (ms).
