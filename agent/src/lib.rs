@@ -65,7 +65,7 @@ pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 pub use learner::{ActionValues, Experience, Learner, Seen, Step};
-pub use network::{Direction, Latency, Link, Message, NetworkConditions};
+pub use network::{Latency, Leg, Link, Message, NetworkConditions};
 pub use persist::{Entry, FORMAT_VERSION, PersistError, Snapshot, snapshot_file};
 pub use policy::{ACTIONS, AgentRng};
 pub use proto::Mode;

@@ -171,9 +171,9 @@ impl NetworkConditions {
     }
 }
 
-/// Which way a message travels.
+/// Which leg of an advice round trip a message is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Direction {
+pub enum Leg {
     /// An advisee's request to one advisor.
     Request,
     /// An advisor's reply to one advisee.
@@ -193,7 +193,7 @@ pub struct Message {
     /// The receiving agent.
     pub to: usize,
     /// Request or reply.
-    pub direction: Direction,
+    pub leg: Leg,
 }
 
 /// One agent's outgoing link: its conditions and the seed of its draws.
@@ -228,12 +228,12 @@ impl Link {
         if c.loss == 0.0 && c.latency == Latency::Fixed(0.0) {
             return Some(0.0);
         }
-        let direction = match message.direction {
-            Direction::Request => 0,
-            Direction::Reply => 1,
+        let leg = match message.leg {
+            Leg::Request => 0,
+            Leg::Reply => 1,
         };
         let key = (u64::from(message.episode) << 32) | u64::from(message.frame);
-        let pair = ((message.from as u64) << 33) | ((message.to as u64) << 1) | direction;
+        let pair = ((message.from as u64) << 33) | ((message.to as u64) << 1) | leg;
         let mut rng = AgentRng::seed_from_u64(splitmix64(splitmix64(self.seed ^ key) ^ pair));
         if rng.random::<f64>() < c.loss {
             return None;
@@ -254,13 +254,13 @@ fn splitmix64(x: u64) -> u64 {
 mod tests {
     use super::*;
 
-    fn message(frame: u32, direction: Direction) -> Message {
+    fn message(frame: u32, leg: Leg) -> Message {
         Message {
             episode: 3,
             frame,
             from: 0,
             to: 2,
-            direction,
+            leg,
         }
     }
 
@@ -309,18 +309,16 @@ mod tests {
     }
 
     #[test]
-    fn a_message_always_meets_the_same_fate_and_directions_differ() {
+    fn a_message_always_meets_the_same_fate_and_legs_differ() {
         let l = link("lognormal:2,1", 0.3);
         let fates: Vec<_> = (0..200)
-            .map(|f| l.delay(message(f, Direction::Request)))
+            .map(|f| l.delay(message(f, Leg::Request)))
             .collect();
         let again: Vec<_> = (0..200)
-            .map(|f| l.delay(message(f, Direction::Request)))
+            .map(|f| l.delay(message(f, Leg::Request)))
             .collect();
         assert_eq!(fates, again);
-        let replies: Vec<_> = (0..200)
-            .map(|f| l.delay(message(f, Direction::Reply)))
-            .collect();
+        let replies: Vec<_> = (0..200).map(|f| l.delay(message(f, Leg::Reply))).collect();
         assert_ne!(fates, replies);
     }
 
@@ -328,9 +326,7 @@ mod tests {
     fn draws_follow_the_distributions() {
         let n = 20_000;
         let draws = |l: &Link| -> Vec<Option<f64>> {
-            (0..n)
-                .map(|f| l.delay(message(f, Direction::Request)))
-                .collect()
+            (0..n).map(|f| l.delay(message(f, Leg::Request))).collect()
         };
         let lost = draws(&link("fixed:1", 0.2))
             .iter()

@@ -7,7 +7,7 @@ use proto::{
 
 use crate::agent::{Agent, Observation};
 use crate::exchange::{AdviceExchange, Transition};
-use crate::network::{Direction, Link, Message};
+use crate::network::{Leg, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -199,14 +199,14 @@ impl<'a> Peers<'a> {
     }
 
     /// The message from `from` to `to` in this frame.
-    fn message(&self, from: usize, to: usize, direction: Direction) -> Message {
+    fn message(&self, from: usize, to: usize, leg: Leg) -> Message {
         let (episode, frame) = self.clock;
         Message {
             episode,
             frame,
             from,
             to,
-            direction,
+            leg,
         }
     }
 
@@ -245,11 +245,10 @@ impl AdviceExchange for Peers<'_> {
         });
         for &j in to {
             self.traffic[from].count(header, request.clone());
-            let Some(sent) = delay(asker.as_ref(), self.message(from, j, Direction::Request))
-            else {
+            let Some(sent) = delay(asker.as_ref(), self.message(from, j, Leg::Request)) else {
                 continue;
             };
-            let back = self.message(j, from, Direction::Reply);
+            let back = self.message(j, from, Leg::Reply);
             let Some(advisor) = self.get(j) else {
                 continue;
             };

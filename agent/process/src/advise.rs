@@ -1,7 +1,7 @@
 //! The advisor side: the agent's advice queryable, answered in zenoh's
 //! callback, concurrently with the agent's own decisions (docs/protocol.md §6).
 
-use agent::Direction;
+use agent::Leg;
 use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind};
 use zenoh::Wait;
 use zenoh::query::Query;
@@ -39,13 +39,7 @@ pub fn answer(ctx: &Context, query: Query, runtime: &tokio::runtime::Handle) {
     };
     let bytes = ctx.encode(header, Body::AdviceReply(reply));
     let key = ctx.keys.advice(ctx.id);
-    match conditions::fate(
-        ctx.advice().1,
-        &header,
-        ctx.id,
-        request.from,
-        Direction::Reply,
-    ) {
+    match conditions::fate(ctx.advice().1, &header, ctx.id, request.from, Leg::Reply) {
         None => tracing::trace!(asker = request.from, "the network lost an advice reply"),
         Some(ms) if ms > 0.0 => {
             runtime.spawn(async move {

@@ -4,7 +4,7 @@
 
 use std::time::{Duration, Instant};
 
-use agent::Direction;
+use agent::Leg;
 use proto::{Action, Body, DropReason, Header, MessageKind};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
@@ -88,7 +88,7 @@ pub async fn ask(ctx: &Context, header: Header, ask: &Ask) -> Collector {
             deadline,
             tx: tx.clone(),
         };
-        match conditions::fate(link, &header, ctx.id, j, Direction::Request) {
+        match conditions::fate(link, &header, ctx.id, j, Leg::Request) {
             None => tracing::trace!(advisor = j, "the network lost an advice request"),
             Some(ms) if ms > 0.0 => {
                 tokio::spawn(request.send_after(ms));

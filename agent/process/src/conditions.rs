@@ -4,19 +4,19 @@
 
 use std::time::Duration;
 
-use agent::{Direction, Link, Message};
+use agent::{Leg, Link, Message};
 use proto::Header;
 
 /// The one-way delay `link` draws for the message from `from` to `to` about
 /// the frame of `header` (`Some(0.0)` without conditions), or `None` when it
 /// is lost.
-pub fn fate(link: Option<Link>, header: &Header, from: u8, to: u8, way: Direction) -> Option<f64> {
+pub fn fate(link: Option<Link>, header: &Header, from: u8, to: u8, leg: Leg) -> Option<f64> {
     let message = Message {
         episode: header.episode,
         frame: header.frame,
         from: from.into(),
         to: to.into(),
-        direction: way,
+        leg,
     };
     link.map_or(Some(0.0), |l| l.delay(message))
 }
