@@ -8,7 +8,7 @@ use statrs::distribution::{ContinuousCDF, StudentsT};
 ///
 /// With no sample every value is `None`; with one sample the interval is
 /// undefined (no spread can be estimated) and its bounds are `None`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Estimate {
     /// Number of samples (runs) behind the estimate.
     pub n: usize,

@@ -67,22 +67,7 @@ fn digests(backend: &RemoteBackend) -> Vec<u64> {
 
 #[test]
 fn adhoc_td_run_advises_across_processes() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("adhoc-td");
-    let output = Command::new(bin("coordinator"))
-        .args("run --algorithm adhoc-td --runs 1 --episodes 60 --eval-every 30".split(' '))
-        .args("--eval-episodes 10 --seed 3 --transport zenoh --advice-timeout-ms 20".split(' '))
-        .args(["--quiet", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let summary: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = zenoh_run_summary("--advice-timeout-ms 20");
     let comm = &summary["comm"];
     for key in [
         "advice_requests",
@@ -97,14 +82,14 @@ fn adhoc_td_run_advises_across_processes() {
     assert_eq!(summary["eval_points"].as_array().unwrap().len(), 3);
 }
 
-/// The `comm` of a 60-episode AdHocTD run over zenoh with `conditions`.
-fn comm_under(conditions: &str) -> Value {
+/// The summary of a 60-episode AdHocTD run over zenoh, with `extra` options.
+fn zenoh_run_summary(extra: &str) -> Value {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("run");
     let output = Command::new(bin("coordinator"))
         .args("run --algorithm adhoc-td --runs 1 --episodes 60 --eval-every 30".split(' '))
         .args("--eval-episodes 10 --seed 3 --transport zenoh".split(' '))
-        .args(conditions.split(' '))
+        .args(extra.split(' '))
         .args(["--quiet", "--out"])
         .arg(&out)
         .output()
@@ -114,9 +99,12 @@ fn comm_under(conditions: &str) -> Value {
         "stderr: {}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let summary: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    summary["comm"].clone()
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+/// The `comm` of that run with network `conditions`.
+fn comm_under(conditions: &str) -> Value {
+    zenoh_run_summary(conditions)["comm"].clone()
 }
 
 #[test]

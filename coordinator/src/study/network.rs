@@ -36,15 +36,7 @@ pub fn conditions(e: &EntryResults) -> Option<&NetworkConditions> {
 pub fn goal_at(e: &EntryResults, episode: u64) -> Estimate {
     (e.summary.eval_points.iter())
         .find(|p| p.episode == episode)
-        .map_or(
-            Estimate {
-                n: 0,
-                mean: None,
-                ci_low: None,
-                ci_high: None,
-            },
-            |p| p.goal_pct,
-        )
+        .map_or_else(Estimate::default, |p| p.goal_pct)
 }
 
 /// Steps acted on advice per agent by the end of training, over runs.

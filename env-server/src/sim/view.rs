@@ -234,18 +234,27 @@ impl Sight {
         self.clear_view_cone(face, moved);
     }
 
-    /// `WorldModel::updateDirCount`: zero the count of every direction well
-    /// inside the view cone.
-    fn clear_view_cone(&mut self, face: f64, moved: bool) {
+    /// The view cone's left edge, and the limits of the directions well
+    /// inside it (a buffer of half a direction step, one degree more after a
+    /// move): `(left, left_limit, right_limit)`.
+    fn cone_limits(&self, face: f64, moved: bool) -> (f64, f64, f64) {
         let half = self.width.degrees() * 0.5;
         let buf = if moved {
             DIR_STEP * 0.5 + 1.0
         } else {
             DIR_STEP * 0.5
         };
-        let left_limit = deg_norm(face - half + buf);
-        let right_limit = deg_norm(face + half - buf);
-        let left = deg_norm(face - half);
+        (
+            deg_norm(face - half),
+            deg_norm(face - half + buf),
+            deg_norm(face + half - buf),
+        )
+    }
+
+    /// `WorldModel::updateDirCount`: zero the count of every direction well
+    /// inside the view cone.
+    fn clear_view_cone(&mut self, face: f64, moved: bool) {
+        let (left, left_limit, right_limit) = self.cone_limits(face, moved);
         // The directions tried are whole multiples of 5°, `5 * step` (-36 to
         // 36), exact in floating point; `deg_norm` wraps them from 180° to
         // -175°, and their bin is `step + 35`, 0 for -180°.
@@ -267,15 +276,7 @@ impl Sight {
     /// tests compare with.
     #[cfg(test)]
     fn clear_view_cone_by_angles(&mut self, face: f64, moved: bool) {
-        let half = self.width.degrees() * 0.5;
-        let buf = if moved {
-            DIR_STEP * 0.5 + 1.0
-        } else {
-            DIR_STEP * 0.5
-        };
-        let left_limit = deg_norm(face - half + buf);
-        let right_limit = deg_norm(face + half - buf);
-        let left = deg_norm(face - half);
+        let (left, left_limit, right_limit) = self.cone_limits(face, moved);
         let mut dir = deg_norm(-180.0 + DIR_STEP * dir_index(left) as f64);
         while is_left_of(dir, left_limit) {
             dir = deg_norm(dir + DIR_STEP);
