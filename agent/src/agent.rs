@@ -281,8 +281,8 @@ impl Agent {
             } => {
                 let mut answers = std::mem::take(&mut self.answers);
                 answers.clear();
-                exchange.ask(self.id, &to, &state, intended, &mut answers);
-                let action = self.act_complete(&answers);
+                let replies = exchange.ask(self.id, &to, &state, intended, &mut answers);
+                let action = self.act_complete(&answers, replies);
                 self.answers = answers;
                 action
             }
@@ -355,18 +355,19 @@ impl Agent {
     }
 
     /// The second half of a frame that asked: `answers` holds the advice
-    /// that arrived (in any number, possibly none). With advice the agent
+    /// that arrived (in any number, possibly none) in `replies` replies
+    /// (with or without advice). With advice the agent
     /// plays the majority vote and spends one unit of its ask budget, else
     /// its intended or epsilon-greedy action; then the frame completes as in
     /// [`act`](Self::act). Without a frame waiting for advice it returns
     /// `Move` and changes nothing.
-    pub fn act_complete(&mut self, answers: &[Action]) -> Action {
+    pub fn act_complete(&mut self, answers: &[Action], replies: u64) -> Action {
         let Some(f) = self.in_flight.take() else {
             return Action::Move;
         };
+        self.counters.advice_replies_received += replies;
         let action = match majority(answers, self.config.fidelity.vote_ties, &mut self.rng) {
             Some(advice) => {
-                self.counters.advice_replies_received += answers.len() as u64;
                 self.counters.ask_spent += 1;
                 self.advised.push(f.key);
                 advice

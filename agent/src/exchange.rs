@@ -13,7 +13,8 @@ pub use proto::SharedTransition as Transition;
 pub trait AdviceExchange {
     /// Asks every agent of `to`, in order, for advice on `state` (with the
     /// asker's `intended` action in Mistake Correcting mode) and appends each
-    /// answer to `answers`. Agents that do not answer add nothing.
+    /// piece of advice to `answers`; returns the replies that arrived, with
+    /// or without advice (an advisor without advice replies all the same).
     fn ask(
         &mut self,
         from: usize,
@@ -21,7 +22,7 @@ pub trait AdviceExchange {
         state: &State,
         intended: Option<Action>,
         answers: &mut Vec<Action>,
-    );
+    ) -> u64;
 
     /// Delivers transitions of `from`'s goal episode to agent `to`, in order.
     fn share(&mut self, from: usize, to: usize, transitions: &[Transition]);
@@ -32,7 +33,16 @@ pub trait AdviceExchange {
 pub struct Isolated;
 
 impl AdviceExchange for Isolated {
-    fn ask(&mut self, _: usize, _: &[usize], _: &State, _: Option<Action>, _: &mut Vec<Action>) {}
+    fn ask(
+        &mut self,
+        _: usize,
+        _: &[usize],
+        _: &State,
+        _: Option<Action>,
+        _: &mut Vec<Action>,
+    ) -> u64 {
+        0
+    }
 
     fn share(&mut self, _: usize, _: usize, _: &[Transition]) {}
 }

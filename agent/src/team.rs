@@ -234,7 +234,7 @@ impl AdviceExchange for Peers<'_> {
         state: &State,
         intended: Option<Action>,
         answers: &mut Vec<Action>,
-    ) {
+    ) -> u64 {
         let delay = |link: Option<&Link>, message| link.map_or(Some(0.0), |l| l.delay(message));
         let asker = self.link;
         let header = self.header();
@@ -243,6 +243,7 @@ impl AdviceExchange for Peers<'_> {
             state: *state,
             intended,
         });
+        let mut replies = 0;
         for &j in to {
             self.traffic[from].count(header, request.clone());
             let Some(sent) = delay(asker.as_ref(), self.message(from, j, Leg::Request)) else {
@@ -260,10 +261,12 @@ impl AdviceExchange for Peers<'_> {
                 advice,
             };
             self.traffic[j].count(header, Body::AdviceReply(reply));
+            replies += u64::from(arrives);
             if let (Some(advice), true) = (advice, arrives) {
                 answers.push(advice);
             }
         }
+        replies
     }
 
     fn share(&mut self, from: usize, to: usize, transitions: &[Transition]) {

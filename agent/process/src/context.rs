@@ -20,8 +20,6 @@ use crate::pipe::LearnerCommand;
 pub struct Traffic {
     /// Messages and bytes by kind and direction, and drops by reason.
     pub messages: MessageCounters,
-    /// Advice replies received (with or without advice).
-    pub advice_replies_received: u64,
     /// Round-trip time of every advice request that got a reply (ms).
     pub rtt_ms: Vec<f32>,
 }

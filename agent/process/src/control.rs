@@ -146,12 +146,12 @@ fn report(ctx: &Context) -> Result<AgentReport, String> {
             ask_spent: c.ask_spent,
             give_spent: agent.spent_budget(),
             advice_requests: c.advice_requests,
+            advice_replies_received: c.advice_replies_received,
             advice_given: c.advice_given,
             ..AgentReport::default()
         }
     };
     let traffic = ctx.traffic().clone();
-    report.advice_replies_received = traffic.advice_replies_received;
     report.messages = traffic.messages;
     report.advice_rtt_ms = traffic.rtt_ms;
     report.alive_peers = ctx.alive().into_iter().filter(|&j| j != ctx.id).collect();

@@ -163,11 +163,10 @@ impl Stream {
     async fn advised(&self, header: Header, request: Ask) {
         let ctx = &self.ctx;
         let replies = ask(ctx, header, &request).await;
-        let action = ctx.learner().complete(&request, &replies.advice);
-        let mut traffic = ctx.traffic();
-        traffic.advice_replies_received += replies.replies;
-        traffic.rtt_ms.extend_from_slice(&replies.rtt_ms);
-        drop(traffic);
+        let action = ctx
+            .learner()
+            .complete(&request, &replies.advice, replies.replies);
+        ctx.traffic().rtt_ms.extend_from_slice(&replies.rtt_ms);
         self.publish_action(header, action);
     }
 

@@ -183,11 +183,11 @@ impl Learning {
         )
     }
 
-    /// Completes the frame that asked with the advice that arrived; `None`
-    /// if the learner was reset or loaded meanwhile.
-    pub fn complete(&mut self, ask: &Ask, advice: &[Action]) -> Option<Action> {
+    /// Completes the frame that asked with the advice that arrived in
+    /// `replies` replies; `None` if the learner was reset or loaded meanwhile.
+    pub fn complete(&mut self, ask: &Ask, advice: &[Action], replies: u64) -> Option<Action> {
         let agent = self.agent.as_mut().filter(|_| ask.epoch == self.epoch)?;
-        Some(agent.act_complete(advice))
+        Some(agent.act_complete(advice, replies))
     }
 
     /// A shared episode: replayed once this agent has finished that episode
@@ -451,11 +451,14 @@ mod tests {
         };
         assert_eq!(ask.to, vec![1]);
         assert_eq!(ask.request.from, 0);
-        assert_eq!(l.complete(&ask, &[Action::PassFar]), Some(Action::PassFar));
+        assert_eq!(
+            l.complete(&ask, &[Action::PassFar], 1),
+            Some(Action::PassFar)
+        );
         let Ok(Step::Ask(ask)) = l.observe(&header(0, 1, 0), &kick, &|_| true) else {
             panic!("no request");
         };
         l.reset(1, 1, &config).unwrap();
-        assert_eq!(l.complete(&ask, &[Action::Shoot]), None);
+        assert_eq!(l.complete(&ask, &[Action::Shoot], 1), None);
     }
 }
