@@ -1,7 +1,7 @@
 //! Each method's gain over the study's baseline, paired by run: on the
 //! mean of its last ten evaluations, and on the area under its learning
 //! curve. Single evaluation points are noisy (100 episodes each); these
-//! two average many of them (docs/reproduction.md, "The gains").
+//! two average many of them (docs/reproduction.md, "The gain, measured properly").
 
 use serde::Serialize;
 
