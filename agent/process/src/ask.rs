@@ -20,8 +20,6 @@ pub struct Collector {
     answered: Vec<u8>,
     /// The advice received (replies without advice add nothing).
     pub advice: Vec<Action>,
-    /// Replies received, with or without advice.
-    pub replies: u64,
     /// Round-trip time of each reply (ms).
     pub rtt_ms: Vec<f32>,
 }
@@ -33,6 +31,11 @@ impl Collector {
             waiting: advisors.to_vec(),
             ..Self::default()
         }
+    }
+
+    /// Replies received, with or without advice.
+    pub fn replies(&self) -> u64 {
+        self.answered.len() as u64
     }
 
     /// Takes advisor `from`'s reply, received `rtt` after its request.
@@ -53,7 +56,6 @@ impl Collector {
         };
         self.answered.push(from);
         self.waiting.swap_remove(k);
-        self.replies += 1;
         self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
         self.advice.extend(advice.filter(|a| a.is_kick()));
         Ok(())
@@ -214,7 +216,7 @@ mod tests {
         c.take(2, None, ms(1)).unwrap();
         assert!(c.done());
         assert_eq!(c.advice, vec![Shoot]);
-        assert_eq!(c.replies, 2);
+        assert_eq!(c.replies(), 2);
         assert_eq!(c.rtt_ms, vec![3.0, 1.0]);
         let mut d = Collector::new(&[1]);
         d.take(1, Some(Move), ms(1)).unwrap();
