@@ -13,39 +13,34 @@ marked with `*`.  Means need a standard deviation: it is read from the
 optional "sd" object ({"frames", "frames_to_goal", "possessions_per_episode"})
 that the oracle writes; a file without it gets the mean alone.
 
-Standard library only.
+Standard library only; the statistics are the package `hfo_oracle`'s
+(`hfo_oracle/stats.py`).
 """
+
+from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
+from collections.abc import Sequence
+from typing import Any
 
-Z = 1.959963984540054
+from hfo_oracle.schema import NEXT_KEYS, POLICIES
+from hfo_oracle.stats import Z95, normal_half_width, wilson, z_means, z_proportions
+
 OUTCOMES = [("goal", "goal %"), ("captured", "captured %"),
             ("out_of_bounds", "out of bounds %"), ("out_of_time", "time-out %")]
-NEXT_KEYS = ["teammate", "same", "captured", "out_of_bounds", "goal", "out_of_time"]
-
-
-def wilson(k, n):
-    if not n:
-        return None
-    p = k / n
-    den = 1 + Z * Z / n
-    centre = (p + Z * Z / (2 * n)) / den
-    half = Z * math.sqrt(p * (1 - p) / n + Z * Z / (4 * n * n)) / den
-    return 100 * p, 100 * max(0.0, centre - half), 100 * min(1.0, centre + half)
 
 
 class Cell:
     """A value with what is needed for its interval and for a z test."""
 
-    def __init__(self, kind, **kw):
+    def __init__(self, kind: str, **kw: Any) -> None:
         self.kind = kind  # "prop" (k, n) or "mean" (mean, sd, n)
         self.__dict__.update(kw)
 
-    def text(self):
+    def text(self) -> str:
         if self.kind == "prop":
             w = wilson(self.k, self.n)
             if w is None:
@@ -55,27 +50,20 @@ class Cell:
             return "–"
         if self.sd is None or not self.n:
             return "%.2f (n=%d, no sd)" % (self.mean, self.n or 0)
-        half = Z * self.sd / math.sqrt(self.n)
+        half = normal_half_width(self.sd, self.n)
         return "%.2f [%.2f, %.2f] (n=%d)" % (self.mean, self.mean - half, self.mean + half, self.n)
 
 
-def z_stat(a, b):
+def z_stat(a: Cell | None, b: Cell | None) -> float | None:
+    """The z statistic of the difference of two cells of the same row."""
     if a is None or b is None:
         return None
     if a.kind == "prop":
-        if not a.n or not b.n:
-            return None
-        p1, p2 = a.k / a.n, b.k / b.n
-        p = (a.k + b.k) / (a.n + b.n)
-        se = math.sqrt(p * (1 - p) * (1 / a.n + 1 / b.n))
-        return None if se == 0 else (p1 - p2) / se
-    if None in (a.mean, b.mean, a.sd, b.sd) or not a.n or not b.n:
-        return None
-    se = math.sqrt(a.sd ** 2 / a.n + b.sd ** 2 / b.n)
-    return None if se == 0 else (a.mean - b.mean) / se
+        return z_proportions(a.k, a.n, b.k, b.n)
+    return z_means(a.mean, a.sd, a.n, b.mean, b.sd, b.n)
 
 
-def sd_of(d, key):
+def sd_of(d: dict[str, Any], key: str) -> float | None:
     sd = d.get("sd") or {}
     v = sd.get(key)
     if v is None:
@@ -83,7 +71,7 @@ def sd_of(d, key):
     return v
 
 
-def rows_for(d):
+def rows_for(d: dict[str, Any]) -> list[tuple[str, Cell]]:
     """[(row label, Cell)] for one statistics object."""
     n = d["episodes"]
     out = d["outcomes"]
@@ -113,7 +101,7 @@ def rows_for(d):
     return rows
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("files", nargs="+", help="statistics JSON files (ours and hfo)")
     args = p.parse_args(argv)
@@ -122,12 +110,14 @@ def main(argv=None):
         with open(f) as fh:
             d = json.load(fh)
         by_policy.setdefault(d["policy"], []).append((f, d))
-    order = ["random", "shoot", "dribble", "pass", "uniform"]
-    for policy in sorted(by_policy, key=lambda x: (order.index(x) if x in order else 99, x)):
-        cols = sorted(by_policy[policy], key=lambda fd: (fd[1].get("simulator") != "ours", fd[0]))
+    for policy in sorted(by_policy,
+                         key=lambda x: (POLICIES.index(x) if x in POLICIES else 99, x)):
+        cols = sorted(by_policy[policy],
+                      key=lambda fd: (fd[1].get("simulator") != "ours", fd[0]))
         labels = []
         for f, d in cols:
-            lab = "%s (%s episodes, seed %s)" % (d.get("simulator", "?"), d["episodes"], d.get("seed"))
+            lab = "%s (%s episodes, seed %s)" % (d.get("simulator", "?"), d["episodes"],
+                                                 d.get("seed"))
             if sum(1 for g, e in cols if e.get("simulator") == d.get("simulator")) > 1:
                 lab += " " + os.path.basename(f)
             labels.append(lab)
@@ -142,7 +132,7 @@ def main(argv=None):
             line = [label] + [c.text() for c in cells]
             if two:
                 z = z_stat(cells[0], cells[1])
-                line.append("–" if z is None else ("%.2f%s" % (z, " *" if abs(z) > Z else "")))
+                line.append("–" if z is None else ("%.2f%s" % (z, " *" if abs(z) > Z95 else "")))
             print("| " + " | ".join(line) + " |")
         print()
     return 0

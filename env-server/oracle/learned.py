@@ -3,7 +3,8 @@
 `team_ours.py` (ours) and `hfo_oracle.py --team` (the real HFO), pairs them
 by team, pools the runs of each algorithm and training length, and prints a
 Markdown table with 95 % intervals (Wilson for percentages, normal for
-means) and the z statistic of the goal difference.
+means) and the z statistic of the goal difference (the statistics of
+`hfo_oracle/stats.py`).
 
     python3 learned.py results/ours-*.json results/hfo-*.json
 
@@ -11,55 +12,58 @@ A team's name is its snapshot directory (e.g. `adhoc-td-1000`: the agents
 of an AdHocTD run after 1000 training episodes). Standard library only.
 """
 
+from __future__ import annotations
+
 import argparse
 import json
-import math
 import os
 import sys
 from collections import defaultdict
+from collections.abc import Sequence
+from typing import Any
 
-from compare import Z, wilson
-
-ACTIONS = ("move", "shoot", "dribble", "pass_near", "pass_far")
-OUTCOMES = ("goal", "captured", "out_of_bounds", "out_of_time")
+from hfo_oracle.schema import ACTIONS, OUTCOMES
+from hfo_oracle.stats import Z95, normal_half_width, pooled, wilson, z_proportions
 
 
-def team_name(d):
+def team_name(d: dict[str, Any]) -> str:
     """The directory of the team's snapshot files."""
     return os.path.basename(os.path.dirname(d["team"][0]))
 
 
-def pool(stats):
+def pool(stats: list[dict[str, Any]]) -> dict[str, Any]:
     """One statistics object of several runs of a team: counts added, frame
     means weighted by episodes, their standard deviations combined."""
-    n = sum(d["episodes"] for d in stats)
+    n, mean, sd = pooled((d["episodes"], d["mean_frames"], d["sd"]["frames"]) for d in stats)
     out = {k: sum(d["outcomes"][k] for d in stats) for k in OUTCOMES}
     actions = {k: sum(d["actions"][k] for d in stats) for k in ACTIONS}
-    mean = sum(d["mean_frames"] * d["episodes"] for d in stats) / n
-    # Pooled variance: within-run plus between-run spread.
-    ss = sum((d["episodes"] - 1) * d["sd"]["frames"] ** 2
-             + d["episodes"] * (d["mean_frames"] - mean) ** 2 for d in stats)
     return {"episodes": n, "outcomes": out, "actions": actions, "mean_frames": mean,
-            "sd_frames": math.sqrt(ss / (n - 1)), "runs": len(stats)}
+            "sd_frames": sd, "runs": len(stats)}
 
 
-def pct(k, n):
+def pct(k: int, n: int) -> str:
+    """A percentage with its Wilson interval."""
     w = wilson(k, n)
     return "%.1f [%.1f, %.1f]" % w if w else "–"
 
 
-def z_prop(k1, n1, k2, n2):
-    p = (k1 + k2) / (n1 + n2)
-    se = math.sqrt(p * (1 - p) * (1 / n1 + 1 / n2))
-    return (k1 / n1 - k2 / n2) / se if se else 0.0
+def rest(d: dict[str, Any]) -> str:
+    """The captured, out of bounds and time-out percentages."""
+    return " / ".join("%.1f" % (100 * d["outcomes"][k] / d["episodes"]) for k in OUTCOMES[1:])
 
 
-def mix(d):
+def frames(d: dict[str, Any]) -> str:
+    """The mean frames per episode with the half width of its interval."""
+    return "%.1f ± %.1f" % (d["mean_frames"], normal_half_width(d["sd_frames"], d["episodes"]))
+
+
+def mix(d: dict[str, Any]) -> str:
+    """The kickers' choices in percent, in the order of ACTIONS."""
     tot = sum(d["actions"].values()) or 1
     return " / ".join("%.0f" % (100 * d["actions"][a] / tot) for a in ACTIONS)
 
 
-def main(argv=None):
+def main(argv: Sequence[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("files", nargs="+")
     args = p.parse_args(argv)
@@ -77,14 +81,12 @@ def main(argv=None):
         if set(sims) != {"ours", "hfo"}:
             continue
         a, b = pool(sims["ours"]), pool(sims["hfo"])
-        z = z_prop(a["outcomes"]["goal"], a["episodes"], b["outcomes"]["goal"], b["episodes"])
-        rest = lambda d: " / ".join("%.1f" % (100 * d["outcomes"][k] / d["episodes"])
-                                    for k in OUTCOMES[1:])
-        frames = lambda d: "%.1f ± %.1f" % (d["mean_frames"],
-                                             Z * d["sd_frames"] / math.sqrt(d["episodes"]))
-        print("| %s (%d) | %s | %s | %.2f%s | %s | %s | %s | %s | %s | %s |" % (
+        z = z_proportions(a["outcomes"]["goal"], a["episodes"],
+                          b["outcomes"]["goal"], b["episodes"])
+        print("| %s (%d) | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             name, a["runs"], pct(a["outcomes"]["goal"], a["episodes"]),
-            pct(b["outcomes"]["goal"], b["episodes"]), z, " *" if abs(z) > Z else "",
+            pct(b["outcomes"]["goal"], b["episodes"]),
+            "–" if z is None else "%.2f%s" % (z, " *" if abs(z) > Z95 else ""),
             rest(a), rest(b), frames(a), frames(b), mix(a), mix(b)))
     return 0
 

@@ -5,7 +5,8 @@ evaluations play, on one long-lived simulator, and writes the statistics
 `hfo_oracle.py --team` writes for the real HFO (outcomes, frames, the
 kickers' choices), for `learned.py` to set side by side.
 
-Needs the `halffield` package (env-server/python):
+Needs the `halffield` package (env-server/python) and our agents' Python
+binding, which holds `GreedyAgent` (`hfo_oracle/team.py` says where it looks):
 
     python3 team_ours.py --team A B C --episodes 4000 --seed 1 --out ours.json
 """
@@ -13,31 +14,22 @@ Needs the `halffield` package (env-server/python):
 from __future__ import annotations
 
 import argparse
-import json
-import math
 import os
 import sys
+from typing import Any
 
 import halffield
 
-ACTIONS = ("move", "shoot", "dribble", "pass_near", "pass_far")
-OUTCOMES = {"GOAL": "goal", "CAPTURED_BY_DEFENSE": "captured",
-            "OUT_OF_BOUNDS": "out_of_bounds", "OUT_OF_TIME": "out_of_time"}
+from hfo_oracle.schema import ACTIONS, STATUS_OUTCOMES, write_json
+from hfo_oracle.stats import mean, sample_sd
+from hfo_oracle.team import greedy_agent
 
 
-def sd(xs: list[float]) -> float | None:
-    """The sample standard deviation, or None below two samples."""
-    if len(xs) < 2:
-        return None
-    m = sum(xs) / len(xs)
-    return math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1))
-
-
-def play(team: list[str], episodes: int, seed: int) -> dict:
+def play(team: list[str], episodes: int, seed: int) -> dict[str, Any]:
     """Statistics of ``episodes`` episodes of ``team`` from ``seed``."""
-    agents = [halffield.GreedyAgent(path) for path in team]
+    agents = [greedy_agent(path) for path in team]
     env = halffield.parallel_env(observation="paper")
-    outcomes = dict.fromkeys(OUTCOMES.values(), 0)
+    outcomes = dict.fromkeys(STATUS_OUTCOMES.values(), 0)
     actions = dict.fromkeys(ACTIONS, 0)
     frames: list[float] = []
     frames_goal: list[float] = []
@@ -55,7 +47,7 @@ def play(team: list[str], episodes: int, seed: int) -> dict:
                 chosen[name] = min(choice, halffield.PASS)
             observations, _, _, _, infos = env.step(chosen)
         info = next(iter(infos.values()))
-        outcome = OUTCOMES[info["status"]]
+        outcome = STATUS_OUTCOMES[info["status"]]
         outcomes[outcome] += 1
         frames.append(info["frame"])
         if outcome == "goal":
@@ -67,11 +59,11 @@ def play(team: list[str], episodes: int, seed: int) -> dict:
         "episodes": episodes,
         "seed": seed,
         "goal_pct": 100.0 * outcomes["goal"] / episodes,
-        "mean_frames": sum(frames) / episodes,
-        "mean_frames_to_goal": sum(frames_goal) / len(frames_goal) if frames_goal else None,
+        "mean_frames": mean(frames),
+        "mean_frames_to_goal": mean(frames_goal),
         "outcomes": outcomes,
         "actions": actions,
-        "sd": {"frames": sd(frames), "frames_to_goal": sd(frames_goal)},
+        "sd": {"frames": sample_sd(frames), "frames_to_goal": sample_sd(frames_goal)},
     }
 
 
@@ -84,12 +76,7 @@ def main(argv: list[str] | None = None) -> int:
     a = p.parse_args(argv)
     if a.episodes <= 0:
         p.error("--episodes must be positive")
-    result = play(a.team, a.episodes, a.seed)
-    tmp = a.out + ".tmp"
-    with open(tmp, "w") as f:
-        json.dump(result, f, indent=2)
-        f.write("\n")
-    os.replace(tmp, a.out)
+    write_json(a.out, play(a.team, a.episodes, a.seed))
     return 0
 
 
