@@ -2,7 +2,7 @@
 //! rule, title and subtitle, and which curves it draws in which colour.
 
 use super::data::{Metric, Series, SeriesPoint, SeriesSet};
-use super::draw::{self, Captions, Curve, PALETTE};
+use super::draw::{self, Captions, Curve, PALETTE, Panel};
 use super::layout::{Layout, YRange, zoom_start};
 
 /// One figure: what it plots, how, and its file name.
@@ -114,9 +114,14 @@ impl FigureKind {
             title: &self.title(),
             note: &note,
             x_axis: draw::EPISODES_AXIS,
-            y_axis: self.metric.axis(),
         };
-        draw::svg(&captions, &curves, &layout)
+        let panel = Panel {
+            curves: &curves,
+            layout,
+            y_axis: self.metric.axis(),
+            heading: "",
+        };
+        draw::svg(&captions, &[panel])
     }
 
     /// The title.

@@ -1,5 +1,6 @@
-//! Drawing a laid-out figure with `plotters` (header, axes, bands, lines,
-//! legend) as an SVG document, and rasterising it to a PNG.
+//! Drawing a laid-out figure with `plotters` (header, then one or more
+//! charts with their axes, bands, lines and legend) as an SVG document, and
+//! rasterising it to a PNG.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -7,8 +8,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::data::{Series, SeriesPoint};
 use super::layout::{
-    HEADER_H, LEGEND_GAP, LEGEND_LINE, LEGEND_PAD, LEGEND_SWATCH, LEGEND_TEXT, Layout, Legend,
-    MARGIN, PLOT, SIZE, TICKS, X_LABELS_H, Y_LABELS_W, decimals,
+    HEADER_H, HEADING_H, LEGEND_GAP, LEGEND_LINE, LEGEND_PAD, LEGEND_SWATCH, LEGEND_TEXT, Layout,
+    Legend, MARGIN, SIZE, TICKS, X_LABELS_H, Y_LABELS_W, decimals,
 };
 
 /// Font families, first available wins (as env-server's pictures).
@@ -64,34 +65,51 @@ pub(super) struct Mark {
     pub up: bool,
 }
 
-/// The texts of a figure besides its legend.
+/// The texts of a figure above and below its charts.
 pub(super) struct Captions<'a> {
     /// The title.
     pub title: &'a str,
     /// The subtitle below it.
     pub note: &'a str,
-    /// The x axis title.
+    /// The x axis title, below the last chart.
     pub x_axis: &'a str,
-    /// The y axis title.
-    pub y_axis: &'a str,
 }
 
-/// The figure of `curves` laid out by `layout`, as an SVG document; the
-/// error says what plotters could not draw.
-pub(super) fn svg(
-    captions: &Captions,
-    curves: &[Curve],
-    layout: &Layout,
-) -> Result<String, String> {
+/// One chart of a figure: its curves as laid out, under a heading unless
+/// it is the first.
+pub(super) struct Panel<'a> {
+    /// The curves, in legend order.
+    pub curves: &'a [Curve<'a>],
+    /// Where the data and the legend go.
+    pub layout: Layout,
+    /// The y axis title.
+    pub y_axis: &'a str,
+    /// The line above the chart (not drawn for the first, which has the
+    /// title and note above it).
+    pub heading: &'a str,
+}
+
+impl Panel<'_> {
+    /// Height of the chart with its margins and x labels, in pixels.
+    fn chart_height(&self) -> u32 {
+        MARGIN.0 + self.layout.plot.1 + X_LABELS_H + MARGIN.2
+    }
+}
+
+/// The figure of `panels` (one chart each, stacked, the x axis title below
+/// the last) as an SVG document; the error says what plotters could not
+/// draw. With one panel of [`PLOT`](super::layout::PLOT) size, the figure
+/// is [`SIZE`].
+pub(super) fn svg(captions: &Captions, panels: &[Panel]) -> Result<String, String> {
     let mut svg = String::new();
-    draw(&mut svg, captions, curves, layout).map_err(|e| e.to_string())?;
+    draw(&mut svg, captions, panels).map_err(|e| e.to_string())?;
     Ok(svg)
 }
 
 /// Rasterises an SVG document to a PNG of its size, with the system's fonts
 /// (without any, the PNG has no text); the error says why not.
 pub(super) fn png(svg: &str) -> Result<Vec<u8>, String> {
-    node::files::svg_to_png(svg).map_err(|e| e.to_string())
+    raster::png(svg).map_err(|e| e.to_string())
 }
 
 /// A text style of `px` pixels (plotters' SVG backend writes the size
@@ -104,16 +122,39 @@ fn font(px: f64, colour: &RGBColor) -> TextStyle<'static> {
 fn draw(
     svg: &mut String,
     captions: &Captions,
-    curves: &[Curve],
-    layout: &Layout,
+    panels: &[Panel],
 ) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
-    let ranges = layout.ranges;
-    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
+    let headings = panels.len().saturating_sub(1) as u32 * HEADING_H;
+    let charts: u32 = panels.iter().map(Panel::chart_height).sum();
+    let root =
+        SVGBackend::with_string(svg, (SIZE.0, HEADER_H + headings + charts)).into_drawing_area();
     root.fill(&WHITE)?;
-    let (head, body) = root.split_vertically(HEADER_H);
+    let (head, mut rest) = root.split_vertically(HEADER_H);
     draw_header(&head, captions.title, captions.note)?;
+    for (k, panel) in panels.iter().enumerate() {
+        if k > 0 {
+            let (heading, below) = rest.split_vertically(HEADING_H);
+            draw_heading(&heading, panel.heading)?;
+            rest = below;
+        }
+        let (area, below) = rest.split_vertically(panel.chart_height());
+        let last = k + 1 == panels.len();
+        draw_chart(&area, panel, last.then_some(captions.x_axis))?;
+        rest = below;
+    }
+    root.present()
+}
 
-    let mut chart = ChartBuilder::on(&body)
+/// Draws the chart of `panel` on `area`, with the x axis title `x_axis`
+/// if any.
+fn draw_chart(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    panel: &Panel,
+    x_axis: Option<&str>,
+) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
+    let (layout, curves) = (&panel.layout, panel.curves);
+    let ranges = layout.ranges;
+    let mut chart = ChartBuilder::on(area)
         .margin_top(MARGIN.0)
         .margin_right(MARGIN.1)
         .margin_bottom(MARGIN.2)
@@ -121,23 +162,26 @@ fn draw(
         .x_label_area_size(X_LABELS_H)
         .y_label_area_size(Y_LABELS_W)
         .build_cartesian_2d(ranges.x.0..ranges.x.1, ranges.y.0..ranges.y.1)?;
-    debug_assert_eq!(chart.plotting_area().dim_in_pixel(), PLOT);
+    debug_assert_eq!(chart.plotting_area().dim_in_pixel(), layout.plot);
     let x_decimals = decimals(ranges.x.1 - ranges.x.0);
     let y_decimals = decimals(ranges.y.1 - ranges.y.0);
-    chart
-        .configure_mesh()
-        .x_desc(captions.x_axis)
-        .y_desc(captions.y_axis)
+    let x_format = |x: &f64| format!("{x:.x_decimals$}");
+    let y_format = |y: &f64| format!("{y:.y_decimals$}");
+    let mut mesh = chart.configure_mesh();
+    mesh.y_desc(panel.y_axis)
         .axis_desc_style(font(16.0, &INK))
         .label_style(font(14.0, &MUTED))
         .axis_style(AXIS)
         .bold_line_style(GRID)
         .light_line_style(TRANSPARENT)
         .x_labels(TICKS)
-        .y_labels(TICKS)
-        .x_label_formatter(&|x| format!("{x:.x_decimals$}"))
-        .y_label_formatter(&|y| format!("{y:.y_decimals$}"))
-        .draw()?;
+        .y_labels(y_ticks(layout.plot.1))
+        .x_label_formatter(&x_format)
+        .y_label_formatter(&y_format);
+    if let Some(x_axis) = x_axis {
+        mesh.x_desc(x_axis);
+    }
+    mesh.draw()?;
 
     if let Some(y) = layout.rule {
         let rule = vec![(ranges.x.0, y), (ranges.x.1, y)];
@@ -179,7 +223,13 @@ fn draw(
         let area = chart.plotting_area().strip_coord_spec();
         draw_legend(&area, curves, legend)?;
     }
-    root.present()
+    Ok(())
+}
+
+/// Tick labels on the y axis of a plotting area `height` pixels high: at
+/// most [`TICKS`], at least about 40 pixels apart.
+fn y_ticks(height: u32) -> usize {
+    TICKS.min(height as usize / 40 + 1)
 }
 
 /// Draws the title and, below it, the note, aligned with the plotting area.
@@ -196,6 +246,20 @@ fn draw_header(
         .pos(anchor);
     head.draw(&Text::new(title, (left, 22), title_style))?;
     head.draw(&Text::new(note, (left, 47), font(14.0, &MUTED).pos(anchor)))
+}
+
+/// Draws the heading of a panel below the first, aligned with its plotting
+/// area.
+fn draw_heading(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    heading: &str,
+) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
+    let left = (MARGIN.3 + Y_LABELS_W) as i32;
+    let style = (FONT, 15.0 * 1.24, FontStyle::Bold)
+        .into_font()
+        .color(&INK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    area.draw(&Text::new(heading, (left, HEADING_H as i32 / 2 + 2), style))
 }
 
 /// Draws the legend of `curves` in its box on `area`.

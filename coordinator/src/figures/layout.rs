@@ -20,6 +20,8 @@ pub(super) const PLOT: (u32, u32) = (
 );
 /// Tick labels on each axis, at most.
 pub(super) const TICKS: usize = 11;
+/// Height of the heading above a chart below the first.
+pub(super) const HEADING_H: u32 = 30;
 
 /// Legend text size (pixels).
 pub(super) const LEGEND_TEXT: f64 = 15.0;
@@ -78,28 +80,37 @@ pub(super) struct Layout {
     pub legend: Option<Legend>,
     /// The value of a horizontal reference line, if any.
     pub rule: Option<f64>,
+    /// Size of the plotting area, in pixels.
+    pub plot: (u32, u32),
 }
 
 impl Layout {
-    /// The layout of the curves `shown` with y range rule `y`: the legend
-    /// where it covers the least data; if it covers some and the range is
-    /// not fixed, the y range grows to make room above the data.
+    /// The layout of the curves `shown` with y range rule `y` in a figure's
+    /// plotting area ([`PLOT`]).
     pub(super) fn of(shown: &[Series], y: YRange) -> Self {
+        Self::sized(shown, y, PLOT)
+    }
+
+    /// The layout of the curves `shown` with y range rule `y` in a plotting
+    /// area of `plot` pixels: the legend where it covers the least data; if
+    /// it covers some and the range is not fixed, the y range grows to make
+    /// room above the data.
+    pub(super) fn sized(shown: &[Series], y: YRange, plot: (u32, u32)) -> Self {
         let mut ranges = Ranges {
             x: x_range(shown),
             y: y_range(y, shown),
         };
         let legend = legend_size(shown).map(|size| {
-            let (place, covered) = best_place(shown, ranges, size);
+            let (place, covered) = best_place(shown, ranges, size, plot);
             if covered == 0 || matches!(y, YRange::Fixed(..)) {
                 return Legend { size, place };
             }
-            let free = f64::from(PLOT.1) - f64::from(size.1 + 2 * LEGEND_INSET);
+            let free = f64::from(plot.1) - f64::from(size.1 + 2 * LEGEND_INSET);
             let (lo, hi) = ranges.y;
-            ranges.y.1 = lo + (hi - lo) * f64::from(PLOT.1) / free.max(1.0);
+            ranges.y.1 = lo + (hi - lo) * f64::from(plot.1) / free.max(1.0);
             Legend {
                 size,
-                place: best_place(shown, ranges, size).0,
+                place: best_place(shown, ranges, size, plot).0,
             }
         });
         let rule = match y {
@@ -110,6 +121,7 @@ impl Layout {
             ranges,
             legend,
             rule,
+            plot,
         }
     }
 }
@@ -196,14 +208,14 @@ fn legend_size(shown: &[Series]) -> Option<(i32, i32)> {
     ))
 }
 
-/// Where a legend of `size` may go in the plotting area (its top-left
-/// pixel), best first: the upper left, upper right, lower right and lower
-/// left corners, then down the left and right edges.
-fn legend_places(size: (i32, i32)) -> Vec<(i32, i32)> {
+/// Where a legend of `size` may go in a plotting area of `plot` pixels
+/// (its top-left pixel), best first: the upper left, upper right, lower
+/// right and lower left corners, then down the left and right edges.
+fn legend_places(size: (i32, i32), plot: (u32, u32)) -> Vec<(i32, i32)> {
     let left = LEGEND_INSET;
-    let right = PLOT.0 as i32 - LEGEND_INSET - size.0;
+    let right = plot.0 as i32 - LEGEND_INSET - size.0;
     let top = LEGEND_INSET;
-    let bottom = PLOT.1 as i32 - LEGEND_INSET - size.1;
+    let bottom = plot.1 as i32 - LEGEND_INSET - size.1;
     let mut places = vec![(left, top), (right, top), (right, bottom), (left, bottom)];
     for y in (top..bottom).step_by(10).skip(1) {
         places.extend([(left, y), (right, y)]);
@@ -211,15 +223,21 @@ fn legend_places(size: (i32, i32)) -> Vec<(i32, i32)> {
     places
 }
 
-/// The first of the [`legend_places`] where a legend of `size` covers the
-/// least data, and how much it covers (samples of lines and bands under it).
-fn best_place(shown: &[Series], ranges: Ranges, size: (i32, i32)) -> ((i32, i32), usize) {
-    let (w, h) = (f64::from(PLOT.0), f64::from(PLOT.1));
+/// The first of the [`legend_places`] in a plotting area of `plot` pixels
+/// where a legend of `size` covers the least data, and how much it covers
+/// (samples of lines and bands under it).
+fn best_place(
+    shown: &[Series],
+    ranges: Ranges,
+    size: (i32, i32),
+    plot: (u32, u32),
+) -> ((i32, i32), usize) {
+    let (w, h) = (f64::from(plot.0), f64::from(plot.1));
     let to_x = |px: i32| ranges.x.0 + (ranges.x.1 - ranges.x.0) * f64::from(px) / w;
     let to_y = |px: i32| ranges.y.1 - (ranges.y.1 - ranges.y.0) * f64::from(px) / h;
     // Pixels kept free above and below the legend.
     const CLEAR: i32 = 8;
-    legend_places(size)
+    legend_places(size, plot)
         .into_iter()
         .map(|(left, top)| {
             let (x0, x1) = (to_x(left), to_x(left + size.0));
@@ -296,21 +314,21 @@ mod tests {
         // Rising curves leave the upper left free.
         let rising = [goal(&[Some(0.0), Some(50.0), Some(90.0), Some(95.0)])];
         let size = legend_size(&rising).unwrap();
-        let places = legend_places(size);
-        assert_eq!(best_place(&rising, ranges, size), (places[0], 0));
+        let places = legend_places(size, PLOT);
+        assert_eq!(best_place(&rising, ranges, size, PLOT), (places[0], 0));
         // High ones leave the bottom free.
         let high = [goal(&[Some(90.0); 4])];
-        assert_eq!(best_place(&high, ranges, size), (places[2], 0));
+        assert_eq!(best_place(&high, ranges, size, PLOT), (places[2], 0));
         // High and low ones, the middle of the left edge.
         let both = [goal(&[Some(90.0); 4]), goal(&[Some(5.0); 4])];
         let size = legend_size(&both).unwrap();
-        let ((left, top), covered) = best_place(&both, ranges, size);
+        let ((left, top), covered) = best_place(&both, ranges, size, PLOT);
         assert_eq!((left, covered), (LEGEND_INSET, 0));
         assert!(top > LEGEND_INSET && top + size.1 < PLOT.1 as i32 - LEGEND_INSET);
         // Covering everything, the first corner.
         let wide = [wide_band()];
-        let (place, covered) = best_place(&wide, ranges, size);
-        assert_eq!(place, legend_places(size)[0]);
+        let (place, covered) = best_place(&wide, ranges, size, PLOT);
+        assert_eq!(place, legend_places(size, PLOT)[0]);
         assert!(covered > 0);
     }
 

@@ -3,15 +3,16 @@
 //! (Figure 2), spent budget (Figures 4a, 6a, 8a) and the goal percentage of
 //! the last training episodes zoomed in (Figures 4b, 6b, 8b); and, beyond
 //! the paper, each method's goal percentage minus the baseline's, paired by
-//! run ([`draw_difference`]), and what advising costs in messages and bytes
-//! per training episode.
+//! run ([`draw_difference`], with a method whose differences dwarf the
+//! others' drawn apart: [`drawn_apart`]), and what advising costs in
+//! messages and bytes per training episode.
 //!
 //! Pure: the input is every algorithm's estimates in memory
 //! ([`SeriesSet`]), the output every figure as an SVG document drawn with
-//! `plotters` and a PNG of the same size rasterised with `resvg` and the
-//! system's fonts (without any, the PNG has no text); the caller writes
-//! them. Unknown means leave gaps in the lines; unknown interval bounds
-//! leave gaps in the bands.
+//! `plotters` and a PNG of the same size rasterised by the `raster` crate
+//! with the system's fonts (without any, the PNG has no text); the caller
+//! writes them. Unknown means leave gaps in the lines; unknown interval
+//! bounds leave gaps in the bands.
 //!
 //! ```
 //! use coordinator::Estimate;
@@ -46,7 +47,10 @@ mod layout;
 mod network;
 
 pub use data::{Metric, Point, Series, SeriesPoint, SeriesSet};
-pub use difference::{DIFFERENCE, DifferencePoint, DifferenceSet, draw_difference};
+pub use difference::{
+    APART_FACTOR, APART_FLOOR, DIFFERENCE, DifferencePoint, DifferenceSet, draw_difference,
+    drawn_apart,
+};
 pub use figure::{Figure, FigureError};
 pub use layout::SIZE;
 pub use network::{Condition, ConditionPoint, ConditionSet, draw_sweep};

@@ -4,7 +4,7 @@
 
 use super::catalogue::note_of;
 use super::data::{Series, SeriesPoint};
-use super::draw::{self, Captions, Curve, PALETTE};
+use super::draw::{self, Captions, Curve, PALETTE, Panel};
 use super::figure::{Figure, FigureError};
 use super::layout::{Layout, YRange};
 use crate::stats::Estimate;
@@ -103,8 +103,8 @@ pub fn draw_sweep(
             title: "Goal percentage under network conditions",
             note: &goal_note,
             x_axis: condition.axis(),
-            y_axis: "Goal percentage (%)",
         },
+        "Goal percentage (%)",
         &goals,
         YRange::Fixed(0.0, 100.0),
     )?;
@@ -114,18 +114,20 @@ pub fn draw_sweep(
             title: "Advice acted on under network conditions",
             note: &runs,
             x_axis: condition.axis(),
-            y_axis: "Steps acted on advice, per agent, by the end",
         },
+        "Steps acted on advice, per agent, by the end",
         &advice,
         YRange::FromZero,
     )?;
     Ok([goal, advised])
 }
 
-/// One figure of `series`, coloured in order.
+/// One figure of `series`, coloured in order, with the y axis title
+/// `y_axis`.
 fn figure(
     name: &'static str,
     captions: &Captions,
+    y_axis: &str,
     series: &[Series],
     y: YRange,
 ) -> Result<Figure, FigureError> {
@@ -136,8 +138,13 @@ fn figure(
             marks: &[],
         })
         .collect();
-    let layout = Layout::of(series, y);
-    Figure::drawn(name, draw::svg(captions, &curves, &layout))
+    let panel = Panel {
+        curves: &curves,
+        layout: Layout::of(series, y),
+        y_axis,
+        heading: "",
+    };
+    Figure::drawn(name, draw::svg(captions, &[panel]))
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ pub fn write_picture(trace: &Trace, path: &Path) -> Result<()> {
     let svg = trace.to_svg();
     let bytes = match format {
         Format::Svg => svg.into_bytes(),
-        Format::Png => node::files::svg_to_png(&svg)?,
+        Format::Png => raster::png(&svg)?,
     };
     node::files::write_atomically(path, &bytes)
         .with_context(|| format!("cannot write {}", path.display()))

@@ -11,7 +11,6 @@ mod game;
 mod learned;
 mod observation;
 mod policy;
-mod render;
 mod settings;
 mod single;
 mod status;

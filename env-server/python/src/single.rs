@@ -7,7 +7,6 @@ use crate::errors::{not_started, step_error, value_error};
 use crate::game::Game;
 use crate::observation::global_state;
 use crate::policy::SeededPolicy;
-use crate::render::rasterise;
 use crate::settings::TaskSettings;
 use crate::status;
 use env_server::tools::render::frame_svg;
@@ -98,8 +97,8 @@ impl Simulator {
         let game = self.game.as_ref().ok_or_else(not_started)?;
         let svg = frame_svg(game.env());
         let image = py
-            .detach(|| rasterise(&svg))
-            .map_err(PyRuntimeError::new_err)?;
+            .detach(|| raster::rgb(&svg))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         array(py, (image.height, image.width, 3), image.pixels)
     }
 }

@@ -2,6 +2,9 @@
 //! ([`record_episode`], [`Trace::to_svg`]), or an [`Env`] as it stands
 //! ([`frame_svg`]). Writing them to a file, or as PNG, is the binary's job.
 //!
+//! The documents are built element by element with the `svg` crate, which
+//! writes and escapes them; coordinates are rounded to a tenth of a pixel.
+//!
 //! The picture keeps the server's orientation (as rcssmonitor draws it): the
 //! attacked goal is on the right, +y points down.
 
@@ -12,9 +15,11 @@ use crate::sim::formation::offense_unums;
 use crate::sim::params::*;
 use crate::sim::physics::Command;
 use crate::sim::referee::Outcome;
-use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
+use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
 use glam::DVec2;
-use std::fmt::Write as _;
+use svg::node::element::path::Data;
+use svg::node::element::{Circle, Group, Line, Path, Polyline, Rectangle, Text};
+use svg::{Document, Node as _};
 
 /// A player: who kicked, or whom a marker shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,29 +124,35 @@ impl Trace {
 
     /// The picture as an SVG document.
     pub fn to_svg(&self) -> String {
-        let mut out = String::new();
-        self.write_svg(&mut out)
-            .expect("writing to a String cannot fail");
-        out
+        self.picture().to_string()
     }
 
-    fn write_svg(&self, s: &mut String) -> std::fmt::Result {
-        let w = write_svg_start(s)?;
-        self.write_header(s, w)?;
-        write_field(s)?;
+    /// The picture: title band, field, paths, kicks and markers.
+    fn picture(&self) -> Document {
+        let (mut doc, w) = canvas();
+        self.header(&mut doc, w);
+        field(&mut doc);
         // Paths: keeper first, then the offense, the ball on top.
-        write_path(s, &self.keeper, KEEPER_COLOUR, 2.4, 1.0)?;
-        for (i, path) in self.offense.iter().enumerate() {
-            write_path(s, path, colour(Kicker::Offense(i)), 2.4, 1.0)?;
+        let players = self.offense.iter().enumerate();
+        let players = players.map(|(i, points)| path(points, colour(Kicker::Offense(i)), 2.4, 1.0));
+        let lines = [path(&self.keeper, KEEPER_COLOUR, 2.4, 1.0)]
+            .into_iter()
+            .chain(players)
+            .chain([
+                path(&self.ball, "#111", 4.6, 0.45),
+                path(&self.ball, BALL_COLOUR, 2.0, 1.0),
+            ]);
+        for line in lines.flatten() {
+            doc.append(line);
         }
-        write_path(s, &self.ball, "#111", 4.6, 0.45)?;
-        write_path(s, &self.ball, BALL_COLOUR, 2.0, 1.0)?;
-        for path in self.offense.iter().chain([&self.keeper, &self.ball]) {
-            write_ticks(s, path)?;
+        for points in self.offense.iter().chain([&self.keeper, &self.ball]) {
+            for &p in points.iter().skip(10).step_by(10) {
+                doc.append(tick(px(p)));
+            }
         }
         for kick in &self.kicks {
             if let Some(&p) = self.ball.get(kick.state) {
-                write_star(s, p, colour(kick.by))?;
+                doc.append(star(px(p), colour(kick.by)));
             }
         }
         // Start markers under the end markers.
@@ -156,33 +167,29 @@ impl Trace {
             .collect();
         for (path, colour, label) in &players {
             if let Some(&p) = path.first() {
-                write_start(s, p, colour, label)?;
+                start_marker(&mut doc, px(p), colour, label);
             }
         }
         if let Some(&p) = self.ball.first() {
-            let (x, y) = px(p);
-            writeln!(
-                s,
-                r#"<circle cx="{x:.1}" cy="{y:.1}" r="8.5" fill="none" stroke="{BALL_COLOUR}" stroke-width="2"/>"#
-            )?;
+            let ring = circle(px(p), 8.5)
+                .set("fill", "none")
+                .set("stroke", BALL_COLOUR)
+                .set("stroke-width", 2);
+            doc.append(ring);
         }
         for (path, colour, label) in &players {
             if let Some(&p) = path.last() {
-                write_end(s, p, colour, label)?;
+                end_marker(&mut doc, px(p), colour, label);
             }
         }
         if let Some(&p) = self.ball.last() {
-            let (x, y) = px(p);
-            writeln!(
-                s,
-                r##"<circle cx="{x:.1}" cy="{y:.1}" r="5" fill="{BALL_COLOUR}" stroke="#111" stroke-width="1.5"/>"##
-            )?;
+            doc.append(ball(px(p)));
         }
-        writeln!(s, "</svg>")
+        doc
     }
 
     /// The title band: outcome, run, legend.
-    fn write_header(&self, s: &mut String, w: f64) -> std::fmt::Result {
+    fn header(&self, doc: &mut Document, w: f64) {
         let n = self.offense.len();
         let detail = format!(
             "policy {} · {n} offense vs keeper · seed {} · episode {} · {} kick{}",
@@ -192,7 +199,7 @@ impl Trace {
             self.kicks.len(),
             if self.kicks.len() == 1 { "" } else { "s" }
         );
-        write_title(s, w, &self.summary(), self.outcome, &detail)?;
+        title(doc, w, &self.summary(), self.outcome, &detail);
         // Legend, one row.
         let y = 86.0;
         let mut x = 18.0;
@@ -205,35 +212,28 @@ impl Trace {
             })
             .collect();
         items.push((KEEPER_COLOUR, "keeper".to_owned()));
+        let swatch = |x: f64, colour: &str, width: f64| {
+            line((x, y), (x + 18.0, y))
+                .set("stroke", colour)
+                .set("stroke-width", width)
+                .set("stroke-linecap", "round")
+        };
         for (colour, label) in &items {
-            writeln!(
-                s,
-                r#"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="{colour}" stroke-width="3" stroke-linecap="round"/>"#,
-                x + 18.0
-            )?;
-            x = legend_text(s, x + 24.0, y, label)?;
+            doc.append(swatch(x, colour, 3.0));
+            x = legend_text(doc, x + 24.0, y, label);
         }
-        writeln!(
-            s,
-            r##"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="#111" stroke-opacity="0.6" stroke-width="4.6" stroke-linecap="round"/>"##,
-            x + 18.0
-        )?;
-        writeln!(
-            s,
-            r#"<line x1="{x}" y1="{y}" x2="{}" y2="{y}" stroke="{BALL_COLOUR}" stroke-width="2" stroke-linecap="round"/>"#,
-            x + 18.0
-        )?;
-        x = legend_text(s, x + 24.0, y, "ball")?;
+        doc.append(swatch(x, "#111", 4.6).set("stroke-opacity", 0.6));
+        doc.append(swatch(x, BALL_COLOUR, 2.0));
+        x = legend_text(doc, x + 24.0, y, "ball");
         x += 14.0;
-        write_start_at(s, x + 7.0, y, "#e8efe8", "")?;
-        x = legend_text(s, x + 20.0, y, "start")?;
-        write_end_at(s, x + 7.0, y, "#e8efe8", "")?;
-        x = legend_text(s, x + 20.0, y, "end")?;
-        write_star_at(s, x + 7.0, y, "#e8efe8")?;
-        x = legend_text(s, x + 20.0, y, "kick")?;
-        write_tick_at(s, x + 5.0, y)?;
-        legend_text(s, x + 14.0, y, "every 10 frames")?;
-        Ok(())
+        start_marker(doc, (x + 7.0, y), "#e8efe8", "");
+        x = legend_text(doc, x + 20.0, y, "start");
+        end_marker(doc, (x + 7.0, y), "#e8efe8", "");
+        x = legend_text(doc, x + 20.0, y, "end");
+        doc.append(star((x + 7.0, y), "#e8efe8"));
+        x = legend_text(doc, x + 20.0, y, "kick");
+        doc.append(tick((x + 5.0, y)));
+        legend_text(doc, x + 14.0, y, "every 10 frames");
     }
 }
 
@@ -265,45 +265,33 @@ pub fn record_episode(
 /// along its body direction) and the ball on the half field, the frame and
 /// the outcome so far in the title band.
 pub fn frame_svg(env: &Env) -> String {
-    let mut out = String::new();
-    write_frame(&mut out, env).expect("writing to a String cannot fail");
-    out
+    frame_picture(env).to_string()
 }
 
-fn write_frame(s: &mut String, env: &Env) -> std::fmt::Result {
-    let w = write_svg_start(s)?;
+fn frame_picture(env: &Env) -> Document {
+    let (mut doc, w) = canvas();
     let world = env.world();
     let n = world.offense.len();
-    let title = match env.outcome() {
+    let heading = match env.outcome() {
         Outcome::InGame => format!("in play at frame {}", env.frame()),
         ended => format!("{} at frame {}", outcome_words(ended), env.frame()),
     };
-    write_title(
-        s,
-        w,
-        &title,
-        env.outcome(),
-        &format!("{n} offense vs keeper"),
-    )?;
-    write_field(s)?;
+    let detail = format!("{n} offense vs keeper");
+    title(&mut doc, w, &heading, env.outcome(), &detail);
+    field(&mut doc);
     let players = world.offense.iter().enumerate();
     let players = players.map(|(i, p)| (p, Kicker::Offense(i)));
     for (p, who) in players.chain([(&world.keeper, Kicker::Keeper)]) {
-        let (x, y) = px(p.pos);
-        let (tx, ty) = px(p.pos + (MARKER + 5.0) / SCALE * DVec2::from_angle(p.body));
-        writeln!(
-            s,
-            r#"<line x1="{x:.1}" y1="{y:.1}" x2="{tx:.1}" y2="{ty:.1}" stroke="{}" stroke-width="3" stroke-linecap="round"/>"#,
-            colour(who)
-        )?;
-        write_end(s, p.pos, colour(who), &label(n, who))?;
+        let facing = p.pos + (MARKER + 5.0) / SCALE * DVec2::from_angle(p.body);
+        let body = line(px(p.pos), px(facing))
+            .set("stroke", colour(who))
+            .set("stroke-width", 3)
+            .set("stroke-linecap", "round");
+        doc.append(body);
+        end_marker(&mut doc, px(p.pos), colour(who), &label(n, who));
     }
-    let (x, y) = px(world.ball.pos);
-    writeln!(
-        s,
-        r##"<circle cx="{x:.1}" cy="{y:.1}" r="5" fill="{BALL_COLOUR}" stroke="#111" stroke-width="1.5"/>"##
-    )?;
-    writeln!(s, "</svg>")
+    doc.append(ball(px(world.ball.pos)));
+    doc
 }
 
 // ---------------------------------------------------------------------------
@@ -327,6 +315,9 @@ const OFFENSE_COLOURS: [&str; MAX_OFFENSE] = ["#ffd23f", "#45c4f5", "#c39bff", "
 /// Radius of the start and end markers (pixels).
 const MARKER: f64 = 9.0;
 
+/// A point in pixels: x to the right, y down.
+type Px = (f64, f64);
+
 fn px_x(x: f64) -> f64 {
     (x - VIEW_X.0) * SCALE
 }
@@ -335,49 +326,88 @@ fn px_y(y: f64) -> f64 {
     HEADER + (y - VIEW_Y.0) * SCALE
 }
 
-fn px(p: DVec2) -> (f64, f64) {
+fn px(p: DVec2) -> Px {
     (px_x(p.x), px_y(p.y))
 }
 
-/// The opening `<svg>` tag; returns the picture's width.
-fn write_svg_start(s: &mut String) -> Result<f64, std::fmt::Error> {
-    let (w, h) = (px_x(VIEW_X.1).round(), px_y(VIEW_Y.1).round());
-    writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="{FONT}">"#
-    )?;
-    Ok(w)
+/// A coordinate rounded to a tenth of a pixel, finer than the eye sees,
+/// which keeps the documents short.
+fn tenth(v: f64) -> f64 {
+    (v * 10.0).round() / 10.0
 }
 
-/// The title band of a `w`-pixel wide picture: `title` (capitalised) in the
-/// colour of `outcome`, and a line of `detail` below it.
-fn write_title(
-    s: &mut String,
-    w: f64,
-    title: &str,
-    outcome: Outcome,
-    detail: &str,
-) -> std::fmt::Result {
-    writeln!(
-        s,
-        r#"<rect width="{w}" height="{HEADER}" fill="{HEADER_COLOUR}"/>"#
-    )?;
+/// An empty picture of the field's size, and its width.
+fn canvas() -> (Document, f64) {
+    let (w, h) = (px_x(VIEW_X.1).round(), px_y(VIEW_Y.1).round());
+    let doc = Document::new()
+        .set("width", w)
+        .set("height", h)
+        .set("viewBox", (0, 0, w, h))
+        .set("font-family", FONT);
+    (doc, w)
+}
+
+/// A circle of radius `r` (pixels) centred at `centre`.
+fn circle(centre: Px, r: f64) -> Circle {
+    Circle::new()
+        .set("cx", tenth(centre.0))
+        .set("cy", tenth(centre.1))
+        .set("r", r)
+}
+
+/// A line from `from` to `to`.
+fn line(from: Px, to: Px) -> Line {
+    Line::new()
+        .set("x1", tenth(from.0))
+        .set("y1", tenth(from.1))
+        .set("x2", tenth(to.0))
+        .set("y2", tenth(to.1))
+}
+
+/// The rectangle between the corners `from` (top left) and `to`.
+fn rectangle(from: Px, to: Px) -> Rectangle {
+    Rectangle::new()
+        .set("x", tenth(from.0))
+        .set("y", tenth(from.1))
+        .set("width", tenth(to.0 - from.0))
+        .set("height", tenth(to.1 - from.1))
+}
+
+/// `content` written from `at` (its baseline).
+fn text(at: Px, content: &str) -> Text {
+    Text::new(content)
+        .set("x", tenth(at.0))
+        .set("y", tenth(at.1))
+}
+
+/// Path data starting at `at`.
+fn start_at(at: Px) -> Data {
+    Data::new().move_to((tenth(at.0), tenth(at.1)))
+}
+
+/// The title band of a `w`-pixel wide picture: `heading` (capitalised) in
+/// the colour of `outcome`, and a line of `detail` below it.
+fn title(doc: &mut Document, w: f64, heading: &str, outcome: Outcome, detail: &str) {
+    doc.append(rectangle((0.0, 0.0), (w, HEADER)).set("fill", HEADER_COLOUR));
     let colour = match outcome {
         Outcome::Goal => "#8ef58e",
         Outcome::Captured => "#ff8080",
         Outcome::OutOfBounds => "#ffc266",
         Outcome::OutOfTime | Outcome::InGame => "#d8d8d8",
     };
-    let mut title = title.to_owned();
-    title[..1].make_ascii_uppercase();
-    writeln!(
-        s,
-        r#"<text x="18" y="34" font-size="23" font-weight="bold" fill="{colour}">{title}</text>"#
-    )?;
-    writeln!(
-        s,
-        r##"<text x="18" y="58" font-size="14" fill="#e8efe8">{detail}</text>"##
-    )
+    let mut heading = heading.to_owned();
+    heading[..1].make_ascii_uppercase();
+    doc.append(
+        text((18.0, 34.0), &heading)
+            .set("font-size", 23)
+            .set("font-weight", "bold")
+            .set("fill", colour),
+    );
+    doc.append(
+        text((18.0, 58.0), detail)
+            .set("font-size", 14)
+            .set("fill", "#e8efe8"),
+    );
 }
 
 /// How an episode ended, in words.
@@ -414,32 +444,25 @@ fn label(offense: usize, who: Kicker) -> String {
 }
 
 /// Grass, the darker surround outside the HFO area, the lines and the goal.
-fn write_field(s: &mut String) -> std::fmt::Result {
-    write_grass(s)?;
-    write_goal(s)?;
-    write_pitch_lines(s)?;
-    write_coordinates(s)?;
+fn field(doc: &mut Document) {
+    grass(doc);
+    goal(doc);
+    pitch_lines(doc);
+    doc.append(coordinates());
     for post in GOAL_POSTS {
-        let (x, y) = px(post);
-        writeln!(
-            s,
-            r##"<circle cx="{x:.1}" cy="{y:.1}" r="3" fill="white" stroke="#333" stroke-width="0.8"/>"##
-        )?;
+        let post = circle(px(post), 3.0)
+            .set("fill", "white")
+            .set("stroke", "#333")
+            .set("stroke-width", 0.8);
+        doc.append(post);
     }
-    Ok(())
 }
 
 /// The grass with its mowing stripes, darker outside the HFO area.
-fn write_grass(s: &mut String) -> std::fmt::Result {
+fn grass(doc: &mut Document) {
     let (top, bottom) = (px_y(VIEW_Y.0), px_y(VIEW_Y.1));
     let (left, right) = (px_x(VIEW_X.0), px_x(VIEW_X.1));
-    writeln!(
-        s,
-        r#"<rect x="{left}" y="{top}" width="{}" height="{}" fill="{}"/>"#,
-        right - left,
-        bottom - top,
-        GRASS[0]
-    )?;
+    doc.append(rectangle((left, top), (right, bottom)).set("fill", GRASS[0]));
     // Mowing stripes every 5.25 m from the half-way line.
     let stripe = PITCH_HALF_LENGTH / 10.0;
     let mut k = (VIEW_X.0 / stripe).floor() as i32;
@@ -447,122 +470,110 @@ fn write_grass(s: &mut String) -> std::fmt::Result {
         if k.rem_euclid(2) == 1 {
             let x0 = px_x(f64::from(k) * stripe).max(left);
             let x1 = px_x(f64::from(k + 1) * stripe).min(right);
-            writeln!(
-                s,
-                r#"<rect x="{x0:.1}" y="{top}" width="{:.1}" height="{}" fill="{}"/>"#,
-                x1 - x0,
-                bottom - top,
-                GRASS[1]
-            )?;
+            doc.append(rectangle((x0, top), (x1, bottom)).set("fill", GRASS[1]));
         }
         k += 1;
     }
-    // Darken what lies outside the HFO area.
+    // Darken what lies outside the HFO area: the view minus the area.
     let (ax0, ay0) = px(DVec2::new(0.0, -PITCH_HALF_WIDTH));
     let (ax1, ay1) = px(DVec2::new(PITCH_HALF_LENGTH, PITCH_HALF_WIDTH));
-    writeln!(
-        s,
-        r#"<path d="M{left},{top}H{right}V{bottom}H{left}Z M{ax0:.1},{ay0:.1}V{ay1:.1}H{ax1:.1}V{ay0:.1}Z" fill="black" fill-opacity="0.16" fill-rule="evenodd"/>"#
-    )
+    let outside = start_at((left, top))
+        .horizontal_line_to(tenth(right))
+        .vertical_line_to(tenth(bottom))
+        .horizontal_line_to(tenth(left))
+        .close()
+        .move_to((tenth(ax0), tenth(ay0)))
+        .vertical_line_to(tenth(ay1))
+        .horizontal_line_to(tenth(ax1))
+        .vertical_line_to(tenth(ay0))
+        .close();
+    let outside = Path::new()
+        .set("d", outside)
+        .set("fill", "black")
+        .set("fill-opacity", 0.16)
+        .set("fill-rule", "evenodd");
+    doc.append(outside);
 }
 
 /// The goal: its net behind the line and its outline.
-fn write_goal(s: &mut String) -> std::fmt::Result {
+fn goal(doc: &mut Document) {
     let (gx0, gy0) = px(DVec2::new(PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH));
     let (gx1, gy1) = px(DVec2::new(PITCH_HALF_LENGTH + GOAL_DEPTH, GOAL_HALF_WIDTH));
-    writeln!(
-        s,
-        r#"<rect x="{gx0:.1}" y="{gy0:.1}" width="{:.1}" height="{:.1}" fill="white" fill-opacity="0.18"/>"#,
-        gx1 - gx0,
-        gy1 - gy0
-    )?;
-    writeln!(
-        s,
-        r#"<g stroke="white" stroke-opacity="0.45" stroke-width="0.8">"#
-    )?;
+    let inside = rectangle((gx0, gy0), (gx1, gy1))
+        .set("fill", "white")
+        .set("fill-opacity", 0.18);
+    doc.append(inside);
+    let mut net = Group::new()
+        .set("stroke", "white")
+        .set("stroke-opacity", 0.45)
+        .set("stroke-width", 0.8);
     let mesh = 0.5 * SCALE;
     let mut x = gx0 + mesh;
     while x < gx1 - 1.0 {
-        writeln!(
-            s,
-            r#"<line x1="{x:.1}" y1="{gy0:.1}" x2="{x:.1}" y2="{gy1:.1}"/>"#
-        )?;
+        net.append(line((x, gy0), (x, gy1)));
         x += mesh;
     }
     let mut y = gy0 + mesh;
     while y < gy1 - 1.0 {
-        writeln!(
-            s,
-            r#"<line x1="{gx0:.1}" y1="{y:.1}" x2="{gx1:.1}" y2="{y:.1}"/>"#
-        )?;
+        net.append(line((gx0, y), (gx1, y)));
         y += mesh;
     }
-    writeln!(s, "</g>")?;
-    writeln!(
-        s,
-        r#"<path d="M{gx0:.1},{gy0:.1}H{gx1:.1}V{gy1:.1}H{gx0:.1}" fill="none" stroke="{LINE_COLOUR}" stroke-width="2.5"/>"#
-    )
+    doc.append(net);
+    let outline = start_at((gx0, gy0))
+        .horizontal_line_to(tenth(gx1))
+        .vertical_line_to(tenth(gy1))
+        .horizontal_line_to(tenth(gx0));
+    let outline = Path::new()
+        .set("d", outline)
+        .set("fill", "none")
+        .set("stroke", LINE_COLOUR)
+        .set("stroke-width", 2.5);
+    doc.append(outline);
 }
 
 /// The HFO area's lines: its boundary, the penalty and goal areas, the
 /// centre circle's attacking half, the penalty arc and the two spots.
-fn write_pitch_lines(s: &mut String) -> std::fmt::Result {
-    writeln!(
-        s,
-        r#"<g fill="none" stroke="{LINE_COLOUR}" stroke-width="2" stroke-opacity="0.92">"#
-    )?;
-    let rect = |s: &mut String, x0: f64, half: f64| {
-        let (a, b) = px(DVec2::new(x0, -half));
-        let (c, d) = px(DVec2::new(PITCH_HALF_LENGTH, half));
-        writeln!(
-            s,
-            r#"<rect x="{a:.1}" y="{b:.1}" width="{:.1}" height="{:.1}"/>"#,
-            c - a,
-            d - b
-        )
-    };
-    rect(s, 0.0, PITCH_HALF_WIDTH)?;
-    rect(s, PENALTY_AREA_X, PENALTY_AREA_HALF_WIDTH)?;
-    rect(
-        s,
-        PITCH_HALF_LENGTH - GOAL_AREA_LENGTH,
-        GOAL_AREA_HALF_WIDTH,
-    )?;
+fn pitch_lines(doc: &mut Document) {
+    let mut lines = Group::new()
+        .set("fill", "none")
+        .set("stroke", LINE_COLOUR)
+        .set("stroke-width", 2)
+        .set("stroke-opacity", 0.92);
+    // The boxes, each from its x to the goal line, `half` wide each side.
+    for (x0, half) in [
+        (0.0, PITCH_HALF_WIDTH),
+        (PENALTY_AREA_X, PENALTY_AREA_HALF_WIDTH),
+        (PITCH_HALF_LENGTH - GOAL_AREA_LENGTH, GOAL_AREA_HALF_WIDTH),
+    ] {
+        let from = px(DVec2::new(x0, -half));
+        let to = px(DVec2::new(PITCH_HALF_LENGTH, half));
+        lines.append(rectangle(from, to));
+    }
     // Centre circle (its attacking half) and the penalty arc outside the box.
-    let r = CIRCLE_RADIUS * SCALE;
+    let r = tenth(CIRCLE_RADIUS * SCALE);
     let (cx, cy) = px(DVec2::ZERO);
-    writeln!(
-        s,
-        r#"<path d="M{cx:.1},{:.1}A{r:.1},{r:.1} 0 0 1 {cx:.1},{:.1}"/>"#,
-        cy - r,
-        cy + r
-    )?;
+    let centre =
+        start_at((cx, cy - r)).elliptical_arc_to((r, r, 0, 0, 1, tenth(cx), tenth(cy + r)));
+    lines.append(Path::new().set("d", centre));
     let spot = PITCH_HALF_LENGTH - PENALTY_SPOT_DISTANCE;
     let half_chord = (CIRCLE_RADIUS.powi(2) - (spot - PENALTY_AREA_X).powi(2)).sqrt();
     let (ax, ay0) = px(DVec2::new(PENALTY_AREA_X, -half_chord));
     let ay1 = px_y(half_chord);
-    writeln!(
-        s,
-        r#"<path d="M{ax:.1},{ay0:.1}A{r:.1},{r:.1} 0 0 0 {ax:.1},{ay1:.1}"/>"#
-    )?;
-    writeln!(s, "</g>")?;
-    let (sx, sy) = px(DVec2::new(spot, 0.0));
-    writeln!(
-        s,
-        r#"<circle cx="{cx:.1}" cy="{cy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#
-    )?;
-    writeln!(
-        s,
-        r#"<circle cx="{sx:.1}" cy="{sy:.1}" r="2.5" fill="{LINE_COLOUR}"/>"#
-    )
+    let arc = start_at((ax, ay0)).elliptical_arc_to((r, r, 0, 0, 0, tenth(ax), tenth(ay1)));
+    lines.append(Path::new().set("d", arc));
+    doc.append(lines);
+    for at in [DVec2::ZERO, DVec2::new(spot, 0.0)] {
+        doc.append(circle(px(at), 2.5).set("fill", LINE_COLOUR));
+    }
 }
 
 /// Coordinates in the margin: x below the field, y left of it.
-fn write_coordinates(s: &mut String) -> std::fmt::Result {
-    writeln!(
-        s,
-        r#"<g font-size="11" fill="white" fill-opacity="0.65" text-anchor="middle">"#
-    )?;
+fn coordinates() -> Group {
+    let mut labels = Group::new()
+        .set("font-size", 11)
+        .set("fill", "white")
+        .set("fill-opacity", 0.65)
+        .set("text-anchor", "middle");
     let below = px_y(PITCH_HALF_WIDTH) + 18.0;
     for x in [
         0.0,
@@ -573,7 +584,7 @@ fn write_coordinates(s: &mut String) -> std::fmt::Result {
         40.0,
         PITCH_HALF_LENGTH,
     ] {
-        writeln!(s, r#"<text x="{:.1}" y="{below:.1}">{x}</text>"#, px_x(x))?;
+        labels.append(text((px_x(x), below), &x.to_string()));
     }
     let left = px_x(0.0) - 20.0;
     for y in [
@@ -585,13 +596,9 @@ fn write_coordinates(s: &mut String) -> std::fmt::Result {
         20.0,
         PITCH_HALF_WIDTH,
     ] {
-        writeln!(
-            s,
-            r#"<text x="{left:.1}" y="{:.1}">{y}</text>"#,
-            px_y(y) + 4.0
-        )?;
+        labels.append(text((left, px_y(y) + 4.0), &y.to_string()));
     }
-    writeln!(s, "</g>")
+    labels
 }
 
 /// Radius of the centre circle and the penalty arc.
@@ -599,137 +606,211 @@ const CIRCLE_RADIUS: f64 = 9.15;
 /// Distance of the penalty spot from the goal line.
 const PENALTY_SPOT_DISTANCE: f64 = 11.0;
 
-/// A polyline through `points`.
-fn write_path(
-    s: &mut String,
-    points: &[DVec2],
-    colour: &str,
-    width: f64,
-    opacity: f64,
-) -> std::fmt::Result {
+/// A line through `points` (none through fewer than two).
+fn path(points: &[DVec2], colour: &str, width: f64, opacity: f64) -> Option<Polyline> {
     if points.len() < 2 {
-        return Ok(());
+        return None;
     }
-    write!(
-        s,
-        r#"<polyline class="path" fill="none" stroke="{colour}" stroke-width="{width}" stroke-opacity="{opacity}" stroke-linejoin="round" stroke-linecap="round" points=""#
-    )?;
-    for (i, &p) in points.iter().enumerate() {
-        let (x, y) = px(p);
-        write!(s, "{}{x:.1},{y:.1}", if i == 0 { "" } else { " " })?;
-    }
-    writeln!(s, r#""/>"#)
+    let points: Vec<Px> = (points.iter())
+        .map(|&p| (tenth(px(p).0), tenth(px(p).1)))
+        .collect();
+    let line = Polyline::new()
+        .set("class", "path")
+        .set("fill", "none")
+        .set("stroke", colour)
+        .set("stroke-width", width)
+        .set("stroke-opacity", opacity)
+        .set("stroke-linejoin", "round")
+        .set("stroke-linecap", "round")
+        .set("points", points);
+    Some(line)
 }
 
-/// A small dot every 10 frames along `points` (the first at frame 10).
-fn write_ticks(s: &mut String, points: &[DVec2]) -> std::fmt::Result {
-    for &p in points.iter().skip(10).step_by(10) {
-        let (x, y) = px(p);
-        write_tick_at(s, x, y)?;
-    }
-    Ok(())
+/// A small dot, drawn every 10 frames along a path.
+fn tick(at: Px) -> Circle {
+    circle(at, 2.2)
+        .set("fill", "#f4f8f4")
+        .set("stroke", "#111")
+        .set("stroke-width", 0.8)
 }
 
-fn write_tick_at(s: &mut String, x: f64, y: f64) -> std::fmt::Result {
-    writeln!(
-        s,
-        r##"<circle cx="{x:.1}" cy="{y:.1}" r="2.2" fill="#f4f8f4" stroke="#111" stroke-width="0.8"/>"##
-    )
+/// The ball where it is: a white disc.
+fn ball(at: Px) -> Circle {
+    circle(at, 5.0)
+        .set("fill", BALL_COLOUR)
+        .set("stroke", "#111")
+        .set("stroke-width", 1.5)
+}
+
+/// The radius of a marker: smaller without a label (in the legend).
+fn marker_radius(label: &str) -> f64 {
+    if label.is_empty() {
+        MARKER - 2.0
+    } else {
+        MARKER
+    }
 }
 
 /// A hollow ring at a player's start, its label inside.
-fn write_start(s: &mut String, p: DVec2, colour: &str, label: &str) -> std::fmt::Result {
-    let (x, y) = px(p);
-    write_start_at(s, x, y, colour, label)
-}
-
-fn write_start_at(s: &mut String, x: f64, y: f64, colour: &str, label: &str) -> std::fmt::Result {
-    let r = if label.is_empty() {
-        MARKER - 2.0
-    } else {
-        MARKER
-    };
-    writeln!(
-        s,
-        r#"<circle class="start" cx="{x:.1}" cy="{y:.1}" r="{r}" fill="black" fill-opacity="0.3" stroke="{colour}" stroke-width="2.5"/>"#
-    )?;
-    write_label(s, x, y, label, "#ffffff")
+fn start_marker(doc: &mut Document, at: Px, colour: &str, label: &str) {
+    let ring = circle(at, marker_radius(label))
+        .set("class", "start")
+        .set("fill", "black")
+        .set("fill-opacity", 0.3)
+        .set("stroke", colour)
+        .set("stroke-width", 2.5);
+    doc.append(ring);
+    marker_label(doc, at, label, "#ffffff");
 }
 
 /// A filled disc at a player's end, its label inside.
-fn write_end(s: &mut String, p: DVec2, colour: &str, label: &str) -> std::fmt::Result {
-    let (x, y) = px(p);
-    write_end_at(s, x, y, colour, label)
+fn end_marker(doc: &mut Document, at: Px, colour: &str, label: &str) {
+    let disc = circle(at, marker_radius(label))
+        .set("class", "end")
+        .set("fill", colour)
+        .set("stroke", "#111")
+        .set("stroke-width", 1.5);
+    doc.append(disc);
+    marker_label(doc, at, label, "#111");
 }
 
-fn write_end_at(s: &mut String, x: f64, y: f64, colour: &str, label: &str) -> std::fmt::Result {
-    let r = if label.is_empty() {
-        MARKER - 2.0
-    } else {
-        MARKER
-    };
-    writeln!(
-        s,
-        r##"<circle class="end" cx="{x:.1}" cy="{y:.1}" r="{r}" fill="{colour}" stroke="#111" stroke-width="1.5"/>"##
-    )?;
-    write_label(s, x, y, label, "#111")
-}
-
-fn write_label(s: &mut String, x: f64, y: f64, label: &str, colour: &str) -> std::fmt::Result {
+/// A marker's label, centred on it (none if empty).
+fn marker_label(doc: &mut Document, (x, y): Px, label: &str, colour: &str) {
     if label.is_empty() {
-        return Ok(());
+        return;
     }
     let size = if label.len() > 1 { 9.5 } else { 11.0 };
-    writeln!(
-        s,
-        r#"<text x="{x:.1}" y="{:.1}" font-size="{size}" font-weight="bold" text-anchor="middle" fill="{colour}">{label}</text>"#,
-        y + 0.36 * size
-    )
+    let label = text((x, y + 0.36 * size), label)
+        .set("font-size", size)
+        .set("font-weight", "bold")
+        .set("text-anchor", "middle")
+        .set("fill", colour);
+    doc.append(label);
 }
 
 /// A five-pointed star where the ball was kicked.
-fn write_star(s: &mut String, p: DVec2, colour: &str) -> std::fmt::Result {
-    let (x, y) = px(p);
-    write_star_at(s, x, y, colour)
-}
-
-fn write_star_at(s: &mut String, x: f64, y: f64, colour: &str) -> std::fmt::Result {
-    write!(
-        s,
-        r##"<path class="kick" fill="{colour}" stroke="#111" stroke-width="1" stroke-linejoin="round" d=""##
-    )?;
-    for k in 0..10 {
+fn star((x, y): Px, colour: &str) -> Path {
+    let corner = |k: i32| {
         let r = if k % 2 == 0 { 6.5 } else { 2.8 };
         let a = -std::f64::consts::FRAC_PI_2 + f64::from(k) * std::f64::consts::PI / 5.0;
-        write!(
-            s,
-            "{}{:.1},{:.1}",
-            if k == 0 { "M" } else { "L" },
-            x + r * a.cos(),
-            y + r * a.sin()
-        )?;
-    }
-    writeln!(s, r#"Z"/>"#)
+        (tenth(x + r * a.cos()), tenth(y + r * a.sin()))
+    };
+    let outline = (1..10)
+        .fold(Data::new().move_to(corner(0)), |d, k| d.line_to(corner(k)))
+        .close();
+    Path::new()
+        .set("class", "kick")
+        .set("fill", colour)
+        .set("stroke", "#111")
+        .set("stroke-width", 1)
+        .set("stroke-linejoin", "round")
+        .set("d", outline)
 }
 
 /// Legend text at `x`; returns where the next item starts.
-fn legend_text(s: &mut String, x: f64, y: f64, text: &str) -> Result<f64, std::fmt::Error> {
-    writeln!(
-        s,
-        r##"<text x="{x:.1}" y="{:.1}" font-size="13" fill="#e8efe8">{text}</text>"##,
-        y + 4.5
-    )?;
+fn legend_text(doc: &mut Document, x: f64, y: f64, content: &str) -> f64 {
+    let label = text((x, y + 4.5), content)
+        .set("font-size", 13)
+        .set("fill", "#e8efe8");
+    doc.append(label);
     // DejaVu Sans at 13 px averages about 7.6 px per character.
-    Ok(x + 7.6 * text.chars().count() as f64 + 16.0)
+    x + 7.6 * content.chars().count() as f64 + 16.0
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use proto::Action;
+    use std::collections::HashMap;
+    use svg::node::element::tag::Type;
+    use svg::parser::Event;
 
     fn trace(seed: u64, episode: u64) -> Trace {
         record_episode(EnvConfig::default(), BaselinePolicy::Random, seed, episode).unwrap()
+    }
+
+    /// An element of a picture as read back: its name, attributes and text.
+    struct Element {
+        name: String,
+        attributes: HashMap<String, String>,
+        text: String,
+    }
+
+    impl Element {
+        fn get(&self, attribute: &str) -> &str {
+            self.attributes.get(attribute).map_or("", String::as_str)
+        }
+
+        fn number(&self, attribute: &str) -> f64 {
+            let value = self.get(attribute);
+            value
+                .parse()
+                .unwrap_or_else(|_| panic!("{}'s {attribute} is {value:?}", self.name))
+        }
+
+        fn class(&self) -> &str {
+            self.get("class")
+        }
+    }
+
+    /// Every element of `svg` in document order, read back with the svg
+    /// crate's parser; panics unless it is one well-formed `<svg>` element.
+    fn read(svg: &str) -> Vec<Element> {
+        let mut elements: Vec<Element> = Vec::new();
+        let mut open = Vec::new();
+        for event in svg::read(svg).unwrap() {
+            match event {
+                Event::Tag(name, kind, attributes) => {
+                    if kind == Type::End {
+                        assert_eq!(open.pop(), Some(name.to_owned()), "unbalanced");
+                        continue;
+                    }
+                    if kind == Type::Start {
+                        open.push(name.to_owned());
+                    }
+                    elements.push(Element {
+                        name: name.to_owned(),
+                        attributes: (attributes.iter())
+                            .map(|(k, v)| (k.clone(), v.to_string()))
+                            .collect(),
+                        text: String::new(),
+                    });
+                }
+                Event::Text(text) => {
+                    assert!(!open.is_empty(), "text outside the document");
+                    elements.last_mut().unwrap().text.push_str(text.trim());
+                }
+                Event::Error(e) => panic!("{e}"),
+                _ => {}
+            }
+        }
+        assert!(open.is_empty(), "unclosed: {open:?}");
+        assert_eq!(elements[0].name, "svg");
+        assert!(elements[1..].iter().all(|e| e.name != "svg"));
+        elements
+    }
+
+    /// The texts of `elements`.
+    fn texts(elements: &[Element]) -> Vec<&str> {
+        (elements.iter())
+            .filter(|e| e.name == "text")
+            .map(|e| e.text.as_str())
+            .collect()
+    }
+
+    /// The elements of `elements` of class `class`.
+    fn of_class<'a>(elements: &'a [Element], class: &str) -> Vec<&'a Element> {
+        elements.iter().filter(|e| e.class() == class).collect()
+    }
+
+    /// A point of the field in the picture, as written.
+    fn at(p: DVec2) -> (f64, f64) {
+        (tenth(px(p).0), tenth(px(p).1))
+    }
+
+    /// The centre of a circle.
+    fn centre(e: &Element) -> (f64, f64) {
+        (e.number("cx"), e.number("cy"))
     }
 
     #[test]
@@ -743,38 +824,99 @@ mod tests {
                 .all(|p| p.len() == t.ball.len())
         );
         assert!(t.outcome.is_terminal());
-        let svg = t.to_svg();
-        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-        // Three agents, the keeper and the ball (drawn twice: underlay and line).
-        assert_eq!(svg.matches(r#"class="path""#).count(), 3 + 1 + 2);
-        assert_eq!(svg.matches(r#"class="kick""#).count(), t.kicks.len() + 1);
-        assert!(svg.contains(&t.summary()[1..]), "{}", t.summary());
-        assert!(svg.contains("seed 1 · episode 2"));
-        for label in [">7<", ">8<", ">11<", ">GK<"] {
-            assert!(svg.contains(label), "{label}");
-        }
         assert!(
             !t.kicks.is_empty(),
             "a random episode has at least the first kick"
         );
+        let svg = t.to_svg();
+        let elements = read(&svg);
+        // The keeper, three agents and the ball (drawn twice: underlay and
+        // line), each through every state, from its start to its end.
+        let paths = of_class(&elements, "path");
+        let drawn = [
+            &t.keeper,
+            &t.offense[0],
+            &t.offense[1],
+            &t.offense[2],
+            &t.ball,
+            &t.ball,
+        ];
+        assert_eq!(paths.len(), drawn.len());
+        for (path, states) in paths.iter().zip(drawn) {
+            let numbers: Vec<f64> = (path.get("points").split([' ', ',']))
+                .map(|n| n.parse().unwrap())
+                .collect();
+            let points: Vec<(f64, f64)> = numbers.chunks(2).map(|p| (p[0], p[1])).collect();
+            let expected: Vec<(f64, f64)> = states.iter().map(|&p| at(p)).collect();
+            assert_eq!(points, expected);
+        }
+        // Every kick where the ball was, and one in the legend.
+        let kicks = of_class(&elements, "kick");
+        assert_eq!(kicks.len(), t.kicks.len() + 1);
+        // Each player's start and end, labelled, and one of each in the legend.
+        let starts = of_class(&elements, "start");
+        let ends = of_class(&elements, "end");
+        assert_eq!((starts.len(), ends.len()), (1 + 4, 1 + 4));
+        let players = [&t.offense[0], &t.offense[1], &t.offense[2], &t.keeper];
+        for ((start, end), states) in starts[1..].iter().zip(&ends[1..]).zip(players) {
+            assert_eq!(centre(start), at(states[0]));
+            assert_eq!(centre(end), at(*states.last().unwrap()));
+        }
+        let texts = texts(&elements);
+        for label in ["7", "8", "11", "GK"] {
+            let n = texts.iter().filter(|&&t| t == label).count();
+            assert_eq!(n, 2, "{label}: {texts:?}");
+        }
+        let mut summary = t.summary();
+        summary[..1].make_ascii_uppercase();
+        assert!(texts.contains(&summary.as_str()), "{texts:?}");
+        let kicks = t.kicks.len();
+        let detail =
+            format!("policy random · 3 offense vs keeper · seed 1 · episode 2 · {kicks} kicks");
+        assert!(texts.contains(&detail.as_str()), "{texts:?}");
+        for legend in ["#7", "#8", "#11", "keeper", "ball", "start", "end", "kick"] {
+            assert!(texts.contains(&legend), "{legend}");
+        }
+    }
+
+    #[test]
+    fn everything_drawn_is_inside_the_picture() {
+        let elements = read(&trace(7, 3).to_svg());
+        let (w, h) = (elements[0].number("width"), elements[0].number("height"));
+        assert_eq!(elements[0].get("viewBox"), format!("0 0 {w} {h}"));
+        assert!(w > 800.0 && h > 1000.0, "{w}x{h}");
+        let mut numbers = 0;
+        for e in &elements[1..] {
+            let xs = ["cx", "x", "x1", "x2"].map(|a| (a, w));
+            let ys = ["cy", "y", "y1", "y2"].map(|a| (a, h));
+            for (attribute, most) in xs.into_iter().chain(ys) {
+                if e.attributes.contains_key(attribute) {
+                    let v = e.number(attribute);
+                    assert!((0.0..=most).contains(&v), "{} {attribute}={v}", e.name);
+                    numbers += 1;
+                }
+            }
+        }
+        assert!(numbers > 100, "{numbers}");
     }
 
     #[test]
     fn a_frame_draws_every_player_where_it_stands() {
         let mut env = Env::new(EnvConfig::default(), 5).unwrap();
         env.reset();
-        let svg = frame_svg(&env);
-        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
-        assert!(svg.contains(">In play at frame 0<"), "{svg}");
-        assert!(svg.contains("3 offense vs keeper"));
-        assert_eq!(svg.matches(r#"class="end""#).count(), 3 + 1);
-        for label in [">7<", ">8<", ">11<", ">GK<"] {
-            assert!(svg.contains(label), "{label}");
+        let elements = read(&frame_svg(&env));
+        let written = texts(&elements);
+        assert!(written.contains(&"In play at frame 0"), "{written:?}");
+        assert!(written.contains(&"3 offense vs keeper"), "{written:?}");
+        for label in ["7", "8", "11", "GK"] {
+            assert!(written.contains(&label), "{label}");
         }
+        let ends = of_class(&elements, "end");
         let world = env.world();
-        for p in world.players() {
-            let (x, y) = px(p.pos);
-            assert!(svg.contains(&format!(r#"cx="{x:.1}" cy="{y:.1}""#)));
+        let players: Vec<_> = world.players().map(|p| at(p.pos)).collect();
+        assert_eq!(ends.len(), players.len());
+        for end in ends {
+            assert!(players.contains(&centre(end)), "{:?}", centre(end));
         }
         // The picture follows the episode to its end.
         let mut rng = policy_rng(5);
@@ -784,9 +926,10 @@ mod tests {
                 *a = BaselinePolicy::Shoot.choose(env.can_kick(i), &mut rng);
             }
         }
-        let end = frame_svg(&env);
-        let title = format!("{} at frame {}<", outcome_words(env.outcome()), env.frame());
-        assert!(end.contains(&title[1..]), "{title}");
+        let end = read(&frame_svg(&env));
+        let mut title = format!("{} at frame {}", outcome_words(env.outcome()), env.frame());
+        title[..1].make_ascii_uppercase();
+        assert!(texts(&end).contains(&title.as_str()), "{title}");
     }
 
     #[test]

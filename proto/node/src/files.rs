@@ -1,5 +1,4 @@
-//! File output: the one atomic write, and SVG to PNG rasterisation (with
-//! the `png` feature).
+//! File output: the one atomic write.
 
 use std::io::{self, Write};
 use std::path::Path;
@@ -31,27 +30,6 @@ fn sync_dir(dir: &Path) -> io::Result<()> {
     std::fs::File::open(dir)?.sync_all()
 }
 
-/// An SVG document that could not be rasterised.
-#[cfg(feature = "png")]
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("cannot rasterise the picture: {0}")]
-pub struct RasterError(String);
-
-/// Rasterises an SVG document at its own size into PNG bytes, with the
-/// system's fonts (without any, text is left out).
-#[cfg(feature = "png")]
-pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, RasterError> {
-    use resvg::{tiny_skia, usvg};
-    let mut options = usvg::Options::default();
-    options.fontdb_mut().load_system_fonts();
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| RasterError(e.to_string()))?;
-    let size = tree.size().to_int_size();
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| RasterError(format!("bad size {}x{}", size.width(), size.height())))?;
-    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
-    pixmap.encode_png().map_err(|e| RasterError(e.to_string()))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,14 +45,5 @@ mod tests {
         assert_eq!(names.len(), 1);
         let missing = dir.path().join("no-such-dir").join("x");
         assert!(write_atomically(&missing, b"x").is_err());
-    }
-
-    #[cfg(feature = "png")]
-    #[test]
-    fn svg_becomes_png() {
-        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="4" height="3"><rect width="4" height="3" fill="red"/></svg>"#;
-        let png = svg_to_png(svg).unwrap();
-        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"));
-        assert!(svg_to_png("not svg").is_err());
     }
 }
