@@ -5,16 +5,16 @@ use proto::{Action, Mode, State};
 use rand::{Rng, SeedableRng};
 
 use crate::advice::shared_prefix;
+use crate::advice_counters::AdviceCounters;
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
-use crate::counters::Counters;
 use crate::exchange::{AdviceExchange, Transition};
 use crate::fidelity::{AdvisorTies, SharedBootstrap, TorreyIntent};
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
-use crate::network::Link;
+use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
-use crate::policy::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random, majority};
 use crate::sarsa::TabularSarsa;
+use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random, majority};
 use crate::states::StateIndex;
 use crate::strategy::AskContext;
 use crate::strategy::Strategy;
@@ -108,7 +108,7 @@ pub struct Agent {
     episode: Vec<Transition>,
     share_ready: bool,
     training_episodes: u64,
-    counters: Counters,
+    counters: AdviceCounters,
     link: Option<Link>,
 }
 
@@ -164,7 +164,7 @@ impl Agent {
             episode: Vec::new(),
             share_ready: false,
             training_episodes: 0,
-            counters: Counters::default(),
+            counters: AdviceCounters::default(),
         })
     }
 
@@ -195,7 +195,7 @@ impl Agent {
     }
 
     /// Communication and budget counters.
-    pub fn counters(&self) -> &Counters {
+    pub fn counters(&self) -> &AdviceCounters {
         &self.counters
     }
 

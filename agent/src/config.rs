@@ -8,7 +8,7 @@ use proto::STATE_FEATURES;
 
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
-use crate::network::NetworkConditions;
+use crate::link::NetworkConditions;
 use crate::strategy::Strategy;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
@@ -17,14 +17,14 @@ pub const TILE_ORIGIN: f64 = -1.0;
 /// Every constant of one agent, with the paper's defaults.
 ///
 /// Human-readable formats (JSON, TOML) see one flat table: the learner's
-/// keys below, `strategy` (a [`StrategyName`](crate::StrategyName)) and the
-/// keys of that strategy, named as the fields of [`Strategy`]'s variants
+/// keys below, `algorithm` (an [`Algorithm`](crate::Algorithm); read as
+/// `strategy` too) and the keys of that algorithm, named as the fields of [`Strategy`]'s variants
 /// (`v_a`, `v_g`, `ask_budget`, `give_budget`, `mistake_correcting`,
 /// `reachable`, `importance_threshold`, `sharing_budget`), then `profile` and
 /// the [`Fidelity`] settings (named as its fields; they apply to every
-/// strategy). Missing keys take their defaults, the fidelity settings and
+/// algorithm). Missing keys take their defaults, the fidelity settings and
 /// AdHocVisit's `v_g` those of `profile`; an unknown key, or a key of another
-/// strategy, is an error naming it. Binary formats (postcard) see the plain
+/// algorithm, is an error naming it. Binary formats (postcard) see the plain
 /// structure.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AgentConfig {
@@ -142,7 +142,8 @@ impl AgentConfig {
 mod tests {
     use super::*;
     use crate::advice::Reachable;
-    use crate::strategy::{AdHoc, StrategyName};
+    use crate::algorithm::Algorithm;
+    use crate::strategy::AdHoc;
 
     fn key_of(config: AgentConfig) -> &'static str {
         config.validate().unwrap_err().key
@@ -231,7 +232,7 @@ mod tests {
         let c: AgentConfig =
             serde_json::from_str(r#"{"strategy": "ad-hoc-td", "reachable": {"agents": [1, 2]}}"#)
                 .unwrap();
-        assert_eq!(c.strategy.name(), StrategyName::AdHocTd);
+        assert_eq!(c.strategy.name(), Algorithm::AdHocTd);
         let Strategy::AdHoc(a) = &c.strategy else {
             panic!("ad hoc strategy expected, got {:?}", c.strategy);
         };

@@ -15,7 +15,7 @@ use std::fmt;
 
 use proto::{Action, State};
 
-use crate::policy::{ACTIONS, AgentRng};
+use crate::selection::{ACTIONS, AgentRng};
 
 /// What a learner holds of one state: Q(s, a) by [`Action::index`], and
 /// which of them it has learned (bit `a.index()`): the authors' "(s, a) is
@@ -29,14 +29,6 @@ pub struct ActionValues {
 }
 
 impl ActionValues {
-    /// Values of which every one is learned (a learner that values every action).
-    pub fn all_learned(q: [f64; ACTIONS]) -> Self {
-        Self {
-            q,
-            learned: (1 << ACTIONS) - 1,
-        }
-    }
-
     /// Whether Q(s, a) is learned.
     pub fn is_learned(&self, a: Action) -> bool {
         self.learned & (1 << a.index()) != 0
@@ -135,10 +127,6 @@ mod tests {
         // All four kicks: 0.9 - (-0.2) = 1.1.
         let all = values(q, &[Shoot, Dribble, PassNear, PassFar]);
         assert!((all.kick_spread() - 1.1).abs() < 1e-15);
-        assert_eq!(
-            ActionValues::all_learned(q).kick_spread(),
-            all.kick_spread()
-        );
         // One learned kick (plus Move): spread 0.
         assert_eq!(values(q, &[Move, PassNear]).kick_spread(), 0.0);
         assert_eq!(values(q, &[]).kick_spread(), 0.0);

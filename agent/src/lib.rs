@@ -39,37 +39,39 @@
 #![warn(missing_docs)]
 
 mod advice;
+mod advice_counters;
 mod agent;
+mod algorithm;
 mod config;
 mod config_error;
-mod counters;
 mod exchange;
 mod fidelity;
 mod learner;
-mod network;
+mod link;
 mod persist;
-mod policy;
 mod sarsa;
+mod selection;
 mod states;
 mod strategy;
 mod team;
 mod tiles;
 
 pub use advice::{Reachable, p_ask, p_give, psi_td, psi_visit};
+pub use advice_counters::AdviceCounters;
 pub use agent::{Agent, Decision, Observation};
+pub use algorithm::{Algorithm, UnknownAlgorithm};
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
-pub use counters::Counters;
 pub use exchange::{AdviceExchange, Isolated, Transition};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 pub use learner::{ActionValues, Experience, Learner, Seen, Step};
-pub use network::{Latency, Leg, Link, Message, NetworkConditions};
-pub use persist::{Entry, FORMAT_VERSION, PersistError, Snapshot, snapshot_file};
-pub use policy::{ACTIONS, AgentRng};
+pub use link::{Latency, Leg, Link, Message, NetworkConditions};
+pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapshot_file};
 pub use proto::Mode;
 pub use sarsa::TabularSarsa;
-pub use strategy::{AdHoc, Confidence, Strategy, StrategyName, Torrey, UnknownStrategy};
+pub use selection::{ACTIONS, AgentRng};
+pub use strategy::{AdHoc, Confidence, Strategy, Torrey};
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

@@ -9,14 +9,14 @@ use std::hash::Hasher;
 use fnv::FnvHasher;
 use serde::{Deserialize, Serialize};
 
-use crate::counters::Counters;
-use crate::policy::ACTIONS;
+use crate::advice_counters::AdviceCounters;
+use crate::selection::ACTIONS;
 use crate::tiles::TilingParams;
 
 const MAGIC: [u8; 8] = *b"ADVQTAB\0";
 
 /// Version of the file format; files of another version are refused.
-pub const FORMAT_VERSION: u16 = 1;
+pub const SNAPSHOT_FORMAT_VERSION: u16 = 1;
 
 const HEADER: usize = MAGIC.len() + 2 + 8;
 const CHECKSUM: usize = 8;
@@ -82,8 +82,8 @@ pub struct Snapshot {
     pub tiling: TilingParams,
     /// Q-table entries with visit counts, sorted by key.
     pub entries: Vec<(u64, Entry)>,
-    /// Counters, including the spent budgets.
-    pub counters: Counters,
+    /// AdviceCounters, including the spent budgets.
+    pub counters: AdviceCounters,
     /// Training episodes finished.
     pub training_episodes: u64,
 }
@@ -101,7 +101,7 @@ fn checksum(bytes: &[u8]) -> u64 {
 pub fn snapshot_file(body: &[u8]) -> Vec<u8> {
     let mut out = Vec::with_capacity(HEADER + body.len() + CHECKSUM);
     out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&SNAPSHOT_FORMAT_VERSION.to_le_bytes());
     out.extend_from_slice(&(body.len() as u64).to_le_bytes());
     out.extend_from_slice(body);
     out.extend_from_slice(&checksum(body).to_le_bytes());
@@ -176,10 +176,10 @@ impl Snapshot {
             found: bytes.len() as u64,
         };
         let version = u16::from_le_bytes(read_array(bytes, MAGIC.len()).ok_or_else(too_short)?);
-        if version != FORMAT_VERSION {
+        if version != SNAPSHOT_FORMAT_VERSION {
             return Err(PersistError::UnsupportedVersion {
                 found: version,
-                expected: FORMAT_VERSION,
+                expected: SNAPSHOT_FORMAT_VERSION,
             });
         }
         let body_len =
@@ -228,10 +228,10 @@ mod tests {
         Snapshot {
             tiling: TilingParams::of(&AgentConfig::default()),
             entries: vec![(3, entry(0.1, 4)), (1 << 40, entry(-0.7, 1))],
-            counters: Counters {
+            counters: AdviceCounters {
                 advice_requests: 5,
                 advice_given: 2,
-                ..Counters::default()
+                ..AdviceCounters::default()
             },
             training_episodes: 12,
         }

@@ -6,7 +6,7 @@ use proto::Action;
 
 use crate::config::AgentConfig;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
-use crate::policy::{AgentRng, epsilon_greedy};
+use crate::selection::{AgentRng, epsilon_greedy};
 
 /// One traced pair and its eligibility.
 #[derive(Clone, Copy, Debug)]

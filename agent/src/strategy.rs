@@ -7,9 +7,7 @@
 //! [`AgentConfig`]: crate::AgentConfig
 
 mod decisions;
-mod name;
 mod settings;
 
 pub(crate) use decisions::AskContext;
-pub use name::{StrategyName, UnknownStrategy};
 pub use settings::{AdHoc, Confidence, Strategy, Torrey};

@@ -7,7 +7,7 @@ use proto::{
 
 use crate::agent::{Agent, Observation};
 use crate::exchange::{AdviceExchange, Transition};
-use crate::network::{Leg, Link, Message};
+use crate::link::{Leg, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]

@@ -4,7 +4,7 @@
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-use agent::{AgentConfig, Fidelity, Profile, Strategy, StrategyName};
+use agent::{AgentConfig, Algorithm, Fidelity, Profile, Strategy};
 use env_server::EnvConfig;
 use serde::{Deserialize, Serialize};
 
@@ -137,12 +137,12 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
 }
 
 impl AgentSpec {
-    /// An agent running `strategy` from scratch with the constants and
+    /// An agent running `algorithm` from scratch with the constants and
     /// fidelity settings of `profile`.
-    pub fn of(strategy: StrategyName, profile: Profile) -> Self {
+    pub fn of(algorithm: Algorithm, profile: Profile) -> Self {
         Self {
             config: AgentConfig {
-                strategy: Strategy::of(strategy, profile),
+                strategy: Strategy::of(algorithm, profile),
                 fidelity: Fidelity::of(profile),
                 ..AgentConfig::default()
             },
@@ -222,7 +222,7 @@ impl Default for ExperimentConfig {
             seed: 1,
             ci_level: DEFAULT_CI_LEVEL,
             transport: Transport::InProcess,
-            team: vec![AgentSpec::of(StrategyName::NoAdvice, Profile::Paper); env.offense],
+            team: vec![AgentSpec::of(Algorithm::NoAdvice, Profile::Paper); env.offense],
             env,
         }
     }
@@ -463,7 +463,7 @@ mod tests {
     #[test]
     fn agent_specs_are_flat_tables() {
         let spec: AgentSpec = toml::from_str(
-            "strategy = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.qtable\"\n",
+            "algorithm = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.qtable\"\n",
         )
         .unwrap();
         assert_eq!(
@@ -501,7 +501,7 @@ mod tests {
         c.team[2] = AgentSpec {
             load: Some("a/b.qtable".into()),
             keep_counters: true,
-            ..AgentSpec::of(StrategyName::Torrey, Profile::Paper)
+            ..AgentSpec::of(Algorithm::Torrey, Profile::Paper)
         };
         let json = serde_json::to_string(&c).unwrap();
         assert_eq!(serde_json::from_str::<ExperimentConfig>(&json).unwrap(), c);
@@ -513,8 +513,8 @@ mod tests {
         let toml_path = dir.path().join("team.toml");
         std::fs::write(
             &toml_path,
-            "[[agent]]\nstrategy = \"ad-hoc-td\"\n\n[[agent]]\nstrategy = \"ad-hoc-td\"\n\n\
-             [[agent]]\nstrategy = \"adhoc-td\"\nask_budget = 0\nload = \"expert.qtable\"\n",
+            "[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n\
+             [[agent]]\nalgorithm = \"adhoc-td\"\nask_budget = 0\nload = \"expert.qtable\"\n",
         )
         .unwrap();
         let team = load_team_file(&toml_path).unwrap();
@@ -534,11 +534,11 @@ mod tests {
         )
         .unwrap();
         let team = load_team_file(&json_path).unwrap();
-        assert_eq!(team[0].config.strategy.name(), StrategyName::Torrey);
+        assert_eq!(team[0].config.strategy.name(), Algorithm::Torrey);
         assert_eq!(team[1].config.strategy, Strategy::NoAdvice);
         assert_eq!(team[1].load, Some(PathBuf::from("/abs.qtable")));
 
-        std::fs::write(&toml_path, "[[agent]]\nstrategy = \"best\"\n").unwrap();
+        std::fs::write(&toml_path, "[[agent]]\nalgorithm = \"best\"\n").unwrap();
         let e = load_team_file(&toml_path).unwrap_err();
         assert_eq!(e.key, "team[0]");
         assert!(e.reason.contains("best"), "{e}");

@@ -6,7 +6,7 @@ use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::in_process::InProcess;
-use crate::remote::{Network, RemoteBackend};
+use crate::remote::{RemoteBackend, ZenohTeam};
 use crate::transport::Transport;
 
 /// Hands out one backend per run of an experiment.
@@ -23,7 +23,7 @@ pub trait Driver: Sync {
 pub fn open(transport: &Transport, team: &[AgentSpec]) -> Result<Box<dyn Driver>, Error> {
     Ok(match transport {
         Transport::InProcess => Box::new(InProcessDriver),
-        Transport::Zenoh(settings) => Box::new(Network::start(settings, team)?),
+        Transport::Zenoh(settings) => Box::new(ZenohTeam::start(settings, team)?),
     })
 }
 
@@ -41,7 +41,7 @@ impl Driver for InProcessDriver {
 }
 
 /// Over zenoh the runs play one after another on the same processes.
-impl Driver for Network {
+impl Driver for ZenohTeam {
     fn backend(&self, experiment: &Experiment, run: u64) -> Result<Box<dyn Backend + '_>, Error> {
         Ok(Box::new(RemoteBackend::new(self, experiment, run)?))
     }

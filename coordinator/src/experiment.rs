@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use agent::{Agent, Counters, Snapshot};
+use agent::{AdviceCounters, Agent, Snapshot};
 use serde::Serialize;
 
 use crate::config::ExperimentConfig;
@@ -46,7 +46,7 @@ pub struct Record<'a> {
 /// 3: the advising traffic (`advising_messages`, `advising_bytes`) in the
 /// runs, and per training episode in the summary's points; agents' network
 /// conditions (`network`) in the configuration.
-pub const FORMAT_VERSION: u32 = 3;
+pub const RESULTS_FORMAT_VERSION: u32 = 3;
 
 impl Experiment {
     /// Validates `config` and loads every agent's snapshot. Writes nothing.
@@ -65,7 +65,7 @@ impl Experiment {
                 source,
             })?;
             if !spec.keep_counters {
-                snapshot.counters = Counters::default();
+                snapshot.counters = AdviceCounters::default();
             }
             snapshots.push(Some(Arc::new(snapshot)));
         }
@@ -127,7 +127,7 @@ impl Experiment {
     /// What `config.json` holds.
     pub fn record(&self) -> Record<'_> {
         Record {
-            format: FORMAT_VERSION,
+            format: RESULTS_FORMAT_VERSION,
             config: &self.config,
             snapshot_digests: self
                 .snapshots

@@ -2,7 +2,7 @@
 //! own thread, called directly: fast and bit-for-bit deterministic.
 
 use agent::{Agent, Mode, Observation, Snapshot, Team};
-use env_server::RunSimulators;
+use env_server::RunEnvs;
 
 use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::{ConfigError, Error};
@@ -12,7 +12,7 @@ use crate::experiment::{Experiment, RunSeeds};
 #[derive(Debug)]
 pub struct InProcess {
     run: u64,
-    simulators: RunSimulators,
+    simulators: RunEnvs,
     team: Team,
     observations: Vec<Observation>,
 }
@@ -22,7 +22,7 @@ impl InProcess {
     pub fn new(experiment: &Experiment, run: u64) -> Result<Self, Error> {
         let seeds: RunSeeds = experiment.seeds(run);
         let env_config = experiment.config().env.clone();
-        let simulators = RunSimulators::new(env_config, seeds.simulator)
+        let simulators = RunEnvs::new(env_config, seeds.simulator)
             .map_err(|e| ConfigError::new("env", e.to_string()))?;
         let team = Team::new(experiment.agents(&seeds)?).map_err(|e| Error::run(run, e))?;
         let n = simulators.offense();

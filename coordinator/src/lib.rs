@@ -44,7 +44,6 @@ compile_error!(
 );
 
 pub mod backend;
-pub mod bootstrap;
 pub mod config;
 pub mod driver;
 pub mod error;
@@ -58,9 +57,7 @@ pub mod seeds;
 pub mod stats;
 pub mod store;
 pub mod study;
-pub mod summary;
 pub mod transport;
-pub mod wilcoxon;
 
 pub use backend::{AgentStats, Backend, EpisodeEnd};
 pub use config::{AgentSpec, ExperimentConfig, load_team_file};
@@ -68,11 +65,11 @@ pub use error::{ConfigError, Error};
 pub use experiment::{Experiment, RunSeeds};
 pub use figures::{Figure, FigureError, Metric, Series, SeriesSet, draw_figures};
 pub use in_process::InProcess;
-pub use remote::{Network, RemoteBackend};
+pub use remote::{RemoteBackend, ZenohTeam};
 pub use runner::{Report, RunOptions, run_experiment};
 pub use schedule::{EvalPoint, RunResult, Timing};
+pub use stats::summary::{Summary, SummaryPoint, summarize};
+pub use stats::wilcoxon::{Interval, SignedRank, better_intervals, signed_rank};
 pub use stats::{Estimate, estimate};
 pub use store::ExperimentDir;
-pub use summary::{Summary, SummaryPoint, summarize};
 pub use transport::{Endpoints, Transport, ZenohSettings};
-pub use wilcoxon::{Interval, SignedRank, better_intervals, signed_rank};

@@ -5,12 +5,12 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use agent::{Latency, NetworkConditions, Profile, StrategyName};
+use agent::{Algorithm, Latency, NetworkConditions, Profile};
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
-use coordinator::bootstrap::{RESAMPLES, SEED};
-use coordinator::study::{Scores, StudyConfig, StudyOptions, gains_table, published_gains};
+use coordinator::stats::aggregates::score_aggregates;
+use coordinator::study::{StudyConfig, StudyOptions, gains_table, published_gains};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
     AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
@@ -141,10 +141,10 @@ struct StudyArgs {
 #[command(args_override_self = true)]
 struct RunArgs {
     /// Algorithm of every agent (a homogeneous team).
-    #[arg(long, value_name = "NAME", value_parser = strategy_names())]
-    algorithm: Option<StrategyName>,
+    #[arg(long, value_name = "NAME", value_parser = algorithm_names())]
+    algorithm: Option<Algorithm>,
     /// Team file (TOML, or JSON by extension): one `[[agent]]` table per agent
-    /// with its strategy, constants and an optional `load` snapshot path.
+    /// with its algorithm, constants and an optional `load` snapshot path.
     #[arg(long, value_name = "FILE")]
     team: Option<PathBuf>,
     /// Mistake Correcting: advisees send their intended action along
@@ -365,69 +365,21 @@ fn aggregate(path: &std::path::Path, baseline: &str, level: f64) -> Result<()> {
     }
     let text = std::fs::read_to_string(path)
         .map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
-    let runs: BTreeMap<String, Vec<f64>> = serde_json::from_str(&text).map_err(|e| {
+    let scores: BTreeMap<String, Vec<f64>> = serde_json::from_str(&text).map_err(|e| {
         anyhow::anyhow!(
             "{}: expected an object of arrays of scores: {e}",
             path.display()
         )
     })?;
-    if let Some((name, _)) = runs.iter().find(|(_, v)| v.is_empty()) {
-        anyhow::bail!("{}: {name} has no score", path.display());
-    }
-    let Some(base) = runs.get(baseline) else {
-        let names: Vec<&str> = runs.keys().map(String::as_str).collect();
-        anyhow::bail!(
-            "{}: no baseline {baseline:?} among {names:?}",
-            path.display()
-        );
-    };
-    let algorithms: BTreeMap<&str, Option<Scores>> = (runs.iter())
-        .map(|(name, x)| {
-            let y = (name != baseline).then_some(base.as_slice());
-            (name.as_str(), Scores::of(x, y, level))
-        })
-        .collect();
-    let out = serde_json::json!({
-        "level": level,
-        "resamples": RESAMPLES,
-        "seed": SEED,
-        "baseline": baseline,
-        "algorithms": algorithms,
-    });
-    println!("{}", serde_json::to_string_pretty(&out)?);
+    let report = score_aggregates(&scores, baseline, level)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    println!("{}", serde_json::to_string_pretty(&report)?);
     Ok(())
 }
 
 fn run_router(args: RouterArgs) -> Result<()> {
-    let secret = args
-        .secret_file
-        .as_deref()
-        .map(node::secret::Secret::load)
-        .transpose()?;
-    let net = node::net::NetConfig {
-        mode: "router".to_owned(),
-        ..node::net::NetConfig::peer(args.listen, Vec::new())
-    }
-    .with_secret(secret)
-    .with_base(args.zenoh_config);
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()?;
-    runtime.block_on(async {
-        let session = node::net::open(&net).await?;
-        eprintln!("router {} on {}", session.zid(), net.endpoints());
-        let mut terminate =
-            tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate())?;
-        tokio::select! {
-            _ = tokio::signal::ctrl_c() => {}
-            _ = terminate.recv() => {}
-        }
-        session
-            .close()
-            .await
-            .map_err(|e| anyhow::anyhow!("closing the router: {e}"))
-    })
+    coordinator::remote::serve_router(args.listen, args.secret_file.as_deref(), args.zenoh_config)?;
+    Ok(())
 }
 
 fn run_study(args: StudyArgs) -> Result<()> {
@@ -468,10 +420,10 @@ fn run_study(args: StudyArgs) -> Result<()> {
     Ok(())
 }
 
-/// `--algorithm`: every strategy name, its aliases accepted.
-fn strategy_names() -> impl TypedValueParser<Value = StrategyName> {
-    let names = StrategyName::ALL.map(|n| PossibleValue::new(n.name()).aliases(n.aliases()));
-    PossibleValuesParser::new(names).try_map(|name| name.parse::<StrategyName>())
+/// `--algorithm`: every algorithm's name, its aliases accepted.
+fn algorithm_names() -> impl TypedValueParser<Value = Algorithm> {
+    let names = Algorithm::ALL.map(|n| PossibleValue::new(n.name()).aliases(n.aliases()));
+    PossibleValuesParser::new(names).try_map(|name| name.parse::<Algorithm>())
 }
 
 fn run_one(args: RunArgs) -> Result<()> {
@@ -561,11 +513,10 @@ fn run_one(args: RunArgs) -> Result<()> {
     Ok(())
 }
 
-/// `mean [low, high]`, or what is known of it.
+/// `mean [low, high] (level% CI)`, or what is known of it.
 fn show(e: &Estimate, level: f64) -> String {
-    match (e.mean, e.ci_low, e.ci_high) {
-        (Some(m), Some(lo), Some(hi)) => format!("{m:.2} [{lo:.2}, {hi:.2}] ({level}% CI)"),
-        (Some(m), _, _) => format!("{m:.2}"),
-        _ => "-".into(),
+    match e.ci_low {
+        Some(_) => format!("{e} ({level}% CI)"),
+        None => e.to_string(),
     }
 }

@@ -2,13 +2,14 @@
 //! `(experiment seed, run, stream)` with a fixed mixing function, so that a run
 //! is the same whatever thread plays it and whatever else runs beside it.
 
-/// SplitMix64's finaliser applied to `x + golden gamma`: a bijection of
-/// `u64` that spreads every input bit over the whole output.
+use rand::{RngCore, SeedableRng};
+use rand_xoshiro::SplitMix64;
+
+/// SplitMix64's first output from state `x` (its finaliser applied to
+/// `x + golden gamma`): a bijection of `u64` that spreads every input bit
+/// over the whole output.
 pub fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    SplitMix64::seed_from_u64(x).next_u64()
 }
 
 /// The random stream of one run a seed is for, named by who draws from it.

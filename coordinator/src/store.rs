@@ -71,8 +71,9 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
     }
     let path = dir.join(name);
     let compare = |bytes: Vec<u8>| {
-        let theirs: Value = serde_json::from_slice(&bytes)
+        let mut theirs: Value = serde_json::from_slice(&bytes)
             .map_err(|e| other(format!("its {name} is unreadable: {e}")))?;
+        todays_spellings(&mut theirs);
         match first_difference(identity, &theirs, "") {
             Some(diff) => Err(other(format!("{name} differs at {diff}"))),
             None => Ok(()),
@@ -103,6 +104,22 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
         }
     }
     Ok(())
+}
+
+/// Rewrites the keys an earlier version wrote under another name as they
+/// are spelled today (CHANGELOG.md), so its results still resume: a team
+/// entry's `strategy` is `algorithm` since 0.2.0.
+fn todays_spellings(value: &mut Value) {
+    match value {
+        Value::Object(map) => {
+            if let Some(algorithm) = map.remove("strategy") {
+                map.insert("algorithm".to_owned(), algorithm);
+            }
+            map.values_mut().for_each(todays_spellings);
+        }
+        Value::Array(items) => items.iter_mut().for_each(todays_spellings),
+        _ => {}
+    }
 }
 
 /// Creates `dir` and writes its identity file `name`.
@@ -325,6 +342,17 @@ mod tests {
         let file = tmp.path().join("notes.txt");
         let err = check_claim(&file, "id.json", &identity).unwrap_err();
         assert!(err.to_string().contains("not a directory"), "{err}");
+    }
+
+    #[test]
+    fn results_written_with_an_old_spelling_resume() {
+        let tmp = tempfile::tempdir().unwrap();
+        let old = json!({"config": {"team": [{"strategy": "torrey", "v_a": 0.5}]}});
+        fs::write(tmp.path().join("config.json"), old.to_string()).unwrap();
+        let today = json!({"config": {"team": [{"algorithm": "torrey", "v_a": 0.5}]}});
+        check_claim(tmp.path(), "config.json", &today).unwrap();
+        let other = json!({"config": {"team": [{"algorithm": "random", "v_a": 0.5}]}});
+        check_claim(tmp.path(), "config.json", &other).unwrap_err();
     }
 
     #[test]

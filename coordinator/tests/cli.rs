@@ -165,7 +165,7 @@ fn check_tiny_summary(out: &Path) {
     assert_eq!(s["seed"], 7);
     assert_eq!(s["runs"], 2);
     assert_eq!(s["config"]["eval_every"], 20);
-    assert_eq!(s["config"]["team"][0]["strategy"], "adhoc-td");
+    assert_eq!(s["config"]["team"][0]["algorithm"], "adhoc-td");
     let points = s["eval_points"].as_array().unwrap();
     assert_eq!(points.len(), 3);
     for (p, episode) in points.iter().zip([0, 20, 40]) {
@@ -238,8 +238,8 @@ fn saved_agents_start_a_mixed_team() {
     let team = tmp.path().join("team.toml");
     fs::write(
         &team,
-        "[[agent]]\nstrategy = \"ad-hoc-td\"\n\n[[agent]]\nstrategy = \"ad-hoc-td\"\n\n\
-         [[agent]]\nstrategy = \"ad-hoc-td\"\nask_budget = 0\nload = \"agents/run-0-agent-2.qtable\"\n",
+        "[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n\
+         [[agent]]\nalgorithm = \"ad-hoc-td\"\nask_budget = 0\nload = \"agents/run-0-agent-2.qtable\"\n",
     )
     .unwrap();
     let out = tmp.path().join("expert");

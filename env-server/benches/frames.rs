@@ -1,7 +1,7 @@
 //! Simulator speed: frames (agent decisions) per second under the paper's random policy.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use env_server::tools::policy::policy_rng;
+use env_server::tools::baseline::policy_rng;
 use env_server::{BaselinePolicy, Env, EnvConfig};
 use proto::Action;
 use std::hint::black_box;

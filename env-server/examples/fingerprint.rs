@@ -5,7 +5,7 @@
 //!
 //! `cargo run --release -p env-server --example fingerprint -- [EPISODES] [SEED]`
 
-use env_server::tools::policy::{play_episode, policy_rng};
+use env_server::tools::baseline::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig};
 use std::fmt;
 use std::hash::{DefaultHasher, Hash, Hasher};

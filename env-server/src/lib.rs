@@ -23,6 +23,6 @@ pub use sim::physics::Command;
 pub use sim::referee::Outcome;
 pub use sim::view::Sight;
 pub use sim::world::{Ball, Player, World};
-pub use tools::policy::BaselinePolicy;
+pub use tools::baseline::BaselinePolicy;
 pub use tools::rollout::{RolloutSummary, rollout};
-pub use tools::simulators::RunSimulators;
+pub use tools::run_envs::RunEnvs;

@@ -1,6 +1,6 @@
 //! The same seed and the same actions give the same trajectory, bit for bit.
 
-use env_server::tools::policy::{play_episode, policy_rng};
+use env_server::tools::baseline::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
 
 /// Outcomes and every agent's full feature stream of a few episodes.

@@ -3,7 +3,7 @@
 use env_server::Command;
 use env_server::features::{current_unum_feature_indices, unum_feature_indices};
 use env_server::params::*;
-use env_server::tools::policy::{play_episode, policy_rng};
+use env_server::tools::baseline::{play_episode, policy_rng};
 use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
 use glam::DVec2;
 use proptest::prelude::*;

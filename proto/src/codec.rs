@@ -1,8 +1,8 @@
 //! Encoding and checked decoding of [`Envelope`]s, and of the settings a
 //! `Control::Reset` carries.
 
-use crate::counters::{DropReason, MessageCounters};
 use crate::message::{Envelope, Header, PROTOCOL_VERSION};
+use crate::traffic::{DropReason, MessageCounters};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use thiserror::Error;

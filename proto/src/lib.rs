@@ -9,11 +9,11 @@
 
 mod action;
 pub mod codec;
-pub mod counters;
 pub mod keys;
 pub mod message;
+pub mod traffic;
 
 pub use action::{Action, STATE_FEATURES, State};
 pub use codec::{DecodeError, SettingsError, decode, decode_settings, encode, encode_settings};
-pub use counters::{Direction, DropReason, MessageCounters, MessageKind};
 pub use message::*;
+pub use traffic::{Direction, DropReason, MessageCounters, MessageKind};

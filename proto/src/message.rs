@@ -6,7 +6,7 @@ use std::hash::Hasher;
 use serde::{Deserialize, Serialize};
 
 use crate::action::{Action, State};
-use crate::counters::{MessageCounters, MessageKind};
+use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
 pub const PROTOCOL_VERSION: u16 = 5;

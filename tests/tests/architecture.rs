@@ -82,6 +82,89 @@ fn normal_dependencies(krate: &str) -> String {
     String::from_utf8(output.stdout).expect("UTF-8")
 }
 
+/// Every workspace package, by name, with the directory of its manifest
+/// relative to the workspace.
+fn packages() -> Vec<(String, PathBuf)> {
+    let output = Command::new(env!("CARGO"))
+        .args([
+            "metadata",
+            "--no-deps",
+            "--offline",
+            "--format-version",
+            "1",
+        ])
+        .current_dir(workspace())
+        .output()
+        .expect("cargo metadata runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let root = workspace().canonicalize().unwrap();
+    let packages = metadata["packages"].as_array().expect("packages");
+    packages
+        .iter()
+        .map(|p| {
+            let manifest = Path::new(p["manifest_path"].as_str().expect("manifest_path"));
+            let dir = manifest.parent().unwrap().strip_prefix(&root).unwrap();
+            (
+                p["name"].as_str().expect("name").to_owned(),
+                dir.to_path_buf(),
+            )
+        })
+        .collect()
+}
+
+/// The layers, lowest first: a package under a layer's directory depends on
+/// no package of a layer above it. The simulator and its binding stand
+/// below the agent; the coordinator above both.
+const LAYERS: [(&str, &[&str]); 3] = [
+    ("proto", &["env-server", "agent", "coordinator"]),
+    ("env-server", &["agent", "coordinator"]),
+    ("agent", &["env-server", "coordinator"]),
+];
+
+#[test]
+fn every_package_stays_in_its_layer() {
+    let packages = packages();
+    let home = |name: &str| {
+        let (_, dir) = packages.iter().find(|(n, _)| n == name).expect("a package");
+        dir.components()
+            .next()
+            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+    };
+    let mut violations = Vec::new();
+    for (name, dir) in &packages {
+        for (layer, above) in LAYERS {
+            if !dir.starts_with(layer) {
+                continue;
+            }
+            for line in normal_dependencies(name).lines().skip(1) {
+                let dependency = line.split(' ').next().unwrap_or_default();
+                if packages.iter().any(|(n, _)| n == dependency)
+                    && above
+                        .iter()
+                        .any(|a| home(dependency).as_deref() == Some(*a))
+                {
+                    violations.push(format!(
+                        "{name} ({}) depends on {dependency}",
+                        dir.display()
+                    ));
+                }
+            }
+        }
+    }
+    violations.sort();
+    violations.dedup();
+    assert!(
+        violations.is_empty(),
+        "layers crossed:\n{}",
+        violations.join("\n")
+    );
+}
+
 #[test]
 fn the_pure_libraries_use_neither_network_nor_files() {
     for krate in ["proto", "agent", "env-server"] {

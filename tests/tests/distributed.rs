@@ -3,11 +3,11 @@
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use agent::{Mode, Profile, StrategyName};
+use agent::{Algorithm, Mode, Profile};
 use coordinator::transport::Auth;
 use coordinator::{
-    AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
-    ZenohSettings,
+    AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, RemoteBackend, ZenohSettings,
+    ZenohTeam,
 };
 use integration_tests::{bin, bin_dir, cmdline, experiment_name, is_running};
 use node::net::{NetConfig, free_port};
@@ -17,7 +17,7 @@ use proto::{Body, Control, ControlReply, Envelope, Header, experiment_id};
 use serde_json::Value;
 
 fn adhoc_td_experiment() -> Experiment {
-    let spec = AgentSpec::of(StrategyName::AdHocTd, Profile::Paper);
+    let spec = AgentSpec::of(Algorithm::AdHocTd, Profile::Paper);
     Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,
@@ -29,8 +29,8 @@ fn adhoc_td_experiment() -> Experiment {
     .expect("valid experiment")
 }
 
-fn network(tag: &str, port: u16, auth: Auth) -> Network {
-    Network::start(
+fn network(tag: &str, port: u16, auth: Auth) -> ZenohTeam {
+    ZenohTeam::start(
         &ZenohSettings {
             advice_timeout_ms: 20,
             step_timeout_ms: 2000,

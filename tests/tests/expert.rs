@@ -52,7 +52,7 @@ fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports
 
     for keep_counters in [true, false] {
         let team = dir.join(format!("team-{keep_counters}.toml"));
-        let adhoc = "[[agent]]\nstrategy = \"ad-hoc-td\"\n";
+        let adhoc = "[[agent]]\nalgorithm = \"ad-hoc-td\"\n";
         std::fs::write(
             &team,
             format!(

@@ -5,11 +5,11 @@
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
-use agent::{Mode, Profile, StrategyName};
+use agent::{Algorithm, Mode, Profile};
 use coordinator::transport::Auth;
 use coordinator::{
-    AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, Network, RemoteBackend,
-    ZenohSettings,
+    AgentSpec, Backend, Endpoints, Experiment, ExperimentConfig, RemoteBackend, ZenohSettings,
+    ZenohTeam,
 };
 use integration_tests::{bin, bin_dir, experiment_name};
 use node::net::{NetConfig, free_port};
@@ -50,8 +50,8 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
         .collect();
     let processes = start_services(&name, &secret, &endpoints);
     let settings = attached_settings(&name, &secret, &endpoints);
-    let team = vec![AgentSpec::of(StrategyName::AdHocTd, Profile::Paper); 3];
-    let net = Network::start(&settings, &team).expect("the attached processes join");
+    let team = vec![AgentSpec::of(Algorithm::AdHocTd, Profile::Paper); 3];
+    let net = ZenohTeam::start(&settings, &team).expect("the attached processes join");
     let experiment = Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,

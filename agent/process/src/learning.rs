@@ -248,7 +248,7 @@ mod tests {
     }
 
     fn sharing() -> Vec<u8> {
-        config(r#"{"strategy": "episode-sharing"}"#)
+        config(r#"{"algorithm": "episode-sharing"}"#)
     }
 
     fn header(run: u32, episode: u32, frame: u32) -> Header {
@@ -314,7 +314,7 @@ mod tests {
 
     #[test]
     fn every_strategy_crosses_the_wire() {
-        for name in agent::StrategyName::ALL {
+        for name in agent::Algorithm::ALL {
             let mut strategy = agent::Strategy::from(name);
             if let agent::Strategy::AdHoc(ad_hoc) = &mut strategy {
                 ad_hoc.reachable = agent::Reachable::Agents(vec![1]);

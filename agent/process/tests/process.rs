@@ -5,7 +5,7 @@ mod support;
 
 use std::time::{Duration, Instant};
 
-use agent::{AdHoc, Agent, AgentConfig, Isolated, Strategy, StrategyName};
+use agent::{AdHoc, Agent, AgentConfig, Algorithm, Isolated, Strategy};
 use node::net::NetConfig;
 use node::net::free_port;
 use node::secret::Secret;
@@ -446,7 +446,7 @@ async fn episode_sharing_travels_as_published_messages() {
     let _agents = [spawn_agent(&name, 0, &fake), spawn_agent(&name, 1, &fake)];
     fake.wait_for_agents(&[0, 1]).await;
     let config = AgentConfig {
-        strategy: Strategy::from(StrategyName::EpisodeSharing),
+        strategy: Strategy::from(Algorithm::EpisodeSharing),
         ..AgentConfig::default()
     };
     for id in 0..2 {

@@ -1,11 +1,12 @@
 use super::*;
 use crate::advice::Reachable;
+use crate::algorithm::Algorithm;
 use crate::exchange::Isolated;
 use crate::fidelity::{Fidelity, Profile};
-use crate::network::NetworkConditions;
+use crate::link::NetworkConditions;
 use crate::persist::Entry;
-use crate::policy::ACTIONS;
-use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
+use crate::selection::ACTIONS;
+use crate::strategy::{AdHoc, Strategy, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -28,7 +29,7 @@ fn obs(state: State) -> Observation {
     }
 }
 
-fn config(name: StrategyName) -> AgentConfig {
+fn config(name: Algorithm) -> AgentConfig {
     with(Strategy::from(name))
 }
 
@@ -163,7 +164,7 @@ fn asks_at_most_once_per_state_per_episode() {
 
 #[test]
 fn no_asking_before_a_finished_episode_without_the_ball_or_when_evaluating() {
-    let mut a = agent(0, 3, config(StrategyName::AdHocTd));
+    let mut a = agent(0, 3, config(Algorithm::AdHocTd));
     let mut ex = script(&[Dribble]);
     a.begin_episode(Mode::Training);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
@@ -213,7 +214,7 @@ fn advisor_needs_visits_and_budget() {
 #[test]
 fn visit_based_advisor_uses_log2_visits() {
     // n = 1: Psi = log2 1 = 0, P_give = 0.
-    let mut a = agent(0, 3, config(StrategyName::AdHocVisit));
+    let mut a = agent(0, 3, config(Algorithm::AdHocVisit));
     teach(
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
@@ -271,7 +272,7 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
 #[test]
 fn torrey_students_ask_their_fixed_teacher_at_every_fresh_kick_state() {
     for i in 0..3 {
-        let mut a = agent(i, 3, config(StrategyName::Torrey));
+        let mut a = agent(i, 3, config(Algorithm::Torrey));
         // No finished episode needed, no ask budget.
         a.begin_episode(Mode::Training);
         let mut ex = script(&[]);
@@ -311,7 +312,7 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
 
     // In a team, agent 0's teacher is agent 1 (agent 2 knows too, but is not asked).
     let mut agents: Vec<Agent> = (0..3)
-        .map(|i| agent(i, 3, config(StrategyName::Torrey)))
+        .map(|i| agent(i, 3, config(Algorithm::Torrey)))
         .collect();
     let q = [0.0, 0.0, 0.0, 0.0, 0.5];
     teach(&mut agents[1], &[(kick_state(0), known(q, 0))]);
@@ -375,7 +376,7 @@ fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
 
 #[test]
 fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
-    let mut a = agent(2, 3, config(StrategyName::EpisodeSharing));
+    let mut a = agent(2, 3, config(Algorithm::EpisodeSharing));
     let mut ex = script(&[]);
     for reward in [-1.0, 0.0, 1.0] {
         a.begin_episode(Mode::Training);
@@ -398,7 +399,7 @@ fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
 
 #[test]
 fn received_episode_is_replayed_with_a_fresh_trace() {
-    let mut a = agent(1, 3, config(StrategyName::EpisodeSharing));
+    let mut a = agent(1, 3, config(Algorithm::EpisodeSharing));
     a.begin_episode(Mode::Training);
     // Own pending step in another state, untouched by the replay.
     a.act(&obs(move_state(4)), 0.0, &[], &mut Isolated);
@@ -432,7 +433,7 @@ fn received_episode_is_replayed_with_a_fresh_trace() {
 
 #[test]
 fn learns_move_steps_and_counts_visits() {
-    let mut a = agent(0, 1, config(StrategyName::NoAdvice));
+    let mut a = agent(0, 1, config(Algorithm::NoAdvice));
     a.begin_episode(Mode::Training);
     assert_eq!(a.act(&obs(move_state(0)), 0.0, &[], &mut Isolated), Move);
     assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
@@ -448,7 +449,7 @@ fn learns_move_steps_and_counts_visits() {
 
 #[test]
 fn evaluation_plays_greedy_in_tie_order() {
-    let mut a = agent(0, 1, config(StrategyName::NoAdvice));
+    let mut a = agent(0, 1, config(Algorithm::NoAdvice));
     teach(
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 0.0, 0.3, 0.3], 0))],
@@ -463,7 +464,7 @@ fn evaluation_plays_greedy_in_tie_order() {
 
 #[test]
 fn random_baseline_never_learns_nor_advises() {
-    let mut a = agent(0, 3, config(StrategyName::Random));
+    let mut a = agent(0, 3, config(Algorithm::Random));
     let mut seen = [false; ACTIONS];
     for mode in [Mode::Training, Mode::Evaluation] {
         a.begin_episode(mode);
@@ -514,7 +515,7 @@ fn play(team: &mut Team, rng: &mut AgentRng, episodes: usize, mode: Mode) -> Vec
     log
 }
 
-fn team(strategy: StrategyName, seed: u64) -> Team {
+fn team(strategy: Algorithm, seed: u64) -> Team {
     let c = config(strategy);
     Team::new(
         (0..3)
@@ -531,9 +532,9 @@ fn digests(team: &Team) -> Vec<u64> {
 #[test]
 fn evaluation_changes_no_learned_state() {
     for strategy in [
-        StrategyName::AdHocTd,
-        StrategyName::Torrey,
-        StrategyName::EpisodeSharing,
+        Algorithm::AdHocTd,
+        Algorithm::Torrey,
+        Algorithm::EpisodeSharing,
     ] {
         let mut t = team(strategy, 7);
         let mut rng = AgentRng::seed_from_u64(1);
@@ -556,10 +557,10 @@ fn evaluation_changes_no_learned_state() {
 #[test]
 fn same_seed_same_run_bit_for_bit() {
     for strategy in [
-        StrategyName::AdHocVisit,
-        StrategyName::AdHocTd,
-        StrategyName::Torrey,
-        StrategyName::EpisodeSharing,
+        Algorithm::AdHocVisit,
+        Algorithm::AdHocTd,
+        Algorithm::Torrey,
+        Algorithm::EpisodeSharing,
     ] {
         let run = |seed| {
             let mut t = team(strategy, seed);
@@ -592,12 +593,12 @@ fn network_conditions_lose_late_and_lost_advice_and_nothing_else() {
         };
         let c = AgentConfig {
             network: Some(network),
-            ..config(StrategyName::AdHocTd)
+            ..config(Algorithm::AdHocTd)
         };
         let agents = (0..3).map(|i| Agent::new(i, 3, c.clone(), 11 + i as u64).unwrap());
         let mut t = Team::new(agents.collect()).unwrap();
         let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
-        let sum = |f: fn(&Counters) -> u64| t.agents().iter().map(|a| f(a.counters())).sum();
+        let sum = |f: fn(&AdviceCounters) -> u64| t.agents().iter().map(|a| f(a.counters())).sum();
         let counts: [u64; 3] = [
             sum(|c| c.advice_requests),
             sum(|c| c.advice_given),
@@ -606,7 +607,7 @@ fn network_conditions_lose_late_and_lost_advice_and_nothing_else() {
         (log, digests(&t), counts)
     };
     let free = {
-        let mut t = team(StrategyName::AdHocTd, 11);
+        let mut t = team(Algorithm::AdHocTd, 11);
         let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
         (log, digests(&t))
     };
@@ -685,11 +686,11 @@ fn reachable_within_distance_filters_advisors() {
 
 #[test]
 fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
-    let mut t = team(StrategyName::AdHocTd, 5);
+    let mut t = team(Algorithm::AdHocTd, 5);
     play(&mut t, &mut AgentRng::seed_from_u64(9), 30, Mode::Training);
     let trained = &t.agents()[2];
     let bytes = trained.snapshot().encode().unwrap();
-    let mut fresh = agent(2, 3, config(StrategyName::AdHocTd));
+    let mut fresh = agent(2, 3, config(Algorithm::AdHocTd));
     fresh.restore(Snapshot::decode(&bytes).unwrap()).unwrap();
     assert_eq!(fresh.digest(), trained.digest());
     assert_eq!(fresh.snapshot().entries, trained.snapshot().entries);
@@ -828,11 +829,11 @@ fn play_team(
 #[test]
 fn two_phase_frames_equal_act_for_the_same_seed() {
     for strategy in [
-        StrategyName::AdHocVisit,
-        StrategyName::AdHocTd,
-        StrategyName::Torrey,
-        StrategyName::EpisodeSharing,
-        StrategyName::Random,
+        Algorithm::AdHocVisit,
+        Algorithm::AdHocTd,
+        Algorithm::Torrey,
+        Algorithm::EpisodeSharing,
+        Algorithm::Random,
     ] {
         for mistake_correcting in [false, true] {
             if mistake_correcting && !strategy.supports_mistake_correcting() {
@@ -875,7 +876,7 @@ fn two_phase_frames_equal_act_for_the_same_seed() {
 
 #[test]
 fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
-    let mut a = agent(0, 3, config(StrategyName::AdHocTd));
+    let mut a = agent(0, 3, config(Algorithm::AdHocTd));
     finish_one_episode(&mut a);
     // Unvisited state: P_ask = 1.
     let decision = a.act_begin(&obs(kick_state(0)), 0.0, &[], &|j| j != 1);
@@ -897,7 +898,7 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
 
 #[test]
 fn an_abandoned_ask_completes_to_nothing() {
-    let mut a = agent(0, 3, config(StrategyName::AdHocTd));
+    let mut a = agent(0, 3, config(Algorithm::AdHocTd));
     finish_one_episode(&mut a);
     let before = a.digest();
     assert!(matches!(
@@ -1075,7 +1076,7 @@ fn an_authors_episode_sharing_receiver_bootstraps_on_move() {
         }]);
         a.entry(&s0).unwrap().q[Shoot.index()]
     };
-    let sharing = Strategy::from(StrategyName::EpisodeSharing);
+    let sharing = Strategy::from(Algorithm::EpisodeSharing);
     // delta = 0 + 0.9 * Q(s1, next) - 0, times alpha 0.1 and trace 1.
     assert!((replay(with(sharing.clone())) - 0.09).abs() < 1e-12);
     assert_eq!(replay(authors(sharing)), 0.0);

@@ -7,11 +7,12 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::AgentConfig;
 use crate::advice::Reachable;
+use crate::algorithm::Algorithm;
 use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
-use crate::network::NetworkConditions;
-use crate::strategy::{AdHoc, Strategy, StrategyName, Torrey};
+use crate::link::NetworkConditions;
+use crate::strategy::{AdHoc, Strategy, Torrey};
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -52,8 +53,8 @@ struct Plain {
     network: Option<NetworkConditions>,
 }
 
-/// The flat table: the learner's keys, `strategy`, and the keys of that
-/// strategy (named as the fields of its variant); the others are absent.
+/// The flat table: the learner's keys, `algorithm`, and the keys of that
+/// algorithm (named as the fields of its variant); the others are absent.
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 struct Table {
@@ -65,7 +66,9 @@ struct Table {
     tile_width: f64,
     tile_step: f64,
     trace_threshold: f64,
-    strategy: StrategyName,
+    /// Read as `strategy` too, its spelling before 0.2.
+    #[serde(alias = "strategy")]
+    algorithm: Algorithm,
     #[serde(skip_serializing_if = "Option::is_none")]
     v_a: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -122,7 +125,7 @@ impl From<&AgentConfig> for Table {
             tile_width: c.tile_width,
             tile_step: c.tile_step,
             trace_threshold: c.trace_threshold,
-            strategy: c.strategy.name(),
+            algorithm: c.strategy.name(),
             v_a: None,
             v_g: None,
             ask_budget: None,
@@ -174,7 +177,7 @@ impl Table {
     /// fidelity keys left out; a key the strategy does not have is an error
     /// naming it.
     fn into_config(mut self) -> Result<AgentConfig, String> {
-        let mut strategy = Strategy::of(self.strategy, self.profile);
+        let mut strategy = Strategy::of(self.algorithm, self.profile);
         let mut fidelity = Fidelity::of(self.profile);
         take(
             &mut self.torrey_unknown_state,
@@ -219,14 +222,14 @@ impl Table {
             .strategy_keys()
             .find_map(|(key, given)| given.then_some(key))
         {
-            let owners: Vec<&str> = StrategyName::ALL
+            let owners: Vec<&str> = Algorithm::ALL
                 .into_iter()
                 .filter(|&name| has_key(name, key))
-                .map(StrategyName::name)
+                .map(Algorithm::name)
                 .collect();
             return Err(format!(
-                "key `{key}` does not apply to strategy {}; it belongs to {}",
-                self.strategy,
+                "key `{key}` does not apply to algorithm {}; it belongs to {}",
+                self.algorithm,
                 owners.join(", ")
             ));
         }
@@ -262,7 +265,7 @@ impl Table {
 }
 
 /// Whether strategy `name` has the strategy key `key`.
-fn has_key(name: StrategyName, key: &str) -> bool {
+fn has_key(name: Algorithm, key: &str) -> bool {
     let config = AgentConfig {
         strategy: Strategy::from(name),
         ..AgentConfig::default()
@@ -275,7 +278,7 @@ fn has_key(name: StrategyName, key: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::network::Latency;
+    use crate::link::Latency;
     use crate::strategy::Confidence;
 
     /// One configuration of every strategy, none with only its defaults.
@@ -313,7 +316,7 @@ mod tests {
                     vote_ties: VoteTies::Random,
                     ..Fidelity::of(Profile::Authors)
                 },
-                ..with(Strategy::of(StrategyName::AdHocVisit, Profile::Authors))
+                ..with(Strategy::of(Algorithm::AdHocVisit, Profile::Authors))
             },
         ]
     }
@@ -339,7 +342,7 @@ mod tests {
 
     #[test]
     fn the_table_shows_only_the_strategys_keys() {
-        let keys = |name: StrategyName| {
+        let keys = |name: Algorithm| {
             let config = AgentConfig {
                 strategy: Strategy::from(name),
                 ..AgentConfig::default()
@@ -356,7 +359,7 @@ mod tests {
                 "tile_width",
                 "tile_step",
                 "trace_threshold",
-                "strategy",
+                "algorithm",
                 "profile",
                 "torrey_unknown_state",
                 "torrey_intent",
@@ -370,11 +373,11 @@ mod tests {
                 .cloned()
                 .collect();
             own.sort();
-            assert_eq!(map["strategy"], name.name());
+            assert_eq!(map["algorithm"], name.name());
             own
         };
-        assert!(keys(StrategyName::NoAdvice).is_empty());
-        assert!(keys(StrategyName::Random).is_empty());
+        assert!(keys(Algorithm::NoAdvice).is_empty());
+        assert!(keys(Algorithm::Random).is_empty());
         let ad_hoc = [
             "ask_budget",
             "give_budget",
@@ -383,18 +386,18 @@ mod tests {
             "v_a",
             "v_g",
         ];
-        assert_eq!(keys(StrategyName::AdHocVisit), ad_hoc);
-        assert_eq!(keys(StrategyName::AdHocTd), ad_hoc);
+        assert_eq!(keys(Algorithm::AdHocVisit), ad_hoc);
+        assert_eq!(keys(Algorithm::AdHocTd), ad_hoc);
         assert_eq!(
-            keys(StrategyName::Torrey),
+            keys(Algorithm::Torrey),
             ["give_budget", "importance_threshold", "mistake_correcting"]
         );
-        assert_eq!(keys(StrategyName::EpisodeSharing), ["sharing_budget"]);
+        assert_eq!(keys(Algorithm::EpisodeSharing), ["sharing_budget"]);
     }
 
     #[test]
     fn missing_keys_take_the_papers_constants() {
-        let c: AgentConfig = toml::from_str("strategy = \"adhoc-visit\"\nv_a = 0\n").unwrap();
+        let c: AgentConfig = toml::from_str("algorithm = \"adhoc-visit\"\nv_a = 0\n").unwrap();
         assert_eq!(
             c.strategy,
             Strategy::AdHoc(AdHoc {
@@ -414,7 +417,8 @@ mod tests {
 
     #[test]
     fn network_conditions_read_write_and_travel() {
-        let text = "strategy = \"adhoc-td\"\nnetwork = { latency = \"uniform:1,4\", loss = 0.1 }\n";
+        let text =
+            "algorithm = \"adhoc-td\"\nnetwork = { latency = \"uniform:1,4\", loss = 0.1 }\n";
         let c: AgentConfig = toml::from_str(text).unwrap();
         let n = c.network.unwrap();
         assert_eq!(
@@ -440,20 +444,20 @@ mod tests {
     #[test]
     fn the_profile_sets_the_defaults_and_keys_override_it() {
         let c: AgentConfig =
-            toml::from_str("strategy = \"adhoc-visit\"\nprofile = \"authors\"\n").unwrap();
+            toml::from_str("algorithm = \"adhoc-visit\"\nprofile = \"authors\"\n").unwrap();
         assert_eq!(c.fidelity, Fidelity::of(Profile::Authors));
         let Strategy::AdHoc(a) = &c.strategy else {
             panic!("ad hoc expected");
         };
         assert_eq!(a.v_g, 0.4);
-        let text = "strategy = \"adhoc-visit\"\nprofile = \"authors\"\nv_g = 0.5\n\
+        let text = "algorithm = \"adhoc-visit\"\nprofile = \"authors\"\nv_g = 0.5\n\
                     advisor_ties = \"first\"\n";
         let c: AgentConfig = toml::from_str(text).unwrap();
         assert_eq!(c.fidelity.advisor_ties, AdvisorTies::First);
         assert_eq!(c.fidelity.vote_ties, VoteTies::Fixed);
         assert_eq!(c.strategy, Strategy::AdHoc(AdHoc::visit()));
         // Without a profile: the paper's.
-        let c: AgentConfig = toml::from_str("strategy = \"adhoc-visit\"\n").unwrap();
+        let c: AgentConfig = toml::from_str("algorithm = \"adhoc-visit\"\n").unwrap();
         assert_eq!(c.fidelity, Fidelity::of(Profile::Paper));
         let e = toml::from_str::<AgentConfig>("vote_ties = \"alphabetical\"\n")
             .unwrap_err()
@@ -467,25 +471,28 @@ mod tests {
         let e = err("mistake_correcting = true\n");
         assert!(
             e.contains(
-                "key `mistake_correcting` does not apply to strategy no-advice; \
+                "key `mistake_correcting` does not apply to algorithm no-advice; \
                  it belongs to adhoc-visit, adhoc-td, torrey"
             ),
             "{e}"
         );
-        let e = err("strategy = \"torrey\"\nsharing_budget = 3\n");
+        let e = err("algorithm = \"torrey\"\nsharing_budget = 3\n");
         assert!(
             e.contains(
-                "`sharing_budget` does not apply to strategy torrey; it belongs to episode-sharing"
+                "`sharing_budget` does not apply to algorithm torrey; it belongs to episode-sharing"
             ),
             "{e}"
         );
-        let e = err("strategy = \"episode-sharing\"\nv_g = 1\n");
+        let e = err("algorithm = \"episode-sharing\"\nv_g = 1\n");
         assert!(e.contains("it belongs to adhoc-visit, adhoc-td"), "{e}");
-        let e = err("strategy = \"best\"\n");
-        assert!(e.contains("unknown strategy `best`"), "{e}");
+        let e = err("algorithm = \"best\"\n");
+        assert!(e.contains("unknown algorithm `best`"), "{e}");
         let e = serde_json::from_str::<AgentConfig>(r#"{"strategy": "random", "v_a": 1}"#)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("`v_a` does not apply to strategy random"), "{e}");
+        assert!(
+            e.contains("`v_a` does not apply to algorithm random"),
+            "{e}"
+        );
     }
 }

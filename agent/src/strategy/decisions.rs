@@ -5,10 +5,10 @@
 
 use super::settings::{AdHoc, Confidence, Strategy, Torrey};
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
-use crate::counters::Counters;
+use crate::advice_counters::AdviceCounters;
 use crate::fidelity::TorreyUnknownState;
 use crate::learner::ActionValues;
-use crate::policy::{AgentRng, chance};
+use crate::selection::{AgentRng, chance};
 
 /// What an advisee knows when it decides whether to ask about a state.
 #[derive(Clone, Copy, Debug)]
@@ -20,7 +20,7 @@ pub(crate) struct AskContext<'a> {
     /// Training episodes finished so far.
     pub training_episodes: u64,
     /// The agent's counters.
-    pub counters: &'a Counters,
+    pub counters: &'a AdviceCounters,
 }
 
 impl Strategy {
@@ -31,7 +31,7 @@ impl Strategy {
 
     /// The budget the paper plots: advice given (ad hoc advisor, Torrey
     /// teacher) or transitions shared (EpisodeSharing); 0 otherwise.
-    pub fn spent_budget(&self, counters: &Counters) -> u64 {
+    pub fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         match self {
             Strategy::AdHoc(_) | Strategy::Torrey(_) => counters.advice_given,
             Strategy::EpisodeSharing { .. } => counters.shared_sent,
@@ -41,7 +41,7 @@ impl Strategy {
 
     /// Transitions still to share: the EpisodeSharing budget left (0 for
     /// every other strategy). The agent records its episode while it is not 0.
-    pub fn sharing_allowance(&self, counters: &Counters) -> u64 {
+    pub fn sharing_allowance(&self, counters: &AdviceCounters) -> u64 {
         match self {
             Strategy::EpisodeSharing { sharing_budget } => {
                 sharing_budget.saturating_sub(counters.shared_sent)
@@ -76,7 +76,7 @@ impl Strategy {
         &self,
         visits: u64,
         values: &ActionValues,
-        counters: &Counters,
+        counters: &AdviceCounters,
         unknown: TorreyUnknownState,
         rng: &mut AgentRng,
     ) -> bool {

@@ -2,8 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::name::StrategyName;
 use crate::advice::Reachable;
+use crate::algorithm::Algorithm;
 use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::fidelity::Profile;
 
@@ -112,42 +112,42 @@ pub enum Strategy {
     Random,
 }
 
-impl From<StrategyName> for Strategy {
+impl From<Algorithm> for Strategy {
     /// The strategy `name` with the paper's constants.
-    fn from(name: StrategyName) -> Self {
+    fn from(name: Algorithm) -> Self {
         Strategy::of(name, Profile::Paper)
     }
 }
 
 impl Strategy {
     /// The strategy `name` with the constants of `profile`.
-    pub fn of(name: StrategyName, profile: Profile) -> Self {
+    pub fn of(name: Algorithm, profile: Profile) -> Self {
         match name {
-            StrategyName::NoAdvice => Strategy::NoAdvice,
-            StrategyName::AdHocVisit => Strategy::AdHoc(AdHoc {
+            Algorithm::NoAdvice => Strategy::NoAdvice,
+            Algorithm::AdHocVisit => Strategy::AdHoc(AdHoc {
                 v_g: profile.visit_v_g(),
                 ..AdHoc::visit()
             }),
-            StrategyName::AdHocTd => Strategy::AdHoc(AdHoc::td()),
-            StrategyName::Torrey => Strategy::Torrey(Torrey::default()),
-            StrategyName::EpisodeSharing => Strategy::EpisodeSharing {
+            Algorithm::AdHocTd => Strategy::AdHoc(AdHoc::td()),
+            Algorithm::Torrey => Strategy::Torrey(Torrey::default()),
+            Algorithm::EpisodeSharing => Strategy::EpisodeSharing {
                 sharing_budget: PAPER_BUDGET,
             },
-            StrategyName::Random => Strategy::Random,
+            Algorithm::Random => Strategy::Random,
         }
     }
 
     /// Its name.
-    pub fn name(&self) -> StrategyName {
+    pub fn name(&self) -> Algorithm {
         match self {
-            Strategy::NoAdvice => StrategyName::NoAdvice,
+            Strategy::NoAdvice => Algorithm::NoAdvice,
             Strategy::AdHoc(a) => match a.confidence {
-                Confidence::Visit => StrategyName::AdHocVisit,
-                Confidence::Td => StrategyName::AdHocTd,
+                Confidence::Visit => Algorithm::AdHocVisit,
+                Confidence::Td => Algorithm::AdHocTd,
             },
-            Strategy::Torrey(_) => StrategyName::Torrey,
-            Strategy::EpisodeSharing { .. } => StrategyName::EpisodeSharing,
-            Strategy::Random => StrategyName::Random,
+            Strategy::Torrey(_) => Algorithm::Torrey,
+            Strategy::EpisodeSharing { .. } => Algorithm::EpisodeSharing,
+            Strategy::Random => Algorithm::Random,
         }
     }
 
@@ -229,14 +229,14 @@ mod tests {
 
     #[test]
     fn every_name_gives_its_strategy_with_the_papers_constants() {
-        for name in StrategyName::ALL {
+        for name in Algorithm::ALL {
             assert_eq!(Strategy::from(name).name(), name);
             Strategy::from(name).validate().unwrap();
         }
-        let Strategy::AdHoc(visit) = Strategy::from(StrategyName::AdHocVisit) else {
+        let Strategy::AdHoc(visit) = Strategy::from(Algorithm::AdHocVisit) else {
             panic!("adhoc-visit is ad hoc");
         };
-        let Strategy::AdHoc(td) = Strategy::from(StrategyName::AdHocTd) else {
+        let Strategy::AdHoc(td) = Strategy::from(Algorithm::AdHocTd) else {
             panic!("adhoc-td is ad hoc");
         };
         assert_eq!((visit.v_a, visit.v_g, td.v_a, td.v_g), (0.5, 0.5, 0.5, 1.5));
@@ -253,7 +253,7 @@ mod tests {
             }
         );
         assert_eq!(
-            Strategy::from(StrategyName::EpisodeSharing),
+            Strategy::from(Algorithm::EpisodeSharing),
             Strategy::EpisodeSharing {
                 sharing_budget: 1000
             }
@@ -262,7 +262,7 @@ mod tests {
 
     #[test]
     fn mistake_correcting_only_where_it_exists() {
-        for name in StrategyName::ALL {
+        for name in Algorithm::ALL {
             let mut s = Strategy::from(name);
             assert!(!s.mistake_correcting());
             let set = s.set_mistake_correcting(true);

@@ -10,7 +10,7 @@ use proto::MessageKind;
 use proto::keys::Role;
 use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
-use super::Network;
+use super::ZenohTeam;
 use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::Error;
 use crate::experiment::Experiment;
@@ -23,7 +23,7 @@ const EPISODE_TIMEOUT: Duration = Duration::from_secs(600);
 /// Run `run` of an experiment, played by remote processes.
 #[derive(Debug)]
 pub struct RemoteBackend<'a> {
-    network: &'a Network,
+    network: &'a ZenohTeam,
     run: u64,
     agents: usize,
     /// Episodes played so far in this run (the next episode's number).
@@ -36,7 +36,7 @@ pub struct RemoteBackend<'a> {
 
 impl<'a> RemoteBackend<'a> {
     /// Resets env-server and every agent for run `run` of `experiment`.
-    pub fn new(network: &'a Network, experiment: &Experiment, run: u64) -> Result<Self, Error> {
+    pub fn new(network: &'a ZenohTeam, experiment: &Experiment, run: u64) -> Result<Self, Error> {
         let config = experiment.config();
         let seeds = experiment.seeds(run);
         let backend = Self {

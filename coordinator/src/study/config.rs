@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use agent::{
-    AdvisorTies, Fidelity, NetworkConditions, Profile, SharedBootstrap, Strategy, StrategyName,
+    AdvisorTies, Algorithm, Fidelity, NetworkConditions, Profile, SharedBootstrap, Strategy,
     TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use env_server::EvaluationMemory;
@@ -92,7 +92,7 @@ fn default_seed() -> u64 {
 #[serde(deny_unknown_fields)]
 pub struct Pretrain {
     /// The pretraining team's algorithm.
-    pub algorithm: StrategyName,
+    pub algorithm: Algorithm,
     /// Training episodes.
     pub episodes: u64,
     /// Index of the agent saved as the expert.
@@ -106,7 +106,7 @@ pub struct StudyEntry {
     /// Name: the experiment's directory and its label in figures.
     pub name: String,
     /// The team's algorithm.
-    pub algorithm: StrategyName,
+    pub algorithm: Algorithm,
     /// Advisees send their intended action along.
     #[serde(default)]
     pub mistake_correcting: bool,

@@ -2,11 +2,11 @@
 //! paired by run, with the verdicts of the study's signed-rank tests
 //! against the baseline: the input of the difference figure.
 
-use super::analysis::point_tests;
 use crate::figures::{DifferencePoint, DifferenceSet};
 use crate::schedule::RunResult;
+use crate::stats::analysis::point_tests;
 use crate::stats::estimate;
-use crate::wilcoxon::better_side;
+use crate::stats::wilcoxon::better_side;
 
 /// The differences of every method in `entries` (name and every run,
 /// sorted by run) from the one named `baseline`, with intervals at `level`

@@ -1,9 +1,9 @@
-//! Test inputs shared by the study's modules.
+//! Test inputs shared by the study's and the statistics' modules.
 
 use crate::schedule::{EvalPoint, RunResult};
 
 /// Run `run` with goal percentages `goals` at episodes 0, `every`, 2 `every`, ...
-pub(super) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
+pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
     let points = (goals.iter().enumerate())
         .map(|(i, &goal_pct)| EvalPoint {
             episode: every * i as u64,

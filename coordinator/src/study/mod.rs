@@ -6,24 +6,17 @@
 //! many sharing a file system, play their shares into one directory at the
 //! same time; an invocation without a shard then completes it.
 
-mod aggregates;
-mod analysis;
 mod config;
 mod difference;
 #[cfg(test)]
-mod fixtures;
-mod gains;
-mod holm;
-mod network;
+pub(crate) mod fixtures;
 mod published;
 mod report;
 mod run;
 mod shard;
+mod sweep;
 
-pub use aggregates::{Aggregates, EntryAggregate, Scores};
-pub use analysis::{Comparison, EntryResults, compare};
 pub use config::{PRESETS, Pretrain, StudyConfig, StudyEntry};
-pub use gains::Gain;
 pub use published::published_gains;
 pub use report::gains_table;
 pub use run::{StudyOptions, StudyOutcome, run_study};

@@ -5,9 +5,9 @@
 
 use std::path::Path;
 
-use super::gains::{Gain, area, last_ten};
 use crate::error::{ConfigError, Error};
 use crate::schedule::{EvalPoint, RunResult};
+use crate::stats::gains::{Gain, area, last_ten};
 use crate::stats::{difference_of_means, estimate};
 
 /// The runs of one algorithm's directory: every `_0_<run>_AGENT_1_RESULTS_eval`

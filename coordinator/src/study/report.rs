@@ -2,20 +2,19 @@
 
 use std::path::{Path, PathBuf};
 
-use agent::StrategyName;
+use agent::Algorithm;
 
 use serde::Serialize;
 
-use super::aggregates::{Aggregates, Scores, aggregates};
-use super::analysis::{Comparison, EntryResults};
 use super::config::{StudyConfig, StudyEntry};
 use super::difference::difference_sets;
-use super::gains::{Gain, LAST_POINTS, gains};
-use super::holm::{HolmComparison, holm_against};
-use super::network::{EPISODES, advised, conditions, goal_at, sweep_figures};
+use super::sweep::{EPISODES, advised, conditions, goal_at, sweep_figures};
 use crate::error::Error;
 use crate::figures::{DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures};
-use crate::stats::Estimate;
+use crate::stats::aggregates::{Aggregates, Scores, aggregates};
+use crate::stats::analysis::{Comparison, EntryResults};
+use crate::stats::gains::{Gain, LAST_POINTS, gains};
+use crate::stats::holm::{HolmComparison, holm_against};
 use crate::store;
 
 /// What `significance.json` holds.
@@ -199,9 +198,9 @@ fn final_performance(md: &mut Markdown, study: &StudyConfig, entries: &[EntryRes
         entries.iter().map(|e| {
             [
                 label(&e.entry),
-                show(&e.last(level, |p| Some(p.goal_pct))),
-                show(&e.last(level, |p| p.time_to_goal)),
-                show(&e.last(level, |p| Some(p.spent_budget))),
+                format!("{:.1}", e.last(level, |p| Some(p.goal_pct))),
+                format!("{:.1}", e.last(level, |p| p.time_to_goal)),
+                format!("{:.1}", e.last(level, |p| Some(p.spent_budget))),
             ]
         }),
     );
@@ -234,10 +233,10 @@ pub fn gains_table(gains: &[Gain]) -> String {
         gains.iter().map(|g| {
             [
                 g.entry.clone(),
-                show(&g.last_ten),
-                show(&g.last_ten_gain),
-                show(&g.area),
-                show(&g.area_gain),
+                format!("{:.1}", g.last_ten),
+                format!("{:.1}", g.last_ten_gain),
+                format!("{:.1}", g.area),
+                format!("{:.1}", g.area_gain),
             ]
         }),
     );
@@ -362,10 +361,9 @@ fn significance_between_advising(
             .map(|e| e.entry.algorithm)
     };
     let advising = |name: &str| {
-        Some(name) != study.baseline.as_deref()
-            && kind(name).is_some_and(StrategyName::communicates)
+        Some(name) != study.baseline.as_deref() && kind(name).is_some_and(Algorithm::communicates)
     };
-    let ad_hoc = |name: &str| kind(name).is_some_and(StrategyName::is_ad_hoc);
+    let ad_hoc = |name: &str| kind(name).is_some_and(Algorithm::is_ad_hoc);
     let between: Vec<&Comparison> = comparisons
         .iter()
         .filter(|c| advising(&c.a) && advising(&c.b) && (ad_hoc(&c.a) || ad_hoc(&c.b)))
@@ -443,11 +441,13 @@ fn network_conditions(md: &mut Markdown, study: &StudyConfig, entries: &[EntryRe
                 latency,
                 loss,
                 timeout,
-                show(&goal_at(e, EPISODES[0])),
-                show(&goal_at(e, EPISODES[1])),
-                show(&goal_at(e, EPISODES[2])),
-                show(&advised(e, level)),
-                messages.as_ref().map_or("-".to_owned(), show),
+                format!("{:.1}", goal_at(e, EPISODES[0])),
+                format!("{:.1}", goal_at(e, EPISODES[1])),
+                format!("{:.1}", goal_at(e, EPISODES[2])),
+                format!("{:.1}", advised(e, level)),
+                messages
+                    .as_ref()
+                    .map_or("-".to_owned(), |m| format!("{m:.1}")),
             ]
         }),
     );
@@ -553,14 +553,6 @@ fn label(e: &StudyEntry) -> String {
         s.push_str(" (expert)");
     }
     s
-}
-
-fn show(e: &Estimate) -> String {
-    match (e.mean, e.ci_low, e.ci_high) {
-        (Some(m), Some(lo), Some(hi)) => format!("{m:.1} [{lo:.1}, {hi:.1}]"),
-        (Some(m), _, _) => format!("{m:.1}"),
-        _ => "-".into(),
-    }
 }
 
 fn intervals(v: &[(u64, u64)]) -> String {

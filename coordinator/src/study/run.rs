@@ -5,7 +5,6 @@ use std::time::{Duration, Instant};
 
 use indicatif::ProgressBar;
 
-use super::analysis::{EntryResults, compare_all};
 use super::config::{Pretrain, StudyConfig};
 use super::report::write_report;
 use super::shard::Shard;
@@ -13,6 +12,7 @@ use crate::config::ExperimentConfig;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::runner::{RunOptions, new_bar, run_experiment, run_share};
+use crate::stats::analysis::{EntryResults, compare_all};
 use crate::store::{self, ExperimentDir, agent_file_name};
 
 /// How to run a study (none of it changes the results in process).

@@ -12,17 +12,13 @@ def greedy_agent(snapshot: str) -> Any:
     """The frozen agent of ``snapshot``: ``act(state, can_kick)`` returns the
     index of its greedy action (:data:`hfo_oracle.schema.ACTIONS`).
 
-    The class is ``GreedyAgent`` of the Python package that binds our agents:
-    ``adhoc_advising`` (``agent/python``), or ``halffield`` in the versions
-    that still held it.
+    The class is ``GreedyAgent`` of ``adhoc_advising``, the Python package
+    that binds our agents (``pip install ./agent/python``).
     """
     try:
         from adhoc_advising import GreedyAgent
-    except ImportError:
-        try:
-            from halffield import GreedyAgent
-        except ImportError as e:
-            raise ImportError(
-                "a learned team needs the adhoc_advising package (agent/python) "
-                "in this interpreter") from e
+    except ImportError as e:
+        raise ImportError(
+            "a learned team needs the adhoc_advising package (pip install ./agent/python) "
+            "in this interpreter") from e
     return GreedyAgent(snapshot)

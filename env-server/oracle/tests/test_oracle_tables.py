@@ -102,9 +102,9 @@ class FakeGreedyAgent:
 
 def test_team_ours_writes_a_team_s_statistics(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "halffield", types.SimpleNamespace(
-        parallel_env=lambda observation: FakeParallelEnv(), SHOOT=1, PASS=3,
+        parallel_env=lambda observation: FakeParallelEnv(), SHOOT=1, PASS=3))
+    monkeypatch.setitem(sys.modules, "adhoc_advising", types.SimpleNamespace(
         GreedyAgent=FakeGreedyAgent))
-    monkeypatch.setitem(sys.modules, "adhoc_advising", None)  # not installed
     team = []
     for i, action in enumerate((1, 2, 4)):  # shoot, dribble, pass far
         path = tmp_path / ("agent-%d.qtable" % i)

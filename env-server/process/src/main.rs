@@ -5,7 +5,7 @@
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use env_server::tools::render;
-use env_server::tools::rollout::{Simulators, rollout_on};
+use env_server::tools::rollout::{EnvReuse, rollout_on};
 use env_server::{BaselinePolicy, EnvConfig};
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
@@ -16,7 +16,7 @@ mod serve;
 #[derive(Parser)]
 #[command(
     version,
-    about = "Half Field Offense simulator (3 offense agents vs a goalkeeper)"
+    about = "Half Field Offense simulator (1-4 offense agents vs a goalkeeper)"
 )]
 struct EnvServerCli {
     #[command(subcommand)]
@@ -105,9 +105,9 @@ fn run(cli: EnvServerCli) -> Result<()> {
                 ..load_env_config(env_config.as_deref())?
             };
             let simulators = if fresh {
-                Simulators::Fresh
+                EnvReuse::Fresh
             } else {
-                Simulators::One
+                EnvReuse::One
             };
             let s = rollout_on(config, policy, episodes, seed, simulators)?;
             if json {

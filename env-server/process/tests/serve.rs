@@ -2,7 +2,7 @@
 //! session that plays the coordinator and three fake agents
 //! (docs/protocol.md).
 
-use env_server::{Env, EnvConfig, Outcome, RunSimulators};
+use env_server::{Env, EnvConfig, Outcome, RunEnvs};
 use node::net::{NetConfig, free_port};
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
@@ -411,7 +411,7 @@ async fn episodes_match_the_simulator_and_reach_every_agent() {
     let config = EnvConfig::default();
     // The same run in process: the evaluation block carries the training
     // simulator's memories there and back.
-    let mut simulators = RunSimulators::new(config.clone(), 7).expect("env");
+    let mut simulators = RunEnvs::new(config.clone(), 7).expect("env");
     h.reset(3, 7).await;
     let plan = [
         (Mode::Training, None),

@@ -7,9 +7,6 @@ against HFO's goalkeeper.
   :class:`HalfFieldOffenseEnv`: one learner among baseline or scripted teammates.
 - :class:`BatchEnv`: many environments stepped in one call.
 - :class:`BaselinePolicy`: the simulator's baseline policies.
-- :class:`GreedyAgent`: a learner of ours frozen from its snapshot file.
-- :mod:`halffield.learner`: a Python learner as one agent of an advising
-  team, run by the Rust agent process (docs/learners.md).
 """
 
 from __future__ import annotations
@@ -17,7 +14,6 @@ from __future__ import annotations
 import gymnasium
 
 from halffield._core import DRIBBLE, MOVE, PASS, SHOOT, STATUS_NAMES
-from halffield._halffield import PAPER_ACTIONS, GreedyAgent
 from halffield.batch import BatchEnv
 from halffield.gym_env import HalfFieldOffenseEnv
 from halffield.parallel import HalfFieldOffenseParallelEnv, parallel_env
@@ -27,13 +23,11 @@ __all__ = [
     "DRIBBLE",
     "GYM_ID",
     "MOVE",
-    "PAPER_ACTIONS",
     "PASS",
     "SHOOT",
     "STATUS_NAMES",
     "BaselinePolicy",
     "BatchEnv",
-    "GreedyAgent",
     "HalfFieldOffenseEnv",
     "HalfFieldOffenseParallelEnv",
     "parallel_env",

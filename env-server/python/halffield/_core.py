@@ -39,7 +39,7 @@ def make_settings(
     frames_per_trial: int,
     untouched_time: int,
     pass_to_named_receiver: bool,
-) -> _halffield.Settings:
+) -> _halffield.TaskSettings:
     """Checks the settings of an environment (``ValueError`` names the bad one)."""
     for name, value in (
         ("offense", offense),
@@ -48,7 +48,7 @@ def make_settings(
     ):
         if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
             raise ValueError(f"{name} must be a non-negative integer, got {value!r}")
-    return _halffield.Settings(
+    return _halffield.TaskSettings(
         offense=int(offense),
         observation=observation,
         masked_action=masked_action,
@@ -68,14 +68,14 @@ def check_render_mode(render_mode: str | None) -> str | None:
     return render_mode
 
 
-def observation_box(settings: _halffield.Settings) -> spaces.Box:
+def observation_box(settings: _halffield.TaskSettings) -> spaces.Box:
     """One agent's observation space: every feature in [-1, 1] but the raw
     uniform numbers, in [1, 11]."""
     low, high = settings.observation_bounds()
     return spaces.Box(low=low, high=high, dtype=np.float32)
 
 
-def state_box(settings: _halffield.Settings) -> spaces.Box:
+def state_box(settings: _halffield.TaskSettings) -> spaces.Box:
     """The global state's space."""
     return spaces.Box(low=-1.0, high=1.0, shape=(settings.state_size,), dtype=np.float32)
 

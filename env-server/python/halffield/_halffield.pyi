@@ -1,14 +1,11 @@
 """Type stubs of the native module (env-server/python/src/)."""
 
-import os
-from collections.abc import Sequence
-
 import numpy as np
 import numpy.typing as npt
 
 STATUS_NAMES: list[str]
 
-class Settings:
+class TaskSettings:
     def __init__(
         self,
         *,
@@ -46,8 +43,8 @@ class BaselinePolicy:
     @property
     def name(self) -> str: ...
 
-class Simulator:
-    def __init__(self, settings: Settings) -> None: ...
+class Env:
+    def __init__(self, settings: TaskSettings) -> None: ...
     def reset(
         self, seed: int | None = None
     ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.int8]]: ...
@@ -59,8 +56,8 @@ class Simulator:
     def render_svg(self) -> str: ...
     def render_rgb(self) -> npt.NDArray[np.uint8]: ...
 
-class BatchSimulator:
-    def __init__(self, settings: Settings, n: int, threads: int | None = None) -> None: ...
+class BatchEnv:
+    def __init__(self, settings: TaskSettings, n: int, threads: int | None = None) -> None: ...
     @property
     def n(self) -> int: ...
     def reset(self, seed: int) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.int8]]: ...
@@ -75,10 +72,4 @@ class BatchSimulator:
         npt.NDArray[np.float32],
     ]: ...
 
-PAPER_ACTIONS: list[str]
-
-class GreedyAgent:
-    def __init__(self, path: str | os.PathLike[str]) -> None: ...
-    def act(self, state: Sequence[float], can_kick: bool) -> int: ...
-    @property
-    def digest(self) -> int: ...
+MAX_BATCH_ENVS: int

@@ -56,15 +56,17 @@ class BatchEnv:
         if (
             isinstance(num_envs, bool)
             or not isinstance(num_envs, (int, np.integer))
-            or num_envs < 1
+            or not 1 <= num_envs <= _halffield.MAX_BATCH_ENVS
         ):
-            raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
+            raise ValueError(
+                f"num_envs must be an integer from 1 to {_halffield.MAX_BATCH_ENVS}, got {num_envs!r}"
+            )
         self.num_envs = int(num_envs)
         if threads is not None and (
             isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1
         ):
             raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
-        self.simulator = _halffield.BatchSimulator(
+        self.simulator = _halffield.BatchEnv(
             self.settings, self.num_envs, None if threads is None else int(threads)
         )
         self.agents: list[str] = list(self.settings.agents)

@@ -56,7 +56,7 @@ class HalfFieldOffenseEnv(gymnasium.Env):
                 f"teammates must be a baseline policy's name or a function, got {teammates!r}"
             )
         self.teammates = teammates
-        self.simulator = _halffield.Simulator(self.settings)
+        self.simulator = _halffield.Env(self.settings)
         self.observation_space = _core.observation_box(self.settings)
         self.action_space = spaces.Discrete(self.settings.action_count)
         self._agents: list[str] = list(self.settings.agents)

@@ -58,7 +58,7 @@ class HalfFieldOffenseParallelEnv(ParallelEnv):
             untouched_time,
             pass_to_named_receiver,
         )
-        self.simulator = _halffield.Simulator(self.settings)
+        self.simulator = _halffield.Env(self.settings)
         self.possible_agents: list[str] = list(self.settings.agents)
         self.agents: list[str] = []
         self.observation_spaces = {

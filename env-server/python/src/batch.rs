@@ -5,8 +5,8 @@
 //! after a terminal step belongs to the next episode).
 
 use crate::arrays::array;
+use crate::checked_env::CheckedEnv;
 use crate::errors::{batch_step_error, not_started, value_error};
-use crate::game::Game;
 use crate::settings::TaskSettings;
 use crate::status;
 use env_server::Outcome;
@@ -32,32 +32,43 @@ type BatchStep<'py> = (
     Bound<'py, PyArray3<f32>>,
 );
 
-/// `n` simulated HFO tasks of the same settings: `BatchSimulator(settings,
+/// The most environments one batch holds (each takes a few kilobytes,
+/// its buffers a few hundred bytes).
+pub(crate) const MAX_ENVS: usize = 1 << 20;
+
+/// The most threads a batch starts.
+const MAX_THREADS: usize = 1024;
+
+/// `n` simulated HFO tasks of the same settings: `BatchEnv(settings,
 /// n, threads)`, then `reset(seed)`; environment `i` draws from `seed + i`.
 #[pyclass(module = "halffield._halffield")]
-pub(crate) struct BatchSimulator {
+pub(crate) struct BatchEnv {
     settings: TaskSettings,
     n: usize,
-    games: Vec<Game>,
+    games: Vec<CheckedEnv>,
     /// A pool of its own when the batch was given a thread count, else
     /// rayon's global pool (one thread per core, or `RAYON_NUM_THREADS`).
     pool: Option<ThreadPool>,
 }
 
 #[pymethods]
-impl BatchSimulator {
+impl BatchEnv {
     /// `n` environments of `settings`, none started, stepped on `threads`
     /// threads of their own (rayon's global pool without).
     #[new]
     #[pyo3(signature = (settings, n, threads = None))]
     fn new(settings: PyRef<'_, TaskSettings>, n: usize, threads: Option<usize>) -> PyResult<Self> {
-        if n == 0 {
-            return Err(PyValueError::new_err(
-                "a batch needs at least one environment, got n=0",
-            ));
+        if !(1..=MAX_ENVS).contains(&n) {
+            return Err(PyValueError::new_err(format!(
+                "a batch holds 1 to {MAX_ENVS} environments, got n={n}"
+            )));
         }
         let pool = match threads {
-            Some(0) => return Err(PyValueError::new_err("threads must be at least 1, got 0")),
+            Some(t) if !(1..=MAX_THREADS).contains(&t) => {
+                return Err(PyValueError::new_err(format!(
+                    "threads must be 1 to {MAX_THREADS}, got {t}"
+                )));
+            }
             Some(t) => Some(
                 ThreadPoolBuilder::new()
                     .num_threads(t)
@@ -68,7 +79,7 @@ impl BatchSimulator {
             ),
             None => None,
         };
-        Ok(BatchSimulator {
+        Ok(BatchEnv {
             settings: settings.clone(),
             n,
             games: Vec::new(),
@@ -86,7 +97,7 @@ impl BatchSimulator {
     /// each at the start of its first episode.
     fn reset<'py>(&mut self, py: Python<'py>, seed: u64) -> PyResult<BatchViews<'py>> {
         self.games = (0..self.n as u64)
-            .map(|i| Game::new(&self.settings, seed.wrapping_add(i)))
+            .map(|i| CheckedEnv::new(&self.settings, seed.wrapping_add(i)))
             .collect::<Result<_, _>>()
             .map_err(value_error)?;
         let mut out = Buffers::new(&self.settings, self.n);
@@ -162,7 +173,7 @@ enum Per {
     Action,
 }
 
-impl BatchSimulator {
+impl BatchEnv {
     /// The shape of an output: envs x agents x `per`.
     fn shape(&self, per: Per) -> (usize, usize, usize) {
         let inner = match per {
@@ -184,7 +195,7 @@ fn on<T: Send>(pool: &Option<ThreadPool>, work: impl FnOnce() -> T + Send) -> T 
 /// Plays `actions` in `game`, then writes its views into `slot`; an episode
 /// that ended leaves its last observations in `slot.last` and starts the
 /// next. Returns how the step ended and at which frame.
-fn advance(game: &mut Game, actions: &[Action], slot: Slot<'_>) -> (Outcome, u32) {
+fn advance(game: &mut CheckedEnv, actions: &[Action], slot: Slot<'_>) -> (Outcome, u32) {
     let outcome = game.step(actions);
     let frame = game.env().frame();
     if outcome.is_terminal() {

@@ -1,6 +1,6 @@
 //! Python exceptions of the binding's errors.
 
-use crate::game::StepError;
+use crate::checked_env::StepError;
 use pyo3::PyErr;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 

@@ -5,12 +5,11 @@
 
 mod actions;
 mod arrays;
+mod baseline;
 mod batch;
+mod checked_env;
 mod errors;
-mod game;
-mod learned;
 mod observation;
-mod policy;
 mod settings;
 mod single;
 mod status;
@@ -21,11 +20,10 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _halffield(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<settings::TaskSettings>()?;
-    m.add_class::<single::Simulator>()?;
-    m.add_class::<batch::BatchSimulator>()?;
-    m.add_class::<policy::SeededPolicy>()?;
-    m.add_class::<learned::GreedyAgent>()?;
-    m.add("PAPER_ACTIONS", learned::paper_action_names())?;
+    m.add_class::<single::Env>()?;
+    m.add_class::<batch::BatchEnv>()?;
+    m.add_class::<baseline::BaselinePolicy>()?;
     m.add("STATUS_NAMES", status::NAMES.to_vec())?;
+    m.add("MAX_BATCH_ENVS", batch::MAX_ENVS)?;
     Ok(())
 }

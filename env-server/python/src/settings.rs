@@ -46,7 +46,7 @@ impl MaskedAction {
 
 /// Everything an environment is made of, validated: shared by every
 /// simulator made from it.
-#[pyclass(frozen, name = "Settings", module = "halffield._halffield")]
+#[pyclass(frozen, module = "halffield._halffield")]
 #[derive(Clone, Debug)]
 pub(crate) struct TaskSettings {
     /// The simulator's settings.

@@ -3,10 +3,10 @@
 //! pictures.
 
 use crate::arrays::array;
+use crate::baseline::BaselinePolicy;
+use crate::checked_env::CheckedEnv;
 use crate::errors::{not_started, step_error, value_error};
-use crate::game::Game;
 use crate::observation::global_state;
-use crate::policy::SeededPolicy;
 use crate::settings::TaskSettings;
 use crate::status;
 use env_server::tools::render::frame_svg;
@@ -26,19 +26,19 @@ type SingleStep<'py> = (
     u32,
 );
 
-/// One simulated HFO task: `Simulator(settings)`, then `reset(seed)`.
+/// One simulated HFO task: `Env(settings)`, then `reset(seed)`.
 #[pyclass(module = "halffield._halffield")]
-pub(crate) struct Simulator {
+pub(crate) struct Env {
     settings: TaskSettings,
-    game: Option<Game>,
+    game: Option<CheckedEnv>,
 }
 
 #[pymethods]
-impl Simulator {
+impl Env {
     /// A simulator of `settings`; its first `reset` needs a seed.
     #[new]
     fn new(settings: PyRef<'_, TaskSettings>) -> Self {
-        Simulator {
+        Env {
             settings: settings.clone(),
             game: None,
         }
@@ -49,7 +49,7 @@ impl Simulator {
     #[pyo3(signature = (seed = None))]
     fn reset<'py>(&mut self, py: Python<'py>, seed: Option<u64>) -> PyResult<AgentViews<'py>> {
         if let Some(seed) = seed {
-            self.game = Some(Game::new(&self.settings, seed).map_err(value_error)?);
+            self.game = Some(CheckedEnv::new(&self.settings, seed).map_err(value_error)?);
         }
         let game = self
             .game
@@ -74,14 +74,14 @@ impl Simulator {
         ))
     }
 
-    /// The global state (see `Settings.state_size`).
+    /// The global state (see `TaskSettings.state_size`).
     fn state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f32>>> {
         let game = self.game.as_ref().ok_or_else(not_started)?;
         Ok(PyArray1::from_vec(py, global_state(game.env())))
     }
 
     /// Every agent's action under `policy` as the simulator stands.
-    fn baseline_actions(&self, mut policy: PyRefMut<'_, SeededPolicy>) -> PyResult<Vec<usize>> {
+    fn baseline_actions(&self, mut policy: PyRefMut<'_, BaselinePolicy>) -> PyResult<Vec<usize>> {
         let game = self.game.as_ref().ok_or_else(not_started)?;
         policy.actions(game)
     }
@@ -104,7 +104,7 @@ impl Simulator {
 }
 
 /// Every agent's observation and action mask in `game` as it stands.
-fn views<'py>(py: Python<'py>, game: &Game) -> PyResult<AgentViews<'py>> {
+fn views<'py>(py: Python<'py>, game: &CheckedEnv) -> PyResult<AgentViews<'py>> {
     let n = game.env().offense();
     let (features, actions) = (game.observation().size(n), game.action_count());
     let mut obs = vec![0.0; n * features];

@@ -212,8 +212,10 @@ def test_bad_seeds_and_policies() -> None:
         halffield.HalfFieldOffenseEnv(teammates="best")
     with pytest.raises(TypeError, match="teammates must be a baseline policy's name or a function"):
         halffield.HalfFieldOffenseEnv(teammates=3)
-    with pytest.raises(ValueError, match="num_envs must be a positive integer, got 0"):
+    with pytest.raises(ValueError, match="num_envs must be an integer from 1 to 1048576, got 0"):
         halffield.BatchEnv(0)
+    with pytest.raises(ValueError, match="from 1 to 1048576, got 1000000000000"):
+        halffield.BatchEnv(10**12)
     with pytest.raises(ValueError, match="threads must be a positive integer or None, got 0"):
         halffield.BatchEnv(2, threads=0)
     lone = halffield.parallel_env(offense=1)

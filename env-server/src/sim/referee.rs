@@ -36,17 +36,6 @@ impl Outcome {
             Outcome::InGame | Outcome::OutOfTime => 0.0,
         }
     }
-
-    /// HFO's name of this status, as its `statusToString` prints it.
-    pub fn hfo_status(self) -> &'static str {
-        match self {
-            Outcome::InGame => "InGame",
-            Outcome::Goal => "Goal",
-            Outcome::Captured => "CapturedByDefense",
-            Outcome::OutOfBounds => "OutOfBounds",
-            Outcome::OutOfTime => "OutOfTime",
-        }
-    }
 }
 
 /// The referee's memory within an episode.
@@ -176,19 +165,9 @@ mod tests {
     }
 
     #[test]
-    fn outcomes_are_named_as_hfo_names_its_statuses() {
+    fn only_the_game_in_play_is_not_terminal() {
         use Outcome::*;
         let all = [InGame, Goal, Captured, OutOfBounds, OutOfTime];
-        assert_eq!(
-            all.map(Outcome::hfo_status),
-            [
-                "InGame",
-                "Goal",
-                "CapturedByDefense",
-                "OutOfBounds",
-                "OutOfTime"
-            ]
-        );
         assert_eq!(
             all.map(Outcome::is_terminal),
             [false, true, true, true, true]

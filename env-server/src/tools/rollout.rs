@@ -4,8 +4,8 @@
 use crate::sim::config::{EnvConfig, EnvConfigError};
 use crate::sim::env::Env;
 use crate::sim::referee::Outcome;
-use crate::tools::decisions::{DecisionRecorder, DecisionStats};
-use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
+use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
+use crate::tools::decision_stats::{DecisionRecorder, DecisionStats};
 use crate::tools::tally::{Moments, OutcomeCounts};
 use rand::{RngCore, SeedableRng};
 use rand_xoshiro::SplitMix64;
@@ -58,7 +58,7 @@ pub struct Spread {
 
 /// Where a rollout plays its episodes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Simulators {
+pub enum EnvReuse {
     /// All on one simulator seeded with the rollout's seed, whose agents
     /// remember from episode to episode, as one long-lived HFO server's.
     #[default]
@@ -75,7 +75,7 @@ pub fn rollout(
     episodes: u64,
     seed: u64,
 ) -> Result<RolloutSummary, EnvConfigError> {
-    rollout_on(config, policy, episodes, seed, Simulators::One)
+    rollout_on(config, policy, episodes, seed, EnvReuse::One)
 }
 
 /// Plays `episodes` episodes under `policy` with `seed` on `simulators`;
@@ -85,7 +85,7 @@ pub fn rollout_on(
     policy: BaselinePolicy,
     episodes: u64,
     seed: u64,
-    simulators: Simulators,
+    simulators: EnvReuse,
 ) -> Result<RolloutSummary, EnvConfigError> {
     let offense = config.offense;
     let mut env = Env::new(config.clone(), seed)?;
@@ -97,7 +97,7 @@ pub fn rollout_on(
     let (mut frame_moments, mut goal_moments) = (Moments::default(), Moments::default());
     let start = Instant::now();
     for _ in 0..episodes {
-        if simulators == Simulators::Fresh {
+        if simulators == EnvReuse::Fresh {
             env = Env::new(config.clone(), episode_seeds.next_u64())?;
         }
         let (outcome, n) = play_episode(&mut env, policy, &mut rng, |env, actions| {
@@ -118,7 +118,7 @@ pub fn rollout_on(
         policy: policy.name().to_owned(),
         offense,
         seed,
-        fresh_simulators: simulators == Simulators::Fresh,
+        fresh_simulators: simulators == EnvReuse::Fresh,
         episodes,
         goal_pct: 100.0 * ratio(outcomes.goal, episodes),
         mean_frames: ratio(frames, episodes),

@@ -1,11 +1,11 @@
 //! The simulator side of a run, without any I/O: the run's simulators, the
 //! episode being played, the observations it shows and the actions it
-//! awaits. Its simulators are the in-process backend's (`RunSimulators`):
+//! awaits. Its simulators are the in-process backend's (`RunEnvs`):
 //! one training simulator per run seeded at Reset, and an evaluation block
 //! begun whenever `PlayEpisode` carries a seed.
 
 use env_server::MAX_OFFENSE;
-use env_server::{Env, EnvConfig, Outcome, RunSimulators};
+use env_server::{Env, EnvConfig, Outcome, RunEnvs};
 use proto::{
     Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode,
     State,
@@ -13,17 +13,17 @@ use proto::{
 
 /// The simulators of one run.
 #[derive(Debug)]
-pub struct Simulators(RunSimulators);
+pub struct ServedRun(RunEnvs);
 
-impl Simulators {
+impl ServedRun {
     /// The simulators of a run with settings `config` (an `EnvConfig`
     /// encoded with `proto::encode_settings`), the training one seeded with
     /// `seed`; the error is one line.
     pub fn new(config: &[u8], seed: u64) -> Result<Self, String> {
         let config: EnvConfig =
             proto::decode_settings(config).map_err(|e| format!("invalid env config: {e}"))?;
-        RunSimulators::new(config, seed)
-            .map(Simulators)
+        RunEnvs::new(config, seed)
+            .map(ServedRun)
             .map_err(|e| format!("invalid env config: {e}"))
     }
 
@@ -42,7 +42,7 @@ impl Simulators {
             .ok_or_else(|| "evaluation episode before any evaluation seed".to_owned())
     }
 
-    /// The simulator of `mode`, if there is one (see [`Simulators::prepare`]).
+    /// The simulator of `mode`, if there is one (see [`ServedRun::prepare`]).
     pub fn env(&mut self, mode: Mode) -> Option<&mut Env> {
         self.0.env(mode)
     }
@@ -391,7 +391,7 @@ mod tests {
 
     #[test]
     fn evaluation_needs_a_seed_first() {
-        let mut s = Simulators::new(&settings(&EnvConfig::default()), 1).unwrap();
+        let mut s = ServedRun::new(&settings(&EnvConfig::default()), 1).unwrap();
         assert!(s.prepare(Mode::Evaluation, None).is_err());
         assert!(s.prepare(Mode::Training, None).is_ok());
         assert!(s.prepare(Mode::Evaluation, Some(4)).is_ok());
@@ -404,12 +404,12 @@ mod tests {
             offense: 9,
             ..EnvConfig::default()
         };
-        let e = Simulators::new(&settings(&nine), 1).unwrap_err();
+        let e = ServedRun::new(&settings(&nine), 1).unwrap_err();
         assert!(e.contains("offense"), "{e}");
         let mut long = settings(&EnvConfig::default());
         long.push(1);
         for bytes in [&b"{"[..], &long] {
-            let e = Simulators::new(bytes, 1).unwrap_err();
+            let e = ServedRun::new(bytes, 1).unwrap_err();
             assert!(e.starts_with("invalid env config: "), "{e}");
         }
     }

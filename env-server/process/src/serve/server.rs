@@ -12,7 +12,7 @@
 //! as malformed; any action not of the current run, episode and frame is
 //! stale.
 
-use super::episode::{Batches, Episode, Offer, Simulators};
+use super::episode::{Batches, Episode, Offer, ServedRun};
 use super::link::{Inbox, Link};
 use anyhow::{Result, bail};
 use env_server::Env;
@@ -47,7 +47,7 @@ struct Play {
 /// The current run.
 struct CurrentRun {
     run: u32,
-    simulators: Simulators,
+    envs: ServedRun,
     /// The last episode played in this run.
     last_episode: Option<u32>,
 }
@@ -191,7 +191,7 @@ impl Server {
                 proto::MAX_STALL_MS
             )));
         }
-        let simulators = match Simulators::new(config, seed) {
+        let envs = match ServedRun::new(config, seed) {
             Ok(s) => s,
             Err(text) => return Ok(ControlReply::Error(text)),
         };
@@ -199,10 +199,10 @@ impl Server {
         self.stall_limit = Duration::from_millis(stall_ms);
         self.silent_since = [None; MAX_OFFENSE];
         self.abandon("its run was reset");
-        self.link.set_team(simulators.offense())?;
+        self.link.set_team(envs.offense())?;
         self.run = Some(CurrentRun {
             run: header.run,
-            simulators,
+            envs,
             last_episode: None,
         });
         Ok(ControlReply::Ok)
@@ -245,7 +245,7 @@ impl Server {
         let Some(run) = self.run.as_mut() else {
             return Ok(());
         };
-        let env = match run.simulators.prepare(mode, seed) {
+        let env = match run.envs.prepare(mode, seed) {
             Ok(env) => env,
             Err(text) => {
                 self.reply(&query, header, ControlReply::Error(text));
@@ -510,7 +510,7 @@ fn playing<'a>(
     run: &'a mut Option<CurrentRun>,
 ) -> Option<(&'a mut Play, &'a mut Env)> {
     let play = play.as_mut()?;
-    let env = run.as_mut()?.simulators.env(play.episode.mode)?;
+    let env = run.as_mut()?.envs.env(play.episode.mode)?;
     Some((play, env))
 }
 

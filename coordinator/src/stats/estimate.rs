@@ -1,5 +1,7 @@
-//! Mean and Student's t confidence interval over runs; Holm's correction
-//! of a family of p-values.
+//! Mean and Student's t confidence interval over runs, and Welch's
+//! interval of a difference of means.
+
+use std::fmt;
 
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, StudentsT};
@@ -18,6 +20,19 @@ pub struct Estimate {
     pub ci_low: Option<f64>,
     /// Upper bound of the confidence interval.
     pub ci_high: Option<f64>,
+}
+
+impl fmt::Display for Estimate {
+    /// `mean [low, high]` to the formatter's precision (2 digits unless
+    /// given), the mean alone without an interval, `-` without a sample.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let p = f.precision().unwrap_or(2);
+        match (self.mean, self.ci_low, self.ci_high) {
+            (Some(m), Some(lo), Some(hi)) => write!(f, "{m:.p$} [{lo:.p$}, {hi:.p$}]"),
+            (Some(m), _, _) => write!(f, "{m:.p$}"),
+            _ => f.write_str("-"),
+        }
+    }
 }
 
 /// The two-sided Student's t quantile `t_{(1 + level) / 2, df}`, e.g.
@@ -108,40 +123,9 @@ pub fn difference_of_means(a: &[f64], b: &[f64], level: f64) -> Estimate {
     }
 }
 
-/// Holm's step-down adjustment of a family of p-values, in their order:
-/// with the m p-values sorted ascending, the k-th (from 0) becomes the
-/// largest of min(1, (m - j) p_(j)) over j <= k. Rejecting where the
-/// adjusted p-value is below alpha bounds the family-wise error by alpha.
-pub fn holm(p: &[f64]) -> Vec<f64> {
-    let m = p.len();
-    let mut order: Vec<usize> = (0..m).collect();
-    order.sort_by(|&i, &j| p[i].total_cmp(&p[j]));
-    let mut adjusted = vec![0.0; m];
-    let mut running = 0.0f64;
-    for (k, &i) in order.iter().enumerate() {
-        running = running.max(((m - k) as f64 * p[i]).min(1.0));
-        adjusted[i] = running;
-    }
-    adjusted
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn holm_by_hand() {
-        // Sorted 0.01, 0.02, 0.03, 0.5 times 4, 3, 2, 1: 0.04, 0.06, 0.06
-        // (kept monotone), 0.5; statsmodels' multipletests(method="holm").
-        let got = holm(&[0.03, 0.5, 0.01, 0.02]);
-        let want = [0.06, 0.5, 0.04, 0.06];
-        assert!(
-            got.iter().zip(want).all(|(g, w)| close(*g, w, 1e-12)),
-            "{got:?}"
-        );
-        assert_eq!(holm(&[0.9, 0.8]), vec![1.0, 1.0]);
-        assert_eq!(holm(&[]), Vec::<f64>::new());
-    }
 
     #[test]
     fn welch_by_hand() {
@@ -218,6 +202,15 @@ mod tests {
                 ci_high: None
             }
         );
+    }
+
+    #[test]
+    fn an_estimate_shows_what_is_known_of_it() {
+        let e = estimate(&[2.0, 4.0, 4.0, 4.0, 5.0, 5.0, 7.0, 9.0], 0.95);
+        assert_eq!(format!("{e}"), "5.00 [3.21, 6.79]");
+        assert_eq!(format!("{e:.1}"), "5.0 [3.2, 6.8]");
+        assert_eq!(format!("{:.1}", estimate(&[3.5], 0.95)), "3.5");
+        assert_eq!(format!("{}", estimate(&[], 0.95)), "-");
     }
 
     #[test]

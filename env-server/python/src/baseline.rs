@@ -2,8 +2,8 @@
 //! random stream as `env-server rollout`.
 
 use crate::actions::encode;
-use crate::game::Game;
-use env_server::tools::policy::policy_rng;
+use crate::checked_env::CheckedEnv;
+use env_server::tools::baseline::policy_rng;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -11,23 +11,23 @@ use rand_xoshiro::Xoshiro256PlusPlus;
 /// A baseline policy (random, shoot, dribble, pass, uniform) with its own
 /// random stream: `BaselinePolicy(name, seed)` in Python chooses as `env-server
 /// rollout --policy name --seed seed` does, one agent after the other.
-#[pyclass(name = "BaselinePolicy", module = "halffield._halffield")]
-pub(crate) struct SeededPolicy {
+#[pyclass(module = "halffield._halffield")]
+pub(crate) struct BaselinePolicy {
     policy: env_server::BaselinePolicy,
     rng: Xoshiro256PlusPlus,
 }
 
 #[pymethods]
-impl SeededPolicy {
+impl BaselinePolicy {
     /// The policy `name` drawing from `seed`.
     #[new]
     fn new(name: &str, seed: u64) -> PyResult<Self> {
         let policy = name
             .parse()
-            .map_err(|e: env_server::tools::policy::UnknownPolicy| {
+            .map_err(|e: env_server::tools::baseline::UnknownPolicy| {
                 PyValueError::new_err(e.to_string())
             })?;
-        Ok(SeededPolicy {
+        Ok(BaselinePolicy {
             policy,
             rng: policy_rng(seed),
         })
@@ -40,9 +40,9 @@ impl SeededPolicy {
     }
 }
 
-impl SeededPolicy {
+impl BaselinePolicy {
     /// Every agent's action index in `game` as it stands, drawn in agent order.
-    pub(crate) fn actions(&mut self, game: &Game) -> PyResult<Vec<usize>> {
+    pub(crate) fn actions(&mut self, game: &CheckedEnv) -> PyResult<Vec<usize>> {
         let env = game.env();
         (0..env.offense())
             .map(|agent| {

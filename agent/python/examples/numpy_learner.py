@@ -17,7 +17,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from halffield.learner import Learner, Start, State, Transition, serve
+from adhoc_advising.learner import Learner, Start, State, Transition, serve
 
 #: Tiles per feature and tiling, their width, and the tilings per feature.
 TILES, WIDTH, TILINGS = 11, 0.2, 4

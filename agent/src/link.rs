@@ -7,11 +7,12 @@
 use std::fmt;
 use std::str::FromStr;
 
-use rand::{Rng, SeedableRng};
+use rand::{Rng, RngCore, SeedableRng};
+use rand_xoshiro::SplitMix64;
 use serde::{Deserialize, Serialize};
 
 use crate::config_error::{AgentConfigError, require, require_unit};
-use crate::policy::AgentRng;
+use crate::selection::AgentRng;
 
 /// The longest latency or advice timeout accepted (ms): one minute, the
 /// protocol's longest wait.
@@ -242,12 +243,9 @@ impl Link {
     }
 }
 
-/// SplitMix64's output function (Steele, Lea & Flood 2014).
+/// SplitMix64's first output from state `x` (Steele, Lea & Flood 2014).
 fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
+    SplitMix64::seed_from_u64(x).next_u64()
 }
 
 #[cfg(test)]

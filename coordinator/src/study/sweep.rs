@@ -3,12 +3,12 @@
 //! it acted on, against the loss probability or the median latency of its
 //! advice messages.
 
-use agent::{NetworkConditions, StrategyName};
+use agent::{Algorithm, NetworkConditions};
 
-use super::analysis::EntryResults;
 use crate::figures::{Condition, ConditionPoint, ConditionSet, Figure, FigureError, draw_sweep};
 use crate::schedule::EvalPoint;
 use crate::stats::Estimate;
+use crate::stats::analysis::EntryResults;
 
 /// The training episodes at which the goal percentage is read.
 pub const EPISODES: [u64; 3] = [1000, 2000, 5000];
@@ -85,12 +85,8 @@ pub fn sweep_figures(
 /// One set per advising method along `condition`, if the study sweeps it:
 /// some method has points at two values of it.
 fn condition_sets(entries: &[EntryResults], condition: Condition, level: f64) -> Vec<ConditionSet> {
-    let advising = |e: &&EntryResults| {
-        !matches!(
-            e.entry.algorithm,
-            StrategyName::NoAdvice | StrategyName::Random
-        )
-    };
+    let advising =
+        |e: &&EntryResults| !matches!(e.entry.algorithm, Algorithm::NoAdvice | Algorithm::Random);
     let mut sets: Vec<ConditionSet> = Vec::new();
     for e in entries.iter().filter(advising) {
         let Some(x) = x_of(condition, conditions(e)) else {
@@ -128,7 +124,7 @@ mod tests {
     #[test]
     fn the_presets_entries_lie_on_both_axes() {
         let study = StudyConfig::preset("advice-network").unwrap();
-        for algorithm in [StrategyName::AdHocTd, StrategyName::AdHocVisit] {
+        for algorithm in [Algorithm::AdHocTd, Algorithm::AdHocVisit] {
             let xs = |condition| -> Vec<f64> {
                 (study.entries.iter())
                     .filter(|e| e.algorithm == algorithm)

@@ -58,7 +58,7 @@ pub(crate) enum StepError {
 
 /// One simulator and how its agents observe and act.
 #[derive(Clone, Debug)]
-pub(crate) struct Game {
+pub(crate) struct CheckedEnv {
     env: Env,
     observation: ObservationSet,
     masked: MaskedAction,
@@ -69,10 +69,10 @@ pub(crate) struct Game {
     ended_at_reset: bool,
 }
 
-impl Game {
+impl CheckedEnv {
     /// A simulator of `settings` drawing from `seed`, before its first episode.
     pub(crate) fn new(settings: &TaskSettings, seed: u64) -> Result<Self, EnvConfigError> {
-        Ok(Game {
+        Ok(CheckedEnv {
             env: Env::new(settings.config.clone(), seed)?,
             observation: settings.observation,
             masked: settings.masked,

@@ -9,12 +9,12 @@ use crate::sim::env::Env;
 
 /// A run's training simulator and its current evaluation simulator.
 #[derive(Clone, Debug)]
-pub struct RunSimulators {
+pub struct RunEnvs {
     training: Env,
     evaluation: Option<Env>,
 }
 
-impl RunSimulators {
+impl RunEnvs {
     /// The simulators of a run with settings `config`, the training one
     /// drawing from `seed`.
     pub fn new(config: EnvConfig, seed: u64) -> Result<Self, EnvConfigError> {
@@ -80,7 +80,7 @@ mod tests {
 
     #[test]
     fn carried_memories_go_to_the_evaluation_block_and_come_back() {
-        let mut sims = RunSimulators::new(EnvConfig::default(), 3).unwrap();
+        let mut sims = RunEnvs::new(EnvConfig::default(), 3).unwrap();
         until_a_course_is_remembered(sims.env(Mode::Training).unwrap());
         let trained = sims.env(Mode::Training).unwrap().memories().to_vec();
         assert!(sims.env(Mode::Evaluation).is_none(), "no block began");
@@ -101,7 +101,7 @@ mod tests {
             evaluation_memory: EvaluationMemory::Fresh,
             ..EnvConfig::default()
         };
-        let mut sims = RunSimulators::new(config, 3).unwrap();
+        let mut sims = RunEnvs::new(config, 3).unwrap();
         until_a_course_is_remembered(sims.env(Mode::Training).unwrap());
         let trained = sims.env(Mode::Training).unwrap().memories().to_vec();
         sims.begin_evaluation(11);

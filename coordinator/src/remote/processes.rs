@@ -24,7 +24,7 @@ use crate::error::{ConfigError, Error};
 use crate::transport::{Auth, Endpoints, ZenohSettings};
 
 /// The joined network and the processes of the experiment.
-pub struct Network {
+pub struct ZenohTeam {
     settings: ZenohSettings,
     runtime: tokio::runtime::Runtime,
     session: zenoh::Session,
@@ -44,9 +44,9 @@ pub struct Network {
     _watch: Subscriber<()>,
 }
 
-impl std::fmt::Debug for Network {
+impl std::fmt::Debug for ZenohTeam {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Network")
+        f.debug_struct("ZenohTeam")
             .field("keys", &self.keys)
             .field("roles", &self.roles)
             .finish()
@@ -163,7 +163,7 @@ async fn refuse_a_busy_experiment(
     }
 }
 
-impl Network {
+impl ZenohTeam {
     /// Joins the network of `settings.endpoints.experiment`, starts
     /// env-server and the agent processes of `team` (unless attaching) and waits
     /// until every one of them is alive and answers control queries.
@@ -221,7 +221,7 @@ impl Network {
                 .map_err(|e| net_error(format!("cannot declare liveliness: {e}")))?;
             Ok::<_, Error>((session, watch, token))
         })?;
-        Ok(Network {
+        Ok(ZenohTeam {
             children: Arc::new(Children::new(runtime.handle().clone())),
             settings: settings.clone(),
             runtime,
@@ -539,7 +539,7 @@ impl Network {
     }
 }
 
-impl Drop for Network {
+impl Drop for ZenohTeam {
     fn drop(&mut self) {
         self.stop();
     }

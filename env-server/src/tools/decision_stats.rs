@@ -224,7 +224,7 @@ impl DecisionRecorder {
 mod tests {
     use super::*;
     use crate::sim::config::EnvConfig;
-    use crate::tools::policy::{BaselinePolicy, play_episode, policy_rng};
+    use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
 
     fn recorded(policy: BaselinePolicy, episodes: u32) -> (DecisionStats, Vec<Outcome>) {
         let mut env = Env::new(EnvConfig::default(), 3).unwrap();

@@ -1,4 +1,4 @@
-"""halffield.learner.serve on its own: the channel's requests and answers,
+"""adhoc_advising.learner.serve on its own: the channel's requests and answers,
 and a learner's failure reported as the agent expects it."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import io
 import json
 
-from halffield.learner import Learner, Start, Transition, serve
+from adhoc_advising.learner import Learner, Start, Transition, serve
 
 START = {
     "op": "start",

@@ -4,10 +4,10 @@ use serde::{Deserialize, Serialize};
 
 /// Communication and budget counters of one agent.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Counters {
+pub struct AdviceCounters {
     /// Advice requests sent (one per request, whatever the number of recipients).
     pub advice_requests: u64,
-    /// Individual answers received.
+    /// Replies that arrived, with or without advice.
     pub advice_replies_received: u64,
     /// Steps acted on advice: the ad hoc ask budget spent.
     pub ask_spent: u64,

@@ -10,9 +10,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from conftest import ROOT, env_server_binary
+from conftest import ROOT, workspace_binary
 
-EXAMPLE = ROOT / "env-server" / "python" / "examples" / "numpy_learner.py"
+EXAMPLE = ROOT / "agent" / "python" / "examples" / "numpy_learner.py"
 
 
 def team_file(directory: Path, learner: Path) -> Path:
@@ -20,8 +20,8 @@ def team_file(directory: Path, learner: Path) -> Path:
     command = json.dumps([sys.executable, str(learner)])
     path = directory / "team.toml"
     path.write_text(
-        '[[agent]]\nstrategy = "adhoc-td"\n\n[[agent]]\nstrategy = "adhoc-td"\n\n'
-        f'[[agent]]\nstrategy = "adhoc-td"\n'
+        '[[agent]]\nalgorithm = "adhoc-td"\n\n[[agent]]\nalgorithm = "adhoc-td"\n\n'
+        f'[[agent]]\nalgorithm = "adhoc-td"\n'
         f'learner = {{ command = {command}, source = "{learner}" }}\n'
     )
     return path
@@ -29,7 +29,7 @@ def team_file(directory: Path, learner: Path) -> Path:
 
 def run(team: Path, out: Path, episodes: int) -> subprocess.CompletedProcess[str]:
     """`coordinator run` of one run of `team` over loopback zenoh."""
-    bin_dir = env_server_binary().parent
+    bin_dir = workspace_binary("coordinator").parent
     return subprocess.run(
         [
             str(bin_dir / "coordinator"),
@@ -76,7 +76,7 @@ FAULTY = """
 import sys
 sys.path.insert(0, {examples!r})
 from numpy_learner import LinearSarsa
-from halffield.learner import serve
+from adhoc_advising.learner import serve
 
 class Faulty(LinearSarsa):
     learned = 0

@@ -1,16 +1,16 @@
-//! The one vocabulary of strategy names, shared by the command line, team and
-//! study files and `config.json`.
+//! The one vocabulary of advising algorithms, shared by the command line, team
+//! and study files and `config.json`.
 
 use std::fmt;
 use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-/// The name of a strategy, spelled in kebab-case (`adhoc-td`) wherever it is
+/// An advising algorithm, named in kebab-case (`adhoc-td`) wherever it is
 /// written or read.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(try_from = "String", into = "&'static str")]
-pub enum StrategyName {
+pub enum Algorithm {
     /// `no-advice`: SARSA(lambda) alone.
     #[default]
     NoAdvice,
@@ -26,59 +26,59 @@ pub enum StrategyName {
     Random,
 }
 
-/// A strategy name that is not one of [`StrategyName::ALL`].
+/// An algorithm name that is not one of [`Algorithm::ALL`].
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown strategy `{0}` (expected one of: {names})", names = StrategyName::list())]
-pub struct UnknownStrategy(pub String);
+#[error("unknown algorithm `{0}` (expected one of: {names})", names = Algorithm::list())]
+pub struct UnknownAlgorithm(pub String);
 
-impl StrategyName {
-    /// Every strategy, in the order the paper presents them.
-    pub const ALL: [StrategyName; 6] = [
-        StrategyName::NoAdvice,
-        StrategyName::AdHocVisit,
-        StrategyName::AdHocTd,
-        StrategyName::Torrey,
-        StrategyName::EpisodeSharing,
-        StrategyName::Random,
+impl Algorithm {
+    /// Every algorithm, in the order the paper presents them.
+    pub const ALL: [Algorithm; 6] = [
+        Algorithm::NoAdvice,
+        Algorithm::AdHocVisit,
+        Algorithm::AdHocTd,
+        Algorithm::Torrey,
+        Algorithm::EpisodeSharing,
+        Algorithm::Random,
     ];
 
     /// The name as written on the command line and in files.
     pub fn name(self) -> &'static str {
         match self {
-            StrategyName::NoAdvice => "no-advice",
-            StrategyName::AdHocVisit => "adhoc-visit",
-            StrategyName::AdHocTd => "adhoc-td",
-            StrategyName::Torrey => "torrey",
-            StrategyName::EpisodeSharing => "episode-sharing",
-            StrategyName::Random => "random",
+            Algorithm::NoAdvice => "no-advice",
+            Algorithm::AdHocVisit => "adhoc-visit",
+            Algorithm::AdHocTd => "adhoc-td",
+            Algorithm::Torrey => "torrey",
+            Algorithm::EpisodeSharing => "episode-sharing",
+            Algorithm::Random => "random",
         }
     }
 
     /// Older spellings still accepted when reading (never written).
     pub fn aliases(self) -> &'static [&'static str] {
         match self {
-            StrategyName::AdHocVisit => &["ad-hoc-visit"],
-            StrategyName::AdHocTd => &["ad-hoc-td"],
+            Algorithm::AdHocVisit => &["ad-hoc-visit"],
+            Algorithm::AdHocTd => &["ad-hoc-td"],
             _ => &[],
         }
     }
 
-    /// Whether the strategy has a Mistake Correcting mode.
+    /// Whether the algorithm has a Mistake Correcting mode.
     pub fn supports_mistake_correcting(self) -> bool {
         matches!(
             self,
-            StrategyName::AdHocVisit | StrategyName::AdHocTd | StrategyName::Torrey
+            Algorithm::AdHocVisit | Algorithm::AdHocTd | Algorithm::Torrey
         )
     }
 
     /// Whether it is one of the two ad hoc methods.
     pub fn is_ad_hoc(self) -> bool {
-        matches!(self, StrategyName::AdHocVisit | StrategyName::AdHocTd)
+        matches!(self, Algorithm::AdHocVisit | Algorithm::AdHocTd)
     }
 
     /// Whether its agents communicate (advice or shared episodes).
     pub fn communicates(self) -> bool {
-        !matches!(self, StrategyName::NoAdvice | StrategyName::Random)
+        !matches!(self, Algorithm::NoAdvice | Algorithm::Random)
     }
 
     /// Every name, comma-separated (for messages).
@@ -88,34 +88,34 @@ impl StrategyName {
     }
 }
 
-impl fmt::Display for StrategyName {
+impl fmt::Display for Algorithm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
-impl FromStr for StrategyName {
-    type Err = UnknownStrategy;
+impl FromStr for Algorithm {
+    type Err = UnknownAlgorithm;
 
     /// A name or one of its aliases.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Self::ALL
             .into_iter()
             .find(|n| n.name() == s || n.aliases().contains(&s))
-            .ok_or_else(|| UnknownStrategy(s.to_owned()))
+            .ok_or_else(|| UnknownAlgorithm(s.to_owned()))
     }
 }
 
-impl TryFrom<String> for StrategyName {
-    type Error = UnknownStrategy;
+impl TryFrom<String> for Algorithm {
+    type Error = UnknownAlgorithm;
 
     fn try_from(s: String) -> Result<Self, Self::Error> {
         s.parse()
     }
 }
 
-impl From<StrategyName> for &'static str {
-    fn from(name: StrategyName) -> Self {
+impl From<Algorithm> for &'static str {
+    fn from(name: Algorithm) -> Self {
         name.name()
     }
 }
@@ -126,32 +126,29 @@ mod tests {
 
     #[test]
     fn names_and_aliases_parse_and_display() {
-        for name in StrategyName::ALL {
-            assert_eq!(name.name().parse::<StrategyName>(), Ok(name));
+        for name in Algorithm::ALL {
+            assert_eq!(name.name().parse::<Algorithm>(), Ok(name));
             assert_eq!(name.to_string(), name.name());
             for alias in name.aliases() {
-                assert_eq!(alias.parse::<StrategyName>(), Ok(name));
+                assert_eq!(alias.parse::<Algorithm>(), Ok(name));
             }
         }
-        assert_eq!(
-            "ad-hoc-td".parse::<StrategyName>(),
-            Ok(StrategyName::AdHocTd)
-        );
-        let e = "best".parse::<StrategyName>().unwrap_err().to_string();
+        assert_eq!("ad-hoc-td".parse::<Algorithm>(), Ok(Algorithm::AdHocTd));
+        let e = "best".parse::<Algorithm>().unwrap_err().to_string();
         assert_eq!(
             e,
-            "unknown strategy `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
+            "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
              torrey, episode-sharing, random)"
         );
     }
 
     #[test]
     fn serde_writes_the_name_and_reads_aliases() {
-        let json = serde_json::to_string(&StrategyName::AdHocVisit).unwrap();
+        let json = serde_json::to_string(&Algorithm::AdHocVisit).unwrap();
         assert_eq!(json, r#""adhoc-visit""#);
-        let read: StrategyName = serde_json::from_str(r#""ad-hoc-visit""#).unwrap();
-        assert_eq!(read, StrategyName::AdHocVisit);
-        let err = serde_json::from_str::<StrategyName>(r#""best""#).unwrap_err();
+        let read: Algorithm = serde_json::from_str(r#""ad-hoc-visit""#).unwrap();
+        assert_eq!(read, Algorithm::AdHocVisit);
+        let err = serde_json::from_str::<Algorithm>(r#""best""#).unwrap_err();
         assert!(err.to_string().contains("best"), "{err}");
     }
 }

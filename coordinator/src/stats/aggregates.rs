@@ -1,15 +1,17 @@
 //! Each method's aggregate statistics (Agarwal et al. 2021, `rliable`;
-//! see [`crate::bootstrap`]): the mean and the interquartile mean of its
+//! see [`crate::stats::bootstrap`]): the mean and the interquartile mean of its
 //! per-run scores with stratified bootstrap intervals, and its probability
 //! of improvement over the baseline, on the last ten evaluations and on the
 //! area under the curve (the scores of [`super::gains`]).
 
+use std::collections::BTreeMap;
+
 use serde::Serialize;
 
-use super::analysis::EntryResults;
-use super::gains::{area, last_ten};
-use crate::bootstrap::{Aggregate, Improvement, RESAMPLES, SEED, aggregate, improvement};
 use crate::schedule::RunResult;
+use crate::stats::analysis::EntryResults;
+use crate::stats::bootstrap::{Aggregate, Improvement, RESAMPLES, SEED, aggregate, improvement};
+use crate::stats::gains::{area, last_ten};
 
 /// One score's statistics over a method's runs.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -58,6 +60,55 @@ pub struct Aggregates {
     pub baseline: Option<String>,
     /// Every method, in entry order.
     pub entries: Vec<EntryAggregate>,
+}
+
+/// `coordinator aggregate`'s answer: every algorithm's statistics of its
+/// scores (one per run), with its probability of improvement over the
+/// baseline's; fields in the order they are printed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScoreAggregates<'a> {
+    /// Each algorithm's statistics, none for an algorithm without a score.
+    pub algorithms: BTreeMap<&'a str, Option<Scores>>,
+    /// The baseline of the probabilities of improvement.
+    pub baseline: &'a str,
+    /// The intervals' confidence level.
+    pub level: f64,
+    /// Bootstrap resamples behind every interval.
+    pub resamples: usize,
+    /// The seed of every interval's generator.
+    pub seed: u64,
+}
+
+/// The statistics of `scores` (each algorithm's scores, one per run) against
+/// the algorithm named `baseline`; the error says which input is wrong.
+pub fn score_aggregates<'a>(
+    scores: &'a BTreeMap<String, Vec<f64>>,
+    baseline: &'a str,
+    level: f64,
+) -> Result<ScoreAggregates<'a>, String> {
+    if !(level > 0.0 && level < 1.0) {
+        return Err(format!("the level must be in (0, 1), got {level}"));
+    }
+    if let Some((name, _)) = scores.iter().find(|(_, v)| v.is_empty()) {
+        return Err(format!("{name} has no score"));
+    }
+    let Some(base) = scores.get(baseline) else {
+        let names: Vec<&str> = scores.keys().map(String::as_str).collect();
+        return Err(format!("no baseline {baseline:?} among {names:?}"));
+    };
+    let algorithms = (scores.iter())
+        .map(|(name, x)| {
+            let y = (name != baseline).then_some(base.as_slice());
+            (name.as_str(), Scores::of(x, y, level))
+        })
+        .collect();
+    Ok(ScoreAggregates {
+        algorithms,
+        baseline,
+        level,
+        resamples: RESAMPLES,
+        seed: SEED,
+    })
 }
 
 /// The scores of every run of `entry` that has one.

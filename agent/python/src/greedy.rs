@@ -15,7 +15,7 @@ use pyo3::prelude::*;
 /// do: Move without the ball, else the greedy action of its table (ties in
 /// the order Shoot, Dribble, PassFar, PassNear; Shoot in a state it never
 /// saw).
-#[pyclass(module = "halffield._halffield")]
+#[pyclass(module = "adhoc_advising._adhoc_advising")]
 pub(crate) struct GreedyAgent {
     /// Behind a lock only so Python threads may share it.
     agent: Mutex<Agent>,
@@ -46,7 +46,7 @@ impl GreedyAgent {
         })
     }
 
-    /// The index (`halffield.PAPER_ACTIONS`) of its action in `state`, the
+    /// The index (`adhoc_advising.PAPER_ACTIONS`) of its action in `state`, the
     /// paper's 6 features, when it can kick (`can_kick`) or not.
     fn act(&mut self, state: Vec<f64>, can_kick: bool) -> PyResult<usize> {
         let state: [f64; STATE_FEATURES] = state.try_into().map_err(|s: Vec<f64>| {

@@ -7,15 +7,17 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from conftest import env_server_binary
+from conftest import workspace_binary
 
 import halffield
+
+import adhoc_advising
 
 
 def _trained_team(out: Path) -> list[Path]:
     """The three snapshot files of a short NoAdvice run of the coordinator
     built beside env-server."""
-    coordinator = env_server_binary().parent / "coordinator"
+    coordinator = workspace_binary("coordinator")
     if not coordinator.is_file():
         pytest.fail(f"{coordinator} is missing: build the workspace first")
     subprocess.run(
@@ -28,8 +30,8 @@ def _trained_team(out: Path) -> list[Path]:
 
 
 def test_a_trained_team_plays_the_papers_actions(tmp_path: Path) -> None:
-    team = [halffield.GreedyAgent(p) for p in _trained_team(tmp_path)]
-    assert halffield.PAPER_ACTIONS == ["move", "shoot", "dribble", "pass-near", "pass-far"]
+    team = [adhoc_advising.GreedyAgent(p) for p in _trained_team(tmp_path)]
+    assert adhoc_advising.PAPER_ACTIONS == ["move", "shoot", "dribble", "pass-near", "pass-far"]
     assert len({agent.digest for agent in team}) == 3, "three different tables"
     env = halffield.parallel_env(observation="paper")
     observations, infos = env.reset(seed=3)
@@ -46,17 +48,17 @@ def test_a_trained_team_plays_the_papers_actions(tmp_path: Path) -> None:
         observations, _, _, _, infos = env.step(actions)
     assert kicks > 0
     # A state no run ever saw: the greedy order's first kick, SHOOT.
-    assert team[0].act([0.123] * 6, True) == halffield.PAPER_ACTIONS.index("shoot")
+    assert team[0].act([0.123] * 6, True) == adhoc_advising.PAPER_ACTIONS.index("shoot")
 
 
 def test_bad_snapshots_and_states_are_refused(tmp_path: Path) -> None:
     with pytest.raises(OSError, match="cannot read"):
-        halffield.GreedyAgent(tmp_path / "missing.qtable")
+        adhoc_advising.GreedyAgent(tmp_path / "missing.qtable")
     junk = tmp_path / "junk.qtable"
     junk.write_bytes(b"not a snapshot")
     with pytest.raises(ValueError, match="not a usable snapshot"):
-        halffield.GreedyAgent(junk)
-    agent = halffield.GreedyAgent(_trained_team(tmp_path)[0])
+        adhoc_advising.GreedyAgent(junk)
+    agent = adhoc_advising.GreedyAgent(_trained_team(tmp_path)[0])
     with pytest.raises(ValueError, match="6 features"):
         agent.act([0.0] * 5, True)
     with pytest.raises(ValueError, match="finite"):

@@ -3,11 +3,11 @@
 
 use serde::Serialize;
 
-use super::config::{StudyConfig, StudyEntry};
 use crate::schedule::{EvalPoint, RunResult};
+use crate::stats::summary::Summary;
+use crate::stats::wilcoxon::{Interval, better_intervals, signed_rank};
 use crate::stats::{Estimate, estimate};
-use crate::summary::Summary;
-use crate::wilcoxon::{Interval, better_intervals, signed_rank};
+use crate::study::{StudyConfig, StudyEntry};
 
 /// One experiment's results.
 #[derive(Clone, Debug)]

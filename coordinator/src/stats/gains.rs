@@ -5,8 +5,8 @@
 
 use serde::Serialize;
 
-use super::analysis::EntryResults;
 use crate::schedule::RunResult;
+use crate::stats::analysis::EntryResults;
 use crate::stats::{Estimate, estimate};
 
 /// How many of the last evaluation points the "last ten" mean averages.

@@ -6,9 +6,8 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::analysis::{EntryResults, point_tests};
-use crate::stats::holm;
-use crate::wilcoxon::{Interval, better_intervals};
+use crate::stats::analysis::{EntryResults, point_tests};
+use crate::stats::wilcoxon::{Interval, better_intervals};
 
 /// Where one method is significantly better or worse than the baseline,
 /// on Holm-adjusted p-values.
@@ -64,4 +63,40 @@ pub fn holm_against(entries: &[EntryResults], baseline: &str, alpha: f64) -> Vec
             }
         })
         .collect()
+}
+
+/// Holm's step-down adjustment of a family of p-values, in their order:
+/// with the m p-values sorted ascending, the k-th (from 0) becomes the
+/// largest of min(1, (m - j) p_(j)) over j <= k. Rejecting where the
+/// adjusted p-value is below alpha bounds the family-wise error by alpha.
+pub fn holm(p: &[f64]) -> Vec<f64> {
+    let m = p.len();
+    let mut order: Vec<usize> = (0..m).collect();
+    order.sort_by(|&i, &j| p[i].total_cmp(&p[j]));
+    let mut adjusted = vec![0.0; m];
+    let mut running = 0.0f64;
+    for (k, &i) in order.iter().enumerate() {
+        running = running.max(((m - k) as f64 * p[i]).min(1.0));
+        adjusted[i] = running;
+    }
+    adjusted
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn holm_by_hand() {
+        // Sorted 0.01, 0.02, 0.03, 0.5 times 4, 3, 2, 1: 0.04, 0.06, 0.06
+        // (kept monotone), 0.5; statsmodels' multipletests(method="holm").
+        let got = holm(&[0.03, 0.5, 0.01, 0.02]);
+        let want = [0.06, 0.5, 0.04, 0.06];
+        assert!(
+            got.iter().zip(want).all(|(g, w)| (*g - w).abs() <= 1e-12),
+            "{got:?}"
+        );
+        assert_eq!(holm(&[0.9, 0.8]), vec![1.0, 1.0]);
+        assert_eq!(holm(&[]), Vec::<f64>::new());
+    }
 }
