@@ -44,7 +44,7 @@ mod figure;
 #[cfg(test)]
 mod fixtures;
 mod layout;
-mod network;
+mod sweep;
 
 pub use data::{Metric, Point, Series, SeriesPoint, SeriesSet};
 pub use difference::{
@@ -53,7 +53,7 @@ pub use difference::{
 };
 pub use figure::{Figure, FigureError};
 pub use layout::SIZE;
-pub use network::{Condition, ConditionPoint, ConditionSet, draw_sweep};
+pub use sweep::{Condition, ConditionPoint, ConditionSet, draw_sweep};
 
 use catalogue::{FIGURES, note};
 
