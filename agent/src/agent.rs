@@ -9,15 +9,14 @@ use crate::advice_counters::AdviceCounters;
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
 use crate::exchange::{AdviceExchange, Transition};
-use crate::fidelity::{AdvisorTies, SharedBootstrap, TorreyIntent};
+use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
 use crate::sarsa::TabularSarsa;
-use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random, majority};
+use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
-use crate::strategy::AskContext;
-use crate::strategy::Strategy;
+use crate::strategy::{AdvisingStrategy, AskContext, GiveContext};
 use crate::tiles::{Tiling, TilingParams};
 
 /// What an agent sees in one simulator frame.
@@ -95,6 +94,8 @@ pub struct Agent {
     id: usize,
     team_size: usize,
     config: AgentConfig,
+    /// The decisions of its advising method.
+    strategy: Box<dyn AdvisingStrategy>,
     tiling: Tiling,
     states: StateIndex,
     learner: Box<dyn Learner>,
@@ -148,6 +149,7 @@ impl Agent {
         }
         Ok(Self {
             link: config.network.map(|n| Link::new(n, seed)),
+            strategy: config.strategy.build(&config.fidelity),
             id,
             team_size,
             config,
@@ -166,6 +168,15 @@ impl Agent {
             training_episodes: 0,
             counters: AdviceCounters::default(),
         })
+    }
+
+    /// The same agent with its advising decisions made by `strategy`
+    /// instead of its configuration's: how a method defined outside this
+    /// crate joins a team ([`AdvisingStrategy`]). `config.strategy` stays
+    /// what the results record.
+    pub fn with_strategy(mut self, strategy: Box<dyn AdvisingStrategy>) -> Self {
+        self.strategy = strategy;
+        self
     }
 
     /// This agent's id (its index in the team).
@@ -232,7 +243,7 @@ impl Agent {
     /// The budget the paper plots: advice given (ad hoc advisor, Torrey
     /// teacher) or transitions shared (EpisodeSharing); 0 otherwise.
     pub fn spent_budget(&self) -> u64 {
-        self.config.strategy.spent_budget(&self.counters)
+        self.strategy.spent_budget(&self.counters)
     }
 
     /// Starts an episode in `mode`; forgets the previous episode's trace,
@@ -252,7 +263,7 @@ impl Agent {
     }
 
     fn training(&self) -> bool {
-        self.mode == Mode::Training && self.config.strategy.learns()
+        self.mode == Mode::Training && self.strategy.learns()
     }
 
     /// One frame: closes the previous step with `reward` (ignored on the
@@ -307,7 +318,7 @@ impl Agent {
         reachable: &dyn Fn(usize) -> bool,
     ) -> Decision {
         self.in_flight = None;
-        if !self.config.strategy.learns() {
+        if !self.strategy.learns() {
             return Decision::Act(self.random_action(obs.can_kick));
         }
         let key = self.tiling.key(&obs.state);
@@ -329,11 +340,8 @@ impl Agent {
         if self.asks(key, index) {
             self.fill_reach(positions, reachable);
             if !self.reach.is_empty() {
-                let intended = self
-                    .config
-                    .strategy
-                    .mistake_correcting()
-                    .then(|| self.intent(index, &obs.state));
+                let intended =
+                    (self.strategy.mistake_correcting()).then(|| self.intent(index, &obs.state));
                 self.counters.advice_requests += 1;
                 self.in_flight = Some(InFlight {
                     key,
@@ -366,7 +374,8 @@ impl Agent {
             return Action::Move;
         };
         self.counters.advice_replies_received += replies;
-        let action = match majority(answers, self.config.fidelity.vote_ties, &mut self.rng) {
+        let ties = self.config.fidelity.vote_ties;
+        let action = match self.strategy.follow(answers, ties, &mut self.rng) {
             Some(advice) => {
                 self.counters.ask_spent += 1;
                 self.advised.push(f.key);
@@ -429,7 +438,7 @@ impl Agent {
         if !std::mem::take(&mut self.share_ready) {
             return Vec::new();
         }
-        let budget = self.config.strategy.sharing_allowance(&self.counters);
+        let budget = self.strategy.sharing_allowance(&self.counters);
         let receivers = self.team_size - 1;
         let mut shares = Vec::with_capacity(receivers);
         for (k, to) in (0..self.team_size).filter(|&j| j != self.id).enumerate() {
@@ -463,20 +472,15 @@ impl Agent {
             }
             None => (0, ActionValues::default()),
         };
-        let confident = self.config.strategy.confident(
+        let at = GiveContext {
             visits,
-            &values,
-            &self.counters,
-            fidelity.torrey_unknown_state,
-            &mut self.rng,
-        );
-        if !confident {
+            values: &values,
+            counters: &self.counters,
+        };
+        if !self.strategy.gives(&at, &mut self.rng) {
             return None;
         }
-        let answer = match fidelity.advisor_ties {
-            AdvisorTies::First => greedy_first(&values.q),
-            AdvisorTies::Random => greedy_random(&values.q, &mut self.rng),
-        };
+        let answer = (self.strategy).advice(&values, fidelity.advisor_ties, &mut self.rng);
         if intended == Some(answer) {
             return None;
         }
@@ -539,24 +543,20 @@ impl Agent {
             training_episodes: self.training_episodes,
             counters: &self.counters,
         };
-        self.config.strategy.asks(at, &mut self.rng)
+        self.strategy.asks(&at, &mut self.rng)
     }
 
     /// Whom to ask among the `reachable` agents: Torrey's fixed teacher
     /// `(i + 1) mod n`, else G(s).
     fn fill_reach(&mut self, positions: &[[f64; 2]], reachable: &dyn Fn(usize) -> bool) {
-        self.config
-            .strategy
-            .advisors(self.id, self.team_size, positions, &mut self.reach);
+        (self.strategy).advisors(self.id, self.team_size, positions, &mut self.reach);
         self.reach.retain(|&j| reachable(j));
     }
 
     /// The intended action a Mistake Correcting advisee sends along: its
     /// learner's choice, or greedy for a Torrey student whose fidelity says so.
     fn intent(&mut self, index: usize, state: &State) -> Action {
-        let greedy = matches!(self.config.strategy, Strategy::Torrey(_))
-            && self.config.fidelity.torrey_intent == TorreyIntent::Greedy;
-        if greedy {
+        if self.strategy.intends_greedy() {
             let at = Seen {
                 state,
                 index: Some(index),
@@ -588,7 +588,7 @@ impl Agent {
     fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<OpenStep>) {
         self.learner
             .learn((prev.step(), reward, next.as_ref().map(OpenStep::step)));
-        if self.config.strategy.sharing_allowance(&self.counters) > 0 {
+        if self.strategy.sharing_allowance(&self.counters) > 0 {
             self.episode.push(Transition {
                 state: prev.state,
                 action: prev.action,

@@ -24,6 +24,12 @@ pub enum Algorithm {
     EpisodeSharing,
     /// `random`: the random-policy baseline.
     Random,
+    /// `early-advising`: ask at every step until the budget is spent (Ilhan
+    /// et al.'s baseline).
+    EarlyAdvising,
+    /// `random-advising`: ask with a fixed probability while the budget
+    /// lasts (Ilhan et al.'s baseline).
+    RandomAdvising,
 }
 
 /// An algorithm name that is not one of [`Algorithm::ALL`].
@@ -32,14 +38,17 @@ pub enum Algorithm {
 pub struct UnknownAlgorithm(pub String);
 
 impl Algorithm {
-    /// Every algorithm, in the order the paper presents them.
-    pub const ALL: [Algorithm; 6] = [
+    /// Every algorithm: the paper's, in the order it presents them, then
+    /// the field's since.
+    pub const ALL: [Algorithm; 8] = [
         Algorithm::NoAdvice,
         Algorithm::AdHocVisit,
         Algorithm::AdHocTd,
         Algorithm::Torrey,
         Algorithm::EpisodeSharing,
         Algorithm::Random,
+        Algorithm::EarlyAdvising,
+        Algorithm::RandomAdvising,
     ];
 
     /// The name as written on the command line and in files.
@@ -51,6 +60,8 @@ impl Algorithm {
             Algorithm::Torrey => "torrey",
             Algorithm::EpisodeSharing => "episode-sharing",
             Algorithm::Random => "random",
+            Algorithm::EarlyAdvising => "early-advising",
+            Algorithm::RandomAdvising => "random-advising",
         }
     }
 
@@ -138,7 +149,7 @@ mod tests {
         assert_eq!(
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
-             torrey, episode-sharing, random)"
+             torrey, episode-sharing, random, early-advising, random-advising)"
         );
     }
 

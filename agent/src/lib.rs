@@ -72,6 +72,8 @@ pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapsh
 pub use proto::Mode;
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
-pub use strategy::{AdHoc, Confidence, Strategy, Torrey};
+pub use strategy::{
+    AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Strategy, Torrey,
+};
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

@@ -1,13 +1,110 @@
-//! The advising strategies (docs/algorithms.md 2-3) as one sum type: each
-//! variant carries its own constants, with the paper's defaults.
+//! The seam between the advising framework and an advising method: the
+//! [`AdvisingStrategy`] trait, with the decisions the literature varies
+//! (whether to ask, whom, whether to give, what the asker does with the
+//! advice), and the paper's methods as its implementations. The framework
+//! ([`Agent`](crate::Agent)) keeps what every method shares: budgets'
+//! counters, visit counts n(s), network conditions, Mistake Correcting's
+//! exchange and the transports.
 //!
-//! Every constant is named as its key in a team file (see [`AgentConfig`]);
-//! the confidence function comes with the name (`adhoc-visit`, `adhoc-td`).
-//!
-//! [`AgentConfig`]: crate::AgentConfig
+//! [`Strategy`] is a method's settings as team and study files write them;
+//! [`Strategy::build`] makes its decisions.
 
-mod decisions;
+mod ad_hoc;
+mod baselines;
+mod budgeted;
+mod episode_sharing;
 mod settings;
+mod torrey;
 
-pub(crate) use decisions::AskContext;
-pub use settings::{AdHoc, Confidence, Strategy, Torrey};
+use std::fmt;
+
+use proto::Action;
+
+use crate::advice_counters::AdviceCounters;
+use crate::fidelity::{AdvisorTies, VoteTies};
+use crate::learner::ActionValues;
+use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
+
+pub use settings::{AdHoc, Budgeted, Confidence, Strategy, Torrey};
+
+/// What an advisee knows when it decides whether to ask about a state.
+#[derive(Clone, Copy, Debug)]
+pub struct AskContext<'a> {
+    /// The state was not advised yet in this episode.
+    pub fresh: bool,
+    /// Visits n(s) of the state.
+    pub visits: u64,
+    /// Training episodes finished so far.
+    pub training_episodes: u64,
+    /// The agent's counters.
+    pub counters: &'a AdviceCounters,
+}
+
+/// What an advisor knows when it decides whether to answer.
+#[derive(Clone, Copy, Debug)]
+pub struct GiveContext<'a> {
+    /// Its visits n(s) of the advisee's state (0 for a state it never met).
+    pub visits: u64,
+    /// Its learner's values there (all unlearned for a state it never met).
+    pub values: &'a ActionValues,
+    /// Its counters.
+    pub counters: &'a AdviceCounters,
+}
+
+/// The decisions of an advising method, made for one agent. Every random
+/// draw comes from the agent's generator, in the order the calls happen, so
+/// a method is as reproducible as the framework around it.
+pub trait AdvisingStrategy: fmt::Debug + Send {
+    /// Whether the agent learns (every method but the random baseline).
+    fn learns(&self) -> bool {
+        true
+    }
+
+    /// Advisee: whether a training step with the ball asks for advice.
+    fn asks(&mut self, at: &AskContext<'_>, rng: &mut AgentRng) -> bool;
+
+    /// Advisee: fills `out` with whom agent `me` of a team of `team_size`
+    /// asks (`positions`: every agent's field position by id); the framework
+    /// then leaves out whoever is not reachable now.
+    fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>);
+
+    /// Whether it runs in Mistake Correcting mode: the advisee sends its
+    /// intended action along and advisors answer only when they disagree.
+    fn mistake_correcting(&self) -> bool {
+        false
+    }
+
+    /// Whether a Mistake Correcting advisee's intended action is its
+    /// learner's greedy action (else its learner's own choice).
+    fn intends_greedy(&self) -> bool {
+        false
+    }
+
+    /// Advisor: whether it answers about a state.
+    fn gives(&mut self, at: &GiveContext<'_>, rng: &mut AgentRng) -> bool;
+
+    /// Advisor: the action it advises where its learner holds `values`:
+    /// its greedy action, ties broken as `ties` says.
+    fn advice(&mut self, values: &ActionValues, ties: AdvisorTies, rng: &mut AgentRng) -> Action {
+        match ties {
+            AdvisorTies::First => greedy_first(&values.q),
+            AdvisorTies::Random => greedy_random(&values.q, rng),
+        }
+    }
+
+    /// Advisee: the action it follows given the advice that arrived (any
+    /// number, possibly none): the majority vote, ties broken as `ties` says;
+    /// `None` plays its own choice.
+    fn follow(&mut self, advice: &[Action], ties: VoteTies, rng: &mut AgentRng) -> Option<Action> {
+        majority(advice, ties, rng)
+    }
+
+    /// The budget the paper plots (advice given, or transitions shared).
+    fn spent_budget(&self, counters: &AdviceCounters) -> u64;
+
+    /// Transitions still to share after a goal episode (episode sharing's
+    /// budget left); the agent records its episode while it is not 0.
+    fn sharing_allowance(&self, _counters: &AdviceCounters) -> u64 {
+        0
+    }
+}

@@ -6,7 +6,7 @@ use crate::fidelity::{Fidelity, Profile};
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
-use crate::strategy::{AdHoc, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, Strategy, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -1080,4 +1080,132 @@ fn an_authors_episode_sharing_receiver_bootstraps_on_move() {
     // delta = 0 + 0.9 * Q(s1, next) - 0, times alpha 0.1 and trace 1.
     assert!((replay(with(sharing.clone())) - 0.09).abs() < 1e-12);
     assert_eq!(replay(authors(sharing)), 0.0);
+}
+
+/// A method written outside the core: ask everyone at every step with the
+/// ball while `ask_budget` lasts, follow the first advice that arrives,
+/// answer every request about a visited state.
+#[derive(Debug)]
+struct AskAlways {
+    ask_budget: u64,
+}
+
+impl crate::AdvisingStrategy for AskAlways {
+    fn asks(&mut self, at: &crate::AskContext<'_>, _: &mut AgentRng) -> bool {
+        at.counters.ask_spent < self.ask_budget
+    }
+
+    fn advisors(&self, me: usize, n: usize, _: &[[f64; 2]], out: &mut Vec<usize>) {
+        out.clear();
+        out.extend((0..n).filter(|&j| j != me));
+    }
+
+    fn gives(&mut self, at: &crate::GiveContext<'_>, _: &mut AgentRng) -> bool {
+        at.visits > 0
+    }
+
+    fn follow(
+        &mut self,
+        advice: &[Action],
+        _: crate::VoteTies,
+        _: &mut AgentRng,
+    ) -> Option<Action> {
+        advice.first().copied()
+    }
+
+    fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
+        counters.advice_given
+    }
+}
+
+#[test]
+fn a_method_defined_outside_the_core_makes_every_decision() {
+    let mut a = agent(0, 3, config(Algorithm::NoAdvice))
+        .with_strategy(Box::new(AskAlways { ask_budget: 2 }));
+    // It asks even the same state twice and before any finished episode
+    // (no ad hoc rule applies), follows the first advice, and stops when
+    // its own budget is spent.
+    let mut ex = script(&[Dribble, PassFar, PassFar]);
+    assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut ex), Dribble);
+    assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut ex), Dribble);
+    a.act(&obs(kick_state(1)), 0.0, &[], &mut ex);
+    assert_eq!(ex.asked.len(), 2);
+    assert_eq!(ex.asked[0], (0, vec![1, 2], None));
+    assert_eq!(a.counters().ask_spent, 2);
+    // As an advisor it answers about a state it visited, with its greedy
+    // action, and about nothing else.
+    assert!(a.advise(&kick_state(0), None).is_some());
+    assert_eq!(a.advise(&kick_state(4), None), None);
+    assert_eq!(a.spent_budget(), 1);
+}
+
+#[test]
+fn early_advising_asks_at_every_step_until_its_budget_is_spent() {
+    let early = Strategy::EarlyAdvising(Budgeted {
+        ask_budget: 3,
+        ..Budgeted::new(1.0)
+    });
+    let mut a = agent(0, 3, with(early));
+    // From the first episode on, the same state again and again.
+    let mut ex = script(&[Dribble]);
+    for _ in 0..5 {
+        a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    }
+    assert_eq!(
+        ex.asked.len(),
+        3,
+        "one request per step while the budget lasts"
+    );
+    assert_eq!(a.counters().ask_spent, 3);
+    // Unanswered requests spend nothing: it keeps asking.
+    let mut b = agent(0, 3, with(Strategy::from(Algorithm::EarlyAdvising)));
+    let mut silent = script(&[]);
+    for _ in 0..5 {
+        b.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
+    }
+    assert_eq!((silent.asked.len(), b.counters().ask_spent), (5, 0));
+}
+
+#[test]
+fn random_advising_asks_with_its_probability() {
+    let random = |p| {
+        Strategy::RandomAdvising(Budgeted {
+            ask_probability: p,
+            ..Budgeted::new(0.5)
+        })
+    };
+    let asked = |p| {
+        let mut a = agent(0, 3, with(random(p)));
+        let mut silent = script(&[]);
+        for k in 0..2000 {
+            a.act(&obs(kick_state(k % 5)), 0.0, &[], &mut silent);
+        }
+        silent.asked.len()
+    };
+    assert_eq!(asked(0.0), 0);
+    assert_eq!(asked(1.0), 2000);
+    let half = asked(0.5);
+    // Binomial(2000, 0.5): 1000 +- 4.5 standard deviations.
+    assert!((900..=1100).contains(&half), "{half}");
+    let e = with(random(1.5)).validate().unwrap_err();
+    assert_eq!(e.key, "ask_probability");
+}
+
+#[test]
+fn budgeted_advisors_answer_about_visited_states_within_their_budget() {
+    let mut a = agent(
+        1,
+        3,
+        with(Strategy::EarlyAdvising(Budgeted {
+            give_budget: 1,
+            ..Budgeted::new(1.0)
+        })),
+    );
+    teach(
+        &mut a,
+        &[(kick_state(0), known([0.0, 0.1, 0.9, 0.2, 0.0], 1))],
+    );
+    assert_eq!(a.advise(&kick_state(1), None), None, "never visited");
+    assert_eq!(a.advise(&kick_state(0), None), Some(Dribble));
+    assert_eq!(a.advise(&kick_state(0), None), None, "budget spent");
 }

@@ -12,7 +12,7 @@ use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use crate::link::NetworkConditions;
-use crate::strategy::{AdHoc, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, Strategy, Torrey};
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -85,6 +85,8 @@ struct Table {
     sharing_budget: Option<u64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     reachable: Option<Reachable>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ask_probability: Option<f64>,
     profile: Profile,
     #[serde(skip_serializing_if = "Option::is_none")]
     torrey_unknown_state: Option<TorreyUnknownState>,
@@ -134,6 +136,7 @@ impl From<&AgentConfig> for Table {
             importance_threshold: None,
             sharing_budget: None,
             reachable: None,
+            ask_probability: None,
             profile: c.fidelity.profile,
             torrey_unknown_state: Some(c.fidelity.torrey_unknown_state),
             torrey_intent: Some(c.fidelity.torrey_intent),
@@ -158,6 +161,15 @@ impl From<&AgentConfig> for Table {
             }
             Strategy::EpisodeSharing { sharing_budget } => {
                 table.sharing_budget = Some(*sharing_budget);
+            }
+            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => {
+                table.ask_budget = Some(b.ask_budget);
+                table.give_budget = Some(b.give_budget);
+                table.reachable = Some(b.reachable.clone());
+                // Early advising asks at every step: its probability is no setting.
+                if matches!(c.strategy, Strategy::RandomAdvising(_)) {
+                    table.ask_probability = Some(b.ask_probability);
+                }
             }
             Strategy::NoAdvice | Strategy::Random => {}
         }
@@ -216,6 +228,27 @@ impl Table {
             Strategy::EpisodeSharing { sharing_budget } => {
                 take(&mut self.sharing_budget, sharing_budget);
             }
+            Strategy::EarlyAdvising(Budgeted {
+                ask_budget,
+                give_budget,
+                reachable,
+                ..
+            }) => {
+                take(&mut self.ask_budget, ask_budget);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.reachable, reachable);
+            }
+            Strategy::RandomAdvising(Budgeted {
+                ask_probability,
+                ask_budget,
+                give_budget,
+                reachable,
+            }) => {
+                take(&mut self.ask_probability, ask_probability);
+                take(&mut self.ask_budget, ask_budget);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.reachable, reachable);
+            }
             Strategy::NoAdvice | Strategy::Random => {}
         }
         if let Some(key) = self
@@ -259,6 +292,7 @@ impl Table {
             ("importance_threshold", self.importance_threshold.is_some()),
             ("sharing_budget", self.sharing_budget.is_some()),
             ("reachable", self.reachable.is_some()),
+            ("ask_probability", self.ask_probability.is_some()),
         ]
         .into_iter()
     }
@@ -311,6 +345,15 @@ mod tests {
             })),
             with(Strategy::EpisodeSharing { sharing_budget: 9 }),
             with(Strategy::Random),
+            with(Strategy::EarlyAdvising(Budgeted {
+                ask_budget: 5,
+                ..Budgeted::new(1.0)
+            })),
+            with(Strategy::RandomAdvising(Budgeted {
+                ask_probability: 0.3,
+                reachable: Reachable::Agents(vec![2]),
+                ..Budgeted::new(0.5)
+            })),
             AgentConfig {
                 fidelity: Fidelity {
                     vote_ties: VoteTies::Random,

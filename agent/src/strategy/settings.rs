@@ -2,10 +2,14 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::AdvisingStrategy;
+use super::baselines::Alone;
+use super::episode_sharing::EpisodeSharing;
+use super::torrey::TorreyTeacher;
 use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
-use crate::config_error::{AgentConfigError, require_non_negative};
-use crate::fidelity::Profile;
+use crate::config_error::{AgentConfigError, require_non_negative, require_unit};
+use crate::fidelity::{Fidelity, Profile};
 
 /// The paper's budget of every advising and sharing side.
 const PAPER_BUDGET: u64 = 1000;
@@ -93,6 +97,37 @@ impl Default for Torrey {
     }
 }
 
+/// The constants of the action-advising baselines of Ilhan, Gow & Perez-
+/// Liebana (early and random advising): an advisee asks its reachable set
+/// at a training step with the ball, every time (early advising) or with
+/// probability `ask_probability` (random advising), while its ask budget
+/// lasts; an advisor answers about a state it visited while its give budget
+/// lasts (docs/algorithms.md section 7).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Budgeted {
+    /// The probability of asking at a step (1 for early advising; default
+    /// 0.5 for random advising), in [0, 1].
+    pub ask_probability: f64,
+    /// Advisee budget: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// The reachable set G: whom the advisee asks (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Budgeted {
+    /// Asking with probability `ask_probability` and the paper's budgets.
+    pub fn new(ask_probability: f64) -> Self {
+        Self {
+            ask_probability,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
 /// Which learner and advising strategy an agent runs, with its constants.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum Strategy {
@@ -110,6 +145,11 @@ pub enum Strategy {
     },
     /// The authors' random baseline: never learns, never advises.
     Random,
+    /// Early advising: ask at every step until the budget is spent
+    /// (`ask_probability` is 1).
+    EarlyAdvising(Budgeted),
+    /// Random advising: ask with a fixed probability.
+    RandomAdvising(Budgeted),
 }
 
 impl From<Algorithm> for Strategy {
@@ -134,6 +174,26 @@ impl Strategy {
                 sharing_budget: PAPER_BUDGET,
             },
             Algorithm::Random => Strategy::Random,
+            Algorithm::EarlyAdvising => Strategy::EarlyAdvising(Budgeted::new(1.0)),
+            Algorithm::RandomAdvising => Strategy::RandomAdvising(Budgeted::new(0.5)),
+        }
+    }
+
+    /// Its decisions for one agent, under the fidelity rules `fidelity`.
+    pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        match self {
+            Strategy::NoAdvice => Box::new(Alone { learns: true }),
+            Strategy::Random => Box::new(Alone { learns: false }),
+            Strategy::AdHoc(a) => Box::new(a.clone()),
+            Strategy::Torrey(t) => Box::new(TorreyTeacher {
+                settings: t.clone(),
+                unknown: fidelity.torrey_unknown_state,
+                intent: fidelity.torrey_intent,
+            }),
+            Strategy::EpisodeSharing { sharing_budget } => Box::new(EpisodeSharing {
+                sharing_budget: *sharing_budget,
+            }),
+            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => Box::new(b.clone()),
         }
     }
 
@@ -148,6 +208,8 @@ impl Strategy {
             Strategy::Torrey(_) => Algorithm::Torrey,
             Strategy::EpisodeSharing { .. } => Algorithm::EpisodeSharing,
             Strategy::Random => Algorithm::Random,
+            Strategy::EarlyAdvising(_) => Algorithm::EarlyAdvising,
+            Strategy::RandomAdvising(_) => Algorithm::RandomAdvising,
         }
     }
 
@@ -198,18 +260,33 @@ impl Strategy {
             Strategy::Torrey(t) => {
                 require_non_negative("importance_threshold", t.importance_threshold)
             }
+            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => {
+                require_unit("ask_probability", b.ask_probability)?;
+                if let Reachable::WithinDistance(d) = b.reachable {
+                    require_non_negative("reachable", d)?;
+                }
+                Ok(())
+            }
             _ => Ok(()),
         }
     }
 
     /// Checks the ids of a [`Reachable::Agents`] set against the team size.
     pub(crate) fn check_team(&self, team_size: usize) -> Result<(), AgentConfigError> {
-        let Strategy::AdHoc(AdHoc {
-            reachable: Reachable::Agents(ids),
-            ..
-        }) = self
-        else {
-            return Ok(());
+        let ids = match self {
+            Strategy::AdHoc(AdHoc {
+                reachable: Reachable::Agents(ids),
+                ..
+            })
+            | Strategy::EarlyAdvising(Budgeted {
+                reachable: Reachable::Agents(ids),
+                ..
+            })
+            | Strategy::RandomAdvising(Budgeted {
+                reachable: Reachable::Agents(ids),
+                ..
+            }) => ids,
+            _ => return Ok(()),
         };
         for (k, &j) in ids.iter().enumerate() {
             if j >= team_size || ids[..k].contains(&j) {
