@@ -16,7 +16,7 @@ use crate::persist::{Entry, PersistError, Snapshot};
 use crate::sarsa::TabularSarsa;
 use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
-use crate::strategy::{AdvisingStrategy, AskContext, GiveContext};
+use crate::strategy::{AdvisingStrategy, AskContext, GiveContext, Replies};
 use crate::tiles::{Tiling, TilingParams};
 
 /// What an agent sees in one simulator frame.
@@ -337,6 +337,10 @@ impl Agent {
             self.step(index, Action::Move, obs.state, reward);
             return Decision::Act(Action::Move);
         }
+        if let Some(action) = self.reused(key, index, &obs.state) {
+            self.step(index, action, obs.state, reward);
+            return Decision::Act(action);
+        }
         if self.asks(key, index) {
             self.fill_reach(positions, reachable);
             if !self.reach.is_empty() {
@@ -375,7 +379,11 @@ impl Agent {
         };
         self.counters.advice_replies_received += replies;
         let ties = self.config.fidelity.vote_ties;
-        let action = match self.strategy.follow(answers, ties, &mut self.rng) {
+        let replies = Replies {
+            key: f.key,
+            advice: answers,
+        };
+        let action = match self.strategy.follow(&replies, ties, &mut self.rng) {
             Some(advice) => {
                 self.counters.ask_spent += 1;
                 self.advised.push(f.key);
@@ -532,6 +540,18 @@ impl Agent {
             })
             .collect();
         self.learner.replay(&episode);
+    }
+
+    /// The advice its strategy reuses instead of asking, if any.
+    fn reused(&mut self, key: u64, index: usize, state: &State) -> Option<Action> {
+        let learner = &mut self.learner;
+        let mut values = || {
+            learner.values(Seen {
+                state,
+                index: Some(index),
+            })
+        };
+        self.strategy.reuse(key, &mut values, &mut self.rng)
     }
 
     /// Whether a training step with the ball asks for advice (Algorithm 1,

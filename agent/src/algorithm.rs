@@ -30,6 +30,9 @@ pub enum Algorithm {
     /// `random-advising`: ask with a fixed probability while the budget
     /// lasts (Ilhan et al.'s baseline).
     RandomAdvising,
+    /// `advice-reuse`: AdHocTD whose advisee reuses stored advice (Zhu et
+    /// al., JAAMAS 2023).
+    AdviceReuse,
 }
 
 /// An algorithm name that is not one of [`Algorithm::ALL`].
@@ -40,7 +43,7 @@ pub struct UnknownAlgorithm(pub String);
 impl Algorithm {
     /// Every algorithm: the paper's, in the order it presents them, then
     /// the field's since.
-    pub const ALL: [Algorithm; 8] = [
+    pub const ALL: [Algorithm; 9] = [
         Algorithm::NoAdvice,
         Algorithm::AdHocVisit,
         Algorithm::AdHocTd,
@@ -49,6 +52,7 @@ impl Algorithm {
         Algorithm::Random,
         Algorithm::EarlyAdvising,
         Algorithm::RandomAdvising,
+        Algorithm::AdviceReuse,
     ];
 
     /// The name as written on the command line and in files.
@@ -62,6 +66,7 @@ impl Algorithm {
             Algorithm::Random => "random",
             Algorithm::EarlyAdvising => "early-advising",
             Algorithm::RandomAdvising => "random-advising",
+            Algorithm::AdviceReuse => "advice-reuse",
         }
     }
 
@@ -149,7 +154,7 @@ mod tests {
         assert_eq!(
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
-             torrey, episode-sharing, random, early-advising, random-advising)"
+             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse)"
         );
     }
 

@@ -73,7 +73,8 @@ pub use proto::Mode;
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
-    AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Strategy, Torrey,
+    AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Replies, Reuse,
+    ReuseRule, Strategy, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

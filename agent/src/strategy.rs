@@ -13,6 +13,7 @@ mod ad_hoc;
 mod baselines;
 mod budgeted;
 mod episode_sharing;
+mod reuse;
 mod settings;
 mod torrey;
 
@@ -25,7 +26,7 @@ use crate::fidelity::{AdvisorTies, VoteTies};
 use crate::learner::ActionValues;
 use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
 
-pub use settings::{AdHoc, Budgeted, Confidence, Strategy, Torrey};
+pub use settings::{AdHoc, Budgeted, Confidence, Reuse, ReuseRule, Strategy, Torrey};
 
 /// What an advisee knows when it decides whether to ask about a state.
 #[derive(Clone, Copy, Debug)]
@@ -51,6 +52,16 @@ pub struct GiveContext<'a> {
     pub counters: &'a AdviceCounters,
 }
 
+/// What arrived for one request: the advice (any number, possibly none,
+/// in the order of the advisors asked) about the state of key `key`.
+#[derive(Clone, Copy, Debug)]
+pub struct Replies<'a> {
+    /// The key of the state asked about (the tile-coded state).
+    pub key: u64,
+    /// The advice that arrived.
+    pub advice: &'a [Action],
+}
+
 /// The decisions of an advising method, made for one agent. Every random
 /// draw comes from the agent's generator, in the order the calls happen, so
 /// a method is as reproducible as the framework around it.
@@ -58,6 +69,19 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// Whether the agent learns (every method but the random baseline).
     fn learns(&self) -> bool {
         true
+    }
+
+    /// Advisee: an action to play without asking at a training step with
+    /// the ball in the state of key `key` (advice it stored and reuses);
+    /// `values()` asks its learner for its values there, only if needed;
+    /// `None` goes on to [`asks`](Self::asks).
+    fn reuse(
+        &mut self,
+        _key: u64,
+        _values: &mut dyn FnMut() -> ActionValues,
+        _rng: &mut AgentRng,
+    ) -> Option<Action> {
+        None
     }
 
     /// Advisee: whether a training step with the ball asks for advice.
@@ -92,11 +116,16 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
         }
     }
 
-    /// Advisee: the action it follows given the advice that arrived (any
-    /// number, possibly none): the majority vote, ties broken as `ties` says;
-    /// `None` plays its own choice.
-    fn follow(&mut self, advice: &[Action], ties: VoteTies, rng: &mut AgentRng) -> Option<Action> {
-        majority(advice, ties, rng)
+    /// Advisee: the action it follows given what arrived for its request:
+    /// the majority vote, ties broken as `ties` says; `None` plays its own
+    /// choice.
+    fn follow(
+        &mut self,
+        replies: &Replies<'_>,
+        ties: VoteTies,
+        rng: &mut AgentRng,
+    ) -> Option<Action> {
+        majority(replies.advice, ties, rng)
     }
 
     /// The budget the paper plots (advice given, or transitions shared).

@@ -6,7 +6,7 @@ use crate::fidelity::{Fidelity, Profile};
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
-use crate::strategy::{AdHoc, Budgeted, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, Reuse, ReuseRule, Strategy, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -1106,11 +1106,11 @@ impl crate::AdvisingStrategy for AskAlways {
 
     fn follow(
         &mut self,
-        advice: &[Action],
+        replies: &crate::Replies<'_>,
         _: crate::VoteTies,
         _: &mut AgentRng,
     ) -> Option<Action> {
-        advice.first().copied()
+        replies.advice.first().copied()
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
@@ -1208,4 +1208,107 @@ fn budgeted_advisors_answer_about_visited_states_within_their_budget() {
     assert_eq!(a.advise(&kick_state(1), None), None, "never visited");
     assert_eq!(a.advise(&kick_state(0), None), Some(Dribble));
     assert_eq!(a.advise(&kick_state(0), None), None, "budget spent");
+}
+
+#[test]
+fn backing_off_saves_requests_nobody_answers() {
+    let requests = |backoff: bool| {
+        let mut a = agent(
+            0,
+            3,
+            with(Strategy::AdHoc(AdHoc {
+                backoff,
+                v_a: 0.0,
+                ..AdHoc::td()
+            })),
+        );
+        finish_one_episode(&mut a);
+        let mut silent = script(&[]);
+        // 31 chances to ask (v_a = 0: P_ask = 1), no answer ever.
+        for k in 0..31 {
+            a.act(&obs(kick_state(k % 5)), 0.0, &[], &mut silent);
+            a.begin_episode(Mode::Training);
+        }
+        silent.asked.len()
+    };
+    assert_eq!(requests(false), 31);
+    // Asks, lets 1 pass, asks, lets 3 pass, asks, lets 7, asks, lets 15: 4 + 1.
+    assert_eq!(requests(true), 5);
+}
+
+#[test]
+fn backing_off_ends_when_advice_comes() {
+    let mut a = agent(
+        0,
+        3,
+        with(Strategy::AdHoc(AdHoc {
+            backoff: true,
+            v_a: 0.0,
+            ..AdHoc::td()
+        })),
+    );
+    finish_one_episode(&mut a);
+    let mut silent = script(&[]);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
+    a.begin_episode(Mode::Training);
+    a.act(&obs(kick_state(1)), 0.0, &[], &mut silent);
+    assert_eq!(silent.asked.len(), 1, "the second chance passes");
+    a.begin_episode(Mode::Training);
+    let mut answering = script(&[Shoot]);
+    a.act(&obs(kick_state(2)), 0.0, &[], &mut answering);
+    a.begin_episode(Mode::Training);
+    a.act(&obs(kick_state(3)), 0.0, &[], &mut answering);
+    assert_eq!(answering.asked.len(), 2, "advice resets the back-off");
+}
+
+#[test]
+fn reused_advice_saves_requests() {
+    let reuse = |rule| {
+        Strategy::AdviceReuse(
+            AdHoc::td(),
+            Reuse {
+                reuse_rule: rule,
+                reuse_decay: 0.5,
+                ..Reuse::default()
+            },
+        )
+    };
+    for rule in [ReuseRule::QChange, ReuseRule::Decay] {
+        let mut a = agent(0, 3, with(reuse(rule)));
+        finish_one_episode(&mut a);
+        let mut ex = script(&[PassFar, PassFar]);
+        // Advised once in the state; later visits replay the advice
+        // without asking, and without spending the ask budget.
+        assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut ex), PassFar);
+        a.begin_episode(Mode::Training);
+        assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut ex), PassFar);
+        assert_eq!(ex.asked.len(), 1, "{rule:?}: the second visit reuses");
+        assert_eq!(a.counters().ask_spent, 1);
+    }
+    // q-change: once its values stop moving, it forgets and may ask again.
+    let mut a = agent(0, 3, with(reuse(ReuseRule::QChange)));
+    finish_one_episode(&mut a);
+    let mut ex = script(&[PassFar]);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    let mut reused = 0;
+    for _ in 0..200 {
+        a.begin_episode(Mode::Training);
+        if a.act(&obs(kick_state(0)), 0.0, &[], &mut ex) == PassFar && ex.asked.len() == 1 {
+            reused += 1;
+        }
+        a.end_episode(0.0);
+    }
+    assert!(reused >= 1, "reused at least once");
+    assert!(ex.asked.len() > 1, "asked again once its values settled");
+    // decay: the reuse probability halves at every reuse, so reuses stop.
+    let mut a = agent(0, 3, with(reuse(ReuseRule::Decay)));
+    finish_one_episode(&mut a);
+    let mut ex = script(&[PassFar]);
+    a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    let before = ex.asked.len();
+    for _ in 0..200 {
+        a.begin_episode(Mode::Training);
+        a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
+    }
+    assert!(ex.asked.len() > before, "the memory's hold decays");
 }

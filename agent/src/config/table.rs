@@ -12,7 +12,7 @@ use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use crate::link::NetworkConditions;
-use crate::strategy::{AdHoc, Budgeted, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, Reuse, ReuseRule, Strategy, Torrey};
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -87,6 +87,15 @@ struct Table {
     reachable: Option<Reachable>,
     #[serde(skip_serializing_if = "Option::is_none")]
     ask_probability: Option<f64>,
+    /// Written only when on, so that results from before it keep their identity.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    backoff: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reuse_rule: Option<ReuseRule>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    q_change_threshold: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reuse_decay: Option<f64>,
     profile: Profile,
     #[serde(skip_serializing_if = "Option::is_none")]
     torrey_unknown_state: Option<TorreyUnknownState>,
@@ -137,6 +146,10 @@ impl From<&AgentConfig> for Table {
             sharing_budget: None,
             reachable: None,
             ask_probability: None,
+            backoff: None,
+            reuse_rule: None,
+            q_change_threshold: None,
+            reuse_decay: None,
             profile: c.fidelity.profile,
             torrey_unknown_state: Some(c.fidelity.torrey_unknown_state),
             torrey_intent: Some(c.fidelity.torrey_intent),
@@ -145,14 +158,24 @@ impl From<&AgentConfig> for Table {
             shared_bootstrap: Some(c.fidelity.shared_bootstrap),
             network: c.network,
         };
+        let ad_hoc = |table: &mut Table, a: &AdHoc| {
+            table.v_a = Some(a.v_a);
+            table.v_g = Some(a.v_g);
+            table.ask_budget = Some(a.ask_budget);
+            table.give_budget = Some(a.give_budget);
+            table.reachable = Some(a.reachable.clone());
+            table.backoff = a.backoff.then_some(true);
+        };
         match &c.strategy {
             Strategy::AdHoc(a) => {
-                table.v_a = Some(a.v_a);
-                table.v_g = Some(a.v_g);
-                table.ask_budget = Some(a.ask_budget);
-                table.give_budget = Some(a.give_budget);
+                ad_hoc(&mut table, a);
                 table.mistake_correcting = Some(a.mistake_correcting);
-                table.reachable = Some(a.reachable.clone());
+            }
+            Strategy::AdviceReuse(a, r) => {
+                ad_hoc(&mut table, a);
+                table.reuse_rule = Some(r.reuse_rule);
+                table.q_change_threshold = Some(r.q_change_threshold);
+                table.reuse_decay = Some(r.reuse_decay);
             }
             Strategy::Torrey(t) => {
                 table.importance_threshold = Some(t.importance_threshold);
@@ -200,21 +223,20 @@ impl Table {
         take(&mut self.vote_ties, &mut fidelity.vote_ties);
         take(&mut self.shared_bootstrap, &mut fidelity.shared_bootstrap);
         match &mut strategy {
-            Strategy::AdHoc(AdHoc {
-                confidence: _,
-                v_a,
-                v_g,
-                ask_budget,
-                give_budget,
-                mistake_correcting,
-                reachable,
-            }) => {
-                take(&mut self.v_a, v_a);
-                take(&mut self.v_g, v_g);
-                take(&mut self.ask_budget, ask_budget);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.mistake_correcting, mistake_correcting);
-                take(&mut self.reachable, reachable);
+            Strategy::AdHoc(a) => {
+                self.take_ad_hoc(a);
+                take(&mut self.mistake_correcting, &mut a.mistake_correcting);
+            }
+            Strategy::AdviceReuse(a, r) => {
+                self.take_ad_hoc(a);
+                let Reuse {
+                    reuse_rule,
+                    q_change_threshold,
+                    reuse_decay,
+                } = r;
+                take(&mut self.reuse_rule, reuse_rule);
+                take(&mut self.q_change_threshold, q_change_threshold);
+                take(&mut self.reuse_decay, reuse_decay);
             }
             Strategy::Torrey(Torrey {
                 importance_threshold,
@@ -281,6 +303,26 @@ impl Table {
         })
     }
 
+    /// Moves the keys every ad hoc method has into `a`.
+    fn take_ad_hoc(&mut self, a: &mut AdHoc) {
+        let AdHoc {
+            confidence: _,
+            v_a,
+            v_g,
+            ask_budget,
+            give_budget,
+            mistake_correcting: _,
+            reachable,
+            backoff,
+        } = a;
+        take(&mut self.v_a, v_a);
+        take(&mut self.v_g, v_g);
+        take(&mut self.ask_budget, ask_budget);
+        take(&mut self.give_budget, give_budget);
+        take(&mut self.reachable, reachable);
+        take(&mut self.backoff, backoff);
+    }
+
     /// Every strategy key and whether it is present.
     fn strategy_keys(&self) -> impl Iterator<Item = (&'static str, bool)> {
         [
@@ -293,6 +335,10 @@ impl Table {
             ("sharing_budget", self.sharing_budget.is_some()),
             ("reachable", self.reachable.is_some()),
             ("ask_probability", self.ask_probability.is_some()),
+            ("backoff", self.backoff.is_some()),
+            ("reuse_rule", self.reuse_rule.is_some()),
+            ("q_change_threshold", self.q_change_threshold.is_some()),
+            ("reuse_decay", self.reuse_decay.is_some()),
         ]
         .into_iter()
     }
@@ -300,8 +346,13 @@ impl Table {
 
 /// Whether strategy `name` has the strategy key `key`.
 fn has_key(name: Algorithm, key: &str) -> bool {
+    let mut strategy = Strategy::from(name);
+    // `backoff` is written only when on: count it as the ad hoc methods' key.
+    if let Strategy::AdHoc(a) | Strategy::AdviceReuse(a, _) = &mut strategy {
+        a.backoff = true;
+    }
     let config = AgentConfig {
-        strategy: Strategy::from(name),
+        strategy,
         ..AgentConfig::default()
     };
     Table::from(&config)
@@ -349,6 +400,21 @@ mod tests {
                 ask_budget: 5,
                 ..Budgeted::new(1.0)
             })),
+            with(Strategy::AdHoc(AdHoc {
+                backoff: true,
+                ..AdHoc::visit()
+            })),
+            with(Strategy::AdviceReuse(
+                AdHoc {
+                    give_budget: 4,
+                    ..AdHoc::td()
+                },
+                Reuse {
+                    reuse_rule: ReuseRule::Decay,
+                    reuse_decay: 0.5,
+                    ..Reuse::default()
+                },
+            )),
             with(Strategy::RandomAdvising(Budgeted {
                 ask_probability: 0.3,
                 reachable: Reachable::Agents(vec![2]),

@@ -3,8 +3,10 @@
 use serde::{Deserialize, Serialize};
 
 use super::AdvisingStrategy;
+use super::ad_hoc::AdHocAdvising;
 use super::baselines::Alone;
 use super::episode_sharing::EpisodeSharing;
+use super::reuse::ReusingAdvice;
 use super::torrey::TorreyTeacher;
 use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
@@ -43,6 +45,11 @@ pub struct AdHoc {
     pub mistake_correcting: bool,
     /// The reachable set G: whom the advisee asks (default everyone).
     pub reachable: Reachable,
+    /// Back off after unanswered requests (the paper's section 7): after
+    /// k requests in a row that brought no advice, the advisee lets its
+    /// next 2^k - 1 chances to ask pass (k at most 10); advice resets k
+    /// (default off).
+    pub backoff: bool,
 }
 
 impl AdHoc {
@@ -59,6 +66,7 @@ impl AdHoc {
             give_budget: PAPER_BUDGET,
             mistake_correcting: false,
             reachable: Reachable::Everyone,
+            backoff: false,
         }
     }
 
@@ -128,6 +136,45 @@ impl Budgeted {
     }
 }
 
+/// How an advice-reuse student decides to reuse the advice it stored for a
+/// state (Zhu et al., JAAMAS 2023).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ReuseRule {
+    /// "Q-change per step": reuse while its own values in the state still
+    /// change, between visits, by more than `q_change_threshold`.
+    QChange,
+    /// "Decay reusing probability": reuse with a probability that starts at
+    /// 1 and is multiplied by `reuse_decay` at each reuse.
+    Decay,
+}
+
+/// The memory of an advice-reuse student (Zhu et al., "Learning by reusing
+/// previous advice: a memory-based teacher-student framework", JAAMAS
+/// 2023): it keeps the advice it followed per state and reuses it on later
+/// visits instead of asking.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Reuse {
+    /// Which rule decides a reuse (default `q-change`).
+    pub reuse_rule: ReuseRule,
+    /// `q-change`: the change of its values (largest over the actions)
+    /// above which it still reuses, finite and >= 0 (default 0.01).
+    pub q_change_threshold: f64,
+    /// `decay`: the factor of the reuse probability after each reuse, in
+    /// [0, 1] (default 0.9).
+    pub reuse_decay: f64,
+}
+
+impl Default for Reuse {
+    fn default() -> Self {
+        Self {
+            reuse_rule: ReuseRule::QChange,
+            q_change_threshold: 0.01,
+            reuse_decay: 0.9,
+        }
+    }
+}
+
 /// Which learner and advising strategy an agent runs, with its constants.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum Strategy {
@@ -150,6 +197,8 @@ pub enum Strategy {
     EarlyAdvising(Budgeted),
     /// Random advising: ask with a fixed probability.
     RandomAdvising(Budgeted),
+    /// AdHocTD whose advisee reuses the advice it stored per state.
+    AdviceReuse(AdHoc, Reuse),
 }
 
 impl From<Algorithm> for Strategy {
@@ -176,6 +225,7 @@ impl Strategy {
             Algorithm::Random => Strategy::Random,
             Algorithm::EarlyAdvising => Strategy::EarlyAdvising(Budgeted::new(1.0)),
             Algorithm::RandomAdvising => Strategy::RandomAdvising(Budgeted::new(0.5)),
+            Algorithm::AdviceReuse => Strategy::AdviceReuse(AdHoc::td(), Reuse::default()),
         }
     }
 
@@ -184,7 +234,8 @@ impl Strategy {
         match self {
             Strategy::NoAdvice => Box::new(Alone { learns: true }),
             Strategy::Random => Box::new(Alone { learns: false }),
-            Strategy::AdHoc(a) => Box::new(a.clone()),
+            Strategy::AdHoc(a) => Box::new(AdHocAdvising::new(a.clone())),
+            Strategy::AdviceReuse(a, r) => Box::new(ReusingAdvice::new(a.clone(), r.clone())),
             Strategy::Torrey(t) => Box::new(TorreyTeacher {
                 settings: t.clone(),
                 unknown: fidelity.torrey_unknown_state,
@@ -210,6 +261,7 @@ impl Strategy {
             Strategy::Random => Algorithm::Random,
             Strategy::EarlyAdvising(_) => Algorithm::EarlyAdvising,
             Strategy::RandomAdvising(_) => Algorithm::RandomAdvising,
+            Strategy::AdviceReuse(..) => Algorithm::AdviceReuse,
         }
     }
 
@@ -249,6 +301,11 @@ impl Strategy {
     /// Returns the first invalid constant, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
         match self {
+            Strategy::AdviceReuse(a, r) => {
+                Strategy::AdHoc(a.clone()).validate()?;
+                require_non_negative("q_change_threshold", r.q_change_threshold)?;
+                require_unit("reuse_decay", r.reuse_decay)
+            }
             Strategy::AdHoc(a) => {
                 require_non_negative("v_a", a.v_a)?;
                 require_non_negative("v_g", a.v_g)?;
@@ -278,6 +335,13 @@ impl Strategy {
                 reachable: Reachable::Agents(ids),
                 ..
             })
+            | Strategy::AdviceReuse(
+                AdHoc {
+                    reachable: Reachable::Agents(ids),
+                    ..
+                },
+                _,
+            )
             | Strategy::EarlyAdvising(Budgeted {
                 reachable: Reachable::Agents(ids),
                 ..
