@@ -8,7 +8,7 @@ use crate::advice::shared_prefix;
 use crate::advice_counters::AdviceCounters;
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
-use crate::exchange::{AdviceExchange, Transition};
+use crate::exchange::{Advice, AdviceExchange, Transition};
 use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::link::Link;
@@ -16,7 +16,7 @@ use crate::persist::{Entry, PersistError, Snapshot};
 use crate::sarsa::TabularSarsa;
 use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
-use crate::strategy::{AdvisingStrategy, AskContext, GiveContext, Replies};
+use crate::strategy::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use crate::tiles::{Tiling, TilingParams};
 
 /// What an agent sees in one simulator frame.
@@ -37,6 +37,8 @@ struct OpenStep {
     index: usize,
     action: Action,
     state: State,
+    /// The advisor whose advice it played, if any.
+    advisor: Option<usize>,
 }
 
 impl OpenStep {
@@ -105,7 +107,7 @@ pub struct Agent {
     in_flight: Option<InFlight>,
     advised: Vec<u64>,
     reach: Vec<usize>,
-    answers: Vec<Action>,
+    answers: Vec<Advice>,
     episode: Vec<Transition>,
     share_ready: bool,
     training_episodes: u64,
@@ -334,11 +336,11 @@ impl Agent {
         }
         let index = self.states.index_or_insert(key);
         if !obs.can_kick {
-            self.step(index, Action::Move, obs.state, reward);
+            self.step(index, Action::Move, obs.state, reward, None);
             return Decision::Act(Action::Move);
         }
         if let Some(action) = self.reused(key, index, &obs.state) {
-            self.step(index, action, obs.state, reward);
+            self.step(index, action, obs.state, reward, None);
             return Decision::Act(action);
         }
         if self.asks(key, index) {
@@ -362,7 +364,7 @@ impl Agent {
             }
         }
         let action = self.choose(index, &obs.state);
-        self.step(index, action, obs.state, reward);
+        self.step(index, action, obs.state, reward, None);
         Decision::Act(action)
     }
 
@@ -373,7 +375,7 @@ impl Agent {
     /// its intended or epsilon-greedy action; then the frame completes as in
     /// [`act`](Self::act). Without a frame waiting for advice it returns
     /// `Move` and changes nothing.
-    pub fn act_complete(&mut self, answers: &[Action], replies: u64) -> Action {
+    pub fn act_complete(&mut self, answers: &[Advice], replies: u64) -> Action {
         let Some(f) = self.in_flight.take() else {
             return Action::Move;
         };
@@ -383,25 +385,35 @@ impl Agent {
             key: f.key,
             advice: answers,
         };
-        let action = match self.strategy.follow(&replies, ties, &mut self.rng) {
+        let followed = self.strategy.follow(&replies, ties, &mut self.rng);
+        let action = match followed {
             Some(advice) => {
                 self.counters.ask_spent += 1;
                 self.advised.push(f.key);
-                advice
+                advice.action
             }
             None => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
         };
-        self.step(f.index, action, f.state, f.reward);
+        let advisor = followed.map(|advice| advice.advisor);
+        self.step(f.index, action, f.state, f.reward, advisor);
         action
     }
 
     /// Completes a training frame: learns the previous step towards this
     /// one, counts the visit and keeps this step open.
-    fn step(&mut self, index: usize, action: Action, state: State, reward: f64) {
+    fn step(
+        &mut self,
+        index: usize,
+        action: Action,
+        state: State,
+        reward: f64,
+        advisor: Option<usize>,
+    ) {
         let this = OpenStep {
             index,
             action,
             state,
+            advisor,
         };
         if let Some(prev) = self.pending.take() {
             self.learn(prev, reward, Some(this));
@@ -608,6 +620,9 @@ impl Agent {
     fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<OpenStep>) {
         self.learner
             .learn((prev.step(), reward, next.as_ref().map(OpenStep::step)));
+        if prev.action.is_kick() && self.strategy.learns_from_outcomes() {
+            self.tell_outcome(&prev, reward, next.as_ref());
+        }
         if self.strategy.sharing_allowance(&self.counters) > 0 {
             self.episode.push(Transition {
                 state: prev.state,
@@ -616,6 +631,25 @@ impl Agent {
                 next: next.map(|n| (n.state, n.action)),
             });
         }
+    }
+
+    /// Tells the strategy how a decision turned out: the advantage of its
+    /// action under the values just learned, r + gamma Q(s', a') - Q(s, a).
+    fn tell_outcome(&mut self, prev: &OpenStep, reward: f64, next: Option<&OpenStep>) {
+        let q = |agent: &mut Self, step: &OpenStep| {
+            let at = Seen {
+                state: &step.state,
+                index: Some(step.index),
+            };
+            agent.learner.values(at).q[step.action.index()]
+        };
+        let ahead = next.map_or(0.0, |n| q(self, n));
+        let advantage = reward + self.config.gamma * ahead - q(self, prev);
+        let outcome = Outcome {
+            advisor: prev.advisor,
+            advantage,
+        };
+        self.strategy.learn_outcome(&outcome);
     }
 
     /// The learned state: every state met with its visit count and its

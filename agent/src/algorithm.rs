@@ -33,6 +33,9 @@ pub enum Algorithm {
     /// `advice-reuse`: AdHocTD whose advisee reuses stored advice (Zhu et
     /// al., JAAMAS 2023).
     AdviceReuse,
+    /// `peer-learning`: follow recommendations by trust learned from
+    /// outcomes (Derstroff et al., AAAI 2024).
+    PeerLearning,
 }
 
 /// An algorithm name that is not one of [`Algorithm::ALL`].
@@ -43,7 +46,7 @@ pub struct UnknownAlgorithm(pub String);
 impl Algorithm {
     /// Every algorithm: the paper's, in the order it presents them, then
     /// the field's since.
-    pub const ALL: [Algorithm; 9] = [
+    pub const ALL: [Algorithm; 10] = [
         Algorithm::NoAdvice,
         Algorithm::AdHocVisit,
         Algorithm::AdHocTd,
@@ -53,6 +56,7 @@ impl Algorithm {
         Algorithm::EarlyAdvising,
         Algorithm::RandomAdvising,
         Algorithm::AdviceReuse,
+        Algorithm::PeerLearning,
     ];
 
     /// The name as written on the command line and in files.
@@ -67,6 +71,7 @@ impl Algorithm {
             Algorithm::EarlyAdvising => "early-advising",
             Algorithm::RandomAdvising => "random-advising",
             Algorithm::AdviceReuse => "advice-reuse",
+            Algorithm::PeerLearning => "peer-learning",
         }
     }
 
@@ -154,7 +159,7 @@ mod tests {
         assert_eq!(
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
-             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse)"
+             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning)"
         );
     }
 

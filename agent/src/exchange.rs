@@ -9,6 +9,15 @@ use proto::{Action, State};
 /// so that a transport ships shared episodes as they are.
 pub use proto::SharedTransition as Transition;
 
+/// One piece of advice and who gave it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Advice {
+    /// The advisor's id.
+    pub advisor: usize,
+    /// The action it advises.
+    pub action: Action,
+}
+
 /// Carries advice requests and shared episodes between agents.
 pub trait AdviceExchange {
     /// Asks every agent of `to`, in order, for advice on `state` (with the
@@ -21,7 +30,7 @@ pub trait AdviceExchange {
         to: &[usize],
         state: &State,
         intended: Option<Action>,
-        answers: &mut Vec<Action>,
+        answers: &mut Vec<Advice>,
     ) -> u64;
 
     /// Delivers transitions of `from`'s goal episode to agent `to`, in order.
@@ -39,7 +48,7 @@ impl AdviceExchange for Isolated {
         _: &[usize],
         _: &State,
         _: Option<Action>,
-        _: &mut Vec<Action>,
+        _: &mut Vec<Advice>,
     ) -> u64 {
         0
     }

@@ -62,7 +62,7 @@ pub use agent::{Agent, Decision, Observation};
 pub use algorithm::{Algorithm, UnknownAlgorithm};
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
-pub use exchange::{AdviceExchange, Isolated, Transition};
+pub use exchange::{Advice, AdviceExchange, Isolated, Transition};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
@@ -73,8 +73,8 @@ pub use proto::Mode;
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
-    AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Replies, Reuse,
-    ReuseRule, Strategy, Torrey,
+    AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Outcome, PeerLearning,
+    Replies, Reuse, ReuseRule, Strategy, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

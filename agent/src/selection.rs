@@ -74,7 +74,11 @@ pub const VOTE_TIE_ORDER: [Action; 4] = [PassFar, Shoot, Dribble, PassNear];
 
 /// Gamma(advice): the most frequent action, ties broken by `ties`; `None`
 /// without votes.
-pub fn majority(votes: &[Action], ties: VoteTies, rng: &mut AgentRng) -> Option<Action> {
+pub fn majority(
+    votes: impl IntoIterator<Item = Action>,
+    ties: VoteTies,
+    rng: &mut AgentRng,
+) -> Option<Action> {
     let mut counts = [0usize; ACTIONS];
     for a in votes {
         counts[a.index()] += 1;
@@ -157,14 +161,14 @@ mod tests {
         // Clear majority: Dribble 2 votes vs Shoot 1.
         let mut rng = AgentRng::seed_from_u64(0);
         for ties in [VoteTies::Random, VoteTies::Fixed] {
-            let clear = majority(&[Dribble, Shoot, Dribble], ties, &mut rng);
+            let clear = majority([Dribble, Shoot, Dribble], ties, &mut rng);
             assert_eq!(clear, Some(Dribble));
-            assert_eq!(majority(&[], ties, &mut rng), None);
+            assert_eq!(majority([], ties, &mut rng), None);
         }
         // Tie Shoot 1 - PassFar 1: the seed decides, the same seed the same way.
         let tie = [PassFar, Shoot];
         let pick =
-            |seed| majority(&tie, VoteTies::Random, &mut AgentRng::seed_from_u64(seed)).unwrap();
+            |seed| majority(tie, VoteTies::Random, &mut AgentRng::seed_from_u64(seed)).unwrap();
         let outcomes: Vec<Action> = (0..32).map(pick).collect();
         assert!(outcomes.contains(&Shoot) && outcomes.contains(&PassFar));
         assert!(outcomes.iter().all(|a| tie.contains(a)));
@@ -175,7 +179,9 @@ mod tests {
     fn fixed_vote_ties_follow_the_authors_order_without_drawing() {
         let mut rng = AgentRng::seed_from_u64(5);
         let before = rng.clone();
-        let vote = |votes: &[Action], rng: &mut AgentRng| majority(votes, VoteTies::Fixed, rng);
+        let vote = |votes: &[Action], rng: &mut AgentRng| {
+            majority(votes.iter().copied(), VoteTies::Fixed, rng)
+        };
         assert_eq!(vote(&[Shoot, PassFar], &mut rng), Some(PassFar));
         assert_eq!(vote(&[PassNear, Shoot], &mut rng), Some(Shoot));
         assert_eq!(vote(&[PassNear, Dribble], &mut rng), Some(Dribble));

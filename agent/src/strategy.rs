@@ -12,128 +12,13 @@
 mod ad_hoc;
 mod baselines;
 mod budgeted;
+mod build;
 mod episode_sharing;
+mod peers;
 mod reuse;
+mod seam;
 mod settings;
 mod torrey;
 
-use std::fmt;
-
-use proto::Action;
-
-use crate::advice_counters::AdviceCounters;
-use crate::fidelity::{AdvisorTies, VoteTies};
-use crate::learner::ActionValues;
-use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
-
-pub use settings::{AdHoc, Budgeted, Confidence, Reuse, ReuseRule, Strategy, Torrey};
-
-/// What an advisee knows when it decides whether to ask about a state.
-#[derive(Clone, Copy, Debug)]
-pub struct AskContext<'a> {
-    /// The state was not advised yet in this episode.
-    pub fresh: bool,
-    /// Visits n(s) of the state.
-    pub visits: u64,
-    /// Training episodes finished so far.
-    pub training_episodes: u64,
-    /// The agent's counters.
-    pub counters: &'a AdviceCounters,
-}
-
-/// What an advisor knows when it decides whether to answer.
-#[derive(Clone, Copy, Debug)]
-pub struct GiveContext<'a> {
-    /// Its visits n(s) of the advisee's state (0 for a state it never met).
-    pub visits: u64,
-    /// Its learner's values there (all unlearned for a state it never met).
-    pub values: &'a ActionValues,
-    /// Its counters.
-    pub counters: &'a AdviceCounters,
-}
-
-/// What arrived for one request: the advice (any number, possibly none,
-/// in the order of the advisors asked) about the state of key `key`.
-#[derive(Clone, Copy, Debug)]
-pub struct Replies<'a> {
-    /// The key of the state asked about (the tile-coded state).
-    pub key: u64,
-    /// The advice that arrived.
-    pub advice: &'a [Action],
-}
-
-/// The decisions of an advising method, made for one agent. Every random
-/// draw comes from the agent's generator, in the order the calls happen, so
-/// a method is as reproducible as the framework around it.
-pub trait AdvisingStrategy: fmt::Debug + Send {
-    /// Whether the agent learns (every method but the random baseline).
-    fn learns(&self) -> bool {
-        true
-    }
-
-    /// Advisee: an action to play without asking at a training step with
-    /// the ball in the state of key `key` (advice it stored and reuses);
-    /// `values()` asks its learner for its values there, only if needed;
-    /// `None` goes on to [`asks`](Self::asks).
-    fn reuse(
-        &mut self,
-        _key: u64,
-        _values: &mut dyn FnMut() -> ActionValues,
-        _rng: &mut AgentRng,
-    ) -> Option<Action> {
-        None
-    }
-
-    /// Advisee: whether a training step with the ball asks for advice.
-    fn asks(&mut self, at: &AskContext<'_>, rng: &mut AgentRng) -> bool;
-
-    /// Advisee: fills `out` with whom agent `me` of a team of `team_size`
-    /// asks (`positions`: every agent's field position by id); the framework
-    /// then leaves out whoever is not reachable now.
-    fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>);
-
-    /// Whether it runs in Mistake Correcting mode: the advisee sends its
-    /// intended action along and advisors answer only when they disagree.
-    fn mistake_correcting(&self) -> bool {
-        false
-    }
-
-    /// Whether a Mistake Correcting advisee's intended action is its
-    /// learner's greedy action (else its learner's own choice).
-    fn intends_greedy(&self) -> bool {
-        false
-    }
-
-    /// Advisor: whether it answers about a state.
-    fn gives(&mut self, at: &GiveContext<'_>, rng: &mut AgentRng) -> bool;
-
-    /// Advisor: the action it advises where its learner holds `values`:
-    /// its greedy action, ties broken as `ties` says.
-    fn advice(&mut self, values: &ActionValues, ties: AdvisorTies, rng: &mut AgentRng) -> Action {
-        match ties {
-            AdvisorTies::First => greedy_first(&values.q),
-            AdvisorTies::Random => greedy_random(&values.q, rng),
-        }
-    }
-
-    /// Advisee: the action it follows given what arrived for its request:
-    /// the majority vote, ties broken as `ties` says; `None` plays its own
-    /// choice.
-    fn follow(
-        &mut self,
-        replies: &Replies<'_>,
-        ties: VoteTies,
-        rng: &mut AgentRng,
-    ) -> Option<Action> {
-        majority(replies.advice, ties, rng)
-    }
-
-    /// The budget the paper plots (advice given, or transitions shared).
-    fn spent_budget(&self, counters: &AdviceCounters) -> u64;
-
-    /// Transitions still to share after a goal episode (episode sharing's
-    /// budget left); the agent records its episode while it is not 0.
-    fn sharing_allowance(&self, _counters: &AdviceCounters) -> u64 {
-        0
-    }
-}
+pub use seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
+pub use settings::{AdHoc, Budgeted, Confidence, PeerLearning, Reuse, ReuseRule, Strategy, Torrey};

@@ -6,7 +6,7 @@ use proto::{
 };
 
 use crate::agent::{Agent, Observation};
-use crate::exchange::{AdviceExchange, Transition};
+use crate::exchange::{Advice, AdviceExchange, Transition};
 use crate::link::{Leg, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
@@ -233,7 +233,7 @@ impl AdviceExchange for Peers<'_> {
         to: &[usize],
         state: &State,
         intended: Option<Action>,
-        answers: &mut Vec<Action>,
+        answers: &mut Vec<Advice>,
     ) -> u64 {
         let delay = |link: Option<&Link>, message| link.map_or(Some(0.0), |l| l.delay(message));
         let asker = self.link;
@@ -262,8 +262,8 @@ impl AdviceExchange for Peers<'_> {
             };
             self.traffic[j].count(header, Body::AdviceReply(reply));
             replies += u64::from(arrives);
-            if let (Some(advice), true) = (advice, arrives) {
-                answers.push(advice);
+            if let (Some(action), true) = (advice, arrives) {
+                answers.push(Advice { advisor: j, action });
             }
         }
         replies

@@ -4,7 +4,7 @@
 
 use std::time::{Duration, Instant};
 
-use agent::Leg;
+use agent::{Advice, Leg};
 use proto::{Action, Body, DropReason, Header, MessageKind};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
@@ -18,8 +18,8 @@ use crate::learning::Ask;
 pub struct Collector {
     waiting: Vec<u8>,
     answered: Vec<u8>,
-    /// The advice received (replies without advice add nothing).
-    pub advice: Vec<Action>,
+    /// The advice received, by advisor (replies without advice add nothing).
+    pub advice: Vec<Advice>,
     /// Round-trip time of each reply (ms).
     pub rtt_ms: Vec<f32>,
 }
@@ -57,7 +57,11 @@ impl Collector {
         self.answered.push(from);
         self.waiting.swap_remove(k);
         self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
-        self.advice.extend(advice.filter(|a| a.is_kick()));
+        let action = advice.filter(|a| a.is_kick());
+        (self.advice).extend(action.map(|action| Advice {
+            advisor: usize::from(from),
+            action,
+        }));
         Ok(())
     }
 
@@ -215,7 +219,11 @@ mod tests {
         // No advice, or a non-kick one: a reply, but no advice.
         c.take(2, None, ms(1)).unwrap();
         assert!(c.done());
-        assert_eq!(c.advice, vec![Shoot]);
+        let shoot = Advice {
+            advisor: 0,
+            action: Shoot,
+        };
+        assert_eq!(c.advice, vec![shoot]);
         assert_eq!(c.replies(), 2);
         assert_eq!(c.rtt_ms, vec![3.0, 1.0]);
         let mut d = Collector::new(&[1]);

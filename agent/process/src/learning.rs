@@ -2,7 +2,7 @@
 //! run, its position in the observation stream and the shares waiting for
 //! it. Pure state, driven by the tasks that hold it under a lock.
 
-use agent::{Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
+use agent::{Advice, Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
 use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
 
 use crate::order::{ObservationOrder, Position};
@@ -185,7 +185,7 @@ impl Learning {
 
     /// Completes the frame that asked with the advice that arrived in
     /// `replies` replies; `None` if the learner was reset or loaded meanwhile.
-    pub fn complete(&mut self, ask: &Ask, advice: &[Action], replies: u64) -> Option<Action> {
+    pub fn complete(&mut self, ask: &Ask, advice: &[Advice], replies: u64) -> Option<Action> {
         let agent = self.agent.as_mut().filter(|_| ask.epoch == self.epoch)?;
         Some(agent.act_complete(advice, replies))
     }
@@ -452,13 +452,17 @@ mod tests {
         assert_eq!(ask.to, vec![1]);
         assert_eq!(ask.request.from, 0);
         assert_eq!(
-            l.complete(&ask, &[Action::PassFar], 1),
+            l.complete(&ask, &[advice(1, Action::PassFar)], 1),
             Some(Action::PassFar)
         );
         let Ok(Step::Ask(ask)) = l.observe(&header(0, 1, 0), &kick, &|_| true) else {
             panic!("no request");
         };
         l.reset(1, 1, &config).unwrap();
-        assert_eq!(l.complete(&ask, &[Action::Shoot], 1), None);
+        assert_eq!(l.complete(&ask, &[advice(1, Action::Shoot)], 1), None);
+    }
+
+    fn advice(advisor: usize, action: Action) -> Advice {
+        Advice { advisor, action }
     }
 }

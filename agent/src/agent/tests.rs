@@ -1,7 +1,7 @@
 use super::*;
 use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
-use crate::exchange::Isolated;
+use crate::exchange::{Advice, Isolated};
 use crate::fidelity::{Fidelity, Profile};
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
@@ -82,10 +82,16 @@ impl AdviceExchange for Script {
         to: &[usize],
         _: &State,
         intended: Option<Action>,
-        answers: &mut Vec<Action>,
+        answers: &mut Vec<Advice>,
     ) -> u64 {
         self.asked.push((from, to.to_vec(), intended));
-        answers.extend_from_slice(&self.answers);
+        // The scripted answers come from the advisors asked, in turn.
+        answers.extend(
+            self.answers
+                .iter()
+                .zip(to.iter().cycle())
+                .map(|(&action, &advisor)| Advice { advisor, action }),
+        );
         to.len() as u64
     }
 
@@ -789,9 +795,12 @@ fn play_two_phase(
                         state,
                         intended,
                     } => {
-                        let answers: Vec<Action> = to
+                        let answers: Vec<Advice> = to
                             .iter()
-                            .filter_map(|&j| agents[j].advise(&state, intended))
+                            .filter_map(|&j| {
+                                let action = agents[j].advise(&state, intended)?;
+                                Some(Advice { advisor: j, action })
+                            })
                             .collect();
                         agents[i].act_complete(&answers, to.len() as u64)
                     }
@@ -888,7 +897,11 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
             intended: None
         }
     );
-    assert_eq!(a.act_complete(&[PassNear], 1), PassNear);
+    let advice = Advice {
+        advisor: 2,
+        action: PassNear,
+    };
+    assert_eq!(a.act_complete(&[advice], 1), PassNear);
     assert_eq!(a.counters().ask_spent, 1);
     // Nobody reachable: the agent acts on its own and sends no request.
     let decision = a.act_begin(&obs(kick_state(1)), 0.0, &[], &|_| false);
@@ -908,7 +921,11 @@ fn an_abandoned_ask_completes_to_nothing() {
     // The episode ends before the answers arrive: they change nothing.
     a.end_episode(0.0);
     let after_end = a.digest();
-    assert_eq!(a.act_complete(&[Dribble], 2), Move);
+    let late = Advice {
+        advisor: 1,
+        action: Dribble,
+    };
+    assert_eq!(a.act_complete(&[late], 2), Move);
     assert_eq!(a.digest(), after_end);
     assert_eq!(a.counters().ask_spent, 0);
     assert_ne!(before, after_end, "the episode count moved on");
@@ -1109,7 +1126,7 @@ impl crate::AdvisingStrategy for AskAlways {
         replies: &crate::Replies<'_>,
         _: crate::VoteTies,
         _: &mut AgentRng,
-    ) -> Option<Action> {
+    ) -> Option<Advice> {
         replies.advice.first().copied()
     }
 

@@ -12,7 +12,7 @@ use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use crate::link::NetworkConditions;
-use crate::strategy::{AdHoc, Budgeted, Reuse, ReuseRule, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, PeerLearning, Reuse, ReuseRule, Strategy, Torrey};
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -96,6 +96,12 @@ struct Table {
     q_change_threshold: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     reuse_decay: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    temperature: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    trust_lr: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    follow_steps: Option<u32>,
     profile: Profile,
     #[serde(skip_serializing_if = "Option::is_none")]
     torrey_unknown_state: Option<TorreyUnknownState>,
@@ -150,6 +156,9 @@ impl From<&AgentConfig> for Table {
             reuse_rule: None,
             q_change_threshold: None,
             reuse_decay: None,
+            temperature: None,
+            trust_lr: None,
+            follow_steps: None,
             profile: c.fidelity.profile,
             torrey_unknown_state: Some(c.fidelity.torrey_unknown_state),
             torrey_intent: Some(c.fidelity.torrey_intent),
@@ -170,6 +179,14 @@ impl From<&AgentConfig> for Table {
             Strategy::AdHoc(a) => {
                 ad_hoc(&mut table, a);
                 table.mistake_correcting = Some(a.mistake_correcting);
+            }
+            Strategy::PeerLearning(p) => {
+                table.ask_budget = Some(p.ask_budget);
+                table.give_budget = Some(p.give_budget);
+                table.reachable = Some(p.reachable.clone());
+                table.temperature = Some(p.temperature);
+                table.trust_lr = Some(p.trust_lr);
+                table.follow_steps = Some(p.follow_steps);
             }
             Strategy::AdviceReuse(a, r) => {
                 ad_hoc(&mut table, a);
@@ -226,6 +243,21 @@ impl Table {
             Strategy::AdHoc(a) => {
                 self.take_ad_hoc(a);
                 take(&mut self.mistake_correcting, &mut a.mistake_correcting);
+            }
+            Strategy::PeerLearning(PeerLearning {
+                ask_budget,
+                give_budget,
+                reachable,
+                temperature,
+                trust_lr,
+                follow_steps,
+            }) => {
+                take(&mut self.ask_budget, ask_budget);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.reachable, reachable);
+                take(&mut self.temperature, temperature);
+                take(&mut self.trust_lr, trust_lr);
+                take(&mut self.follow_steps, follow_steps);
             }
             Strategy::AdviceReuse(a, r) => {
                 self.take_ad_hoc(a);
@@ -339,6 +371,9 @@ impl Table {
             ("reuse_rule", self.reuse_rule.is_some()),
             ("q_change_threshold", self.q_change_threshold.is_some()),
             ("reuse_decay", self.reuse_decay.is_some()),
+            ("temperature", self.temperature.is_some()),
+            ("trust_lr", self.trust_lr.is_some()),
+            ("follow_steps", self.follow_steps.is_some()),
         ]
         .into_iter()
     }
@@ -415,6 +450,11 @@ mod tests {
                     ..Reuse::default()
                 },
             )),
+            with(Strategy::PeerLearning(PeerLearning {
+                temperature: 0.5,
+                follow_steps: 3,
+                ..PeerLearning::default()
+            })),
             with(Strategy::RandomAdvising(Budgeted {
                 ask_probability: 0.3,
                 reachable: Reachable::Agents(vec![2]),

@@ -4,12 +4,11 @@
 //! `backoff` (the paper's section 7), an advisee whose requests go
 //! unanswered lets its next chances to ask pass, more of them each time.
 
-use proto::Action;
-
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
 use super::settings::{AdHoc, Confidence};
-use super::{AdvisingStrategy, AskContext, GiveContext, Replies};
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
+use crate::exchange::Advice;
 use crate::fidelity::VoteTies;
 use crate::selection::{AgentRng, chance, majority};
 
@@ -78,7 +77,7 @@ impl AdvisingStrategy for AdHocAdvising {
         replies: &Replies<'_>,
         ties: VoteTies,
         rng: &mut AgentRng,
-    ) -> Option<Action> {
+    ) -> Option<Advice> {
         if self.settings.backoff {
             if replies.advice.is_empty() {
                 self.unanswered = (self.unanswered + 1).min(MAX_BACKOFF_DOUBLINGS);
@@ -87,7 +86,8 @@ impl AdvisingStrategy for AdHocAdvising {
                 self.unanswered = 0;
             }
         }
-        majority(replies.advice, ties, rng)
+        let vote = majority(replies.advice.iter().map(|a| a.action), ties, rng)?;
+        replies.from_whom(vote)
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {

@@ -1,7 +1,7 @@
 //! The two methods that never advise: SARSA(lambda) alone (NoAdvice) and
 //! the authors' random baseline, which does not learn either.
 
-use super::{AdvisingStrategy, AskContext, GiveContext};
+use super::seam::{AdvisingStrategy, AskContext, GiveContext};
 use crate::advice_counters::AdviceCounters;
 use crate::selection::AgentRng;
 

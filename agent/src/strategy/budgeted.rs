@@ -5,8 +5,8 @@
 //! action. Which states an advisor answers about is not part of those
 //! baselines; the reading taken here: any state it has visited.
 
+use super::seam::{AdvisingStrategy, AskContext, GiveContext};
 use super::settings::Budgeted;
-use super::{AdvisingStrategy, AskContext, GiveContext};
 use crate::advice::reachable_set;
 use crate::advice_counters::AdviceCounters;
 use crate::selection::{AgentRng, chance};

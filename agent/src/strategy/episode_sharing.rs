@@ -2,7 +2,7 @@
 //! episode an agent sends its transitions to every other agent, one budget
 //! unit per transition per receiver; nobody asks or answers.
 
-use super::{AdvisingStrategy, AskContext, GiveContext};
+use super::seam::{AdvisingStrategy, AskContext, GiveContext};
 use crate::advice_counters::AdviceCounters;
 use crate::selection::AgentRng;
 

@@ -8,9 +8,10 @@ use fnv::FnvHashMap;
 use proto::Action;
 
 use super::ad_hoc::AdHocAdvising;
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
 use super::settings::{AdHoc, Reuse, ReuseRule};
-use super::{AdvisingStrategy, AskContext, GiveContext, Replies};
 use crate::advice_counters::AdviceCounters;
+use crate::exchange::Advice;
 use crate::fidelity::VoteTies;
 use crate::learner::ActionValues;
 use crate::selection::{ACTIONS, AgentRng, chance};
@@ -105,15 +106,15 @@ impl AdvisingStrategy for ReusingAdvice {
         replies: &Replies<'_>,
         ties: VoteTies,
         rng: &mut AgentRng,
-    ) -> Option<Action> {
-        let action = self.ad_hoc.follow(replies, ties, rng)?;
+    ) -> Option<Advice> {
+        let advice = self.ad_hoc.follow(replies, ties, rng)?;
         let kept = Kept {
-            action,
+            action: advice.action,
             values: None,
             p: 1.0,
         };
         self.kept.insert(replies.key, kept);
-        Some(action)
+        Some(advice)
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {

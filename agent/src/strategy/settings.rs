@@ -2,16 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::AdvisingStrategy;
-use super::ad_hoc::AdHocAdvising;
-use super::baselines::Alone;
-use super::episode_sharing::EpisodeSharing;
-use super::reuse::ReusingAdvice;
-use super::torrey::TorreyTeacher;
 use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
-use crate::config_error::{AgentConfigError, require_non_negative, require_unit};
-use crate::fidelity::{Fidelity, Profile};
+use crate::config_error::{AgentConfigError, require, require_non_negative, require_unit};
+use crate::fidelity::Profile;
 
 /// The paper's budget of every advising and sharing side.
 const PAPER_BUDGET: u64 = 1000;
@@ -175,6 +169,39 @@ impl Default for Reuse {
     }
 }
 
+/// The constants of peer learning (Derstroff et al., AAAI 2024): whom to
+/// follow by trust learned from outcomes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PeerLearning {
+    /// Advisee budget: steps acted on a peer's recommendation (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: recommendations given (default 1000).
+    pub give_budget: u64,
+    /// The peers asked (default everyone).
+    pub reachable: Reachable,
+    /// The softmax temperature T of the choice among recommendations,
+    /// finite and > 0 (default 1, the paper's).
+    pub temperature: f64,
+    /// The learning rate of trust, in [0, 1] (default 0.001, the paper's).
+    pub trust_lr: f64,
+    /// Decisions a chosen peer (or its own choice) is followed for, at
+    /// least 1 (default 10, the paper's).
+    pub follow_steps: u32,
+}
+
+impl Default for PeerLearning {
+    fn default() -> Self {
+        Self {
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+            temperature: 1.0,
+            trust_lr: 0.001,
+            follow_steps: 10,
+        }
+    }
+}
+
 /// Which learner and advising strategy an agent runs, with its constants.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum Strategy {
@@ -199,6 +226,8 @@ pub enum Strategy {
     RandomAdvising(Budgeted),
     /// AdHocTD whose advisee reuses the advice it stored per state.
     AdviceReuse(AdHoc, Reuse),
+    /// Peer learning: follow recommendations by trust.
+    PeerLearning(PeerLearning),
 }
 
 impl From<Algorithm> for Strategy {
@@ -226,25 +255,7 @@ impl Strategy {
             Algorithm::EarlyAdvising => Strategy::EarlyAdvising(Budgeted::new(1.0)),
             Algorithm::RandomAdvising => Strategy::RandomAdvising(Budgeted::new(0.5)),
             Algorithm::AdviceReuse => Strategy::AdviceReuse(AdHoc::td(), Reuse::default()),
-        }
-    }
-
-    /// Its decisions for one agent, under the fidelity rules `fidelity`.
-    pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
-        match self {
-            Strategy::NoAdvice => Box::new(Alone { learns: true }),
-            Strategy::Random => Box::new(Alone { learns: false }),
-            Strategy::AdHoc(a) => Box::new(AdHocAdvising::new(a.clone())),
-            Strategy::AdviceReuse(a, r) => Box::new(ReusingAdvice::new(a.clone(), r.clone())),
-            Strategy::Torrey(t) => Box::new(TorreyTeacher {
-                settings: t.clone(),
-                unknown: fidelity.torrey_unknown_state,
-                intent: fidelity.torrey_intent,
-            }),
-            Strategy::EpisodeSharing { sharing_budget } => Box::new(EpisodeSharing {
-                sharing_budget: *sharing_budget,
-            }),
-            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => Box::new(b.clone()),
+            Algorithm::PeerLearning => Strategy::PeerLearning(PeerLearning::default()),
         }
     }
 
@@ -262,6 +273,7 @@ impl Strategy {
             Strategy::EarlyAdvising(_) => Algorithm::EarlyAdvising,
             Strategy::RandomAdvising(_) => Algorithm::RandomAdvising,
             Strategy::AdviceReuse(..) => Algorithm::AdviceReuse,
+            Strategy::PeerLearning(_) => Algorithm::PeerLearning,
         }
     }
 
@@ -301,6 +313,22 @@ impl Strategy {
     /// Returns the first invalid constant, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
         match self {
+            Strategy::PeerLearning(p) => {
+                require(
+                    "temperature",
+                    p.temperature,
+                    "finite and > 0",
+                    p.temperature > 0.0,
+                )?;
+                require_unit("trust_lr", p.trust_lr)?;
+                if p.follow_steps == 0 {
+                    return Err(AgentConfigError::new("follow_steps", "must be at least 1"));
+                }
+                if let Reachable::WithinDistance(d) = p.reachable {
+                    require_non_negative("reachable", d)?;
+                }
+                Ok(())
+            }
             Strategy::AdviceReuse(a, r) => {
                 Strategy::AdHoc(a.clone()).validate()?;
                 require_non_negative("q_change_threshold", r.q_change_threshold)?;
@@ -342,6 +370,10 @@ impl Strategy {
                 },
                 _,
             )
+            | Strategy::PeerLearning(PeerLearning {
+                reachable: Reachable::Agents(ids),
+                ..
+            })
             | Strategy::EarlyAdvising(Budgeted {
                 reachable: Reachable::Agents(ids),
                 ..

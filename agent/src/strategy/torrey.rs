@@ -2,8 +2,8 @@
 //! the student asks its fixed teacher `(i + 1) mod n` at every fresh state;
 //! the teacher answers where the spread of its values exceeds a threshold.
 
+use super::seam::{AdvisingStrategy, AskContext, GiveContext};
 use super::settings::Torrey;
-use super::{AdvisingStrategy, AskContext, GiveContext};
 use crate::advice_counters::AdviceCounters;
 use crate::fidelity::{TorreyIntent, TorreyUnknownState};
 use crate::selection::AgentRng;

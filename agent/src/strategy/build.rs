@@ -1,0 +1,34 @@
+//! Each algorithm's decisions made from its settings: the one place that
+//! knows every implementation of the seam.
+
+use super::ad_hoc::AdHocAdvising;
+use super::baselines::Alone;
+use super::episode_sharing::EpisodeSharing;
+use super::peers::Peers;
+use super::reuse::ReusingAdvice;
+use super::seam::AdvisingStrategy;
+use super::settings::Strategy;
+use super::torrey::TorreyTeacher;
+use crate::fidelity::Fidelity;
+
+impl Strategy {
+    /// Its decisions for one agent, under the fidelity rules `fidelity`.
+    pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        match self {
+            Strategy::NoAdvice => Box::new(Alone { learns: true }),
+            Strategy::Random => Box::new(Alone { learns: false }),
+            Strategy::AdHoc(a) => Box::new(AdHocAdvising::new(a.clone())),
+            Strategy::AdviceReuse(a, r) => Box::new(ReusingAdvice::new(a.clone(), r.clone())),
+            Strategy::PeerLearning(p) => Box::new(Peers::new(p.clone())),
+            Strategy::Torrey(t) => Box::new(TorreyTeacher {
+                settings: t.clone(),
+                unknown: fidelity.torrey_unknown_state,
+                intent: fidelity.torrey_intent,
+            }),
+            Strategy::EpisodeSharing { sharing_budget } => Box::new(EpisodeSharing {
+                sharing_budget: *sharing_budget,
+            }),
+            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => Box::new(b.clone()),
+        }
+    }
+}

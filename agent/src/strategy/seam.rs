@@ -1,0 +1,149 @@
+//! The seam between the advising framework and an advising method: the
+//! decisions a method makes ([`AdvisingStrategy`]) and what each sees.
+
+use std::fmt;
+
+use proto::Action;
+
+use crate::advice_counters::AdviceCounters;
+use crate::exchange::Advice;
+use crate::fidelity::{AdvisorTies, VoteTies};
+use crate::learner::ActionValues;
+use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
+
+/// What an advisee knows when it decides whether to ask about a state.
+#[derive(Clone, Copy, Debug)]
+pub struct AskContext<'a> {
+    /// The state was not advised yet in this episode.
+    pub fresh: bool,
+    /// Visits n(s) of the state.
+    pub visits: u64,
+    /// Training episodes finished so far.
+    pub training_episodes: u64,
+    /// The agent's counters.
+    pub counters: &'a AdviceCounters,
+}
+
+/// What an advisor knows when it decides whether to answer.
+#[derive(Clone, Copy, Debug)]
+pub struct GiveContext<'a> {
+    /// Its visits n(s) of the advisee's state (0 for a state it never met).
+    pub visits: u64,
+    /// Its learner's values there (all unlearned for a state it never met).
+    pub values: &'a ActionValues,
+    /// Its counters.
+    pub counters: &'a AdviceCounters,
+}
+
+/// What arrived for one request: the advice (any number, possibly none,
+/// in the order of the advisors asked) about the state of key `key`.
+#[derive(Clone, Copy, Debug)]
+pub struct Replies<'a> {
+    /// The key of the state asked about (the tile-coded state).
+    pub key: u64,
+    /// The advice that arrived, with who gave it.
+    pub advice: &'a [Advice],
+}
+
+impl Replies<'_> {
+    /// The first piece of advice of `action`.
+    pub fn from_whom(&self, action: Action) -> Option<Advice> {
+        self.advice.iter().find(|a| a.action == action).copied()
+    }
+}
+
+/// How a training decision with the ball turned out, once learned from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outcome {
+    /// The advisor whose advice was played, `None` for its own choice.
+    pub advisor: Option<usize>,
+    /// Its advantage under the values just learned: r + gamma Q(s', a') -
+    /// Q(s, a) (Q(s', a') is 0 at the episode's end).
+    pub advantage: f64,
+}
+
+/// The decisions of an advising method, made for one agent. Every random
+/// draw comes from the agent's generator, in the order the calls happen, so
+/// a method is as reproducible as the framework around it.
+pub trait AdvisingStrategy: fmt::Debug + Send {
+    /// Whether the agent learns (every method but the random baseline).
+    fn learns(&self) -> bool {
+        true
+    }
+
+    /// Advisee: an action to play without asking at a training step with
+    /// the ball in the state of key `key` (advice it stored and reuses);
+    /// `values()` asks its learner for its values there, only if needed;
+    /// `None` goes on to [`asks`](Self::asks).
+    fn reuse(
+        &mut self,
+        _key: u64,
+        _values: &mut dyn FnMut() -> ActionValues,
+        _rng: &mut AgentRng,
+    ) -> Option<Action> {
+        None
+    }
+
+    /// Advisee: whether a training step with the ball asks for advice.
+    fn asks(&mut self, at: &AskContext<'_>, rng: &mut AgentRng) -> bool;
+
+    /// Advisee: fills `out` with whom agent `me` of a team of `team_size`
+    /// asks (`positions`: every agent's field position by id); the framework
+    /// then leaves out whoever is not reachable now.
+    fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>);
+
+    /// Whether it runs in Mistake Correcting mode: the advisee sends its
+    /// intended action along and advisors answer only when they disagree.
+    fn mistake_correcting(&self) -> bool {
+        false
+    }
+
+    /// Whether a Mistake Correcting advisee's intended action is its
+    /// learner's greedy action (else its learner's own choice).
+    fn intends_greedy(&self) -> bool {
+        false
+    }
+
+    /// Advisor: whether it answers about a state.
+    fn gives(&mut self, at: &GiveContext<'_>, rng: &mut AgentRng) -> bool;
+
+    /// Advisor: the action it advises where its learner holds `values`:
+    /// its greedy action, ties broken as `ties` says.
+    fn advice(&mut self, values: &ActionValues, ties: AdvisorTies, rng: &mut AgentRng) -> Action {
+        match ties {
+            AdvisorTies::First => greedy_first(&values.q),
+            AdvisorTies::Random => greedy_random(&values.q, rng),
+        }
+    }
+
+    /// Advisee: the advice it follows given what arrived for its request:
+    /// the majority vote, ties broken as `ties` says (credited to the first
+    /// advisor who gave it); `None` plays its own choice.
+    fn follow(
+        &mut self,
+        replies: &Replies<'_>,
+        ties: VoteTies,
+        rng: &mut AgentRng,
+    ) -> Option<Advice> {
+        let vote = majority(replies.advice.iter().map(|a| a.action), ties, rng)?;
+        replies.from_whom(vote)
+    }
+
+    /// Whether it learns about its advisors from outcomes (then the agent
+    /// computes each decision's [`Outcome`]; asking its learner costs time).
+    fn learns_from_outcomes(&self) -> bool {
+        false
+    }
+
+    /// What it learns about its advisors from how a decision turned out.
+    fn learn_outcome(&mut self, _outcome: &Outcome) {}
+
+    /// The budget the paper plots (advice given, or transitions shared).
+    fn spent_budget(&self, counters: &AdviceCounters) -> u64;
+
+    /// Transitions still to share after a goal episode (episode sharing's
+    /// budget left); the agent records its episode while it is not 0.
+    fn sharing_allowance(&self, _counters: &AdviceCounters) -> u64 {
+        0
+    }
+}
