@@ -13,7 +13,6 @@ use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
-use crate::sarsa::TabularSarsa;
 use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
 use crate::strategy::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
@@ -124,7 +123,7 @@ impl Agent {
         config: AgentConfig,
         seed: u64,
     ) -> Result<Self, AgentConfigError> {
-        let learner = Box::new(TabularSarsa::new(&config));
+        let learner = config.strategy.learner(&config, seed);
         Self::with_learner(id, team_size, config, seed, learner)
     }
 
@@ -343,7 +342,7 @@ impl Agent {
             self.step(index, action, obs.state, reward, None);
             return Decision::Act(action);
         }
-        if self.asks(key, index) {
+        if self.asks(key, index, &obs.state) {
             self.fill_reach(positions, reachable);
             if !self.reach.is_empty() {
                 let intended =
@@ -568,8 +567,17 @@ impl Agent {
 
     /// Whether a training step with the ball asks for advice (Algorithm 1,
     /// or Torrey's student at every fresh state).
-    fn asks(&mut self, key: u64, index: usize) -> bool {
+    fn asks(&mut self, key: u64, index: usize, state: &State) -> bool {
+        let uncertainty = if self.strategy.asks_by_uncertainty() {
+            self.learner.uncertainty(Seen {
+                state,
+                index: Some(index),
+            })
+        } else {
+            None
+        };
         let at = AskContext {
+            uncertainty,
             fresh: !self.advised.contains(&key),
             visits: self.states.visits(index),
             training_episodes: self.training_episodes,

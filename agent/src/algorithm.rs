@@ -36,6 +36,9 @@ pub enum Algorithm {
     /// `peer-learning`: follow recommendations by trust learned from
     /// outcomes (Derstroff et al., AAAI 2024).
     PeerLearning,
+    /// `rcmp`: ask where an ensemble's heads disagree (da Silva et al.,
+    /// AAAI 2020).
+    Rcmp,
 }
 
 /// An algorithm name that is not one of [`Algorithm::ALL`].
@@ -46,7 +49,7 @@ pub struct UnknownAlgorithm(pub String);
 impl Algorithm {
     /// Every algorithm: the paper's, in the order it presents them, then
     /// the field's since.
-    pub const ALL: [Algorithm; 10] = [
+    pub const ALL: [Algorithm; 11] = [
         Algorithm::NoAdvice,
         Algorithm::AdHocVisit,
         Algorithm::AdHocTd,
@@ -57,6 +60,7 @@ impl Algorithm {
         Algorithm::RandomAdvising,
         Algorithm::AdviceReuse,
         Algorithm::PeerLearning,
+        Algorithm::Rcmp,
     ];
 
     /// The name as written on the command line and in files.
@@ -72,6 +76,7 @@ impl Algorithm {
             Algorithm::RandomAdvising => "random-advising",
             Algorithm::AdviceReuse => "advice-reuse",
             Algorithm::PeerLearning => "peer-learning",
+            Algorithm::Rcmp => "rcmp",
         }
     }
 
@@ -159,7 +164,7 @@ mod tests {
         assert_eq!(
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
-             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning)"
+             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning, rcmp)"
         );
     }
 

@@ -106,6 +106,13 @@ pub trait Learner: fmt::Debug + Send {
     /// Starts again from a snapshot's values, one per indexed state in
     /// index order; an error says why it cannot.
     fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String>;
+
+    /// How uncertain its values in `at` are (an ensemble's disagreement),
+    /// for the methods that ask by it; `None` for a learner that cannot
+    /// tell.
+    fn uncertainty(&mut self, _at: Seen<'_>) -> Option<f64> {
+        None
+    }
 }
 
 #[cfg(test)]

@@ -44,6 +44,7 @@ mod agent;
 mod algorithm;
 mod config;
 mod config_error;
+mod ensemble;
 mod exchange;
 mod fidelity;
 mod learner;
@@ -62,6 +63,7 @@ pub use agent::{Agent, Decision, Observation};
 pub use algorithm::{Algorithm, UnknownAlgorithm};
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
+pub use ensemble::EnsembleSarsa;
 pub use exchange::{Advice, AdviceExchange, Isolated, Transition};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
@@ -74,7 +76,7 @@ pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
     AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Outcome, PeerLearning,
-    Replies, Reuse, ReuseRule, Strategy, Torrey,
+    Rcmp, Replies, Reuse, ReuseRule, Strategy, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

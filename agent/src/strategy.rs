@@ -15,10 +15,13 @@ mod budgeted;
 mod build;
 mod episode_sharing;
 mod peers;
+mod rcmp;
 mod reuse;
 mod seam;
 mod settings;
 mod torrey;
 
 pub use seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
-pub use settings::{AdHoc, Budgeted, Confidence, PeerLearning, Reuse, ReuseRule, Strategy, Torrey};
+pub use settings::{
+    AdHoc, Budgeted, Confidence, PeerLearning, Rcmp, Reuse, ReuseRule, Strategy, Torrey,
+};

@@ -6,7 +6,7 @@ use crate::fidelity::{Fidelity, Profile};
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
-use crate::strategy::{AdHoc, Budgeted, Reuse, ReuseRule, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, Rcmp, Reuse, ReuseRule, Strategy, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -1328,4 +1328,28 @@ fn reused_advice_saves_requests() {
         a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
     }
     assert!(ex.asked.len() > before, "the memory's hold decays");
+}
+
+#[test]
+fn rcmp_asks_while_its_heads_disagree() {
+    let rcmp = Strategy::Rcmp(Rcmp {
+        ask_budget: 10_000,
+        ..Rcmp::default()
+    });
+    let mut a = agent(0, 3, with(rcmp));
+    // Nobody answers: the agent learns alone, one kick per episode that
+    // always scores, and asks while its heads disagree about the state.
+    let mut silent = script(&[]);
+    let mut asked = Vec::new();
+    for _ in 0..300 {
+        a.begin_episode(Mode::Training);
+        let before = silent.asked.len();
+        a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
+        a.end_episode(1.0);
+        asked.push(silent.asked.len() > before);
+    }
+    assert!(asked[0], "nothing learned: infinitely uncertain");
+    let early = asked[..20].iter().filter(|&&x| x).count();
+    let late = asked[280..].iter().filter(|&&x| x).count();
+    assert!(early >= 5 && late == 0, "early {early}, late {late}");
 }

@@ -12,7 +12,7 @@ use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use crate::link::NetworkConditions;
-use crate::strategy::{AdHoc, Budgeted, PeerLearning, Reuse, ReuseRule, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, PeerLearning, Rcmp, Reuse, ReuseRule, Strategy, Torrey};
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -102,6 +102,12 @@ struct Table {
     trust_lr: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     follow_steps: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    heads: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mask_probability: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    uncertainty_threshold: Option<f64>,
     profile: Profile,
     #[serde(skip_serializing_if = "Option::is_none")]
     torrey_unknown_state: Option<TorreyUnknownState>,
@@ -159,6 +165,9 @@ impl From<&AgentConfig> for Table {
             temperature: None,
             trust_lr: None,
             follow_steps: None,
+            heads: None,
+            mask_probability: None,
+            uncertainty_threshold: None,
             profile: c.fidelity.profile,
             torrey_unknown_state: Some(c.fidelity.torrey_unknown_state),
             torrey_intent: Some(c.fidelity.torrey_intent),
@@ -179,6 +188,14 @@ impl From<&AgentConfig> for Table {
             Strategy::AdHoc(a) => {
                 ad_hoc(&mut table, a);
                 table.mistake_correcting = Some(a.mistake_correcting);
+            }
+            Strategy::Rcmp(r) => {
+                table.heads = Some(r.heads);
+                table.mask_probability = Some(r.mask_probability);
+                table.uncertainty_threshold = Some(r.uncertainty_threshold);
+                table.ask_budget = Some(r.ask_budget);
+                table.give_budget = Some(r.give_budget);
+                table.reachable = Some(r.reachable.clone());
             }
             Strategy::PeerLearning(p) => {
                 table.ask_budget = Some(p.ask_budget);
@@ -243,6 +260,21 @@ impl Table {
             Strategy::AdHoc(a) => {
                 self.take_ad_hoc(a);
                 take(&mut self.mistake_correcting, &mut a.mistake_correcting);
+            }
+            Strategy::Rcmp(Rcmp {
+                heads,
+                mask_probability,
+                uncertainty_threshold,
+                ask_budget,
+                give_budget,
+                reachable,
+            }) => {
+                take(&mut self.heads, heads);
+                take(&mut self.mask_probability, mask_probability);
+                take(&mut self.uncertainty_threshold, uncertainty_threshold);
+                take(&mut self.ask_budget, ask_budget);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.reachable, reachable);
             }
             Strategy::PeerLearning(PeerLearning {
                 ask_budget,
@@ -374,6 +406,12 @@ impl Table {
             ("temperature", self.temperature.is_some()),
             ("trust_lr", self.trust_lr.is_some()),
             ("follow_steps", self.follow_steps.is_some()),
+            ("heads", self.heads.is_some()),
+            ("mask_probability", self.mask_probability.is_some()),
+            (
+                "uncertainty_threshold",
+                self.uncertainty_threshold.is_some(),
+            ),
         ]
         .into_iter()
     }
@@ -454,6 +492,11 @@ mod tests {
                 temperature: 0.5,
                 follow_steps: 3,
                 ..PeerLearning::default()
+            })),
+            with(Strategy::Rcmp(Rcmp {
+                heads: 3,
+                uncertainty_threshold: 0.2,
+                ..Rcmp::default()
             })),
             with(Strategy::RandomAdvising(Budgeted {
                 ask_probability: 0.3,

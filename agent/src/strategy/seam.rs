@@ -22,6 +22,10 @@ pub struct AskContext<'a> {
     pub training_episodes: u64,
     /// The agent's counters.
     pub counters: &'a AdviceCounters,
+    /// Its learner's uncertainty in the state, for a method that
+    /// [`asks_by_uncertainty`](AdvisingStrategy::asks_by_uncertainty)
+    /// (`None` otherwise, or from a learner that cannot tell).
+    pub uncertainty: Option<f64>,
 }
 
 /// What an advisor knows when it decides whether to answer.
@@ -82,6 +86,11 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
         _rng: &mut AgentRng,
     ) -> Option<Action> {
         None
+    }
+
+    /// Whether [`asks`](Self::asks) needs its learner's uncertainty.
+    fn asks_by_uncertainty(&self) -> bool {
+        false
     }
 
     /// Advisee: whether a training step with the ball asks for advice.

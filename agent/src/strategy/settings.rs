@@ -202,6 +202,39 @@ impl Default for PeerLearning {
     }
 }
 
+/// The constants of RCMP (da Silva et al., AAAI 2020): ask where the
+/// ensemble's heads disagree.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Rcmp {
+    /// Heads K of the ensemble, 2 to 64 (default 5).
+    pub heads: u32,
+    /// The probability p that a head learns a transition (its bootstrap
+    /// mask), in (0, 1] (default 0.5).
+    pub mask_probability: f64,
+    /// Ask where the heads' variance exceeds it, finite and >= 0 (default
+    /// 0.001: a first update of a head, alpha 0.1, leaves 0.0025).
+    pub uncertainty_threshold: f64,
+    /// Advisee budget: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// The reachable set G (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Default for Rcmp {
+    fn default() -> Self {
+        Self {
+            heads: 5,
+            mask_probability: 0.5,
+            uncertainty_threshold: 0.001,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
 /// Which learner and advising strategy an agent runs, with its constants.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum Strategy {
@@ -228,6 +261,8 @@ pub enum Strategy {
     AdviceReuse(AdHoc, Reuse),
     /// Peer learning: follow recommendations by trust.
     PeerLearning(PeerLearning),
+    /// RCMP: ask by the uncertainty of an ensemble.
+    Rcmp(Rcmp),
 }
 
 impl From<Algorithm> for Strategy {
@@ -256,6 +291,7 @@ impl Strategy {
             Algorithm::RandomAdvising => Strategy::RandomAdvising(Budgeted::new(0.5)),
             Algorithm::AdviceReuse => Strategy::AdviceReuse(AdHoc::td(), Reuse::default()),
             Algorithm::PeerLearning => Strategy::PeerLearning(PeerLearning::default()),
+            Algorithm::Rcmp => Strategy::Rcmp(Rcmp::default()),
         }
     }
 
@@ -274,6 +310,7 @@ impl Strategy {
             Strategy::RandomAdvising(_) => Algorithm::RandomAdvising,
             Strategy::AdviceReuse(..) => Algorithm::AdviceReuse,
             Strategy::PeerLearning(_) => Algorithm::PeerLearning,
+            Strategy::Rcmp(_) => Algorithm::Rcmp,
         }
     }
 
@@ -313,6 +350,21 @@ impl Strategy {
     /// Returns the first invalid constant, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
         match self {
+            Strategy::Rcmp(r) => {
+                if !(2..=64).contains(&r.heads) {
+                    return Err(AgentConfigError::new(
+                        "heads",
+                        format!("must be 2 to 64, got {}", r.heads),
+                    ));
+                }
+                let p = r.mask_probability;
+                require("mask_probability", p, "in (0, 1]", p > 0.0 && p <= 1.0)?;
+                require_non_negative("uncertainty_threshold", r.uncertainty_threshold)?;
+                if let Reachable::WithinDistance(d) = r.reachable {
+                    require_non_negative("reachable", d)?;
+                }
+                Ok(())
+            }
             Strategy::PeerLearning(p) => {
                 require(
                     "temperature",
@@ -371,6 +423,10 @@ impl Strategy {
                 _,
             )
             | Strategy::PeerLearning(PeerLearning {
+                reachable: Reachable::Agents(ids),
+                ..
+            })
+            | Strategy::Rcmp(Rcmp {
                 reachable: Reachable::Agents(ids),
                 ..
             })
