@@ -1,14 +1,14 @@
 //! One learning agent: its per-frame API (advisee side), its advisor side and
 //! its learned state.
 
-use proto::{Action, Mode, State};
+use proto::{Action, Mode, SharedValues, State};
 use rand::{Rng, SeedableRng};
 
 use crate::advice::shared_prefix;
 use crate::advice_counters::AdviceCounters;
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
-use crate::exchange::{Advice, AdviceExchange, Transition};
+use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
 use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::link::Link;
@@ -106,7 +106,7 @@ pub struct Agent {
     in_flight: Option<InFlight>,
     advised: Vec<u64>,
     reach: Vec<usize>,
-    answers: Vec<Advice>,
+    answers: Answers,
     episode: Vec<Transition>,
     share_ready: bool,
     training_episodes: u64,
@@ -163,7 +163,7 @@ impl Agent {
             in_flight: None,
             advised: Vec::new(),
             reach: Vec::with_capacity(team_size),
-            answers: Vec::with_capacity(team_size),
+            answers: Answers::default(),
             episode: Vec::new(),
             share_ready: false,
             training_episodes: 0,
@@ -367,14 +367,14 @@ impl Agent {
         Decision::Act(action)
     }
 
-    /// The second half of a frame that asked: `answers` holds the advice
-    /// that arrived (in any number, possibly none) in `replies` replies
-    /// (with or without advice). With advice the agent
-    /// plays the majority vote and spends one unit of its ask budget, else
-    /// its intended or epsilon-greedy action; then the frame completes as in
-    /// [`act`](Self::act). Without a frame waiting for advice it returns
-    /// `Move` and changes nothing.
-    pub fn act_complete(&mut self, answers: &[Advice], replies: u64) -> Action {
+    /// The second half of a frame that asked: `answers` holds what arrived
+    /// (in any number, possibly none) in `replies` replies (with or without
+    /// advice). Values its strategy adopts go into its learner first (one
+    /// unit of its ask budget); with advice to follow it plays it (one unit
+    /// of its ask budget), else its intended or epsilon-greedy action; then
+    /// the frame completes as in [`act`](Self::act). Without a frame
+    /// waiting for advice it returns `Move` and changes nothing.
+    pub fn act_complete(&mut self, answers: &Answers, replies: u64) -> Action {
         let Some(f) = self.in_flight.take() else {
             return Action::Move;
         };
@@ -382,8 +382,24 @@ impl Agent {
         let ties = self.config.fidelity.vote_ties;
         let replies = Replies {
             key: f.key,
-            advice: answers,
+            advice: &answers.advice,
+            values: &answers.values,
         };
+        let visits = self.states.visits(f.index);
+        if let Some(shared) = self.strategy.adopt(&replies, visits) {
+            let values = ActionValues {
+                q: shared.q,
+                learned: shared.learned,
+            };
+            let at = Seen {
+                state: &f.state,
+                index: Some(f.index),
+            };
+            if self.learner.absorb(at, values) {
+                self.counters.ask_spent += 1;
+                self.advised.push(f.key);
+            }
+        }
         let followed = self.strategy.follow(&replies, ties, &mut self.rng);
         let action = match followed {
             Some(advice) => {
@@ -471,15 +487,24 @@ impl Agent {
         shares
     }
 
-    /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
-    /// advisee's `state`, or `None`. The answer is its greedy kick action,
-    /// ties broken as its fidelity says. With `intended` (Mistake Correcting)
-    /// it answers, and spends budget, only when its action differs.
-    pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
+    /// Advisor side: its answer to a request about `state`, as its method
+    /// answers: an action ([`advise`](Self::advise)) or, for a value-sharing
+    /// method, its values ([`share_values`](Self::share_values)).
+    pub fn answer(&mut self, state: &State, intended: Option<Action>) -> Answer {
+        if self.strategy.shares_values() {
+            Answer::Values(self.share_values(state))
+        } else {
+            Answer::Action(self.advise(state, intended))
+        }
+    }
+
+    /// Its visits and values of `state` (none where training never met it)
+    /// when its strategy is willing to give about it now; `None` outside
+    /// training or when it is not.
+    fn willing(&mut self, state: &State) -> Option<(u64, ActionValues)> {
         if !self.training() {
             return None;
         }
-        let fidelity = self.config.fidelity;
         let index = self.states.get(self.tiling.key(state));
         let (visits, values) = match index {
             Some(i) => {
@@ -496,15 +521,36 @@ impl Agent {
             values: &values,
             counters: &self.counters,
         };
-        if !self.strategy.gives(&at, &mut self.rng) {
-            return None;
-        }
-        let answer = (self.strategy).advice(&values, fidelity.advisor_ties, &mut self.rng);
+        self.strategy
+            .gives(&at, &mut self.rng)
+            .then_some((visits, values))
+    }
+
+    /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
+    /// advisee's `state`, or `None`. The answer is its greedy kick action,
+    /// ties broken as its fidelity says. With `intended` (Mistake Correcting)
+    /// it answers, and spends budget, only when its action differs.
+    pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
+        let (_, values) = self.willing(state)?;
+        let ties = self.config.fidelity.advisor_ties;
+        let answer = (self.strategy).advice(&values, ties, &mut self.rng);
         if intended == Some(answer) {
             return None;
         }
         self.counters.advice_given += 1;
         Some(answer)
+    }
+
+    /// Sharer side (a value-sharing method): its values and visits of an
+    /// advisee's `state`, or `None`; one unit of its give budget.
+    pub fn share_values(&mut self, state: &State) -> Option<SharedValues> {
+        let (visits, values) = self.willing(state)?;
+        self.counters.advice_given += 1;
+        Some(SharedValues {
+            q: values.q,
+            learned: values.learned,
+            visits,
+        })
     }
 
     /// Replays a received goal episode as SARSA(lambda) updates with a fresh

@@ -39,6 +39,8 @@ pub enum Algorithm {
     /// `rcmp`: ask where an ensemble's heads disagree (da Silva et al.,
     /// AAAI 2020).
     Rcmp,
+    /// `psaf`: share values instead of actions (Zhu et al., AAMAS 2019).
+    Psaf,
 }
 
 /// An algorithm name that is not one of [`Algorithm::ALL`].
@@ -49,7 +51,7 @@ pub struct UnknownAlgorithm(pub String);
 impl Algorithm {
     /// Every algorithm: the paper's, in the order it presents them, then
     /// the field's since.
-    pub const ALL: [Algorithm; 11] = [
+    pub const ALL: [Algorithm; 12] = [
         Algorithm::NoAdvice,
         Algorithm::AdHocVisit,
         Algorithm::AdHocTd,
@@ -61,6 +63,7 @@ impl Algorithm {
         Algorithm::AdviceReuse,
         Algorithm::PeerLearning,
         Algorithm::Rcmp,
+        Algorithm::Psaf,
     ];
 
     /// The name as written on the command line and in files.
@@ -77,6 +80,7 @@ impl Algorithm {
             Algorithm::AdviceReuse => "advice-reuse",
             Algorithm::PeerLearning => "peer-learning",
             Algorithm::Rcmp => "rcmp",
+            Algorithm::Psaf => "psaf",
         }
     }
 
@@ -164,7 +168,7 @@ mod tests {
         assert_eq!(
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
-             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning, rcmp)"
+             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning, rcmp, psaf)"
         );
     }
 

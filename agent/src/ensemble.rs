@@ -117,6 +117,11 @@ impl Learner for EnsembleSarsa {
         Some(mean)
     }
 
+    /// Every head takes the values (they then agree there).
+    fn absorb(&mut self, at: Seen<'_>, values: ActionValues) -> bool {
+        self.heads.iter_mut().all(|h| h.absorb(at, values))
+    }
+
     /// Every head starts from the snapshot's table (they agree on it).
     fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String> {
         for head in &mut self.heads {

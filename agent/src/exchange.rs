@@ -3,7 +3,7 @@
 //! Budgets, probabilities and votes live in the agent ([`crate::Agent::advise`],
 //! [`crate::Agent::receive_shared`]); an exchange only carries messages.
 
-use proto::{Action, State};
+use proto::{Action, SharedValues, State};
 
 /// One step of a shared episode, `(s, a, r, s', a')`: the wire type itself,
 /// so that a transport ships shared episodes as they are.
@@ -18,19 +18,54 @@ pub struct Advice {
     pub action: Action,
 }
 
+/// One sharer's values of a state (a value-sharing method's answer).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValuesAdvice {
+    /// The sharer's id.
+    pub advisor: usize,
+    /// Its values and visits.
+    pub values: SharedValues,
+}
+
+/// An advisor's answer to one request, as its method answers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Answer {
+    /// An action, or none.
+    Action(Option<Action>),
+    /// Its values of the state, or none (a value-sharing method).
+    Values(Option<SharedValues>),
+}
+
+/// What arrived for one request: actions advised and values shared.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Answers {
+    /// The actions advised, with who advised them.
+    pub advice: Vec<Advice>,
+    /// The values shared, with who shared them.
+    pub values: Vec<ValuesAdvice>,
+}
+
+impl Answers {
+    /// Forgets every answer, keeping the room.
+    pub fn clear(&mut self) {
+        self.advice.clear();
+        self.values.clear();
+    }
+}
+
 /// Carries advice requests and shared episodes between agents.
 pub trait AdviceExchange {
     /// Asks every agent of `to`, in order, for advice on `state` (with the
     /// asker's `intended` action in Mistake Correcting mode) and appends each
-    /// piece of advice to `answers`; returns the replies that arrived, with
-    /// or without advice (an advisor without advice replies all the same).
+    /// answer to `answers`; returns the replies that arrived, with or without
+    /// advice (an advisor without advice replies all the same).
     fn ask(
         &mut self,
         from: usize,
         to: &[usize],
         state: &State,
         intended: Option<Action>,
-        answers: &mut Vec<Advice>,
+        answers: &mut Answers,
     ) -> u64;
 
     /// Delivers transitions of `from`'s goal episode to agent `to`, in order.
@@ -42,14 +77,7 @@ pub trait AdviceExchange {
 pub struct Isolated;
 
 impl AdviceExchange for Isolated {
-    fn ask(
-        &mut self,
-        _: usize,
-        _: &[usize],
-        _: &State,
-        _: Option<Action>,
-        _: &mut Vec<Advice>,
-    ) -> u64 {
+    fn ask(&mut self, _: usize, _: &[usize], _: &State, _: Option<Action>, _: &mut Answers) -> u64 {
         0
     }
 

@@ -107,6 +107,12 @@ pub trait Learner: fmt::Debug + Send {
     /// index order; an error says why it cannot.
     fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String>;
 
+    /// Takes `values` as its own in `at` (a value-sharing method's shared
+    /// values); false for a learner that cannot.
+    fn absorb(&mut self, _at: Seen<'_>, _values: ActionValues) -> bool {
+        false
+    }
+
     /// How uncertain its values in `at` are (an ensemble's disagreement),
     /// for the methods that ask by it; `None` for a learner that cannot
     /// tell.

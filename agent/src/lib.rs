@@ -64,7 +64,7 @@ pub use algorithm::{Algorithm, UnknownAlgorithm};
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
 pub use ensemble::EnsembleSarsa;
-pub use exchange::{Advice, AdviceExchange, Isolated, Transition};
+pub use exchange::{Advice, AdviceExchange, Answer, Answers, Isolated, Transition, ValuesAdvice};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
@@ -76,7 +76,7 @@ pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
     AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Outcome, PeerLearning,
-    Rcmp, Replies, Reuse, ReuseRule, Strategy, Torrey,
+    Psaf, Rcmp, Replies, Reuse, ReuseRule, Strategy, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

@@ -160,6 +160,17 @@ impl Learner for TabularSarsa {
         Some(self.table.clone())
     }
 
+    fn absorb(&mut self, at: Seen<'_>, values: ActionValues) -> bool {
+        let Some(index) = at.index else {
+            return false;
+        };
+        if index >= self.table.len() {
+            self.table.resize(index + 1, ActionValues::default());
+        }
+        self.table[index] = values;
+        true
+    }
+
     fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String> {
         self.table = values;
         self.own.clear();

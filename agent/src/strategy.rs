@@ -15,6 +15,7 @@ mod budgeted;
 mod build;
 mod episode_sharing;
 mod peers;
+mod psaf;
 mod rcmp;
 mod reuse;
 mod seam;
@@ -23,5 +24,5 @@ mod torrey;
 
 pub use seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 pub use settings::{
-    AdHoc, Budgeted, Confidence, PeerLearning, Rcmp, Reuse, ReuseRule, Strategy, Torrey,
+    AdHoc, Budgeted, Confidence, PeerLearning, Psaf, Rcmp, Reuse, ReuseRule, Strategy, Torrey,
 };

@@ -3,10 +3,11 @@
 
 use proto::{
     Action, AdviceReply, AdviceRequest, Body, Envelope, Header, Mode, SharedEpisode, State,
+    ValuesReply,
 };
 
 use crate::agent::{Agent, Observation};
-use crate::exchange::{Advice, AdviceExchange, Transition};
+use crate::exchange::{Advice, AdviceExchange, Answer, Answers, Transition, ValuesAdvice};
 use crate::link::{Leg, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
@@ -233,7 +234,7 @@ impl AdviceExchange for Peers<'_> {
         to: &[usize],
         state: &State,
         intended: Option<Action>,
-        answers: &mut Vec<Advice>,
+        answers: &mut Answers,
     ) -> u64 {
         let delay = |link: Option<&Link>, message| link.map_or(Some(0.0), |l| l.delay(message));
         let asker = self.link;
@@ -253,17 +254,25 @@ impl AdviceExchange for Peers<'_> {
             let Some(advisor) = self.get(j) else {
                 continue;
             };
-            let advice = advisor.advise(state, intended);
+            let answer = advisor.answer(state, intended);
             let arrives = delay(advisor.link(), back)
                 .is_some_and(|b| asker.is_none_or(|l| sent + b <= l.timeout_ms()));
-            let reply = AdviceReply {
-                from: j as u8,
-                advice,
+            let from = j as u8;
+            let reply = match answer {
+                Answer::Action(advice) => Body::AdviceReply(AdviceReply { from, advice }),
+                Answer::Values(values) => Body::ValuesReply(ValuesReply { from, values }),
             };
-            self.traffic[j].count(header, Body::AdviceReply(reply));
+            self.traffic[j].count(header, reply);
             replies += u64::from(arrives);
-            if let (Some(action), true) = (advice, arrives) {
-                answers.push(Advice { advisor: j, action });
+            if !arrives {
+                continue;
+            }
+            match answer {
+                Answer::Action(Some(action)) => answers.advice.push(Advice { advisor: j, action }),
+                Answer::Values(Some(values)) => {
+                    (answers.values).push(ValuesAdvice { advisor: j, values })
+                }
+                Answer::Action(None) | Answer::Values(None) => {}
             }
         }
         replies

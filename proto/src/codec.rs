@@ -207,6 +207,14 @@ mod tests {
                 )))
             ),
             ".{0,40}".prop_map(|e| Body::ControlReply(ControlReply::Error(e))),
+            (
+                any::<u8>(),
+                prop::option::of((prop::array::uniform5(-10.0f64..10.0), 0u8..32, any::<u64>()))
+            )
+                .prop_map(|(from, values)| Body::ValuesReply(ValuesReply {
+                    from,
+                    values: values.map(|(q, learned, visits)| SharedValues { q, learned, visits }),
+                })),
         ]
     }
 

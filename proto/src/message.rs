@@ -84,6 +84,9 @@ pub enum Body {
     Control(Control),
     /// process -> coordinator: the answer to a command (query reply).
     ControlReply(ControlReply),
+    /// advisor -> advisee: the reply of a method that shares values instead
+    /// of actions (query reply).
+    ValuesReply(ValuesReply),
 }
 
 /// One agent's observation of a frame.
@@ -135,6 +138,34 @@ pub struct AdviceReply {
     pub from: u8,
     /// The advised action.
     pub advice: Option<Action>,
+}
+
+/// A sharer's values of a state: what a value-sharing advisor answers.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SharedValues {
+    /// Q(s, a) by action index.
+    pub q: [f64; 5],
+    /// Bit `a` set where Q(s, a) is learned.
+    pub learned: u8,
+    /// The sharer's visits n(s).
+    pub visits: u64,
+}
+
+impl SharedValues {
+    /// Whether the values can be taken: finite, and learned bits of the
+    /// five actions only.
+    pub fn is_valid(&self) -> bool {
+        self.q.iter().all(|q| q.is_finite()) && self.learned < 1 << 5
+    }
+}
+
+/// A value-sharing advisor's answer: its values, or `None` when it shares none.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ValuesReply {
+    /// The answering agent.
+    pub from: u8,
+    /// Its values of the state.
+    pub values: Option<SharedValues>,
 }
 
 /// One transition of a shared episode.
@@ -335,6 +366,7 @@ impl MessageKind {
             Body::Action(_) => MessageKind::Action,
             Body::AdviceRequest(_) => MessageKind::AdviceRequest,
             Body::AdviceReply(_) => MessageKind::AdviceReply,
+            Body::ValuesReply(_) => MessageKind::ValuesReply,
             Body::SharedEpisode(_) => MessageKind::SharedEpisode,
             Body::Control(_) => MessageKind::Control,
             Body::ControlReply(_) => MessageKind::ControlReply,

@@ -19,11 +19,13 @@ pub enum MessageKind {
     Control,
     /// Control replies.
     ControlReply,
+    /// Values replies (value-sharing methods).
+    ValuesReply,
 }
 
 impl MessageKind {
     /// Every kind, in counter order.
-    pub const ALL: [MessageKind; 7] = [
+    pub const ALL: [MessageKind; 8] = [
         MessageKind::Observation,
         MessageKind::Action,
         MessageKind::AdviceRequest,
@@ -31,6 +33,7 @@ impl MessageKind {
         MessageKind::SharedEpisode,
         MessageKind::Control,
         MessageKind::ControlReply,
+        MessageKind::ValuesReply,
     ];
 
     /// Snake-case name used in reports.
@@ -43,6 +46,7 @@ impl MessageKind {
             MessageKind::SharedEpisode => "shared_episode",
             MessageKind::Control => "control",
             MessageKind::ControlReply => "control_reply",
+            MessageKind::ValuesReply => "values_reply",
         }
     }
 }
@@ -116,9 +120,9 @@ impl Dropped {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct MessageCounters {
     /// Sent, indexed like [`MessageKind::ALL`].
-    pub sent: [Tally; 7],
+    pub sent: [Tally; MessageKind::ALL.len()],
     /// Received and accepted, indexed like [`MessageKind::ALL`].
-    pub received: [Tally; 7],
+    pub received: [Tally; MessageKind::ALL.len()],
     /// Received and dropped.
     pub dropped: Dropped,
 }

@@ -1,8 +1,8 @@
 //! The advisor side: the agent's advice queryable, answered in zenoh's
 //! callback, concurrently with the agent's own decisions (docs/protocol.md §6).
 
-use agent::Leg;
-use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind};
+use agent::{Answer, Leg};
+use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind, ValuesReply};
 use zenoh::Wait;
 use zenoh::query::Query;
 
@@ -21,23 +21,24 @@ pub fn answer(ctx: &Context, query: Query, runtime: &tokio::runtime::Handle) {
     let Body::AdviceRequest(request) = body else {
         return ctx.dropped(DropReason::Malformed, Some(&header));
     };
-    let advice = match ctx.learner().advise(&header, &request) {
-        Ok(advice) => {
+    let answer = match ctx.learner().advise(&header, &request) {
+        Ok(answer) => {
             ctx.accepted(MessageKind::AdviceRequest, bytes.len());
-            advice
+            answer
         }
         Err(DropReason::Malformed) => return ctx.dropped(DropReason::Malformed, Some(&header)),
         // Another run's asker still gets its answer: no advice.
         Err(reason) => {
             ctx.dropped(reason, Some(&header));
-            None
+            Answer::Action(None)
         }
     };
-    let reply = AdviceReply {
-        from: ctx.id,
-        advice,
+    let from = ctx.id;
+    let reply = match answer {
+        Answer::Action(advice) => Body::AdviceReply(AdviceReply { from, advice }),
+        Answer::Values(values) => Body::ValuesReply(ValuesReply { from, values }),
     };
-    let bytes = ctx.encode(header, Body::AdviceReply(reply));
+    let bytes = ctx.encode(header, reply);
     let key = ctx.keys.advice(ctx.id);
     match conditions::fate(ctx.advice().1, &header, ctx.id, request.from, Leg::Reply) {
         None => tracing::trace!(asker = request.from, "the network lost an advice reply"),

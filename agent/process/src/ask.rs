@@ -4,8 +4,8 @@
 
 use std::time::{Duration, Instant};
 
-use agent::{Advice, Leg};
-use proto::{Action, Body, DropReason, Header, MessageKind};
+use agent::{Advice, Answer, Answers, Leg, ValuesAdvice};
+use proto::{Body, DropReason, Header, MessageKind};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
@@ -18,8 +18,8 @@ use crate::learning::Ask;
 pub struct Collector {
     waiting: Vec<u8>,
     answered: Vec<u8>,
-    /// The advice received, by advisor (replies without advice add nothing).
-    pub advice: Vec<Advice>,
+    /// What was received, by advisor (replies without advice add nothing).
+    pub answers: Answers,
     /// Round-trip time of each reply (ms).
     pub rtt_ms: Vec<f32>,
 }
@@ -39,14 +39,15 @@ impl Collector {
     }
 
     /// Takes advisor `from`'s reply, received `rtt` after its request.
-    /// Only kick actions count as advice. A reply from an advisor that was
-    /// not asked is refused as unrequested, a second one as a duplicate.
-    pub fn take(
-        &mut self,
-        from: u8,
-        advice: Option<Action>,
-        rtt: Duration,
-    ) -> Result<(), DropReason> {
+    /// Only kick actions count as advice, and only finite values. A reply
+    /// from an advisor that was not asked is refused as unrequested, a
+    /// second one as a duplicate.
+    pub fn take(&mut self, from: u8, answer: Answer, rtt: Duration) -> Result<(), DropReason> {
+        if let Answer::Values(Some(values)) = answer
+            && !values.is_valid()
+        {
+            return Err(DropReason::Malformed);
+        }
         let Some(k) = self.waiting.iter().position(|&j| j == from) else {
             return Err(if self.answered.contains(&from) {
                 DropReason::Duplicate
@@ -57,11 +58,16 @@ impl Collector {
         self.answered.push(from);
         self.waiting.swap_remove(k);
         self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
-        let action = advice.filter(|a| a.is_kick());
-        (self.advice).extend(action.map(|action| Advice {
-            advisor: usize::from(from),
-            action,
-        }));
+        let advisor = usize::from(from);
+        match answer {
+            Answer::Action(Some(action)) if action.is_kick() => {
+                self.answers.advice.push(Advice { advisor, action });
+            }
+            Answer::Values(Some(values)) => {
+                self.answers.values.push(ValuesAdvice { advisor, values });
+            }
+            _ => {}
+        }
         Ok(())
     }
 
@@ -185,15 +191,21 @@ fn take_reply(
     let Some(envelope) = ctx.decode(bytes) else {
         return;
     };
-    let result = match envelope.body {
-        Body::AdviceReply(_) if envelope.header != header => Err(DropReason::Stale),
+    let (kind, from, answer) = match envelope.body {
+        Body::AdviceReply(r) => (MessageKind::AdviceReply, r.from, Answer::Action(r.advice)),
+        Body::ValuesReply(r) => (MessageKind::ValuesReply, r.from, Answer::Values(r.values)),
+        _ => return ctx.dropped(DropReason::Malformed, Some(&envelope.header)),
+    };
+    let result = if envelope.header != header {
+        Err(DropReason::Stale)
+    } else if from != j {
         // A reply on advisor j's key that names another sender.
-        Body::AdviceReply(r) if r.from != j => Err(DropReason::Unrequested),
-        Body::AdviceReply(r) => collector.take(j, r.advice, rtt),
-        _ => Err(DropReason::Malformed),
+        Err(DropReason::Unrequested)
+    } else {
+        collector.take(j, answer, rtt)
     };
     match result {
-        Ok(()) => ctx.accepted(MessageKind::AdviceReply, bytes.len()),
+        Ok(()) => ctx.accepted(kind, bytes.len()),
         Err(reason) => ctx.dropped(reason, Some(&envelope.header)),
     }
 }
@@ -206,29 +218,52 @@ mod tests {
     #[test]
     fn collects_until_every_advisor_answered() {
         let ms = Duration::from_millis;
+        let act = |a| Answer::Action(Some(a));
         let mut c = Collector::new(&[2, 0]);
         assert!(!c.done());
-        c.take(0, Some(Shoot), ms(3)).unwrap();
-        assert_eq!(c.take(0, Some(Dribble), ms(4)), Err(DropReason::Duplicate));
+        c.take(0, act(Shoot), ms(3)).unwrap();
+        assert_eq!(c.take(0, act(Dribble), ms(4)), Err(DropReason::Duplicate));
         assert_eq!(
-            c.take(1, Some(Dribble), ms(4)),
+            c.take(1, act(Dribble), ms(4)),
             Err(DropReason::Unrequested),
             "not asked"
         );
         assert!(!c.done());
         // No advice, or a non-kick one: a reply, but no advice.
-        c.take(2, None, ms(1)).unwrap();
+        c.take(2, Answer::Action(None), ms(1)).unwrap();
         assert!(c.done());
         let shoot = Advice {
             advisor: 0,
             action: Shoot,
         };
-        assert_eq!(c.advice, vec![shoot]);
+        assert_eq!(c.answers.advice, vec![shoot]);
         assert_eq!(c.replies(), 2);
         assert_eq!(c.rtt_ms, vec![3.0, 1.0]);
         let mut d = Collector::new(&[1]);
-        d.take(1, Some(Move), ms(1)).unwrap();
-        assert!(d.advice.is_empty());
+        d.take(1, act(Move), ms(1)).unwrap();
+        assert!(d.answers.advice.is_empty());
+    }
+
+    #[test]
+    fn shared_values_are_collected_and_bad_ones_refused() {
+        let ms = Duration::from_millis;
+        let values = |q| proto::SharedValues {
+            q,
+            learned: 0b10,
+            visits: 7,
+        };
+        let mut c = Collector::new(&[1, 2]);
+        let bad = values([f64::NAN, 0.0, 0.0, 0.0, 0.0]);
+        let refused = c.take(1, Answer::Values(Some(bad)), ms(1));
+        assert_eq!(refused, Err(DropReason::Malformed));
+        let good = values([0.0, 0.5, 0.0, 0.0, 0.0]);
+        c.take(2, Answer::Values(Some(good)), ms(2)).unwrap();
+        let shared = ValuesAdvice {
+            advisor: 2,
+            values: good,
+        };
+        assert_eq!(c.answers.values, vec![shared]);
+        assert!(!c.done(), "the refused reply does not count");
     }
 
     #[test]

@@ -165,7 +165,7 @@ impl Stream {
         let replies = ask(ctx, header, &request).await;
         let action = ctx
             .learner()
-            .complete(&request, &replies.advice, replies.replies());
+            .complete(&request, &replies.answers, replies.replies());
         ctx.traffic().rtt_ms.extend_from_slice(&replies.rtt_ms);
         self.publish_action(header, action);
     }

@@ -2,7 +2,7 @@
 //! run, its position in the observation stream and the shares waiting for
 //! it. Pure state, driven by the tasks that hold it under a lock.
 
-use agent::{Advice, Agent, AgentConfig, Decision, Observation, Snapshot, Transition};
+use agent::{Agent, AgentConfig, Answer, Answers, Decision, Observation, Snapshot, Transition};
 use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
 
 use crate::order::{ObservationOrder, Position};
@@ -185,9 +185,9 @@ impl Learning {
 
     /// Completes the frame that asked with the advice that arrived in
     /// `replies` replies; `None` if the learner was reset or loaded meanwhile.
-    pub fn complete(&mut self, ask: &Ask, advice: &[Advice], replies: u64) -> Option<Action> {
+    pub fn complete(&mut self, ask: &Ask, answers: &Answers, replies: u64) -> Option<Action> {
         let agent = self.agent.as_mut().filter(|_| ask.epoch == self.epoch)?;
-        Some(agent.act_complete(advice, replies))
+        Some(agent.act_complete(answers, replies))
     }
 
     /// A shared episode: replayed once this agent has finished that episode
@@ -215,12 +215,12 @@ impl Learning {
         &mut self,
         header: &Header,
         request: &AdviceRequest,
-    ) -> Result<Option<Action>, DropReason> {
+    ) -> Result<Answer, DropReason> {
         if request.from == self.id || request.from >= self.team_size {
             return Err(DropReason::Malformed);
         }
         match self.agent.as_mut() {
-            Some(a) if header.run == self.run => Ok(a.advise(&request.state, request.intended)),
+            Some(a) if header.run == self.run => Ok(a.answer(&request.state, request.intended)),
             _ => Err(DropReason::Stale),
         }
     }
@@ -419,7 +419,10 @@ mod tests {
             state: [0.0; 6],
             intended: None,
         };
-        assert_eq!(l.advise(&header(3, 0, 0), &request(1)), Ok(None));
+        assert_eq!(
+            l.advise(&header(3, 0, 0), &request(1)),
+            Ok(Answer::Action(None))
+        );
         assert_eq!(
             l.advise(&header(2, 0, 0), &request(1)),
             Err(DropReason::Stale)
@@ -452,17 +455,20 @@ mod tests {
         assert_eq!(ask.to, vec![1]);
         assert_eq!(ask.request.from, 0);
         assert_eq!(
-            l.complete(&ask, &[advice(1, Action::PassFar)], 1),
+            l.complete(&ask, &advice(1, Action::PassFar), 1),
             Some(Action::PassFar)
         );
         let Ok(Step::Ask(ask)) = l.observe(&header(0, 1, 0), &kick, &|_| true) else {
             panic!("no request");
         };
         l.reset(1, 1, &config).unwrap();
-        assert_eq!(l.complete(&ask, &[advice(1, Action::Shoot)], 1), None);
+        assert_eq!(l.complete(&ask, &advice(1, Action::Shoot), 1), None);
     }
 
-    fn advice(advisor: usize, action: Action) -> Advice {
-        Advice { advisor, action }
+    fn advice(advisor: usize, action: Action) -> Answers {
+        Answers {
+            advice: vec![agent::Advice { advisor, action }],
+            values: Vec::new(),
+        }
     }
 }

@@ -1,12 +1,12 @@
 use super::*;
 use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
-use crate::exchange::{Advice, Isolated};
+use crate::exchange::{Advice, Answer, Answers, Isolated, ValuesAdvice};
 use crate::fidelity::{Fidelity, Profile};
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
-use crate::strategy::{AdHoc, Budgeted, Rcmp, Reuse, ReuseRule, Strategy, Torrey};
+use crate::strategy::{AdHoc, Budgeted, Psaf, Rcmp, Reuse, ReuseRule, Strategy, Torrey};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -82,11 +82,11 @@ impl AdviceExchange for Script {
         to: &[usize],
         _: &State,
         intended: Option<Action>,
-        answers: &mut Vec<Advice>,
+        answers: &mut Answers,
     ) -> u64 {
         self.asked.push((from, to.to_vec(), intended));
         // The scripted answers come from the advisors asked, in turn.
-        answers.extend(
+        answers.advice.extend(
             self.answers
                 .iter()
                 .zip(to.iter().cycle())
@@ -104,6 +104,14 @@ fn script(answers: &[Action]) -> Script {
     Script {
         answers: answers.to_vec(),
         ..Script::default()
+    }
+}
+
+/// Answers holding one piece of advice.
+fn only(advice: Advice) -> Answers {
+    Answers {
+        advice: vec![advice],
+        values: Vec::new(),
     }
 }
 
@@ -795,13 +803,17 @@ fn play_two_phase(
                         state,
                         intended,
                     } => {
-                        let answers: Vec<Advice> = to
+                        let advice = to
                             .iter()
                             .filter_map(|&j| {
                                 let action = agents[j].advise(&state, intended)?;
                                 Some(Advice { advisor: j, action })
                             })
                             .collect();
+                        let answers = Answers {
+                            advice,
+                            values: Vec::new(),
+                        };
                         agents[i].act_complete(&answers, to.len() as u64)
                     }
                 };
@@ -901,7 +913,7 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
         advisor: 2,
         action: PassNear,
     };
-    assert_eq!(a.act_complete(&[advice], 1), PassNear);
+    assert_eq!(a.act_complete(&only(advice), 1), PassNear);
     assert_eq!(a.counters().ask_spent, 1);
     // Nobody reachable: the agent acts on its own and sends no request.
     let decision = a.act_begin(&obs(kick_state(1)), 0.0, &[], &|_| false);
@@ -925,7 +937,7 @@ fn an_abandoned_ask_completes_to_nothing() {
         advisor: 1,
         action: Dribble,
     };
-    assert_eq!(a.act_complete(&[late], 2), Move);
+    assert_eq!(a.act_complete(&only(late), 2), Move);
     assert_eq!(a.digest(), after_end);
     assert_eq!(a.counters().ask_spent, 0);
     assert_ne!(before, after_end, "the episode count moved on");
@@ -1352,4 +1364,51 @@ fn rcmp_asks_while_its_heads_disagree() {
     let early = asked[..20].iter().filter(|&&x| x).count();
     let late = asked[280..].iter().filter(|&&x| x).count();
     assert!(early >= 5 && late == 0, "early {early}, late {late}");
+}
+
+#[test]
+fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
+    let sharing = |v_g| {
+        with(Strategy::Psaf(Psaf {
+            v_g,
+            ..Psaf::default()
+        }))
+    };
+    let q = [0.0, 0.2, 0.9, 0.1, 0.0];
+    let mut partaker = agent(0, 3, sharing(0.5));
+    // v_g large: P_give = 1 - (1 + v_g)^(-log2 n) is 1 at any n > 1.
+    let mut sharer = agent(1, 3, sharing(1e9));
+    teach(&mut sharer, &[(kick_state(0), known(q, 40))]);
+    let mut novice = agent(2, 3, sharing(1e9));
+    teach(&mut novice, &[(kick_state(0), known([0.5; 5], 2))]);
+    finish_one_episode(&mut partaker);
+    let Decision::Ask { state, .. } = partaker.act_begin(&obs(kick_state(0)), 0.0, &[], &|_| true)
+    else {
+        panic!("a partaker that never visited the state asks");
+    };
+    let mut values = Vec::new();
+    for (advisor, a) in [(1, &mut sharer), (2, &mut novice)] {
+        let Answer::Values(Some(v)) = a.answer(&state, None) else {
+            panic!("a sharer answers with its values");
+        };
+        values.push(ValuesAdvice { advisor, values: v });
+    }
+    assert_eq!((values[0].values.q, values[0].values.visits), (q, 40));
+    let answers = Answers {
+        advice: Vec::new(),
+        values,
+    };
+    partaker.act_complete(&answers, 2);
+    // It took the values of the sharer with the most visits as its own.
+    assert_eq!(partaker.entry(&kick_state(0)).unwrap().q, q);
+    assert_eq!(partaker.counters().ask_spent, 1);
+    assert_eq!(sharer.counters().advice_given, 1);
+    // Values from sharers that visited the state less are left alone.
+    let mut strategy = Psaf::default();
+    let replies = Replies {
+        key: 0,
+        advice: &[],
+        values: &answers.values,
+    };
+    assert_eq!(strategy.adopt(&replies, 100), None);
 }

@@ -12,7 +12,9 @@ use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use crate::link::NetworkConditions;
-use crate::strategy::{AdHoc, Budgeted, PeerLearning, Rcmp, Reuse, ReuseRule, Strategy, Torrey};
+use crate::strategy::{
+    AdHoc, Budgeted, PeerLearning, Psaf, Rcmp, Reuse, ReuseRule, Strategy, Torrey,
+};
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -189,6 +191,13 @@ impl From<&AgentConfig> for Table {
                 ad_hoc(&mut table, a);
                 table.mistake_correcting = Some(a.mistake_correcting);
             }
+            Strategy::Psaf(p) => {
+                table.v_a = Some(p.v_a);
+                table.v_g = Some(p.v_g);
+                table.ask_budget = Some(p.ask_budget);
+                table.give_budget = Some(p.give_budget);
+                table.reachable = Some(p.reachable.clone());
+            }
             Strategy::Rcmp(r) => {
                 table.heads = Some(r.heads);
                 table.mask_probability = Some(r.mask_probability);
@@ -260,6 +269,19 @@ impl Table {
             Strategy::AdHoc(a) => {
                 self.take_ad_hoc(a);
                 take(&mut self.mistake_correcting, &mut a.mistake_correcting);
+            }
+            Strategy::Psaf(Psaf {
+                v_a,
+                v_g,
+                ask_budget,
+                give_budget,
+                reachable,
+            }) => {
+                take(&mut self.v_a, v_a);
+                take(&mut self.v_g, v_g);
+                take(&mut self.ask_budget, ask_budget);
+                take(&mut self.give_budget, give_budget);
+                take(&mut self.reachable, reachable);
             }
             Strategy::Rcmp(Rcmp {
                 heads,
@@ -497,6 +519,10 @@ mod tests {
                 heads: 3,
                 uncertainty_threshold: 0.2,
                 ..Rcmp::default()
+            })),
+            with(Strategy::Psaf(Psaf {
+                v_g: 0.25,
+                ..Psaf::default()
             })),
             with(Strategy::RandomAdvising(Budgeted {
                 ask_probability: 0.3,

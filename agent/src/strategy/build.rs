@@ -41,6 +41,7 @@ impl Strategy {
             Strategy::AdviceReuse(a, r) => Box::new(ReusingAdvice::new(a.clone(), r.clone())),
             Strategy::PeerLearning(p) => Box::new(Peers::new(p.clone())),
             Strategy::Rcmp(r) => Box::new(r.clone()),
+            Strategy::Psaf(p) => Box::new(p.clone()),
             Strategy::Torrey(t) => Box::new(TorreyTeacher {
                 settings: t.clone(),
                 unknown: fidelity.torrey_unknown_state,

@@ -180,7 +180,11 @@ mod tests {
     use rand::SeedableRng;
 
     fn replies(advice: &[Advice]) -> Replies<'_> {
-        Replies { key: 1, advice }
+        Replies {
+            key: 1,
+            advice,
+            values: &[],
+        }
     }
 
     #[test]

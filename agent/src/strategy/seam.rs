@@ -3,10 +3,10 @@
 
 use std::fmt;
 
-use proto::Action;
+use proto::{Action, SharedValues};
 
 use crate::advice_counters::AdviceCounters;
-use crate::exchange::Advice;
+use crate::exchange::{Advice, ValuesAdvice};
 use crate::fidelity::{AdvisorTies, VoteTies};
 use crate::learner::ActionValues;
 use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
@@ -47,6 +47,8 @@ pub struct Replies<'a> {
     pub key: u64,
     /// The advice that arrived, with who gave it.
     pub advice: &'a [Advice],
+    /// The values shared, with who shared them.
+    pub values: &'a [ValuesAdvice],
 }
 
 impl Replies<'_> {
@@ -111,6 +113,19 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// learner's greedy action (else its learner's own choice).
     fn intends_greedy(&self) -> bool {
         false
+    }
+
+    /// Advisor: whether it answers with its values of the state (a
+    /// value-sharing method) instead of an action.
+    fn shares_values(&self) -> bool {
+        false
+    }
+
+    /// Advisee: the shared values it takes into its learner for the state
+    /// asked about, where it visited the state `visits` times; none by
+    /// default.
+    fn adopt(&mut self, _replies: &Replies<'_>, _visits: u64) -> Option<SharedValues> {
+        None
     }
 
     /// Advisor: whether it answers about a state.

@@ -235,6 +235,37 @@ impl Default for Rcmp {
     }
 }
 
+/// The constants of the Partaker-Sharer Advising Framework (Zhu et al.,
+/// AAMAS 2019): a partaker asks with P_ask, sharers answer with their
+/// values with P_give of their visits; separate budgets.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Psaf {
+    /// Scaling v_a of the partaker's P_ask = (1 + v_a)^(-sqrt n(s)),
+    /// finite and >= 0 (default 0.5).
+    pub v_a: f64,
+    /// Scaling v_g of the sharer's P_give = 1 - (1 + v_g)^(-log2 n(s)),
+    /// finite and >= 0 (default 0.5).
+    pub v_g: f64,
+    /// Partaker budget: states whose shared values it took (default 1000).
+    pub ask_budget: u64,
+    /// Sharer budget: values shared (default 1000).
+    pub give_budget: u64,
+    /// The sharers asked (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Default for Psaf {
+    fn default() -> Self {
+        Self {
+            v_a: 0.5,
+            v_g: 0.5,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
 /// Which learner and advising strategy an agent runs, with its constants.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub enum Strategy {
@@ -263,6 +294,8 @@ pub enum Strategy {
     PeerLearning(PeerLearning),
     /// RCMP: ask by the uncertainty of an ensemble.
     Rcmp(Rcmp),
+    /// PSAF: share values instead of actions.
+    Psaf(Psaf),
 }
 
 impl From<Algorithm> for Strategy {
@@ -292,6 +325,7 @@ impl Strategy {
             Algorithm::AdviceReuse => Strategy::AdviceReuse(AdHoc::td(), Reuse::default()),
             Algorithm::PeerLearning => Strategy::PeerLearning(PeerLearning::default()),
             Algorithm::Rcmp => Strategy::Rcmp(Rcmp::default()),
+            Algorithm::Psaf => Strategy::Psaf(Psaf::default()),
         }
     }
 
@@ -311,6 +345,7 @@ impl Strategy {
             Strategy::AdviceReuse(..) => Algorithm::AdviceReuse,
             Strategy::PeerLearning(_) => Algorithm::PeerLearning,
             Strategy::Rcmp(_) => Algorithm::Rcmp,
+            Strategy::Psaf(_) => Algorithm::Psaf,
         }
     }
 
@@ -350,6 +385,14 @@ impl Strategy {
     /// Returns the first invalid constant, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
         match self {
+            Strategy::Psaf(p) => {
+                require_non_negative("v_a", p.v_a)?;
+                require_non_negative("v_g", p.v_g)?;
+                if let Reachable::WithinDistance(d) = p.reachable {
+                    require_non_negative("reachable", d)?;
+                }
+                Ok(())
+            }
             Strategy::Rcmp(r) => {
                 if !(2..=64).contains(&r.heads) {
                     return Err(AgentConfigError::new(
@@ -427,6 +470,10 @@ impl Strategy {
                 ..
             })
             | Strategy::Rcmp(Rcmp {
+                reachable: Reachable::Agents(ids),
+                ..
+            })
+            | Strategy::Psaf(Psaf {
                 reachable: Reachable::Agents(ids),
                 ..
             })

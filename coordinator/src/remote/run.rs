@@ -217,6 +217,7 @@ fn stats_of(r: &AgentReport) -> AgentStats {
     let advising = r.messages.sent_of(&[
         MessageKind::AdviceRequest,
         MessageKind::AdviceReply,
+        MessageKind::ValuesReply,
         MessageKind::SharedEpisode,
     ]);
     AgentStats {
