@@ -102,7 +102,7 @@ struct RouterArgs {
 #[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
 struct StudyArgs {
     /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
-    /// fidelity-sensitivity, advice-network.
+    /// fidelity-sensitivity, advice-network, advising-methods.
     #[arg(long, value_name = "NAME")]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).

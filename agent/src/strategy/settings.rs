@@ -382,6 +382,25 @@ impl Strategy {
         Ok(())
     }
 
+    /// Switches the back-off after unanswered requests on or off; switching
+    /// it on is an error for a method other than the ad hoc ones.
+    pub fn set_backoff(&mut self, on: bool) -> Result<(), AgentConfigError> {
+        match self {
+            Strategy::AdHoc(a) | Strategy::AdviceReuse(a, _) => a.backoff = on,
+            _ if on => {
+                return Err(AgentConfigError::new(
+                    "backoff",
+                    format!(
+                        "only for adhoc-visit, adhoc-td and advice-reuse, not {}",
+                        self.name()
+                    ),
+                ));
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
     /// Returns the first invalid constant, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
         match self {

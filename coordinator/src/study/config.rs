@@ -14,7 +14,7 @@ use crate::error::ConfigError;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 6] = [
+pub const PRESETS: [(&str, &str); 7] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -35,6 +35,10 @@ pub const PRESETS: [(&str, &str); 6] = [
     (
         "advice-network",
         include_str!("../../presets/advice-network.toml"),
+    ),
+    (
+        "advising-methods",
+        include_str!("../../presets/advising-methods.toml"),
     ),
 ];
 
@@ -135,6 +139,10 @@ pub struct StudyEntry {
     /// Network conditions of every agent's advice messages.
     #[serde(default)]
     pub network: Option<NetworkConditions>,
+    /// The ad hoc methods' back-off after unanswered requests (written only
+    /// when on, so that studies from before it keep their identity).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub backoff: bool,
 }
 
 /// Team size of every study (the paper's 3 offense agents).
@@ -304,6 +312,7 @@ impl StudyEntry {
     pub fn strategy(&self, profile: Profile) -> Result<Strategy, agent::AgentConfigError> {
         let mut strategy = Strategy::of(self.algorithm, profile);
         strategy.set_mistake_correcting(self.mistake_correcting)?;
+        strategy.set_backoff(self.backoff)?;
         if let Some(v_g) = self.v_g {
             let Strategy::AdHoc(a) = &mut strategy else {
                 return Err(agent::AgentConfigError {
