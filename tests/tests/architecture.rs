@@ -12,9 +12,8 @@ fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
-/// Every target's root file of every workspace package (libraries,
-/// binaries, tests, benches, examples), read from `cargo metadata`.
-fn target_roots() -> Vec<PathBuf> {
+/// The workspace's packages as `cargo metadata` describes them.
+fn metadata() -> serde_json::Value {
     let output = Command::new(env!("CARGO"))
         .args([
             "metadata",
@@ -31,7 +30,13 @@ fn target_roots() -> Vec<PathBuf> {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    serde_json::from_slice(&output.stdout).expect("JSON")
+}
+
+/// Every target's root file of every workspace package (libraries,
+/// binaries, tests, benches, examples), read from `cargo metadata`.
+fn target_roots() -> Vec<PathBuf> {
+    let metadata = metadata();
     let packages = metadata["packages"].as_array().expect("packages");
     let roots: Vec<PathBuf> = packages
         .iter()
@@ -85,23 +90,7 @@ fn normal_dependencies(krate: &str) -> String {
 /// Every workspace package, by name, with the directory of its manifest
 /// relative to the workspace.
 fn packages() -> Vec<(String, PathBuf)> {
-    let output = Command::new(env!("CARGO"))
-        .args([
-            "metadata",
-            "--no-deps",
-            "--offline",
-            "--format-version",
-            "1",
-        ])
-        .current_dir(workspace())
-        .output()
-        .expect("cargo metadata runs");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let metadata = metadata();
     let root = workspace().canonicalize().unwrap();
     let packages = metadata["packages"].as_array().expect("packages");
     packages

@@ -1,9 +1,9 @@
 //! The two methods that never advise: SARSA(lambda) alone (NoAdvice) and
-//! the authors' random baseline, which does not learn either.
+//! the authors' random baseline, which does not learn either. They never
+//! ask nor give: the seam's defaults.
 
-use super::seam::{AdvisingStrategy, AskContext, GiveContext};
+use super::seam::AdvisingStrategy;
 use crate::advice_counters::AdviceCounters;
-use crate::selection::AgentRng;
 
 /// NoAdvice, or the random baseline when it does not `learn`.
 #[derive(Clone, Copy, Debug)]
@@ -15,18 +15,6 @@ pub(super) struct Alone {
 impl AdvisingStrategy for Alone {
     fn learns(&self) -> bool {
         self.learns
-    }
-
-    fn asks(&mut self, _at: &AskContext<'_>, _rng: &mut AgentRng) -> bool {
-        false
-    }
-
-    fn advisors(&self, _me: usize, _n: usize, _positions: &[[f64; 2]], out: &mut Vec<usize>) {
-        out.clear();
-    }
-
-    fn gives(&mut self, _at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
-        false
     }
 
     fn spent_budget(&self, _counters: &AdviceCounters) -> u64 {

@@ -1,10 +1,10 @@
 //! Tan's episode sharing (docs/algorithms.md section 3): after a goal
 //! episode an agent sends its transitions to every other agent, one budget
-//! unit per transition per receiver; nobody asks or answers.
+//! unit per transition per receiver; nobody asks or answers (the seam's
+//! defaults).
 
-use super::seam::{AdvisingStrategy, AskContext, GiveContext};
+use super::seam::AdvisingStrategy;
 use crate::advice_counters::AdviceCounters;
-use crate::selection::AgentRng;
 
 /// Episode sharing with its budget of transitions sent.
 #[derive(Clone, Copy, Debug)]
@@ -13,18 +13,6 @@ pub(super) struct EpisodeSharing {
 }
 
 impl AdvisingStrategy for EpisodeSharing {
-    fn asks(&mut self, _at: &AskContext<'_>, _rng: &mut AgentRng) -> bool {
-        false
-    }
-
-    fn advisors(&self, _me: usize, _n: usize, _positions: &[[f64; 2]], out: &mut Vec<usize>) {
-        out.clear();
-    }
-
-    fn gives(&mut self, _at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
-        false
-    }
-
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.shared_sent
     }

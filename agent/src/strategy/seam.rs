@@ -96,12 +96,17 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     }
 
     /// Advisee: whether a training step with the ball asks for advice.
-    fn asks(&mut self, at: &AskContext<'_>, rng: &mut AgentRng) -> bool;
+    /// Never, by default.
+    fn asks(&mut self, _at: &AskContext<'_>, _rng: &mut AgentRng) -> bool {
+        false
+    }
 
     /// Advisee: fills `out` with whom agent `me` of a team of `team_size`
     /// asks (`positions`: every agent's field position by id); the framework
-    /// then leaves out whoever is not reachable now.
-    fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>);
+    /// then leaves out whoever is not reachable now. Nobody, by default.
+    fn advisors(&self, _me: usize, _n: usize, _positions: &[[f64; 2]], out: &mut Vec<usize>) {
+        out.clear();
+    }
 
     /// Whether it runs in Mistake Correcting mode: the advisee sends its
     /// intended action along and advisors answer only when they disagree.
@@ -129,7 +134,10 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     }
 
     /// Advisor: whether it answers about a state.
-    fn gives(&mut self, at: &GiveContext<'_>, rng: &mut AgentRng) -> bool;
+    /// Never, by default.
+    fn gives(&mut self, _at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
+        false
+    }
 
     /// Advisor: the action it advises where its learner holds `values`:
     /// its greedy action, ties broken as `ties` says.
