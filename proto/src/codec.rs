@@ -69,6 +69,29 @@ pub fn encode_settings<T: Serialize>(settings: &T) -> Result<Vec<u8>, SettingsEr
     postcard::to_allocvec(settings).map_err(|e| SettingsError(e.to_string()))
 }
 
+/// The answer to a command of `experiment` that came in another protocol
+/// version: a [`ControlReply::Error`](crate::ControlReply::Error) in this
+/// version naming both, so the sender can say why this process will not
+/// take part. `None` for bytes that are not such a command.
+pub fn version_refusal(bytes: &[u8], experiment: u64) -> Option<Envelope> {
+    let (header, _) = postcard::take_from_bytes::<Header>(bytes).ok()?;
+    if header.version == PROTOCOL_VERSION || header.experiment != experiment {
+        return None;
+    }
+    let reason = format!(
+        "this process speaks protocol version {PROTOCOL_VERSION}, the command came in version {}: \
+         every process of an experiment must run the same build",
+        header.version
+    );
+    Some(Envelope {
+        header: Header {
+            version: PROTOCOL_VERSION,
+            ..header
+        },
+        body: crate::Body::ControlReply(crate::ControlReply::Error(reason)),
+    })
+}
+
 /// Decodes settings sent with `Control::Reset`; every byte must be used.
 /// Checking the values is the caller's job.
 pub fn decode_settings<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, SettingsError> {

@@ -14,6 +14,8 @@ pub mod message;
 pub mod traffic;
 
 pub use action::{Action, STATE_FEATURES, State};
-pub use codec::{DecodeError, SettingsError, decode, decode_settings, encode, encode_settings};
+pub use codec::{
+    DecodeError, SettingsError, decode, decode_settings, encode, encode_settings, version_refusal,
+};
 pub use message::*;
 pub use traffic::{Direction, DropReason, MessageCounters, MessageKind};

@@ -26,10 +26,18 @@ pub async fn serve(ctx: Arc<Context>, queries: Queries) {
     }
 }
 
-/// Answers one command; undecodable ones get no answer.
+/// Answers one command; undecodable ones get no answer, but for a command
+/// of this experiment in another protocol version, which gets an error
+/// naming both versions.
 async fn answer(ctx: Arc<Context>, query: Query) {
     let bytes = query.payload().map(|p| p.to_bytes()).unwrap_or_default();
     let Some(Envelope { header, body }) = ctx.decode(&bytes) else {
+        if let Some(refusal) = proto::version_refusal(&bytes, ctx.experiment) {
+            let key = ctx.keys.control(Role::Agent(ctx.id));
+            if let Err(e) = query.reply(key, proto::encode(&refusal)).await {
+                tracing::warn!(error = %e, "cannot refuse a command of another version");
+            }
+        }
         return;
     };
     let Body::Control(control) = body else {

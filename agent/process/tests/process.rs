@@ -388,6 +388,19 @@ async fn bad_messages_change_nothing(fake: &Fake, before: &AgentReport) {
     assert_eq!((d.malformed, d.foreign, d.version, d.stale), (4, 1, 1, 2));
     assert_eq!(r.digest, before.digest);
     assert_eq!(received(&r, MessageKind::Observation), 6);
+    // A command in another protocol version is refused, naming both.
+    let other = Header {
+        version: PROTOCOL_VERSION + 1,
+        ..fake.header(0, 2, 0)
+    };
+    let ControlReply::Error(e) = fake.control(0, other, Control::Report).await else {
+        panic!("a command of another version is answered with an error");
+    };
+    let versions = format!(
+        "version {PROTOCOL_VERSION}, the command came in version {}",
+        PROTOCOL_VERSION + 1
+    );
+    assert!(e.contains(&versions), "{e}");
 }
 
 /// An evaluation episode: frozen, nobody asks, nothing learned.

@@ -493,6 +493,12 @@ impl ZenohTeam {
                         return Ok(r);
                     }
                     Ok(_) => lock(&self.counters).record_drop(proto::DropReason::Stale),
+                    Err(proto::DecodeError::Version { found, expected }) => {
+                        return Err(format!(
+                            "{role} speaks protocol version {found}, this coordinator {expected}: \
+                             every process of an experiment must run the same build"
+                        ));
+                    }
                     Err(e) => lock(&self.counters).drop_undecodable(&e),
                 }
             }
