@@ -9,8 +9,11 @@ use serde::Serialize;
 use super::config::{StudyConfig, StudyEntry};
 use super::difference::difference_sets;
 use super::sweep::{EPISODES, advised, conditions, goal_at, sweep_figures};
+use crate::backend::AgentStats;
 use crate::error::Error;
 use crate::figures::{DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures};
+use crate::schedule::EvalPoint;
+use crate::stats::Estimate;
 use crate::stats::aggregates::{Aggregates, Scores, aggregates};
 use crate::stats::analysis::{Comparison, EntryResults};
 use crate::stats::gains::{Gain, LAST_POINTS, gains};
@@ -54,6 +57,9 @@ pub fn write_report(
     let figures = write_figures(out, study, entries)?;
     let mut md = Markdown::default();
     introduction(&mut md, study, entries);
+    if let Some(baseline) = &study.baseline {
+        at_a_glance(&mut md, baseline, entries, &gains, &aggregate);
+    }
     final_performance(&mut md, study, entries);
     if let Some(baseline) = &study.baseline {
         gains_over(&mut md, baseline, &gains);
@@ -216,6 +222,88 @@ fn gains_over(md: &mut Markdown, baseline: &str, gains: &[Gain]) {
          `{baseline}`: the mean over runs of the per-run difference, with its interval."
     ));
     md.0.push_str(&gains_table(gains));
+}
+
+/// The table a report leads with: each method's gain over the baseline and
+/// what it cost, side by side.
+fn at_a_glance(
+    md: &mut Markdown,
+    baseline: &str,
+    entries: &[EntryResults],
+    gains: &[Gain],
+    aggregate: &Aggregates,
+) {
+    md.heading(2, "At a glance");
+    md.paragraph(&format!(
+        "Each method against `{baseline}`: its gain in goal % over the last {LAST_POINTS} \
+         evaluations and over the whole curve (the area under it, divided by the episodes it \
+         spans), paired by run; P(> `{baseline}`) on the last {LAST_POINTS}; the budget spent \
+         and the steps acted on advice per agent at the end; and the advising messages and \
+         bytes each agent sent per training episode. Means over runs."
+    ));
+    let rows = entries.iter().map(|e| {
+        let name = &e.entry.name;
+        let gain = gains.iter().find(|g| &g.entry == name);
+        let show = |x: Option<&Estimate>| x.map_or("-".into(), |x| format!("{x:.1}"));
+        let improvement = (aggregate.entries.iter())
+            .find(|a| &a.entry == name)
+            .and_then(|a| a.last_ten?.p_improvement)
+            .map_or("-".into(), |p| interval(p.estimate, p.ci, 2));
+        // The mean over runs of `f` of each run's last point.
+        let at_end = |f: &dyn Fn(&EvalPoint) -> f64, digits: usize| {
+            let ends: Vec<f64> = e
+                .results
+                .iter()
+                .filter_map(|r| r.points.last())
+                .map(f)
+                .collect();
+            let mean = ends.iter().sum::<f64>() / ends.len().max(1) as f64;
+            if ends.is_empty() {
+                "-".to_owned()
+            } else {
+                format!("{mean:.digits$}")
+            }
+        };
+        // A counter summed over the agents, per agent, and per training
+        // episode when `per_episode`.
+        let per_agent = |f: fn(&AgentStats) -> u64, per_episode: bool| {
+            at_end(
+                &move |p: &EvalPoint| {
+                    let total = p.agents.iter().map(f).sum::<u64>() as f64;
+                    let episodes = if per_episode {
+                        p.episode.max(1) as f64
+                    } else {
+                        1.0
+                    };
+                    total / p.agents.len().max(1) as f64 / episodes
+                },
+                2,
+            )
+        };
+        [
+            label(&e.entry),
+            show(gain.map(|g| &g.last_ten_gain)),
+            show(gain.map(|g| &g.area_gain)),
+            improvement,
+            at_end(&|p: &EvalPoint| p.spent_budget, 0),
+            per_agent(|a| a.ask_spent, false),
+            per_agent(|a| a.advising_messages, true),
+            per_agent(|a| a.advising_bytes, true),
+        ]
+    });
+    md.table(
+        [
+            "algorithm",
+            "gain: last ten",
+            "gain: whole curve",
+            "P(> baseline)",
+            "budget spent",
+            "advice acted on",
+            "messages / agent / episode",
+            "bytes / agent / episode",
+        ],
+        rows,
+    );
 }
 
 /// A Markdown table of `gains`: each algorithm's goal % on the last ten
