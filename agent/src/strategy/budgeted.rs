@@ -23,7 +23,7 @@ impl AdvisingStrategy for Budgeted {
 
     /// Give budget left and a visited state.
     fn gives(&mut self, at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
-        at.counters.advice_given < self.give_budget && at.visits > 0
+        at.visited_within(self.give_budget)
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {

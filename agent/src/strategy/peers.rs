@@ -112,7 +112,7 @@ impl AdvisingStrategy for Peers {
 
     /// Every request about a visited state, while the give budget lasts.
     fn gives(&mut self, at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
-        at.counters.advice_given < self.settings.give_budget && at.visits > 0
+        at.visited_within(self.settings.give_budget)
     }
 
     /// The followed peer's advice while it lasts and arrives; else a new

@@ -29,7 +29,7 @@ impl AdvisingStrategy for Rcmp {
 
     /// Every request about a visited state, while the give budget lasts.
     fn gives(&mut self, at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
-        at.counters.advice_given < self.give_budget && at.visits > 0
+        at.visited_within(self.give_budget)
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {

@@ -58,6 +58,14 @@ impl Replies<'_> {
     }
 }
 
+impl GiveContext<'_> {
+    /// Whether it visited the state and has answers left of `give_budget`:
+    /// the rule of the methods whose advisors answer whatever they know.
+    pub fn visited_within(&self, give_budget: u64) -> bool {
+        self.counters.advice_given < give_budget && self.visits > 0
+    }
+}
+
 /// How a training decision with the ball turned out, once learned from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Outcome {
