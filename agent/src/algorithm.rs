@@ -41,6 +41,10 @@ pub enum Algorithm {
     Rcmp,
     /// `psaf`: share values instead of actions (Zhu et al., AAMAS 2019).
     Psaf,
+    /// `external`: decisions given from outside: a strategy process (a
+    /// team file's `strategy_process`) or, in process,
+    /// [`Agent::with_strategy`](crate::Agent::with_strategy).
+    External,
 }
 
 /// An algorithm name that is not one of [`Algorithm::ALL`].
@@ -51,7 +55,7 @@ pub struct UnknownAlgorithm(pub String);
 impl Algorithm {
     /// Every algorithm: the paper's, in the order it presents them, then
     /// the field's since.
-    pub const ALL: [Algorithm; 12] = [
+    pub const ALL: [Algorithm; 13] = [
         Algorithm::NoAdvice,
         Algorithm::AdHocVisit,
         Algorithm::AdHocTd,
@@ -64,6 +68,7 @@ impl Algorithm {
         Algorithm::PeerLearning,
         Algorithm::Rcmp,
         Algorithm::Psaf,
+        Algorithm::External,
     ];
 
     /// The name as written on the command line and in files.
@@ -81,6 +86,7 @@ impl Algorithm {
             Algorithm::PeerLearning => "peer-learning",
             Algorithm::Rcmp => "rcmp",
             Algorithm::Psaf => "psaf",
+            Algorithm::External => "external",
         }
     }
 
@@ -168,7 +174,8 @@ mod tests {
         assert_eq!(
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
-             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning, rcmp, psaf)"
+             torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning, rcmp, psaf, \
+             external)"
         );
     }
 

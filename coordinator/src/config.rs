@@ -15,7 +15,7 @@ use crate::transport::Transport;
 /// optionally, a saved snapshot it starts from.
 ///
 /// In a file it is one flat table: every [`AgentConfig`] key, plus `load`
-/// (path of a snapshot), `keep_counters` and `learner`.
+/// (path of a snapshot), `keep_counters`, `learner` and `strategy_process`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "serde_json::Map<String, serde_json::Value>")]
 #[serde(into = "serde_json::Map<String, serde_json::Value>")]
@@ -29,14 +29,18 @@ pub struct AgentSpec {
     /// and finished-episode count, with fresh budgets.
     pub keep_counters: bool,
     /// A learner process in place of SARSA(lambda) (docs/learners.md).
-    pub learner: Option<LearnerSpec>,
+    pub learner: Option<ChildSpec>,
+    /// A strategy process making algorithm `external`'s decisions
+    /// (docs/strategies.md).
+    pub strategy_process: Option<ChildSpec>,
 }
 
-/// A learner that runs as a child of its agent's process: the command, where
-/// it runs, and what it is made of, so that results stay attributable.
+/// A learner or a strategy that runs as a child of its agent's
+/// process: the command, where it runs, and what it is made of, so that
+/// results stay attributable.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct LearnerSpec {
+pub struct ChildSpec {
     /// Program and arguments, e.g. `["python3", "my_learner.py"]`.
     pub command: Vec<String>,
     /// Its working directory: the team file's, unless given.
@@ -50,20 +54,20 @@ pub struct LearnerSpec {
     pub source_fnv64: Option<String>,
 }
 
-impl LearnerSpec {
+impl ChildSpec {
     /// Resolves `dir` and `source` from `base` (the team file's directory)
-    /// and records the source's digest.
-    fn resolve(&mut self, base: &Path) -> Result<(), String> {
+    /// and records the source's digest; `key` names it in errors.
+    fn resolve(&mut self, base: &Path, key: &str) -> Result<(), String> {
         if self.command.is_empty() {
-            return Err(
-                "`learner.command` must name a program, e.g. [\"python3\", \"learner.py\"]".into(),
-            );
+            return Err(format!(
+                "`{key}.command` must name a program, e.g. [\"python3\", \"{key}.py\"]"
+            ));
         }
         let dir = base.join(self.dir.take().unwrap_or_default());
         if let Some(source) = &self.source {
             let path = dir.join(source);
             let bytes = std::fs::read(&path)
-                .map_err(|e| format!("cannot read learner.source {}: {e}", path.display()))?;
+                .map_err(|e| format!("cannot read {key}.source {}: {e}", path.display()))?;
             self.source_fnv64 = Some(format!("{:016x}", fnv64(&bytes)));
         }
         // A team file in the current directory: the learner runs there too.
@@ -94,14 +98,16 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
             Some(serde_json::Value::Bool(b)) => b,
             Some(other) => return Err(format!("`keep_counters` must be a boolean, got {other}")),
         };
-        let learner = match map.remove("learner") {
-            None | Some(serde_json::Value::Null) => None,
-            Some(value) => Some(serde_json::from_value(value).map_err(|e| {
+        let mut child = |key: &str| match map.remove(key) {
+            None | Some(serde_json::Value::Null) => Ok(None),
+            Some(value) => serde_json::from_value(value).map(Some).map_err(|e| {
                 format!(
-                    "`learner` must be a table with `command` (and optionally `dir`, `source`): {e}"
+                    "`{key}` must be a table with `command` (and optionally `dir`, `source`): {e}"
                 )
-            })?),
+            }),
         };
+        let learner = child("learner")?;
+        let strategy_process = child("strategy_process")?;
         let config = serde_json::from_value(serde_json::Value::Object(map))
             .map_err(|e| format!("agent config: {e}"))?;
         Ok(Self {
@@ -109,6 +115,7 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
             load,
             keep_counters,
             learner,
+            strategy_process,
         })
     }
 }
@@ -128,9 +135,14 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
         if spec.keep_counters {
             map.insert("keep_counters".into(), serde_json::Value::Bool(true));
         }
-        if let Some(learner) = spec.learner {
-            let learner = serde_json::to_value(learner).expect("a learner spec serialises");
-            map.insert("learner".into(), learner);
+        for (key, child) in [
+            ("learner", spec.learner),
+            ("strategy_process", spec.strategy_process),
+        ] {
+            if let Some(child) = child {
+                let child = serde_json::to_value(child).expect("a child spec serialises");
+                map.insert(key.into(), child);
+            }
         }
         map
     }
@@ -270,18 +282,47 @@ impl ExperimentConfig {
             spec.config
                 .validate()
                 .map_err(|e| ConfigError::new(format!("team[{i}].{}", e.key), e.reason))?;
-            if spec.learner.is_some() {
-                let reason = if self.transport == Transport::InProcess {
-                    "a learner process is its agent's: run with --transport zenoh"
-                } else if spec.load.is_some() {
-                    "a learner process keeps its learned state itself: it cannot `load` a snapshot"
-                } else {
-                    continue;
-                };
+            self.check_children(i, spec)?;
+        }
+        Ok(())
+    }
+
+    /// Agent `i`'s learner and strategy processes can run as given.
+    fn check_children(&self, i: usize, spec: &AgentSpec) -> Result<(), ConfigError> {
+        let in_process = self.transport == Transport::InProcess;
+        if spec.learner.is_some() {
+            let reason = if in_process {
+                Some("a learner process is its agent's: run with --transport zenoh")
+            } else if spec.load.is_some() {
+                Some(
+                    "a learner process keeps its learned state itself: it cannot `load` a snapshot",
+                )
+            } else {
+                None
+            };
+            if let Some(reason) = reason {
                 return Err(ConfigError::new(format!("team[{i}].learner"), reason));
             }
         }
-        Ok(())
+        let external = spec.config.strategy.name() == Algorithm::External;
+        let reason = match (&spec.strategy_process, external) {
+            (Some(_), false) => {
+                "a strategy process makes the decisions of algorithm `external`: \
+                 set `algorithm = \"external\"`"
+            }
+            (None, true) => {
+                "algorithm `external` needs its strategy process: \
+                 `strategy_process = { command = [\"python3\", \"my_strategy.py\"] }`"
+            }
+            (Some(_), true) if in_process => {
+                "a strategy process is its agent's: run with --transport zenoh"
+            }
+            _ => return Ok(()),
+        };
+        Err(ConfigError::new(
+            format!("team[{i}].strategy_process"),
+            reason,
+        ))
     }
 
     /// The training episodes after which an evaluation takes place: 0, K,
@@ -358,13 +399,18 @@ pub fn load_team_file(path: &Path) -> Result<Vec<AgentSpec>, ConfigError> {
                 spec.load = Some(base.join(load));
             }
         }
-        if let Some(learner) = &mut spec.learner {
-            learner.resolve(base).map_err(|reason| {
-                ConfigError::new(
-                    format!("team[{i}].learner"),
-                    format!("{}: {reason}", path.display()),
-                )
-            })?;
+        for (key, child) in [
+            ("learner", &mut spec.learner),
+            ("strategy_process", &mut spec.strategy_process),
+        ] {
+            if let Some(child) = child {
+                child.resolve(base, key).map_err(|reason| {
+                    ConfigError::new(
+                        format!("team[{i}].{key}"),
+                        format!("{}: {reason}", path.display()),
+                    )
+                })?;
+            }
         }
         team.push(spec);
     }

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use agent::{AdHoc, AgentConfig, Algorithm, NetworkConditions, Profile, Reachable, Strategy};
-use coordinator::config::LearnerSpec;
+use coordinator::config::ChildSpec;
 use coordinator::experiment::Record;
 use coordinator::study::{PRESETS, StudyConfig};
 use coordinator::{
@@ -284,7 +284,7 @@ fn zenoh_record_and_summary() -> (Value, Value) {
     config.team[0].load = Some("expert.qtable".into());
     config.team[0].keep_counters = true;
     config.team[1].config = ad_hoc(Reachable::WithinDistance(20.0));
-    config.team[2].learner = Some(LearnerSpec {
+    config.team[2].learner = Some(ChildSpec {
         command: vec!["python3".into(), "learner.py".into()],
         dir: Some("learners".into()),
         source: Some("learner.py".into()),
@@ -484,18 +484,20 @@ fn team_file_keys() -> BTreeMap<String, String> {
             ..AgentConfig::default()
         });
     }
+    let child = ChildSpec {
+        command: vec!["python3".into(), "child.py".into()],
+        dir: Some("children".into()),
+        source: Some("child.py".into()),
+        source_fnv64: Some("0123456789abcdef".into()),
+    };
     let mut keys = BTreeMap::new();
     for config in configs {
         let spec = AgentSpec {
             config,
             load: Some("expert.qtable".into()),
             keep_counters: true,
-            learner: Some(LearnerSpec {
-                command: vec!["python3".into(), "learner.py".into()],
-                dir: Some("learners".into()),
-                source: Some("learner.py".into()),
-                source_fnv64: Some("0123456789abcdef".into()),
-            }),
+            learner: Some(child.clone()),
+            strategy_process: Some(child.clone()),
         };
         keys_of(&serde_json::to_value(spec).unwrap(), "", &mut keys);
     }

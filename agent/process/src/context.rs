@@ -12,8 +12,8 @@ use proto::{Body, Direction, DropReason, Envelope, Header, MessageCounters, Mess
 use tokio::sync::{Notify, watch};
 use zenoh::Session;
 
+use crate::child::ChildCommands;
 use crate::learning::{Learning, Progress};
-use crate::pipe::LearnerCommand;
 
 /// Messages of this run, and the advice round trips.
 #[derive(Clone, Debug, Default)]
@@ -57,13 +57,13 @@ pub struct Context {
 
 impl Context {
     /// The context of agent `id` of a team of `team_size` in experiment
-    /// `name`, learning through the learner process `command` if given.
+    /// `name`, with its learner and strategy processes `children` where given.
     pub fn new(
         session: Session,
         name: &str,
         keys: Keys,
         (id, team_size): (u8, u8),
-        command: Option<LearnerCommand>,
+        children: ChildCommands,
     ) -> Self {
         Self {
             session,
@@ -71,7 +71,7 @@ impl Context {
             experiment: proto::experiment_id(name),
             id,
             advice: Mutex::new((Duration::ZERO, None)),
-            learner: Mutex::new(Learning::new(id, team_size, command)),
+            learner: Mutex::new(Learning::new(id, team_size, children)),
             traffic: Mutex::new(Traffic::default()),
             alive: Mutex::new(BTreeSet::new()),
             progress: watch::Sender::new(Progress::default()),

@@ -2,12 +2,16 @@
 //! run, its position in the observation stream and the shares waiting for
 //! it. Pure state, driven by the tasks that hold it under a lock.
 
-use agent::{Agent, AgentConfig, Answer, Answers, Decision, Observation, Snapshot, Transition};
+use agent::{
+    Agent, AgentConfig, Algorithm, Answer, Answers, Decision, Observation, Snapshot, Transition,
+};
 use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
 
+use crate::child::ChildCommands;
+use crate::learner_pipe::PipeLearner;
 use crate::order::{ObservationOrder, Position};
-use crate::pipe::{LearnerCommand, PipeLearner};
 use crate::shares::PendingShares;
+use crate::strategy_pipe::PipeStrategy;
 
 /// What the process does after an accepted observation.
 #[derive(Clone, Debug, PartialEq)]
@@ -45,8 +49,9 @@ pub struct Progress {
 pub struct Learning {
     id: u8,
     team_size: u8,
-    /// A learner process in place of SARSA(lambda), started at each reset.
-    command: Option<LearnerCommand>,
+    /// A learner process in place of SARSA(lambda) and a strategy process
+    /// making algorithm `external`'s decisions, started at each reset.
+    children: ChildCommands,
     agent: Option<Agent>,
     run: u32,
     /// Counts resets and loads, so that answers to an older learner's
@@ -58,12 +63,12 @@ pub struct Learning {
 
 impl Learning {
     /// Agent `id` of a team of `team_size`, waiting for its first reset,
-    /// learning through the learner process `command` if given.
-    pub fn new(id: u8, team_size: u8, command: Option<LearnerCommand>) -> Self {
+    /// with its learner and strategy processes `children` where given.
+    pub fn new(id: u8, team_size: u8, children: ChildCommands) -> Self {
         Self {
             id,
             team_size,
-            command,
+            children,
             agent: None,
             run: 0,
             epoch: 0,
@@ -80,21 +85,42 @@ impl Learning {
             .map_err(|e| format!("agent config does not decode: {e}"))?;
         config.validate().map_err(|e| e.to_string())?;
         let (id, team_size) = (self.id.into(), self.team_size.into());
-        let agent = match &self.command {
+        let external = config.strategy.name() == Algorithm::External;
+        match (&self.children.strategy, external) {
+            (None, true) => return Err(NO_STRATEGY.into()),
+            (Some(_), false) => {
+                return Err(format!(
+                    "this agent runs a strategy process, so its algorithm must be \
+                     `external`, not `{}`",
+                    config.strategy.name()
+                ));
+            }
+            _ => {}
+        }
+        if self.children != ChildCommands::default() {
+            // The previous run's child processes end before the next start.
+            self.agent = None;
+        }
+        let agent = match &self.children.learner {
             None => Agent::new(id, team_size, config, seed),
             Some(command) => {
-                // The previous run's learner process ends before the next starts.
-                self.agent = None;
                 let learner = PipeLearner::start(command, self.id, self.team_size, run, seed)?;
                 Agent::with_learner(id, team_size, config, seed, Box::new(learner))
             }
         }
         .map_err(|e| e.to_string())?;
+        let agent = match &self.children.strategy {
+            None => agent,
+            Some(command) => {
+                let strategy = PipeStrategy::start(command, self.id, self.team_size, run, seed)?;
+                agent.with_strategy(Box::new(strategy))
+            }
+        };
         *self = Self {
             agent: Some(agent),
             run,
             epoch: self.epoch + 1,
-            ..Self::new(self.id, self.team_size, self.command.take())
+            ..Self::new(self.id, self.team_size, std::mem::take(&mut self.children))
         };
         Ok(())
     }
@@ -229,6 +255,11 @@ impl Learning {
 /// Why a command needs a reset first.
 const NO_RUN: &str = "no run started: the agent has not been reset";
 
+/// Why algorithm `external` cannot run here.
+const NO_STRATEGY: &str = "algorithm `external` takes its decisions from a strategy process, \
+    and this agent runs none: start it with `--strategy` (a team file's `strategy_process`; \
+    docs/strategies.md)";
+
 /// Replays the shares that are due.
 fn replay(agent: &mut Agent, shares: &mut PendingShares, finished: Option<u32>) {
     let training = agent.mode() == Mode::Training;
@@ -268,7 +299,7 @@ mod tests {
     }
 
     fn reset(id: u8) -> Learning {
-        let mut l = Learning::new(id, 2, None);
+        let mut l = Learning::new(id, 2, ChildCommands::default());
         l.reset(3, 9, &sharing()).unwrap();
         l
     }
@@ -293,7 +324,7 @@ mod tests {
 
     #[test]
     fn bad_resets_keep_the_current_state() {
-        let mut l = Learning::new(0, 2, None);
+        let mut l = Learning::new(0, 2, ChildCommands::default());
         assert!(l.agent().is_err());
         assert!(l.reset(0, 1, b"{").unwrap_err().contains("does not decode"));
         let mut long = sharing();
@@ -325,8 +356,30 @@ mod tests {
             };
             let bytes = proto::encode_settings(&sent).unwrap();
             assert_eq!(proto::decode_settings::<AgentConfig>(&bytes), Ok(sent));
-            Learning::new(0, 2, None).reset(0, 1, &bytes).unwrap();
+            let reset = Learning::new(0, 2, ChildCommands::default()).reset(0, 1, &bytes);
+            // `external` needs its strategy process.
+            assert_eq!(reset.is_err(), name == agent::Algorithm::External, "{name}");
         }
+    }
+
+    #[test]
+    fn a_strategy_process_goes_with_algorithm_external_only() {
+        let external = config(r#"{"algorithm": "external"}"#);
+        let error =
+            (Learning::new(0, 2, ChildCommands::default()).reset(0, 1, &external)).unwrap_err();
+        assert!(error.contains("--strategy"), "{error}");
+        let children = ChildCommands {
+            strategy: Some(crate::child::ChildCommand {
+                argv: vec!["python3".into(), "s.py".into()],
+                dir: None,
+                timeout: std::time::Duration::from_secs(1),
+            }),
+            ..ChildCommands::default()
+        };
+        let error = Learning::new(0, 2, children)
+            .reset(0, 1, &sharing())
+            .unwrap_err();
+        assert!(error.contains("not `episode-sharing`"), "{error}");
     }
 
     #[test]
@@ -347,7 +400,7 @@ mod tests {
     #[test]
     fn observations_of_other_runs_agents_or_before_a_reset_are_dropped() {
         let all = |_| true;
-        let mut fresh = Learning::new(0, 2, None);
+        let mut fresh = Learning::new(0, 2, ChildCommands::default());
         assert_eq!(
             fresh.observe(&header(0, 0, 0), &obs(0, true, false, 0.0), &all),
             Err(DropReason::Stale)
@@ -440,7 +493,7 @@ mod tests {
     #[test]
     fn asks_live_advisors_and_ignores_answers_for_a_replaced_learner() {
         let config = config(r#"{"strategy": "torrey"}"#);
-        let mut l = Learning::new(0, 2, None);
+        let mut l = Learning::new(0, 2, ChildCommands::default());
         l.reset(0, 1, &config).unwrap();
         // Torrey students ask their teacher at every fresh kick state, if alive.
         let kick = obs(0, true, false, 0.0);

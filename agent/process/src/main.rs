@@ -12,15 +12,17 @@
 mod advise;
 mod alive;
 mod ask;
+mod child;
 mod conditions;
 mod context;
 mod control;
 mod frames;
+mod learner_pipe;
 mod learning;
 mod order;
-mod pipe;
 mod serve;
 mod shares;
+mod strategy_pipe;
 mod unique;
 
 use anyhow::{Result, bail};
@@ -30,8 +32,8 @@ use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
 use std::time::Duration;
 
+use child::{ChildCommand, ChildCommands};
 use context::Exit;
-use pipe::LearnerCommand;
 use serve::Settings;
 
 #[derive(Parser)]
@@ -55,6 +57,18 @@ struct AgentCli {
     #[arg(long, value_name = "MS", default_value_t = 1000,
           value_parser = clap::value_parser!(u64).range(1..=proto::MAX_WAIT_MS))]
     learner_timeout_ms: u64,
+    /// Make algorithm `external`'s advising decisions with this command's
+    /// process, one shell-quoted line, e.g. `--strategy "python3
+    /// my_strategy.py"` (docs/strategies.md).
+    #[arg(long, value_name = "COMMAND")]
+    strategy: Option<String>,
+    /// Working directory of the strategy command (default: this one's).
+    #[arg(long, value_name = "DIR", requires = "strategy")]
+    strategy_dir: Option<PathBuf>,
+    /// How long the strategy process may take to answer (ms).
+    #[arg(long, value_name = "MS", default_value_t = 1000,
+          value_parser = clap::value_parser!(u64).range(1..=proto::MAX_WAIT_MS))]
+    strategy_timeout_ms: u64,
     /// Learn with this command's process instead of SARSA(lambda), e.g.
     /// `-- python3 my_learner.py` (docs/learners.md).
     #[arg(last = true, value_name = "COMMAND")]
@@ -78,6 +92,17 @@ fn main() {
     std::process::exit(code)
 }
 
+/// The program and arguments of a `--strategy` line.
+fn strategy_argv(line: &str) -> Result<Vec<String>> {
+    match shlex::split(line) {
+        Some(argv) if !argv.is_empty() => Ok(argv),
+        _ => bail!(
+            "--strategy `{line}` is not a command line: expected a program and its arguments, \
+             quoted as a shell would, e.g. \"python3 my_strategy.py\""
+        ),
+    }
+}
+
 /// Checks the settings and runs the agent until it stops.
 fn run(cli: AgentCli) -> Result<Exit> {
     let keys = cli.connection.keys()?;
@@ -95,11 +120,21 @@ fn run(cli: AgentCli) -> Result<Exit> {
         id: cli.id,
         team_size: cli.team_size,
         exit_with_coordinator: cli.connection.exit_with_coordinator,
-        learner: (!cli.learner.is_empty()).then(|| LearnerCommand {
-            argv: cli.learner,
-            dir: cli.learner_dir,
-            timeout: Duration::from_millis(cli.learner_timeout_ms),
-        }),
+        children: ChildCommands {
+            learner: (!cli.learner.is_empty()).then(|| ChildCommand {
+                argv: cli.learner,
+                dir: cli.learner_dir,
+                timeout: Duration::from_millis(cli.learner_timeout_ms),
+            }),
+            strategy: match cli.strategy {
+                None => None,
+                Some(line) => Some(ChildCommand {
+                    argv: strategy_argv(&line)?,
+                    dir: cli.strategy_dir,
+                    timeout: Duration::from_millis(cli.strategy_timeout_ms),
+                }),
+            },
+        },
     };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()

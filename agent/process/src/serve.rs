@@ -7,9 +7,9 @@ use anyhow::{Result, anyhow};
 use node::net::{NetConfig, describe};
 use proto::keys::{Keys, Role};
 
+use crate::child::ChildCommands;
 use crate::context::{Context, Exit};
 use crate::frames::Stream;
-use crate::pipe::LearnerCommand;
 use crate::{advise, alive, control, frames, unique};
 
 /// Who this agent is and how it joins the network.
@@ -27,8 +27,8 @@ pub struct Settings {
     pub net: NetConfig,
     /// Exit once the coordinator that was seen is gone.
     pub exit_with_coordinator: bool,
-    /// A learner process in place of SARSA(lambda).
-    pub learner: Option<LearnerCommand>,
+    /// Its learner and strategy processes, where given.
+    pub children: ChildCommands,
 }
 
 /// Joins the network, serves until stopped, and leaves it.
@@ -40,7 +40,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         team_size,
         net,
         exit_with_coordinator,
-        learner,
+        children,
     } = settings;
     let session = node::net::open(&net).await?;
     unique::ensure_unique(&session, &keys, &name, id).await?;
@@ -60,7 +60,7 @@ pub async fn run(settings: Settings) -> Result<Exit> {
         &name,
         keys,
         (id, team_size),
-        learner,
+        children,
     ));
     let (stream, tasks) = Stream::new(ctx.clone(), actions);
     // Held until the end: dropping them undeclares them.

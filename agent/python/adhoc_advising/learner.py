@@ -17,12 +17,13 @@ never met). Actions are indices into ``actions`` of :class:`Start`:
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import IO, Callable
+
+from adhoc_advising._channel import serve_lines
 
 State = tuple[float, ...]
 
@@ -140,14 +141,10 @@ def serve(
     with a line naming it and the exception) and ends the loop with 1.
     Print diagnostics to ``sys.stderr``: ``sys.stdout`` is the channel."""
     learner: Learner | None = None
-    for line in requests:
-        try:
-            learner, answer = _answer(learner, json.loads(line), make)
-        except Exception as error:  # noqa: BLE001 - reported to the agent, then fatal
-            answers.write(json.dumps({"error": f"{type(error).__name__}: {error}"}) + "\n")
-            answers.flush()
-            return 1
-        if answer is not None:
-            answers.write(json.dumps(answer) + "\n")
-            answers.flush()
-    return 0
+
+    def answer(message: dict) -> dict | None:
+        nonlocal learner
+        learner, reply = _answer(learner, message, make)
+        return reply
+
+    return serve_lines(answer, requests, answers)

@@ -6,7 +6,8 @@ one another. The agent process runs it as its learner (docs/learners.md):
 
     agent --id 2 --team-size 3 ... -- python3 examples/numpy_learner.py
 
-or, in a team file, ``learner = ["python3", "examples/numpy_learner.py"]``.
+or, in a team file,
+``learner = { command = ["python3", "examples/numpy_learner.py"] }``.
 The advising framework around it (budgets, n(s), the ask and give
 probabilities) is the Rust agent's; this file only acts and learns.
 """

@@ -237,7 +237,7 @@ impl From<&AgentConfig> for Table {
                     table.ask_probability = Some(b.ask_probability);
                 }
             }
-            Strategy::NoAdvice | Strategy::Random => {}
+            Strategy::NoAdvice | Strategy::Random | Strategy::External => {}
         }
         table
     }
@@ -357,7 +357,7 @@ impl Table {
                 take(&mut self.give_budget, give_budget);
                 take(&mut self.reachable, reachable);
             }
-            Strategy::NoAdvice | Strategy::Random => {}
+            Strategy::NoAdvice | Strategy::Random | Strategy::External => {}
         }
         if let Some(key) = self
             .strategy_keys()
@@ -491,6 +491,7 @@ mod tests {
             })),
             with(Strategy::EpisodeSharing { sharing_budget: 9 }),
             with(Strategy::Random),
+            with(Strategy::External),
             with(Strategy::EarlyAdvising(Budgeted {
                 ask_budget: 5,
                 ..Budgeted::new(1.0)

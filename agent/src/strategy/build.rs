@@ -35,7 +35,8 @@ impl Strategy {
     /// Its decisions for one agent, under the fidelity rules `fidelity`.
     pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
         match self {
-            Strategy::NoAdvice => Box::new(Alone { learns: true }),
+            // External decisions are given once the agent is built.
+            Strategy::NoAdvice | Strategy::External => Box::new(Alone { learns: true }),
             Strategy::Random => Box::new(Alone { learns: false }),
             Strategy::AdHoc(a) => Box::new(AdHocAdvising::new(a.clone())),
             Strategy::AdviceReuse(a, r) => Box::new(ReusingAdvice::new(a.clone(), r.clone())),

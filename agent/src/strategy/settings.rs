@@ -296,6 +296,9 @@ pub enum Strategy {
     Rcmp(Rcmp),
     /// PSAF: share values instead of actions.
     Psaf(Psaf),
+    /// Decisions given from outside (a strategy process, or
+    /// `Agent::with_strategy`); until given, NoAdvice's.
+    External,
 }
 
 impl From<Algorithm> for Strategy {
@@ -326,6 +329,7 @@ impl Strategy {
             Algorithm::PeerLearning => Strategy::PeerLearning(PeerLearning::default()),
             Algorithm::Rcmp => Strategy::Rcmp(Rcmp::default()),
             Algorithm::Psaf => Strategy::Psaf(Psaf::default()),
+            Algorithm::External => Strategy::External,
         }
     }
 
@@ -346,6 +350,7 @@ impl Strategy {
             Strategy::PeerLearning(_) => Algorithm::PeerLearning,
             Strategy::Rcmp(_) => Algorithm::Rcmp,
             Strategy::Psaf(_) => Algorithm::Psaf,
+            Strategy::External => Algorithm::External,
         }
     }
 

@@ -2,7 +2,7 @@
 //! rule, title and subtitle, and which curves it draws in which colour.
 
 use super::data::{Metric, Series, SeriesPoint, SeriesSet};
-use super::draw::{self, Captions, Curve, PALETTE, Panel};
+use super::draw::{self, Captions, Curve, PALETTE, Panel, Style};
 use super::layout::{Layout, YRange, zoom_start};
 
 /// One figure: what it plots, how, and its file name.
@@ -108,6 +108,7 @@ impl FigureKind {
                 colour,
                 series,
                 marks: &[],
+                style: Style::Line,
             })
             .collect();
         let captions = Captions {

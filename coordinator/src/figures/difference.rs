@@ -10,7 +10,7 @@
 
 use super::catalogue::note_of;
 use super::data::{Series, SeriesPoint};
-use super::draw::{self, Captions, Curve, Mark, PALETTE, Panel};
+use super::draw::{self, Captions, Curve, Mark, PALETTE, Panel, Style};
 use super::figure::{Figure, FigureError};
 use super::layout::{Layout, PLOT, YRange};
 use crate::stats::Estimate;
@@ -110,6 +110,7 @@ pub fn draw_difference(baseline: &str, sets: &[DifferenceSet]) -> Result<Figure,
         colour: PALETTE[sets[k].slot % PALETTE.len()],
         series: &series[k],
         marks: &marks[k],
+        style: Style::Line,
     };
     let apart = drawn_apart(sets);
     let (aside, together): (Vec<usize>, Vec<usize>) = (0..sets.len()).partition(|&k| apart[k]);

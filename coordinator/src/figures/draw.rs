@@ -52,7 +52,21 @@ pub(super) struct Curve<'a> {
     pub series: &'a Series,
     /// Points marked on the line.
     pub marks: &'a [Mark],
+    /// How its points are drawn.
+    pub style: Style,
 }
+
+/// How a curve's points are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Style {
+    /// A line through the means in a band of the intervals, with a legend.
+    Line,
+    /// Each mean a dot with its interval as a whisker, labelled beside it.
+    Dots,
+}
+
+/// Radius of a dot, and half the width of a whisker's caps (pixels).
+const DOT: i32 = 5;
 
 /// A marked point of a curve: a triangle pointing up or down.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -188,7 +202,9 @@ fn draw_chart(
         chart.draw_series([PathElement::new(rule, INK.stroke_width(1))])?;
     }
     let clamp = |y: f64| y.clamp(ranges.y.0, ranges.y.1);
-    for c in curves {
+    let (lines, dots): (Vec<&Curve>, Vec<&Curve>) =
+        curves.iter().partition(|c| c.style == Style::Line);
+    for c in &lines {
         for run in runs(&c.series.points, |p| p.low.zip(p.high)) {
             let upper = run.iter().map(|&(x, (_, hi))| (x, clamp(hi)));
             let lower = run.iter().rev().map(|&(x, (lo, _))| (x, clamp(lo)));
@@ -197,7 +213,7 @@ fn draw_chart(
             chart.draw_series([Polygon::new(outline, fill)])?;
         }
     }
-    for c in curves {
+    for c in &lines {
         for run in runs(&c.series.points, |p| p.mean) {
             if let [point] = run[..] {
                 chart.draw_series([Circle::new(point, 3, c.colour.filled())])?;
@@ -218,6 +234,28 @@ fn draw_chart(
                 + PathElement::new(outline, WHITE.stroke_width(1))
         };
         chart.draw_series(c.marks.iter().map(triangle))?;
+    }
+    for c in &dots {
+        let label = font(14.0, &c.colour).pos(Pos::new(HPos::Left, VPos::Center));
+        for p in &c.series.points {
+            if let (Some(low), Some(high)) = (p.low, p.high) {
+                let whisker = |y: f64| (p.episode, clamp(y));
+                let cap = |y: f64| {
+                    EmptyElement::at(whisker(y))
+                        + PathElement::new(vec![(-DOT, 0), (DOT, 0)], c.colour.stroke_width(2))
+                };
+                let line =
+                    PathElement::new(vec![whisker(low), whisker(high)], c.colour.stroke_width(2));
+                chart.draw_series([line])?;
+                chart.draw_series([cap(low), cap(high)])?;
+            }
+            if let Some(mean) = p.mean {
+                let dot = EmptyElement::at((p.episode, clamp(mean)))
+                    + Circle::new((0, 0), DOT, c.colour.filled())
+                    + Text::new(c.series.label.clone(), (DOT + 4, 0), label.clone());
+                chart.draw_series([dot])?;
+            }
+        }
     }
     if let Some(legend) = &layout.legend {
         let area = chart.plotting_area().strip_coord_spec();

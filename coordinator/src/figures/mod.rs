@@ -5,7 +5,8 @@
 //! the paper, each method's goal percentage minus the baseline's, paired by
 //! run ([`draw_difference`], with a method whose differences dwarf the
 //! others' drawn apart: [`drawn_apart`]), and what advising costs in
-//! messages and bytes per training episode.
+//! messages and bytes per training episode, and each method's gain against
+//! the messages it sent ([`draw_tradeoff`]).
 //!
 //! Pure: the input is every algorithm's estimates in memory
 //! ([`SeriesSet`]), the output every figure as an SVG document drawn with
@@ -45,6 +46,7 @@ mod figure;
 mod fixtures;
 mod layout;
 mod sweep;
+mod tradeoff;
 
 pub use data::{Metric, Point, Series, SeriesPoint, SeriesSet};
 pub use difference::{
@@ -54,6 +56,7 @@ pub use difference::{
 pub use figure::{Figure, FigureError};
 pub use layout::SIZE;
 pub use sweep::{Condition, ConditionPoint, ConditionSet, draw_sweep};
+pub use tradeoff::{TRADEOFF, TradeoffPoint, draw_tradeoff};
 
 use catalogue::{FIGURES, note};
 

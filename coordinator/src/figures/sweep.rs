@@ -4,7 +4,7 @@
 
 use super::catalogue::note_of;
 use super::data::{Series, SeriesPoint};
-use super::draw::{self, Captions, Curve, PALETTE, Panel};
+use super::draw::{self, Captions, Curve, PALETTE, Panel, Style};
 use super::figure::{Figure, FigureError};
 use super::layout::{Layout, YRange};
 use crate::stats::Estimate;
@@ -136,6 +136,7 @@ fn figure(
             colour,
             series,
             marks: &[],
+            style: Style::Line,
         })
         .collect();
     let panel = Panel {

@@ -240,7 +240,7 @@ impl ZenohTeam {
     }
 
     /// Starts env-server and one agent per member of `team` (with its
-    /// learner command, if any), connecting to this coordinator's loopback
+    /// learner and strategy commands, if any), connecting to this coordinator's loopback
     /// `port`.
     fn launch(&self, team: &[AgentSpec], port: u16) -> Result<(), Error> {
         let options = &self.settings.endpoints;
@@ -275,6 +275,22 @@ impl ZenohTeam {
                 team.len().to_string(),
                 "--exit-with-coordinator".into(),
             ]);
+            if let Some(strategy) = &spec.strategy_process {
+                let line =
+                    shlex::try_join(strategy.command.iter().map(String::as_str)).map_err(|e| {
+                        ConfigError::new(format!("team[{i}].strategy_process"), e.to_string())
+                    })?;
+                let timeout = self.settings.step_timeout_ms.to_string();
+                args.extend([
+                    "--strategy".into(),
+                    line,
+                    "--strategy-timeout-ms".into(),
+                    timeout,
+                ]);
+                if let Some(dir) = &strategy.dir {
+                    args.extend(["--strategy-dir".into(), dir.display().to_string()]);
+                }
+            }
             if let Some(learner) = &spec.learner {
                 // It may take as long to answer as env-server waits for an action.
                 let timeout = self.settings.step_timeout_ms.to_string();

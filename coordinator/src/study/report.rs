@@ -11,7 +11,10 @@ use super::difference::difference_sets;
 use super::sweep::{EPISODES, advised, conditions, goal_at, sweep_figures};
 use crate::backend::AgentStats;
 use crate::error::Error;
-use crate::figures::{DIFFERENCE, Figure, Point, SeriesSet, draw_difference, draw_figures};
+use crate::figures::{
+    DIFFERENCE, Figure, Point, SeriesSet, TradeoffPoint, draw_difference, draw_figures,
+    draw_tradeoff,
+};
 use crate::schedule::EvalPoint;
 use crate::stats::Estimate;
 use crate::stats::aggregates::{Aggregates, Scores, aggregates};
@@ -54,7 +57,7 @@ pub fn write_report(
         holm: &holm,
     };
     store::write_json(&out.join("significance.json"), &significance)?;
-    let figures = write_figures(out, study, entries)?;
+    let figures = write_figures(out, study, entries, &gains)?;
     let mut md = Markdown::default();
     introduction(&mut md, study, entries);
     if let Some(baseline) = &study.baseline {
@@ -84,11 +87,13 @@ pub fn write_report(
 }
 
 /// Draws the figures of every entry into `out/figures`, with a baseline
-/// the difference from it after the goal percentage.
+/// the difference from it after the goal percentage and, last, each
+/// method's `gains` against the messages it sent.
 fn write_figures(
     out: &Path,
     study: &StudyConfig,
     entries: &[EntryResults],
+    gains: &[Gain],
 ) -> Result<Vec<Figure>, Error> {
     let sets: Vec<SeriesSet> = entries
         .iter()
@@ -104,6 +109,16 @@ fn write_figures(
     }
     let baseline = study.baseline.as_deref();
     figures.extend(sweep_figures(entries, baseline, study.ci_level())?);
+    if let (Some(baseline), false) = (baseline, gains.is_empty()) {
+        let runs = entries
+            .iter()
+            .map(|e| e.results.len() as u64)
+            .max()
+            .unwrap_or(0);
+        let points = tradeoff_points(entries, gains);
+        let level = (runs, study.ci_level());
+        figures.push(draw_tradeoff(baseline, LAST_POINTS, level, &points)?);
+    }
     let dir = out.join("figures");
     store::create_dir(&dir)?;
     for figure in &figures {
@@ -249,36 +264,11 @@ fn at_a_glance(
             .find(|a| &a.entry == name)
             .and_then(|a| a.last_ten?.p_improvement)
             .map_or("-".into(), |p| interval(p.estimate, p.ci, 2));
-        // The mean over runs of `f` of each run's last point.
         let at_end = |f: &dyn Fn(&EvalPoint) -> f64, digits: usize| {
-            let ends: Vec<f64> = e
-                .results
-                .iter()
-                .filter_map(|r| r.points.last())
-                .map(f)
-                .collect();
-            let mean = ends.iter().sum::<f64>() / ends.len().max(1) as f64;
-            if ends.is_empty() {
-                "-".to_owned()
-            } else {
-                format!("{mean:.digits$}")
-            }
+            mean_at_end(e, f).map_or("-".into(), |mean| format!("{mean:.digits$}"))
         };
-        // A counter summed over the agents, per agent, and per training
-        // episode when `per_episode`.
         let per_agent = |f: fn(&AgentStats) -> u64, per_episode: bool| {
-            at_end(
-                &move |p: &EvalPoint| {
-                    let total = p.agents.iter().map(f).sum::<u64>() as f64;
-                    let episodes = if per_episode {
-                        p.episode.max(1) as f64
-                    } else {
-                        1.0
-                    };
-                    total / p.agents.len().max(1) as f64 / episodes
-                },
-                2,
-            )
+            at_end(&move |p: &EvalPoint| per_agent(p, f, per_episode), 2)
         };
         [
             label(&e.entry),
@@ -304,6 +294,42 @@ fn at_a_glance(
         ],
         rows,
     );
+}
+
+/// The mean over runs of `f` of each run's last point; `None` without runs.
+fn mean_at_end(e: &EntryResults, f: &dyn Fn(&EvalPoint) -> f64) -> Option<f64> {
+    let ends: Vec<f64> = (e.results.iter())
+        .filter_map(|r| r.points.last())
+        .map(f)
+        .collect();
+    (!ends.is_empty()).then(|| ends.iter().sum::<f64>() / ends.len() as f64)
+}
+
+/// A counter at `p` summed over the agents, per agent, and per training
+/// episode when `per_episode`.
+fn per_agent(p: &EvalPoint, f: fn(&AgentStats) -> u64, per_episode: bool) -> f64 {
+    let total = p.agents.iter().map(f).sum::<u64>() as f64;
+    let episodes = if per_episode {
+        p.episode.max(1) as f64
+    } else {
+        1.0
+    };
+    total / p.agents.len().max(1) as f64 / episodes
+}
+
+/// Each method's dot of the gain-against-messages figure.
+fn tradeoff_points(entries: &[EntryResults], gains: &[Gain]) -> Vec<TradeoffPoint> {
+    (entries.iter())
+        .filter_map(|e| {
+            let gain = gains.iter().find(|g| g.entry == e.entry.name)?;
+            let messages = |p: &EvalPoint| per_agent(p, |a| a.advising_messages, true);
+            Some(TradeoffPoint {
+                label: e.entry.name.clone(),
+                messages: mean_at_end(e, &messages)?,
+                gain: gain.last_ten_gain,
+            })
+        })
+        .collect()
 }
 
 /// A Markdown table of `gains`: each algorithm's goal % on the last ten

@@ -1,0 +1,313 @@
+"""An advising strategy written in Python: the decisions of one agent of an
+advising team (when to ask, whom, when to give, what, and what to do with
+what arrives), run by the Rust agent process.
+
+The agent keeps everything the framework owns (its learner, the visit counts
+n(s), the counters, the exchange over zenoh, network conditions) and asks
+this child process for each decision: a team file's
+``algorithm = "external"`` with
+``strategy_process = { command = ["python3", "my_strategy.py"] }``, or
+``agent --strategy "python3 my_strategy.py" ...``. That child calls
+:func:`serve` with a factory of :class:`AdvisingStrategy` objects, one per
+run, and answers over its standard input and output, one JSON object per
+line (docs/strategies.md). Standard library only.
+
+Actions are indices: 0 MOVE, 1 SHOOT, 2 DRIBBLE, 3 PASS_NEAR, 4 PASS_FAR;
+advice is a kick action (1-4). Values are Q(s, a) by action index, ``None``
+where the learner has not learned the action.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import IO, Callable
+
+from adhoc_advising._channel import serve_lines
+
+#: Q(s, a) by action index, ``None`` where unlearned.
+Values = tuple[float | None, ...]
+
+#: Kick actions in the order the framework breaks ties: SHOOT, DRIBBLE,
+#: PASS_FAR, PASS_NEAR.
+KICK_TIE_ORDER = (1, 2, 4, 3)
+
+
+@dataclass(frozen=True)
+class Start:
+    """What a strategy is told when its run starts."""
+
+    agent: int
+    team_size: int
+    run: int
+    #: Seed for the strategy's own random choices.
+    seed: int
+    actions: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Counters:
+    """The agent's communication and budget counters (docs/results.md)."""
+
+    advice_requests: int
+    advice_replies_received: int
+    #: Steps acted on advice: the ask budget spent.
+    ask_spent: int
+    #: Answers given: the give budget spent.
+    advice_given: int
+    shared_sent: int
+    shared_received: int
+
+
+@dataclass(frozen=True)
+class AskContext:
+    """What an advisee knows when it decides whether to ask."""
+
+    #: The state was not advised yet in this episode.
+    fresh: bool
+    #: Its visits n(s) of the state.
+    visits: int
+    training_episodes: int
+    counters: Counters
+    #: Its learner's uncertainty there, if the strategy asks by it and the
+    #: learner can tell.
+    uncertainty: float | None
+
+
+@dataclass(frozen=True)
+class GiveContext:
+    """What an advisor knows when it decides whether to answer."""
+
+    #: Its visits n(s) of the advisee's state (0: never met).
+    visits: int
+    #: Its learner's values there.
+    values: Values
+    counters: Counters
+
+
+@dataclass(frozen=True)
+class Advice:
+    """One piece of advice and who gave it."""
+
+    advisor: int
+    action: int
+
+
+@dataclass(frozen=True)
+class SharedValues:
+    """One sharer's values of the state and its visits of it."""
+
+    advisor: int
+    values: Values
+    visits: int
+
+
+@dataclass(frozen=True)
+class Replies:
+    """What arrived for one request, in the order the advisors were asked."""
+
+    #: The framework's key of the tile-coded state asked about.
+    key: int
+    advice: tuple[Advice, ...]
+    values: tuple[SharedValues, ...]
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """How a training decision with the ball turned out."""
+
+    #: The advisor whose advice was played, ``None`` for its own choice.
+    advisor: int | None
+    #: r + gamma Q(s', a') - Q(s, a) under the values just learned.
+    advantage: float
+
+
+def greedy(values: Values) -> int:
+    """The greedy kick action, ties to the first in :data:`KICK_TIE_ORDER`
+    (an unlearned value counts as 0)."""
+    return max(KICK_TIE_ORDER, key=lambda a: values[a] or 0.0)
+
+
+class AdvisingStrategy:
+    """Base class of a strategy. Every decision has the default of the Rust
+    seam (``agent::AdvisingStrategy``): never ask, ask nobody, never give,
+    advise the greedy action, follow the majority. Override what your
+    method decides; the class attributes say which modes it runs in."""
+
+    #: Reported to the framework and logged, so results stay attributable.
+    name: str = "python-strategy"
+    version: str = "0"
+    #: Whether the agent learns (False: a fixed policy).
+    learns: bool = True
+    #: Whether :meth:`asks` is told the learner's uncertainty.
+    asks_by_uncertainty: bool = False
+    #: Mistake Correcting: the intended action travels with the request and
+    #: advisors that agree stay silent.
+    mistake_correcting: bool = False
+    #: Whether that intended action is the learner's greedy one (else its
+    #: own, exploring, choice).
+    intends_greedy: bool = False
+    #: Whether its answers are its values (:meth:`adopt` takes them) instead
+    #: of an action.
+    shares_values: bool = False
+
+    def reuse(self, key: int, values: Values) -> int | None:
+        """Advisee, first at a training step with the ball: an action to play
+        without asking (advice it stored), or ``None``. Only asked if
+        overridden."""
+        return None
+
+    def asks(self, at: AskContext) -> bool:
+        """Advisee: whether this training step with the ball asks."""
+        return False
+
+    def advisors(
+        self, me: int, team_size: int, positions: Sequence[tuple[float, float]]
+    ) -> Sequence[int]:
+        """Advisee: whom to ask (the framework leaves out who is not
+        reachable now). ``positions``: every agent's (x, y) on the field."""
+        return ()
+
+    def gives(self, at: GiveContext) -> bool:
+        """Advisor: whether to answer a request about a state."""
+        return False
+
+    def advice(self, values: Values) -> int:
+        """Advisor: the action advised where its learner holds ``values``."""
+        return greedy(values)
+
+    def follow(self, replies: Replies) -> Advice | None:
+        """Advisee: the advice to play (one of ``replies.advice``), or
+        ``None`` for its own choice. Default: the majority, ties to the
+        action advised first."""
+        votes = Counter(a.action for a in replies.advice)
+        if not votes:
+            return None
+        most = max(votes.values())
+        return next(a for a in replies.advice if votes[a.action] == most)
+
+    def adopt(self, replies: Replies, visits: int) -> Values | None:
+        """Advisee of a value-sharing strategy: the values its learner takes
+        as its own for the state (it visited it ``visits`` times), or
+        ``None``. Asked only when values arrived."""
+        return None
+
+    def learn_outcome(self, outcome: Outcome) -> None:
+        """What it learns about its advisors from a decision's outcome. Only
+        sent if overridden."""
+
+    def spent_budget(self, counters: Counters) -> int:
+        """The budget the results plot: by default the answers given."""
+        return counters.advice_given
+
+
+def _counters(raw: dict) -> Counters:
+    return Counters(**{name: int(raw[name]) for name in Counters.__dataclass_fields__})
+
+
+def _values(raw: Sequence[float | None]) -> Values:
+    return tuple(None if v is None else float(v) for v in raw)
+
+
+def _replies(message: dict) -> Replies:
+    return Replies(
+        key=int(message["key"]),
+        advice=tuple(Advice(int(a["advisor"]), int(a["action"])) for a in message["advice"]),
+        values=tuple(
+            SharedValues(int(v["advisor"]), _values(v["values"]), int(v["visits"]))
+            for v in message["values"]
+        ),
+    )
+
+
+def _overrides(strategy: AdvisingStrategy, method: str) -> bool:
+    return getattr(type(strategy), method) is not getattr(AdvisingStrategy, method)
+
+
+def _traits(strategy: AdvisingStrategy) -> dict:
+    """The ``start`` answer: who it is and which decisions it makes."""
+    return {
+        "name": strategy.name,
+        "version": strategy.version,
+        "learns": bool(strategy.learns),
+        "reuses": _overrides(strategy, "reuse"),
+        "asks_by_uncertainty": bool(strategy.asks_by_uncertainty),
+        "mistake_correcting": bool(strategy.mistake_correcting),
+        "intends_greedy": bool(strategy.intends_greedy),
+        "shares_values": bool(strategy.shares_values),
+        "learns_from_outcomes": _overrides(strategy, "learn_outcome"),
+    }
+
+
+def _action(value: int | None) -> int | None:
+    return None if value is None else int(value)
+
+
+def _answer(strategy: AdvisingStrategy, message: dict) -> dict | None:
+    """The answer to one request of a started strategy (``None``: none)."""
+    op = message["op"]
+    if op == "reuse":
+        return {"action": _action(strategy.reuse(message["key"], _values(message["values"])))}
+    if op == "asks":
+        at = AskContext(
+            fresh=bool(message["fresh"]),
+            visits=int(message["visits"]),
+            training_episodes=int(message["training_episodes"]),
+            counters=_counters(message["counters"]),
+            uncertainty=message["uncertainty"],
+        )
+        return {"decision": bool(strategy.asks(at))}
+    if op == "advisors":
+        positions = [tuple(p) for p in message["positions"]]
+        chosen = strategy.advisors(message["me"], message["team_size"], positions)
+        return {"advisors": [int(j) for j in chosen]}
+    if op == "gives":
+        at = GiveContext(
+            visits=int(message["visits"]),
+            values=_values(message["values"]),
+            counters=_counters(message["counters"]),
+        )
+        return {"decision": bool(strategy.gives(at))}
+    if op == "advice":
+        return {"action": int(strategy.advice(_values(message["values"])))}
+    if op == "follow":
+        followed = strategy.follow(_replies(message))
+        if followed is None:
+            return {"advice": None}
+        return {"advice": {"advisor": int(followed.advisor), "action": int(followed.action)}}
+    if op == "adopt":
+        taken = strategy.adopt(_replies(message), int(message["visits"]))
+        return {"values": None if taken is None else list(_values(taken))}
+    if op == "learn_outcome":
+        strategy.learn_outcome(Outcome(message["advisor"], float(message["advantage"])))
+        return None
+    if op == "spent_budget":
+        return {"spent": int(strategy.spent_budget(_counters(message["counters"])))}
+    raise ValueError(f"unknown request `{op}`")
+
+
+def serve(
+    make: Callable[[Start], AdvisingStrategy],
+    requests: IO[str] = sys.stdin,
+    answers: IO[str] = sys.stdout,
+) -> int:
+    """Answers the agent process until it closes ``requests``; returns the
+    exit status. A strategy that raises is reported to the agent (which ends
+    with a line naming it and the exception) and ends the loop with 1.
+    Print diagnostics to ``sys.stderr``: ``sys.stdout`` is the channel."""
+    strategy: AdvisingStrategy | None = None
+
+    def answer(message: dict) -> dict | None:
+        nonlocal strategy
+        if message["op"] == "start":
+            fields = {k: v for k, v in message.items() if k != "op"}
+            fields["actions"] = tuple(fields["actions"])
+            strategy = make(Start(**fields))
+            return _traits(strategy)
+        if strategy is None:
+            raise RuntimeError(f"`{message['op']}` before `start`")
+        return _answer(strategy, message)
+
+    return serve_lines(answer, requests, answers)
