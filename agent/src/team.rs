@@ -104,6 +104,25 @@ impl Team {
         })
     }
 
+    /// Puts `newcomer` in its id's slot between episodes, with its own
+    /// traffic from zero; returns the agent that leaves.
+    pub fn replace(&mut self, newcomer: Agent) -> Result<Agent, TeamError> {
+        let (id, size) = (newcomer.id(), self.agents.len());
+        if newcomer.team_size() != size {
+            return Err(TeamError::Size {
+                id,
+                built_for: newcomer.team_size(),
+                size,
+            });
+        }
+        let slot = self
+            .agents
+            .get_mut(id)
+            .ok_or(TeamError::Id { index: size, id })?;
+        self.traffic[id] = AdvisingTraffic::default();
+        Ok(std::mem::replace(slot, newcomer))
+    }
+
     /// The agents, by id.
     pub fn agents(&self) -> &[Agent] {
         &self.agents

@@ -6,6 +6,7 @@ use env_server::Outcome;
 use serde::Serialize;
 
 use crate::error::Error;
+use crate::experiment::Experiment;
 
 /// How one episode ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,6 +85,11 @@ pub trait Backend {
 
     /// Every agent's learned state, by id.
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error>;
+
+    /// Replaces the agent of membership event `event` of `experiment` by its
+    /// newcomer, between episodes; returns how long the newcomer took to
+    /// join (ms).
+    fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error>;
 
     /// Every agent's advice round-trip times (ms) as of the last
     /// [`agent_stats`](Self::agent_stats); empty in process.

@@ -9,6 +9,7 @@ use env_server::EnvConfig;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ConfigError;
+use crate::membership::{self, MembershipEvent};
 use crate::transport::Transport;
 
 /// One agent of the team: its configuration (with its strategy) and,
@@ -149,6 +150,25 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
 }
 
 impl AgentSpec {
+    /// Takes its relative paths (`load`, its child processes') from `base`,
+    /// a team file's directory; the error names the key.
+    fn resolve(&mut self, base: &Path) -> Result<(), (&'static str, String)> {
+        if let Some(load) = &self.load
+            && load.is_relative()
+        {
+            self.load = Some(base.join(load));
+        }
+        for (key, child) in [
+            ("learner", &mut self.learner),
+            ("strategy_process", &mut self.strategy_process),
+        ] {
+            if let Some(child) = child {
+                child.resolve(base, key).map_err(|reason| (key, reason))?;
+            }
+        }
+        Ok(())
+    }
+
     /// An agent running `algorithm` from scratch with the constants and
     /// fidelity settings of `profile`.
     pub fn of(algorithm: Algorithm, profile: Profile) -> Self {
@@ -219,6 +239,9 @@ pub struct ExperimentConfig {
     pub env: EnvConfig,
     /// One agent per offense player, by id.
     pub team: Vec<AgentSpec>,
+    /// Newcomers taking slots during training, in the order they happen.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub events: Vec<MembershipEvent>,
 }
 
 impl Default for ExperimentConfig {
@@ -236,6 +259,7 @@ impl Default for ExperimentConfig {
             transport: Transport::InProcess,
             team: vec![AgentSpec::of(Algorithm::NoAdvice, Profile::Paper); env.offense],
             env,
+            events: Vec::new(),
         }
     }
 }
@@ -282,13 +306,25 @@ impl ExperimentConfig {
             spec.config
                 .validate()
                 .map_err(|e| ConfigError::new(format!("team[{i}].{}", e.key), e.reason))?;
-            self.check_children(i, spec)?;
+            self.check_children(spec)
+                .map_err(|e| ConfigError::new(format!("team[{i}].{}", e.key), e.reason))?;
+        }
+        membership::validate(&self.events, self.team.len(), self.episodes)?;
+        for (k, event) in self.events.iter().enumerate() {
+            let spec = event.newcomer(&self.team[event.slot]);
+            let key = |key: &str, reason: String| {
+                ConfigError::new(format!("events[{k}].newcomer.{key}"), reason)
+            };
+            (spec.config.validate()).map_err(|e| key(e.key, e.reason))?;
+            self.check_children(&spec)
+                .map_err(|e| key(&e.key, e.reason))?;
         }
         Ok(())
     }
 
-    /// Agent `i`'s learner and strategy processes can run as given.
-    fn check_children(&self, i: usize, spec: &AgentSpec) -> Result<(), ConfigError> {
+    /// An agent's learner and strategy processes can run as given; errors
+    /// name the agent's key.
+    fn check_children(&self, spec: &AgentSpec) -> Result<(), ConfigError> {
         let in_process = self.transport == Transport::InProcess;
         if spec.learner.is_some() {
             let reason = if in_process {
@@ -301,7 +337,7 @@ impl ExperimentConfig {
                 None
             };
             if let Some(reason) = reason {
-                return Err(ConfigError::new(format!("team[{i}].learner"), reason));
+                return Err(ConfigError::new("learner", reason));
             }
         }
         let external = spec.config.strategy.name() == Algorithm::External;
@@ -319,10 +355,7 @@ impl ExperimentConfig {
             }
             _ => return Ok(()),
         };
-        Err(ConfigError::new(
-            format!("team[{i}].strategy_process"),
-            reason,
-        ))
+        Err(ConfigError::new("strategy_process", reason))
     }
 
     /// The training episodes after which an evaluation takes place: 0, K,
@@ -353,17 +386,29 @@ fn env_error(e: env_server::EnvConfigError) -> ConfigError {
     ConfigError::new(key, e.to_string())
 }
 
-/// A team file: `[[agent]]` tables in TOML, or `{"agent": [...]}` in JSON.
+/// A team file: `[[agent]]` tables in TOML, or `{"agent": [...]}` in JSON,
+/// and the `[[event]]`s of an open team.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TeamFile {
     agent: Vec<serde_json::Map<String, serde_json::Value>>,
+    #[serde(default)]
+    event: Vec<serde_json::Value>,
+}
+
+/// What a team file describes: the agents by id and the membership events.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Team {
+    /// One agent per slot.
+    pub agents: Vec<AgentSpec>,
+    /// Newcomers taking slots during training.
+    pub events: Vec<MembershipEvent>,
 }
 
 /// Reads a team file (TOML, or JSON when the name ends in `.json`): one
-/// `agent` entry per agent, by id. Relative `load` paths are taken from the
-/// file's directory.
-pub fn load_team_file(path: &Path) -> Result<Vec<AgentSpec>, ConfigError> {
+/// `agent` entry per agent, by id, and its `event`s. Relative `load` paths
+/// are taken from the file's directory.
+pub fn load_team_file(path: &Path) -> Result<Team, ConfigError> {
     let key = "team";
     let text = std::fs::read_to_string(path)
         .map_err(|e| ConfigError::new(key, format!("cannot read {}: {e}", path.display())))?;
@@ -385,34 +430,25 @@ pub fn load_team_file(path: &Path) -> Result<Vec<AgentSpec>, ConfigError> {
         let e = e.split_whitespace().collect::<Vec<_>>().join(" ");
         ConfigError::new(key, format!("{}: {e}", path.display()))
     })?;
+    let in_file = |key: String, reason: String| {
+        ConfigError::new(key, format!("{}: {reason}", path.display()))
+    };
     let base = path.parent().unwrap_or(Path::new(""));
-    let mut team = Vec::with_capacity(file.agent.len());
+    let mut team = Team::default();
     for (i, table) in file.agent.into_iter().enumerate() {
-        let mut spec = AgentSpec::try_from(table).map_err(|reason| {
-            ConfigError::new(
-                format!("team[{i}]"),
-                format!("{}: {reason}", path.display()),
-            )
-        })?;
-        if let Some(load) = &spec.load {
-            if load.is_relative() {
-                spec.load = Some(base.join(load));
-            }
+        let mut spec = AgentSpec::try_from(table).map_err(|r| in_file(format!("team[{i}]"), r))?;
+        spec.resolve(base)
+            .map_err(|(key, r)| in_file(format!("team[{i}].{key}"), r))?;
+        team.agents.push(spec);
+    }
+    for (k, value) in file.event.into_iter().enumerate() {
+        let mut event: MembershipEvent = serde_json::from_value(value)
+            .map_err(|e| in_file(format!("event[{k}]"), e.to_string()))?;
+        if let Some(spec) = &mut event.newcomer {
+            spec.resolve(base)
+                .map_err(|(key, r)| in_file(format!("event[{k}].newcomer.{key}"), r))?;
         }
-        for (key, child) in [
-            ("learner", &mut spec.learner),
-            ("strategy_process", &mut spec.strategy_process),
-        ] {
-            if let Some(child) = child {
-                child.resolve(base, key).map_err(|reason| {
-                    ConfigError::new(
-                        format!("team[{i}].{key}"),
-                        format!("{}: {reason}", path.display()),
-                    )
-                })?;
-            }
-        }
-        team.push(spec);
+        team.events.push(event);
     }
     Ok(team)
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use agent::{AdviceCounters, Agent, Snapshot};
 use serde::Serialize;
 
-use crate::config::ExperimentConfig;
+use crate::config::{AgentSpec, ExperimentConfig};
 use crate::error::Error;
 use crate::seeds::{SeedFor, derive};
 
@@ -16,6 +16,8 @@ use crate::seeds::{SeedFor, derive};
 pub struct Experiment {
     config: ExperimentConfig,
     snapshots: Vec<Option<Arc<Snapshot>>>,
+    /// The snapshot each membership event's newcomer starts from, if any.
+    newcomer_snapshots: Vec<Option<Arc<Snapshot>>>,
 }
 
 /// The seeds of one run (see [`crate::seeds`]).
@@ -48,30 +50,67 @@ pub struct Record<'a> {
 /// conditions (`network`) in the configuration.
 pub const RESULTS_FORMAT_VERSION: u32 = 3;
 
+/// Reads agent `id`'s snapshot, if `spec` loads one, its counters cleared
+/// unless `keep_counters`.
+fn load_snapshot(id: usize, spec: &AgentSpec) -> Result<Option<Arc<Snapshot>>, Error> {
+    let Some(path) = &spec.load else {
+        return Ok(None);
+    };
+    let bytes = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+    let mut snapshot = Snapshot::decode(&bytes).map_err(|source| Error::Snapshot {
+        agent: id,
+        path: path.clone(),
+        source,
+    })?;
+    if !spec.keep_counters {
+        snapshot.counters = AdviceCounters::default();
+    }
+    Ok(Some(Arc::new(snapshot)))
+}
+
+/// Agent `id` of a team of `n` from `spec`, seeded `seed`, restored from
+/// `snapshot` if given.
+fn build_agent(
+    id: usize,
+    n: usize,
+    spec: &AgentSpec,
+    seed: u64,
+    snapshot: Option<&Snapshot>,
+) -> Result<Agent, Error> {
+    let mut agent = Agent::new(id, n, spec.config.clone(), seed)
+        .map_err(|e| crate::error::ConfigError::new(format!("team[{id}].{}", e.key), e.reason))?;
+    if let Some(s) = snapshot {
+        agent.restore(s.clone()).map_err(|source| Error::Snapshot {
+            agent: id,
+            path: spec.load.clone().unwrap_or_default(),
+            source,
+        })?;
+    }
+    Ok(agent)
+}
+
 impl Experiment {
-    /// Validates `config` and loads every agent's snapshot. Writes nothing.
+    /// Validates `config` and loads every agent's and newcomer's snapshot.
+    /// Writes nothing.
     pub fn prepare(config: ExperimentConfig) -> Result<Self, Error> {
         config.validate()?;
-        let mut snapshots = Vec::with_capacity(config.team.len());
-        for (id, spec) in config.team.iter().enumerate() {
-            let Some(path) = &spec.load else {
-                snapshots.push(None);
-                continue;
-            };
-            let bytes = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
-            let mut snapshot = Snapshot::decode(&bytes).map_err(|source| Error::Snapshot {
-                agent: id,
-                path: path.clone(),
-                source,
-            })?;
-            if !spec.keep_counters {
-                snapshot.counters = AdviceCounters::default();
-            }
-            snapshots.push(Some(Arc::new(snapshot)));
-        }
-        let experiment = Self { config, snapshots };
-        // Builds one team to find agents that cannot be built or restored.
+        let snapshots = (config.team.iter().enumerate())
+            .map(|(id, spec)| load_snapshot(id, spec))
+            .collect::<Result<_, _>>()?;
+        let newcomer_snapshots = (config.events.iter())
+            .map(|e| load_snapshot(e.slot, &e.newcomer(&config.team[e.slot])))
+            .collect::<Result<_, _>>()?;
+        let experiment = Self {
+            config,
+            snapshots,
+            newcomer_snapshots,
+        };
+        // Builds one team and every newcomer to find agents that cannot be
+        // built or restored.
         experiment.agents(&experiment.seeds(0))?;
+        for k in 0..experiment.config.events.len() {
+            experiment.newcomer(0, k)?;
+        }
         Ok(experiment)
     }
 
@@ -97,6 +136,25 @@ impl Experiment {
         }
     }
 
+    /// The newcomer of membership event `event` in run `run`: its settings,
+    /// its seed and the snapshot it starts from, if any.
+    pub fn newcomer_of(&self, run: u64, event: usize) -> (AgentSpec, u64, Option<&Snapshot>) {
+        let e = &self.config.events[event];
+        (
+            e.newcomer(&self.config.team[e.slot]),
+            derive(self.config.seed, run, SeedFor::Newcomer(event)),
+            self.newcomer_snapshots[event].as_deref(),
+        )
+    }
+
+    /// The newcomer of membership event `event` in run `run`, built and
+    /// restored from its snapshot if it has one.
+    pub fn newcomer(&self, run: u64, event: usize) -> Result<Agent, Error> {
+        let (spec, seed, snapshot) = self.newcomer_of(run, event);
+        let slot = self.config.events[event].slot;
+        build_agent(slot, self.config.team.len(), &spec, seed, snapshot)
+    }
+
     /// The seed of the simulator of evaluation point `point` of run `run`.
     pub fn evaluation_seed(&self, run: u64, point: u64) -> u64 {
         derive(self.config.seed, run, SeedFor::Evaluation(point))
@@ -106,22 +164,11 @@ impl Experiment {
     /// it has one.
     pub fn agents(&self, seeds: &RunSeeds) -> Result<Vec<Agent>, Error> {
         let n = self.config.team.len();
-        let mut agents = Vec::with_capacity(n);
-        for (id, (spec, snapshot)) in self.config.team.iter().zip(&self.snapshots).enumerate() {
-            let mut a = Agent::new(id, n, spec.config.clone(), seeds.agents[id]).map_err(|e| {
-                crate::error::ConfigError::new(format!("team[{id}].{}", e.key), e.reason)
-            })?;
-            if let Some(s) = snapshot {
-                a.restore(Snapshot::clone(s))
-                    .map_err(|source| Error::Snapshot {
-                        agent: id,
-                        path: spec.load.clone().unwrap_or_default(),
-                        source,
-                    })?;
-            }
-            agents.push(a);
-        }
-        Ok(agents)
+        (self.config.team.iter().zip(&self.snapshots).enumerate())
+            .map(|(id, (spec, snapshot))| {
+                build_agent(id, n, spec, seeds.agents[id], snapshot.as_deref())
+            })
+            .collect()
     }
 
     /// What `config.json` holds.

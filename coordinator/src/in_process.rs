@@ -84,6 +84,12 @@ impl Backend for InProcess {
             .collect())
     }
 
+    fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error> {
+        let newcomer = experiment.newcomer(self.run, event)?;
+        (self.team.replace(newcomer)).map_err(|e| Error::run(self.run, e))?;
+        Ok(0)
+    }
+
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {
         Ok(self.team.agents().iter().map(Agent::snapshot).collect())
     }

@@ -50,6 +50,7 @@ pub mod error;
 pub mod experiment;
 pub mod figures;
 pub mod in_process;
+pub mod membership;
 pub mod remote;
 pub mod runner;
 pub mod schedule;
@@ -60,7 +61,7 @@ pub mod study;
 pub mod transport;
 
 pub use backend::{AgentStats, Backend, EpisodeEnd};
-pub use config::{AgentSpec, ExperimentConfig, load_team_file};
+pub use config::{AgentSpec, ExperimentConfig, Team, load_team_file};
 pub use error::{ConfigError, Error};
 pub use experiment::{Experiment, RunSeeds};
 pub use figures::{Figure, FigureError, Metric, Series, SeriesSet, draw_figures};

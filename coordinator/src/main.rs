@@ -13,7 +13,7 @@ use coordinator::stats::aggregates::score_aggregates;
 use coordinator::study::{StudyConfig, StudyOptions, gains_table, published_gains};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
-    AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions,
+    AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions, Team,
     Transport, ZenohSettings, load_team_file, run_experiment,
 };
 use env_server::EvaluationMemory;
@@ -102,7 +102,7 @@ struct RouterArgs {
 #[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
 struct StudyArgs {
     /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
-    /// fidelity-sensitivity, advice-network, advising-methods.
+    /// fidelity-sensitivity, advice-network, advising-methods, newcomer.
     #[arg(long, value_name = "NAME")]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).
@@ -427,7 +427,13 @@ fn algorithm_names() -> impl TypedValueParser<Value = Algorithm> {
 }
 
 fn run_one(args: RunArgs) -> Result<()> {
-    let (mut team, label) = match (&args.team, args.algorithm) {
+    let (
+        Team {
+            agents: mut team,
+            events,
+        },
+        label,
+    ) = match (&args.team, args.algorithm) {
         (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
         (None, Some(algorithm)) => {
             let offense = args.offense.unwrap_or(3);
@@ -441,7 +447,11 @@ fn run_one(args: RunArgs) -> Result<()> {
             } else {
                 ""
             };
-            (vec![spec; offense], format!("{name}{mc}"))
+            let team = Team {
+                agents: vec![spec; offense],
+                events: Vec::new(),
+            };
+            (team, format!("{name}{mc}"))
         }
         (None, None) => unreachable!("clap requires --algorithm or --team"),
     };
@@ -470,6 +480,7 @@ fn run_one(args: RunArgs) -> Result<()> {
             .network
             .transport(Some(&args.transport), &Transport::InProcess)?,
         team,
+        events,
         ..ExperimentConfig::default()
     };
     config.env.offense = args.offense.unwrap_or(config.team.len());

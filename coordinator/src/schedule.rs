@@ -9,6 +9,7 @@ use env_server::Outcome;
 use crate::backend::{AgentStats, Backend};
 use crate::error::Error;
 use crate::experiment::Experiment;
+use crate::membership::Join;
 
 /// The measurements of one evaluation.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -95,6 +96,9 @@ pub struct RunResult {
     pub timing: Timing,
     /// Every agent's advice round-trip times (ms) over the run; empty in process.
     pub advice_rtt_ms: Vec<Vec<f32>>,
+    /// The newcomers that joined, in order (none in a fixed team).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joins: Vec<Join>,
 }
 
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
@@ -112,6 +116,7 @@ pub fn play_run(
     let mut points = Vec::new();
     let mut trained = 0u64;
     let mut timed_out = 0u64;
+    let mut joins = Vec::new();
     for (index, at) in config.eval_points().into_iter().enumerate() {
         let start = Instant::now();
         while trained < at {
@@ -120,6 +125,24 @@ pub fn play_run(
             timing.training_frames += u64::from(episode.frames);
             trained += 1;
             progress(u64::from(episode.frames));
+            for (event, e) in config.events.iter().enumerate() {
+                if e.episode == trained {
+                    let wait_ms = backend.replace(experiment, event)?;
+                    tracing::info!(
+                        run,
+                        episode = trained,
+                        slot = e.slot,
+                        wait_ms,
+                        "newcomer joined"
+                    );
+                    joins.push(Join {
+                        episode: trained,
+                        slot: e.slot,
+                        event,
+                        wait_ms,
+                    });
+                }
+            }
         }
         timing.training_s += start.elapsed().as_secs_f64();
 
@@ -158,5 +181,6 @@ pub fn play_run(
         points,
         timing,
         advice_rtt_ms: backend.advice_rtt_ms(),
+        joins,
     })
 }

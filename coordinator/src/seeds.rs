@@ -23,6 +23,8 @@ pub enum SeedFor {
     Evaluation(u64),
     /// The agent with this id (exploration, asking and giving draws, votes).
     Agent(usize),
+    /// The newcomer of the membership event with this index.
+    Newcomer(usize),
 }
 
 impl SeedFor {
@@ -33,6 +35,7 @@ impl SeedFor {
             SeedFor::Simulator => 0,
             SeedFor::Evaluation(p) => (1 << 62) | (p & INDEX),
             SeedFor::Agent(i) => (2 << 62) | (i as u64 & INDEX),
+            SeedFor::Newcomer(k) => (3 << 62) | (k as u64 & INDEX),
         }
     }
 }

@@ -19,6 +19,7 @@ use std::process::{Command, Output};
 use agent::{AdHoc, AgentConfig, Algorithm, NetworkConditions, Profile, Reachable, Strategy};
 use coordinator::config::ChildSpec;
 use coordinator::experiment::Record;
+use coordinator::membership::MembershipEvent;
 use coordinator::study::{PRESETS, StudyConfig};
 use coordinator::{
     AgentSpec, AgentStats, EvalPoint, ExperimentConfig, RunResult, Timing, Transport,
@@ -290,6 +291,11 @@ fn zenoh_record_and_summary() -> (Value, Value) {
         source: Some("learner.py".into()),
         source_fnv64: Some("0123456789abcdef".into()),
     });
+    config.events = vec![MembershipEvent {
+        episode: 1,
+        slot: 2,
+        newcomer: Some(config.team[1].clone()),
+    }];
     let record = Record {
         format: coordinator::experiment::RESULTS_FORMAT_VERSION,
         config: &config,
@@ -314,6 +320,7 @@ fn zenoh_record_and_summary() -> (Value, Value) {
         points,
         timing: Timing::default(),
         advice_rtt_ms: vec![vec![1.5]; 3],
+        joins: Vec::new(),
     }];
     let summary = summarize(&record, &results);
     (

@@ -35,6 +35,12 @@ pub struct ZenohTeam {
     alive: watch::Sender<HashSet<Role>>,
     /// The first process whose token disappeared; control waits watch it.
     lost: watch::Sender<Option<Role>>,
+    /// Roles leaving on purpose (a membership event): not a loss.
+    leaving: Arc<Mutex<HashSet<Role>>>,
+    /// Per agent slot, the newcomers that took it so far.
+    newcomers: Mutex<Vec<usize>>,
+    /// The loopback port this coordinator listens on for its processes.
+    port: u16,
     children: Arc<Children>,
     counters: Mutex<MessageCounters>,
     secret: Option<Secret>,
@@ -93,12 +99,14 @@ fn listen_endpoint(options: &Endpoints, port: u16) -> Result<String, Error> {
 }
 
 /// Follows the liveliness tokens of the experiment `keys` into `alive`; the
-/// first role whose token disappears goes into `lost`.
+/// first role whose token disappears goes into `lost`, unless it is
+/// `leaving`.
 async fn follow_liveliness(
     session: &zenoh::Session,
     keys: &Keys,
     alive: watch::Sender<HashSet<Role>>,
     lost: watch::Sender<Option<Role>>,
+    leaving: Arc<Mutex<HashSet<Role>>>,
 ) -> Result<Subscriber<()>, Error> {
     let keys_of = keys.clone();
     session
@@ -117,7 +125,9 @@ async fn follow_liveliness(
                     removed
                 }
             });
-            if removed {
+            if removed && lock(&leaving).contains(&role) {
+                tracing::info!(%role, "left");
+            } else if removed {
                 tracing::warn!(%role, "lost");
                 lost.send_if_modified(|first| first.is_none() && first.replace(role).is_none());
             }
@@ -176,7 +186,7 @@ impl ZenohTeam {
         let network = Self::join(settings, team.len(), port)?;
         if !options.attach {
             network.stop_on_signals()?;
-            network.launch(team, port)?;
+            network.launch(team)?;
         }
         network.wait_for_everyone()?;
         Ok(network)
@@ -205,11 +215,19 @@ impl ZenohTeam {
             .collect();
         let alive = watch::Sender::new(HashSet::new());
         let lost = watch::Sender::new(None);
+        let leaving = Arc::new(Mutex::new(HashSet::new()));
         let (session, watch, token) = runtime.block_on(async {
             let session = node::net::open(&net)
                 .await
                 .map_err(|e| net_error(e.to_string()))?;
-            let watch = follow_liveliness(&session, &keys, alive.clone(), lost.clone()).await?;
+            let watch = follow_liveliness(
+                &session,
+                &keys,
+                alive.clone(),
+                lost.clone(),
+                leaving.clone(),
+            )
+            .await?;
             if !options.attach {
                 // Before this coordinator's token, whose key another's has too.
                 refuse_a_busy_experiment(&session, &keys, &roles, options).await?;
@@ -231,6 +249,9 @@ impl ZenohTeam {
             roles,
             alive,
             lost,
+            leaving,
+            newcomers: Mutex::new(vec![0; agents]),
+            port,
             counters: Mutex::new(MessageCounters::default()),
             secret,
             secret_dir,
@@ -240,70 +261,139 @@ impl ZenohTeam {
     }
 
     /// Starts env-server and one agent per member of `team` (with its
-    /// learner and strategy commands, if any), connecting to this coordinator's loopback
-    /// `port`.
-    fn launch(&self, team: &[AgentSpec], port: u16) -> Result<(), Error> {
+    /// learner and strategy commands, if any), connecting to this
+    /// coordinator's loopback port.
+    fn launch(&self, team: &[AgentSpec]) -> Result<(), Error> {
         let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
-        let agent = find_binary(options.bin_dir.as_deref(), "agent")?;
-        let connect = format!("tcp/127.0.0.1:{port}");
-        let auth: Vec<String> = match &self.secret {
-            Some(secret) => vec!["--secret-file".into(), secret.path().display().to_string()],
-            None => vec!["--no-auth".into()],
-        };
-        let common = |extra: &[String]| {
-            let mut args: Vec<String> = extra.to_vec();
-            args.extend([
-                "--experiment".into(),
-                options.experiment.clone(),
-                "--connect".into(),
-                connect.clone(),
-            ]);
-            args.extend(auth.iter().cloned());
-            args
-        };
-        self.children.spawn(
-            "env-server",
-            &server,
-            &common(&["serve".into(), "--exit-with-coordinator".into()]),
-        )?;
+        let serve = ["serve".into(), "--exit-with-coordinator".into()];
+        self.children
+            .spawn("env-server", &server, &self.common_args(&serve))?;
         for (i, spec) in team.iter().enumerate() {
-            let mut args = common(&[
-                "--id".into(),
-                i.to_string(),
-                "--team-size".into(),
-                team.len().to_string(),
-                "--exit-with-coordinator".into(),
-            ]);
-            if let Some(strategy) = &spec.strategy_process {
-                let line =
-                    shlex::try_join(strategy.command.iter().map(String::as_str)).map_err(|e| {
-                        ConfigError::new(format!("team[{i}].strategy_process"), e.to_string())
-                    })?;
-                let timeout = self.settings.step_timeout_ms.to_string();
-                args.extend([
-                    "--strategy".into(),
-                    line,
-                    "--strategy-timeout-ms".into(),
-                    timeout,
-                ]);
-                if let Some(dir) = &strategy.dir {
-                    args.extend(["--strategy-dir".into(), dir.display().to_string()]);
-                }
-            }
-            if let Some(learner) = &spec.learner {
-                // It may take as long to answer as env-server waits for an action.
-                let timeout = self.settings.step_timeout_ms.to_string();
-                args.extend(["--learner-timeout-ms".into(), timeout]);
-                if let Some(dir) = &learner.dir {
-                    args.extend(["--learner-dir".into(), dir.display().to_string()]);
-                }
-                args.push("--".into());
-                args.extend(learner.command.iter().cloned());
-            }
-            self.children.spawn(&format!("agent {i}"), &agent, &args)?;
+            self.spawn_agent(i, team.len(), spec)?;
         }
         Ok(())
+    }
+
+    /// The arguments every process this coordinator starts gets after
+    /// `extra`: the experiment, this coordinator's endpoint, the secret.
+    fn common_args(&self, extra: &[String]) -> Vec<String> {
+        let mut args: Vec<String> = extra.to_vec();
+        args.extend([
+            "--experiment".into(),
+            self.settings.endpoints.experiment.clone(),
+            "--connect".into(),
+            format!("tcp/127.0.0.1:{}", self.port),
+        ]);
+        match &self.secret {
+            Some(secret) => {
+                args.extend(["--secret-file".into(), secret.path().display().to_string()])
+            }
+            None => args.push("--no-auth".into()),
+        }
+        args
+    }
+
+    /// Starts the process of agent `i` of a team of `n` as `spec` says,
+    /// named as [`agent_name`](Self::agent_name) says.
+    fn spawn_agent(&self, i: usize, n: usize, spec: &AgentSpec) -> Result<(), Error> {
+        let agent = find_binary(self.settings.endpoints.bin_dir.as_deref(), "agent")?;
+        let mut args = self.common_args(&[
+            "--id".into(),
+            i.to_string(),
+            "--team-size".into(),
+            n.to_string(),
+            "--exit-with-coordinator".into(),
+        ]);
+        // A child may take as long to answer as env-server waits for an action.
+        let timeout = self.settings.step_timeout_ms.to_string();
+        if let Some(strategy) = &spec.strategy_process {
+            let line =
+                shlex::try_join(strategy.command.iter().map(String::as_str)).map_err(|e| {
+                    ConfigError::new(format!("team[{i}].strategy_process"), e.to_string())
+                })?;
+            args.extend([
+                "--strategy".into(),
+                line,
+                "--strategy-timeout-ms".into(),
+                timeout.clone(),
+            ]);
+            if let Some(dir) = &strategy.dir {
+                args.extend(["--strategy-dir".into(), dir.display().to_string()]);
+            }
+        }
+        if let Some(learner) = &spec.learner {
+            args.extend(["--learner-timeout-ms".into(), timeout]);
+            if let Some(dir) = &learner.dir {
+                args.extend(["--learner-dir".into(), dir.display().to_string()]);
+            }
+            args.push("--".into());
+            args.extend(learner.command.iter().cloned());
+        }
+        self.children.spawn(&self.agent_name(i), &agent, &args)
+    }
+
+    /// The name of agent `i`'s current process: `agent <i>`, then
+    /// `agent <i> (newcomer <k>)` for the k-th that took its slot.
+    fn agent_name(&self, i: usize) -> String {
+        match lock(&self.newcomers).get(i).copied().unwrap_or(0) {
+            0 => format!("agent {i}"),
+            k => format!("agent {i} (newcomer {k})"),
+        }
+    }
+
+    /// Agent `slot`'s process leaves the running experiment: it is asked to
+    /// stop, and its exit and the end of its liveliness are awaited (not a
+    /// loss). Only for processes this coordinator started.
+    pub fn retire(&self, slot: usize) -> Result<(), String> {
+        let (role, name) = (Role::Agent(slot as u8), self.agent_name(slot));
+        if !self.children.started(&name) {
+            return Err(format!(
+                "{name} was not started by this coordinator: membership events replace only \
+                 the processes it starts (not with --attach)"
+            ));
+        }
+        lock(&self.leaving).insert(role);
+        let header = Header::new(self.experiment, 0, 0, 0);
+        self.control(role, header, Control::Stop, Duration::from_secs(2))?;
+        let limit = self.settings.endpoints.startup_timeout;
+        let gone = self.runtime.block_on(async {
+            self.children.exit_status(&name, limit).await?;
+            let mut alive = self.alive.subscribe();
+            let token_gone = alive.wait_for(|a| !a.contains(&role));
+            timeout_at(tokio::time::Instant::now() + limit, token_gone)
+                .await
+                .ok()
+                .map(|_| ())
+        });
+        lock(&self.leaving).remove(&role);
+        match gone {
+            Some(_) => Ok(()),
+            None => Err(format!(
+                "{name} did not leave within {limit:?} of being asked to stop"
+            )),
+        }
+    }
+
+    /// Starts the newcomer `spec` in agent `slot`'s place and waits, within
+    /// the startup timeout, until it has joined.
+    pub fn admit(&self, slot: usize, spec: &AgentSpec) -> Result<(), Error> {
+        if let Some(k) = lock(&self.newcomers).get_mut(slot) {
+            *k += 1;
+        }
+        let name = self.agent_name(slot);
+        self.spawn_agent(slot, self.roles.len() - 1, spec)?;
+        let options = &self.settings.endpoints;
+        let deadline = tokio::time::Instant::now() + options.startup_timeout;
+        let role = [Role::Agent(slot as u8)];
+        self.runtime.block_on(async {
+            tokio::select! {
+                joined = self.joined(deadline, &role) => joined,
+                Some(status) = self.children.exit_status(&name, options.startup_timeout) => {
+                    Err(net_error(format!("{name} exited ({status}) before joining")))
+                }
+            }
+        })
     }
 
     /// Waits, within the startup timeout, until every process has joined:
@@ -314,7 +404,7 @@ impl ZenohTeam {
         let deadline = tokio::time::Instant::now() + options.startup_timeout;
         self.runtime.block_on(async {
             tokio::select! {
-                joined = self.joined(deadline) => joined,
+                joined = self.joined(deadline, &self.roles) => joined,
                 exited = self.children.first_exit() => Err(net_error(format!(
                     "{exited} before joining experiment {}",
                     options.experiment
@@ -328,7 +418,7 @@ impl ZenohTeam {
     /// Resolves once every role's token is seen and its control queryable
     /// is reachable (zenoh's matching status of a querier on its key), or
     /// fails at `deadline` naming those missing and what they miss.
-    async fn joined(&self, deadline: tokio::time::Instant) -> Result<(), Error> {
+    async fn joined(&self, deadline: tokio::time::Instant, roles: &[Role]) -> Result<(), Error> {
         let options = &self.settings.endpoints;
         let did_not_join = |missing: &[Role], what: &str| {
             let missing: Vec<String> = missing.iter().map(Role::to_string).collect();
@@ -340,10 +430,9 @@ impl ZenohTeam {
             ))
         };
         let mut alive = self.alive.subscribe();
-        let everyone = alive.wait_for(|alive| self.roles.iter().all(|r| alive.contains(r)));
+        let everyone = alive.wait_for(|alive| roles.iter().all(|r| alive.contains(r)));
         if timeout_at(deadline, everyone).await.is_err() {
-            let missing: Vec<Role> = self
-                .roles
+            let missing: Vec<Role> = roles
                 .iter()
                 .copied()
                 .filter(|r| !self.is_alive(*r))
@@ -352,7 +441,7 @@ impl ZenohTeam {
         }
         // A process declares its queryables before its token, but they may
         // reach this session after it.
-        for &role in &self.roles {
+        for &role in roles {
             let querier = self
                 .session
                 .declare_querier(self.keys.control(role))
@@ -418,7 +507,7 @@ impl ZenohTeam {
     async fn describe_loss(&self, role: Role) -> String {
         let name = match role {
             Role::Server => "env-server".to_owned(),
-            Role::Agent(i) => format!("agent {i}"),
+            Role::Agent(i) => self.agent_name(i.into()),
             Role::Coordinator => "coordinator".to_owned(),
         };
         let exit = self.children.exit_status(&name, Duration::from_millis(500));

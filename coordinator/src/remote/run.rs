@@ -1,7 +1,7 @@
 //! One run driven over the network with the control messages of `docs/protocol.md`.
 
 use std::sync::Mutex;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use agent::{Mode, Snapshot};
 use env_server::Outcome;
@@ -12,6 +12,7 @@ use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
 use super::ZenohTeam;
 use crate::backend::{AgentStats, Backend, EpisodeEnd};
+use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
 
@@ -58,26 +59,38 @@ impl<'a> RemoteBackend<'a> {
             },
         )?;
         for (i, spec) in config.team.iter().enumerate() {
-            let role = Role::Agent(i as u8);
-            let agent =
-                proto::encode_settings(&spec.config).map_err(|e| backend.error(e.to_string()))?;
-            backend.expect_ok(
-                role,
-                Control::Reset {
-                    seed: seeds.agents[i],
-                    config: agent,
-                    wait_ms: network.settings().advice_timeout_ms,
-                    stall_ms: network.settings().stall_limit_ms,
-                },
-            )?;
-            if let Some(snapshot) = experiment.snapshot(i) {
-                let snapshot = snapshot
-                    .encode()
-                    .map_err(|e| backend.error(format!("agent {i}'s snapshot: {e}")))?;
-                backend.expect_ok(role, Control::Load { snapshot })?;
-            }
+            backend.reset_agent(i, spec, seeds.agents[i], experiment.snapshot(i))?;
         }
         Ok(backend)
+    }
+
+    /// Starts agent `i` on this run as `spec` says, seeded `seed`, from
+    /// `snapshot` if given.
+    fn reset_agent(
+        &self,
+        i: usize,
+        spec: &AgentSpec,
+        seed: u64,
+        snapshot: Option<&Snapshot>,
+    ) -> Result<(), Error> {
+        let role = Role::Agent(i as u8);
+        let config = proto::encode_settings(&spec.config).map_err(|e| self.error(e.to_string()))?;
+        let settings = self.network.settings();
+        self.expect_ok(
+            role,
+            Control::Reset {
+                seed,
+                config,
+                wait_ms: settings.advice_timeout_ms,
+                stall_ms: settings.stall_limit_ms,
+            },
+        )?;
+        if let Some(snapshot) = snapshot {
+            let snapshot = (snapshot.encode())
+                .map_err(|e| self.error(format!("agent {i}'s snapshot: {e}")))?;
+            self.expect_ok(role, Control::Load { snapshot })?;
+        }
+        Ok(())
     }
 
     fn header(&self, episode: u32) -> Header {
@@ -184,6 +197,16 @@ impl Backend for RemoteBackend<'_> {
         let reports = self.reports()?;
         *lock(&self.rtt_ms) = reports.iter().map(|r| r.advice_rtt_ms.clone()).collect();
         Ok(reports.iter().map(stats_of).collect())
+    }
+
+    fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error> {
+        let (spec, seed, snapshot) = experiment.newcomer_of(self.run, event);
+        let slot = experiment.config().events[event].slot;
+        let started = Instant::now();
+        self.network.retire(slot).map_err(|e| self.error(e))?;
+        self.network.admit(slot, &spec)?;
+        self.reset_agent(slot, &spec, seed, snapshot)?;
+        Ok(started.elapsed().as_millis() as u64)
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {

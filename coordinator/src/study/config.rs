@@ -11,10 +11,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::config::{AgentSpec, EPISODES, ExperimentConfig, check_range};
 use crate::error::ConfigError;
+use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 7] = [
+pub const PRESETS: [(&str, &str); 8] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -40,6 +41,7 @@ pub const PRESETS: [(&str, &str); 7] = [
         "advising-methods",
         include_str!("../../presets/advising-methods.toml"),
     ),
+    ("newcomer", include_str!("../../presets/newcomer.toml")),
 ];
 
 /// What a study runs.
@@ -143,6 +145,10 @@ pub struct StudyEntry {
     /// when on, so that studies from before it keep their identity).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub backoff: bool,
+    /// Newcomers taking slots during training (`[[entry.event]]`, as a
+    /// team file's `[[event]]`).
+    #[serde(default, rename = "event", skip_serializing_if = "Vec::is_empty")]
+    pub events: Vec<MembershipEvent>,
 }
 
 /// Team size of every study (the paper's 3 offense agents).
@@ -281,6 +287,7 @@ impl StudyConfig {
             ci_level: self.ci_level(),
             transport: self.transport.clone(),
             team,
+            events: entry.events.clone(),
             ..ExperimentConfig::default()
         };
         config.env.evaluation_memory = self.evaluation_memory;

@@ -10,6 +10,7 @@ mod config;
 mod difference;
 #[cfg(test)]
 pub(crate) mod fixtures;
+mod newcomers;
 mod published;
 mod report;
 mod run;

@@ -33,6 +33,7 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
             ConfigError::new("results", format!("{}: {problem}", path.display()))
         })?;
         runs.push(RunResult {
+            joins: Vec::new(),
             run,
             points,
             timing: Default::default(),

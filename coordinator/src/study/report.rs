@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use super::config::{StudyConfig, StudyEntry};
 use super::difference::difference_sets;
+use super::newcomers::catch_ups;
 use super::sweep::{EPISODES, advised, conditions, goal_at, sweep_figures};
 use crate::backend::AgentStats;
 use crate::error::Error;
@@ -70,6 +71,7 @@ pub fn write_report(
         significance_against(&mut md, baseline, comparisons);
         holm_table(&mut md, baseline, &holm);
     }
+    newcomers(&mut md, entries);
     significance_between_advising(&mut md, study, entries, comparisons);
     network_conditions(&mut md, study, entries);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
@@ -291,6 +293,45 @@ fn at_a_glance(
             "advice acted on",
             "messages / agent / episode",
             "bytes / agent / episode",
+        ],
+        rows,
+    );
+}
+
+/// How each entry's team fared around its newcomers' joins.
+fn newcomers(md: &mut Markdown, entries: &[EntryResults]) {
+    let joins = catch_ups(entries);
+    if joins.is_empty() {
+        return;
+    }
+    md.heading(2, "Newcomers");
+    md.paragraph(&format!(
+        "At each join the agent in the slot leaves and a newcomer takes it while the others keep \
+         learning. The team's goal % (means over runs): over the last {LAST_POINTS} evaluations \
+         before the join, at the first evaluation after it, at its lowest since, and the training \
+         episodes until an evaluation is back at the level before the join."
+    ));
+    let rows = joins.iter().map(|j| {
+        [
+            j.entry.clone(),
+            j.episode.to_string(),
+            j.slot.to_string(),
+            format!("{:.1}", j.before),
+            format!("{:.1}", j.after),
+            format!("{:.1}", j.lowest),
+            j.catch_up
+                .map_or("not within the run".into(), |e| e.to_string()),
+        ]
+    });
+    md.table(
+        [
+            "algorithm",
+            "joined after",
+            "slot",
+            "goal % before",
+            "right after",
+            "lowest since",
+            "episodes to catch up",
         ],
         rows,
     );
