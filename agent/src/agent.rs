@@ -533,7 +533,8 @@ impl Agent {
     pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
         let (_, values) = self.willing(state)?;
         let ties = self.config.fidelity.advisor_ties;
-        let answer = (self.strategy).advice(&values, ties, &mut self.rng);
+        let honest = (self.strategy).advice(&values, ties, &mut self.rng);
+        let answer = self.config.advises.answer(honest, &values, &mut self.rng);
         if intended == Some(answer) {
             return None;
         }

@@ -6,6 +6,7 @@ mod table;
 
 use proto::STATE_FEATURES;
 
+use crate::advises::Advises;
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
 use crate::link::NetworkConditions;
@@ -51,6 +52,8 @@ pub struct AgentConfig {
     /// Network conditions of its advice messages; none: every message
     /// arrives at once.
     pub network: Option<NetworkConditions>,
+    /// What it answers as an advisor: honest advice, or wrong advice.
+    pub advises: Advises,
 }
 
 impl Default for AgentConfig {
@@ -67,6 +70,7 @@ impl Default for AgentConfig {
             strategy: Strategy::NoAdvice,
             fidelity: Fidelity::default(),
             network: None,
+            advises: Advises::Honest,
         }
     }
 }

@@ -40,6 +40,7 @@
 
 mod advice;
 mod advice_counters;
+mod advises;
 mod agent;
 mod algorithm;
 mod config;
@@ -59,6 +60,7 @@ mod tiles;
 
 pub use advice::{Reachable, p_ask, p_give, psi_td, psi_visit};
 pub use advice_counters::AdviceCounters;
+pub use advises::Advises;
 pub use agent::{Agent, Decision, Observation};
 pub use algorithm::{Algorithm, UnknownAlgorithm};
 pub use config::AgentConfig;

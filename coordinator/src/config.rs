@@ -599,7 +599,7 @@ mod tests {
              [[agent]]\nalgorithm = \"adhoc-td\"\nask_budget = 0\nload = \"expert.qtable\"\n",
         )
         .unwrap();
-        let team = load_team_file(&toml_path).unwrap();
+        let team = load_team_file(&toml_path).unwrap().agents;
         assert_eq!(team.len(), 3);
         assert_eq!(team[0].config.strategy, Strategy::AdHoc(AdHoc::td()));
         let expert = Strategy::AdHoc(AdHoc {
@@ -615,7 +615,7 @@ mod tests {
             r#"{"agent": [{"strategy": "torrey"}, {"load": "/abs.qtable"}]}"#,
         )
         .unwrap();
-        let team = load_team_file(&json_path).unwrap();
+        let team = load_team_file(&json_path).unwrap().agents;
         assert_eq!(team[0].config.strategy.name(), Algorithm::Torrey);
         assert_eq!(team[1].config.strategy, Strategy::NoAdvice);
         assert_eq!(team[1].load, Some(PathBuf::from("/abs.qtable")));
@@ -646,7 +646,7 @@ mod tests {
             format!("[[agent]]\n[[agent]]\n[[agent]]\n{learner}\n"),
         )
         .unwrap();
-        let team = load_team_file(&path).unwrap();
+        let team = load_team_file(&path).unwrap().agents;
         let spec = team[2].learner.clone().unwrap();
         assert_eq!(spec.command, ["python3", "mine.py"]);
         assert_eq!(spec.dir.as_deref(), Some(dir.path()));

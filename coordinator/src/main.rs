@@ -102,7 +102,8 @@ struct RouterArgs {
 #[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
 struct StudyArgs {
     /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
-    /// fidelity-sensitivity, advice-network, advising-methods, newcomer.
+    /// fidelity-sensitivity, advice-network, advising-methods, newcomer,
+    /// untrusted.
     #[arg(long, value_name = "NAME")]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).

@@ -422,6 +422,7 @@ mod tests {
             10.377_750_103_777_501,
         ];
         let result = RunResult {
+            joins: Vec::new(),
             run: 3,
             points: awkward
                 .iter()

@@ -7,6 +7,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::AgentConfig;
 use crate::advice::Reachable;
+use crate::advises::Advises;
 use crate::algorithm::Algorithm;
 use crate::fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
@@ -53,6 +54,7 @@ struct Plain {
     strategy: Strategy,
     fidelity: Fidelity,
     network: Option<NetworkConditions>,
+    advises: Advises,
 }
 
 /// The flat table: the learner's keys, `algorithm`, and the keys of that
@@ -123,6 +125,10 @@ struct Table {
     shared_bootstrap: Option<SharedBootstrap>,
     #[serde(skip_serializing_if = "Option::is_none")]
     network: Option<NetworkConditions>,
+    /// Written only when not honest, so that results from before it keep
+    /// their identity.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    advises: Option<Advises>,
 }
 
 impl Default for Table {
@@ -177,6 +183,7 @@ impl From<&AgentConfig> for Table {
             vote_ties: Some(c.fidelity.vote_ties),
             shared_bootstrap: Some(c.fidelity.shared_bootstrap),
             network: c.network,
+            advises: (c.advises != Advises::Honest).then_some(c.advises),
         };
         let ad_hoc = |table: &mut Table, a: &AdHoc| {
             table.v_a = Some(a.v_a);
@@ -185,6 +192,7 @@ impl From<&AgentConfig> for Table {
             table.give_budget = Some(a.give_budget);
             table.reachable = Some(a.reachable.clone());
             table.backoff = a.backoff.then_some(true);
+            table.trust_lr = a.trust_lr;
         };
         match &c.strategy {
             Strategy::AdHoc(a) => {
@@ -386,6 +394,7 @@ impl Table {
             strategy,
             fidelity,
             network: self.network,
+            advises: self.advises.unwrap_or_default(),
         })
     }
 
@@ -400,6 +409,7 @@ impl Table {
             mistake_correcting: _,
             reachable,
             backoff,
+            trust_lr,
         } = a;
         take(&mut self.v_a, v_a);
         take(&mut self.v_g, v_g);
@@ -407,6 +417,9 @@ impl Table {
         take(&mut self.give_budget, give_budget);
         take(&mut self.reachable, reachable);
         take(&mut self.backoff, backoff);
+        if let Some(lr) = self.trust_lr.take() {
+            *trust_lr = Some(lr);
+        }
     }
 
     /// Every strategy key and whether it is present.
@@ -442,9 +455,11 @@ impl Table {
 /// Whether strategy `name` has the strategy key `key`.
 fn has_key(name: Algorithm, key: &str) -> bool {
     let mut strategy = Strategy::from(name);
-    // `backoff` is written only when on: count it as the ad hoc methods' key.
+    // `backoff` and `trust_lr` are written only when on: count them as the
+    // ad hoc methods' keys.
     if let Strategy::AdHoc(a) | Strategy::AdviceReuse(a, _) = &mut strategy {
         a.backoff = true;
+        a.trust_lr = Some(0.1);
     }
     let config = AgentConfig {
         strategy,

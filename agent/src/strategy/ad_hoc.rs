@@ -2,9 +2,11 @@
 //! and 2): an advisee asks with P_ask(n(s)) its reachable set G(s); an
 //! advisor answers with P_give(Psi(s)), Psi visit- or TD-based. With
 //! `backoff` (the paper's section 7), an advisee whose requests go
-//! unanswered lets its next chances to ask pass, more of them each time.
+//! unanswered lets its next chances to ask pass, more of them each time;
+//! with `trust_lr` (section 8), it follows the advice, or its own choice, it
+//! learned to trust most.
 
-use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::settings::{AdHoc, Confidence};
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
@@ -15,7 +17,7 @@ use crate::selection::{AgentRng, chance, majority};
 /// The most requests in a row without advice that lengthen the back-off.
 const MAX_BACKOFF_DOUBLINGS: u32 = 10;
 
-/// Ad hoc advising for one agent: its constants and its back-off.
+/// Ad hoc advising for one agent: its constants, its back-off and its trust.
 #[derive(Clone, Debug)]
 pub(super) struct AdHocAdvising {
     pub settings: AdHoc,
@@ -23,6 +25,10 @@ pub(super) struct AdHocAdvising {
     unanswered: u32,
     /// Chances to ask still to let pass.
     skips: u64,
+    /// With trust: the mean advantage of the decisions on each advisor's
+    /// advice (by id, 0 until followed), and of its own.
+    trust: Vec<f64>,
+    own_trust: f64,
 }
 
 impl AdHocAdvising {
@@ -31,7 +37,37 @@ impl AdHocAdvising {
             settings,
             unanswered: 0,
             skips: 0,
+            trust: Vec::new(),
+            own_trust: 0.0,
         }
+    }
+
+    /// Its trust in `advisor` (0 for one never followed).
+    pub fn trust(&self, advisor: usize) -> f64 {
+        self.trust.get(advisor).copied().unwrap_or(0.0)
+    }
+
+    /// The advice whose advisors it trusts most together, each weighing
+    /// e^(trust / the largest trust magnitude), if that outweighs its own
+    /// choice alone (ties to the advice, as without trust).
+    fn most_trusted(&self, advice: &[Advice]) -> Option<Advice> {
+        let scale = (advice.iter().map(|a| self.trust(a.advisor).abs()))
+            .fold(self.own_trust.abs(), f64::max);
+        let weight = |t: f64| if scale > 0.0 { (t / scale).exp() } else { 1.0 };
+        let support = |action| {
+            (advice.iter().filter(|a| a.action == action))
+                .map(|a| weight(self.trust(a.advisor)))
+                .sum::<f64>()
+        };
+        let (best, most) = advice.iter().fold((None, 0.0), |(best, most), a| {
+            let s = support(a.action);
+            if s > most {
+                (Some(*a), s)
+            } else {
+                (best, most)
+            }
+        });
+        best.filter(|_| most >= weight(self.own_trust))
     }
 }
 
@@ -86,11 +122,83 @@ impl AdvisingStrategy for AdHocAdvising {
                 self.unanswered = 0;
             }
         }
+        if self.settings.trust_lr.is_some() {
+            return self.most_trusted(replies.advice);
+        }
         let vote = majority(replies.advice.iter().map(|a| a.action), ties, rng)?;
         replies.from_whom(vote)
     }
 
+    fn learns_from_outcomes(&self) -> bool {
+        self.settings.trust_lr.is_some()
+    }
+
+    /// Moves its trust in whoever decided (an advisor, or itself) toward the
+    /// decision's advantage.
+    fn learn_outcome(&mut self, outcome: &Outcome) {
+        let Some(lr) = self.settings.trust_lr else {
+            return;
+        };
+        let trust = match outcome.advisor {
+            Some(j) => {
+                if self.trust.len() <= j {
+                    self.trust.resize(j + 1, 0.0);
+                }
+                &mut self.trust[j]
+            }
+            None => &mut self.own_trust,
+        };
+        *trust += lr * (outcome.advantage - *trust);
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proto::Action::{Dribble, Shoot};
+    use rand::SeedableRng;
+
+    #[test]
+    fn trust_turns_away_from_the_advisor_whose_advice_turns_out_worse() {
+        let settings = AdHoc {
+            trust_lr: Some(0.1),
+            ..AdHoc::td()
+        };
+        let mut ad_hoc = AdHocAdvising::new(settings);
+        assert!(ad_hoc.learns_from_outcomes());
+        let good = Advice {
+            advisor: 1,
+            action: Shoot,
+        };
+        let bad = Advice {
+            advisor: 2,
+            action: Dribble,
+        };
+        let mut rng = AgentRng::seed_from_u64(2);
+        let mut follow = |ad_hoc: &mut AdHocAdvising, advice: &[Advice]| {
+            let replies = Replies {
+                key: 7,
+                advice,
+                values: &[],
+            };
+            ad_hoc.follow(&replies, VoteTies::Fixed, &mut rng)
+        };
+        // Untrusted yet: advice is followed, the first of a split vote.
+        assert_eq!(follow(&mut ad_hoc, &[bad, good]), Some(bad));
+        assert_eq!(follow(&mut ad_hoc, &[bad]), Some(bad));
+        for _ in 0..100 {
+            for (advisor, advantage) in [(Some(1), 1.0), (Some(2), -1.0), (None, 0.0)] {
+                ad_hoc.learn_outcome(&Outcome { advisor, advantage });
+            }
+        }
+        assert!(ad_hoc.trust(1) > 0.9 && ad_hoc.trust(2) < -0.9);
+        assert_eq!(follow(&mut ad_hoc, &[bad, good]), Some(good));
+        // Alone, the bad advisor weighs less than the agent's own choice.
+        assert_eq!(follow(&mut ad_hoc, &[bad]), None);
+        assert_eq!(follow(&mut ad_hoc, &[good]), Some(good));
     }
 }

@@ -8,7 +8,7 @@ use fnv::FnvHashMap;
 use proto::Action;
 
 use super::ad_hoc::AdHocAdvising;
-use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::settings::{AdHoc, Reuse, ReuseRule};
 use crate::advice_counters::AdviceCounters;
 use crate::exchange::Advice;
@@ -115,6 +115,14 @@ impl AdvisingStrategy for ReusingAdvice {
         };
         self.kept.insert(replies.key, kept);
         Some(advice)
+    }
+
+    fn learns_from_outcomes(&self) -> bool {
+        self.ad_hoc.learns_from_outcomes()
+    }
+
+    fn learn_outcome(&mut self, outcome: &Outcome) {
+        self.ad_hoc.learn_outcome(outcome);
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {

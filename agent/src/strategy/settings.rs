@@ -44,6 +44,11 @@ pub struct AdHoc {
     /// next 2^k - 1 chances to ask pass (k at most 10); advice resets k
     /// (default off).
     pub backoff: bool,
+    /// Trust in advisors (docs/algorithms.md section 8), learned at this
+    /// rate in (0, 1] from the outcomes of the advice followed; the
+    /// advisee then follows the advice, or its own choice, of most trust
+    /// (default none: the majority vote).
+    pub trust_lr: Option<f64>,
 }
 
 impl AdHoc {
@@ -61,6 +66,7 @@ impl AdHoc {
             mistake_correcting: false,
             reachable: Reachable::Everyone,
             backoff: false,
+            trust_lr: None,
         }
     }
 
@@ -406,8 +412,43 @@ impl Strategy {
         Ok(())
     }
 
+    /// Sets the ad hoc methods' trust learning rate (none: no trust); a
+    /// rate is an error for a method other than the ad hoc ones.
+    pub fn set_trust(&mut self, trust_lr: Option<f64>) -> Result<(), AgentConfigError> {
+        match self {
+            Strategy::AdHoc(a) | Strategy::AdviceReuse(a, _) => a.trust_lr = trust_lr,
+            _ if trust_lr.is_some() => {
+                return Err(AgentConfigError::new(
+                    "trust_lr",
+                    format!(
+                        "trust for adhoc-visit, adhoc-td and advice-reuse, or peer-learning's own, not {}",
+                        self.name()
+                    ),
+                ));
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
     /// Returns the first invalid constant, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
+        if let Strategy::AdHoc(AdHoc {
+            trust_lr: Some(lr), ..
+        })
+        | Strategy::AdviceReuse(
+            AdHoc {
+                trust_lr: Some(lr), ..
+            },
+            _,
+        ) = self
+            && !(*lr > 0.0 && *lr <= 1.0)
+        {
+            return Err(AgentConfigError::new(
+                "trust_lr",
+                format!("must be in (0, 1], got {lr}"),
+            ));
+        }
         match self {
             Strategy::Psaf(p) => {
                 require_non_negative("v_a", p.v_a)?;

@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use agent::{
-    AdvisorTies, Algorithm, Fidelity, NetworkConditions, Profile, SharedBootstrap, Strategy,
-    TorreyIntent, TorreyUnknownState, VoteTies,
+    Advises, AdvisorTies, Algorithm, Fidelity, NetworkConditions, Profile, SharedBootstrap,
+    Strategy, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use env_server::EvaluationMemory;
 use serde::{Deserialize, Serialize};
@@ -15,7 +15,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 8] = [
+pub const PRESETS: [(&str, &str); 9] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -42,6 +42,7 @@ pub const PRESETS: [(&str, &str); 8] = [
         include_str!("../../presets/advising-methods.toml"),
     ),
     ("newcomer", include_str!("../../presets/newcomer.toml")),
+    ("untrusted", include_str!("../../presets/untrusted.toml")),
 ];
 
 /// What a study runs.
@@ -149,6 +150,12 @@ pub struct StudyEntry {
     /// team file's `[[event]]`).
     #[serde(default, rename = "event", skip_serializing_if = "Vec::is_empty")]
     pub events: Vec<MembershipEvent>,
+    /// The ad hoc methods' trust in advisors, learned at this rate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trust_lr: Option<f64>,
+    /// What each agent answers as an advisor, by slot (none: all honest).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub advises: Vec<Advises>,
 }
 
 /// Team size of every study (the paper's 3 offense agents).
@@ -229,6 +236,12 @@ impl StudyConfig {
             }
             e.strategy(self.profile)
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
+            if !e.advises.is_empty() && e.advises.len() != TEAM {
+                return Err(ConfigError::new(
+                    format!("entry[{i}].advises"),
+                    format!("one behaviour per agent: {TEAM}, got {}", e.advises.len()),
+                ));
+            }
             if e.expert && self.pretrain.is_none() {
                 return Err(ConfigError::new(
                     format!("entry[{i}].expert"),
@@ -269,6 +282,9 @@ impl StudyConfig {
         spec.config.fidelity = entry.fidelity(self.profile);
         spec.config.network = entry.network;
         let mut team = vec![spec; TEAM];
+        for (agent, &advises) in team.iter_mut().zip(&entry.advises) {
+            agent.config.advises = advises;
+        }
         if let (true, Some(p)) = (entry.expert, &self.pretrain) {
             let agent = &mut team[p.expert];
             if let Strategy::AdHoc(a) = &mut agent.config.strategy {
@@ -320,6 +336,7 @@ impl StudyEntry {
         let mut strategy = Strategy::of(self.algorithm, profile);
         strategy.set_mistake_correcting(self.mistake_correcting)?;
         strategy.set_backoff(self.backoff)?;
+        strategy.set_trust(self.trust_lr)?;
         if let Some(v_g) = self.v_g {
             let Strategy::AdHoc(a) = &mut strategy else {
                 return Err(agent::AgentConfigError {

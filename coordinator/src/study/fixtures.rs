@@ -21,5 +21,6 @@ pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
         points,
         timing: Default::default(),
         advice_rtt_ms: Vec::new(),
+        joins: Vec::new(),
     }
 }
