@@ -105,6 +105,8 @@ pub struct Agent {
     pending: Option<OpenStep>,
     in_flight: Option<InFlight>,
     advised: Vec<u64>,
+    /// Decisions acted on each advisor's advice, by advisor id.
+    advised_by: Vec<u64>,
     reach: Vec<usize>,
     answers: Answers,
     episode: Vec<Transition>,
@@ -162,6 +164,7 @@ impl Agent {
             pending: None,
             in_flight: None,
             advised: Vec::new(),
+            advised_by: vec![0; team_size],
             reach: Vec::with_capacity(team_size),
             answers: Answers::default(),
             episode: Vec::new(),
@@ -204,6 +207,12 @@ impl Agent {
     /// conditions (none without them).
     pub fn link(&self) -> Option<&Link> {
         self.link.as_ref()
+    }
+
+    /// Decisions it acted on each advisor's advice, by advisor id (advice
+    /// followed; values taken are not an advisor's).
+    pub fn advised_by(&self) -> &[u64] {
+        &self.advised_by
     }
 
     /// Communication and budget counters.
@@ -405,6 +414,9 @@ impl Agent {
             Some(advice) => {
                 self.counters.ask_spent += 1;
                 self.advised.push(f.key);
+                if let Some(n) = self.advised_by.get_mut(advice.advisor) {
+                    *n += 1;
+                }
                 advice.action
             }
             None => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),

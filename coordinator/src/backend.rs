@@ -91,6 +91,10 @@ pub trait Backend {
     /// join (ms).
     fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error>;
 
+    /// Who advised whom so far: row i, column j, the decisions agent i acted
+    /// on agent j's advice.
+    fn advice_matrix(&self) -> Result<Vec<Vec<u64>>, Error>;
+
     /// Every agent's advice round-trip times (ms) as of the last
     /// [`agent_stats`](Self::agent_stats); empty in process.
     fn advice_rtt_ms(&self) -> Vec<Vec<f32>> {

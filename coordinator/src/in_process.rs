@@ -84,6 +84,12 @@ impl Backend for InProcess {
             .collect())
     }
 
+    fn advice_matrix(&self) -> Result<Vec<Vec<u64>>, Error> {
+        Ok((self.team.agents().iter())
+            .map(|a| a.advised_by().to_vec())
+            .collect())
+    }
+
     fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error> {
         let newcomer = experiment.newcomer(self.run, event)?;
         (self.team.replace(newcomer)).map_err(|e| Error::run(self.run, e))?;

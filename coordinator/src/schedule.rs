@@ -96,6 +96,11 @@ pub struct RunResult {
     pub timing: Timing,
     /// Every agent's advice round-trip times (ms) over the run; empty in process.
     pub advice_rtt_ms: Vec<Vec<f32>>,
+    /// Who advised whom over the run: row i, column j, the decisions agent
+    /// i (its slot's agents) acted on agent j's advice; absent when no
+    /// advice was acted on.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub advice_matrix: Vec<Vec<u64>>,
     /// The newcomers that joined, in order (none in a fixed team).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub joins: Vec<Join>,
@@ -176,11 +181,16 @@ pub fn play_run(
         on_point(&point)?;
         points.push(point);
     }
+    let mut advice_matrix = backend.advice_matrix()?;
+    if advice_matrix.iter().flatten().all(|&n| n == 0) {
+        advice_matrix.clear();
+    }
     Ok(RunResult {
         run,
         points,
         timing,
         advice_rtt_ms: backend.advice_rtt_ms(),
+        advice_matrix,
         joins,
     })
 }

@@ -345,6 +345,8 @@ pub struct AgentReport {
     pub advice_rtt_ms: Vec<f32>,
     /// Teammates currently seen alive.
     pub alive_peers: Vec<u8>,
+    /// Decisions it acted on each teammate's advice, by teammate id.
+    pub advised_by: Vec<u64>,
 }
 
 /// env-server's counters.

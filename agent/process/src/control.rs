@@ -156,6 +156,7 @@ fn report(ctx: &Context) -> Result<AgentReport, String> {
             advice_requests: c.advice_requests,
             advice_replies_received: c.advice_replies_received,
             advice_given: c.advice_given,
+            advised_by: agent.advised_by().to_vec(),
             ..AgentReport::default()
         }
     };

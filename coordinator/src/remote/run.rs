@@ -199,6 +199,10 @@ impl Backend for RemoteBackend<'_> {
         Ok(reports.iter().map(stats_of).collect())
     }
 
+    fn advice_matrix(&self) -> Result<Vec<Vec<u64>>, Error> {
+        Ok(self.reports()?.into_iter().map(|r| r.advised_by).collect())
+    }
+
     fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error> {
         let (spec, seed, snapshot) = experiment.newcomer_of(self.run, event);
         let slot = experiment.config().events[event].slot;

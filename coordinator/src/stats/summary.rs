@@ -46,6 +46,10 @@ pub struct Summary {
     pub snapshot_digests: Vec<Option<String>>,
     /// Every evaluation point, in order.
     pub eval_points: Vec<SummaryPoint>,
+    /// Who advised whom, per run (each as `RunResult::advice_matrix`, zeros
+    /// where no advice was acted on); absent when no run acted on advice.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub advice_matrix: Vec<Vec<Vec<u64>>>,
     /// Communication costs, for runs whose agents are processes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub comm: Option<CommSummary>,
@@ -234,12 +238,27 @@ pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
         config: config.clone(),
         snapshot_digests: record.snapshot_digests.clone(),
         eval_points,
+        advice_matrix: advice_matrices(results, config.team.len()),
         comm: config
             .transport
             .communicates()
             .then(|| CommSummary::of(results, config.team.len())),
         cost: Cost::of(results),
     }
+}
+
+/// Every run's advice matrix (n x n zeros for a run without advice), or
+/// none when no run acted on advice.
+fn advice_matrices(results: &[RunResult], n: usize) -> Vec<Vec<Vec<u64>>> {
+    if results.iter().all(|r| r.advice_matrix.is_empty()) {
+        return Vec::new();
+    }
+    (results.iter())
+        .map(|r| match r.advice_matrix.is_empty() {
+            true => vec![vec![0; n]; n],
+            false => r.advice_matrix.clone(),
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -72,6 +72,7 @@ pub fn write_report(
         holm_table(&mut md, baseline, &holm);
     }
     newcomers(&mut md, entries);
+    who_advised_whom(&mut md, entries);
     significance_between_advising(&mut md, study, entries, comparisons);
     network_conditions(&mut md, study, entries);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
@@ -148,17 +149,20 @@ impl Markdown {
         self.0.push_str("\n\n");
     }
 
-    /// A table: its header, then one line per row.
-    fn table<const N: usize>(
+    /// A table: its header, then one line per row (as many cells).
+    fn table<H: AsRef<str>, R: AsRef<[String]>>(
         &mut self,
-        header: [&str; N],
-        rows: impl IntoIterator<Item = [String; N]>,
+        header: impl AsRef<[H]>,
+        rows: impl IntoIterator<Item = R>,
     ) {
+        let header: Vec<&str> = header.as_ref().iter().map(AsRef::as_ref).collect();
         let line = |cells: &[&str]| format!("| {} |\n", cells.join(" | "));
         self.0.push_str(&line(&header));
-        self.0.push_str(&format!("|{}\n", "---|".repeat(N)));
+        self.0
+            .push_str(&format!("|{}\n", "---|".repeat(header.len())));
         for row in rows {
-            self.0.push_str(&line(&row.each_ref().map(String::as_str)));
+            let cells: Vec<&str> = row.as_ref().iter().map(String::as_str).collect();
+            self.0.push_str(&line(&cells));
         }
         self.0.push('\n');
     }
@@ -296,6 +300,40 @@ fn at_a_glance(
         ],
         rows,
     );
+}
+
+/// Each entry's advice acted on, by advisee and advisor (means over runs).
+fn who_advised_whom(md: &mut Markdown, entries: &[EntryResults]) {
+    let advising: Vec<&EntryResults> = (entries.iter())
+        .filter(|e| !e.summary.advice_matrix.is_empty())
+        .collect();
+    let Some(n) = advising.iter().map(|e| e.summary.config.team.len()).max() else {
+        return;
+    };
+    md.heading(2, "Who advised whom");
+    md.paragraph(
+        "The decisions each agent acted on each teammate's advice over a run, means over runs: \
+         `i ← j` is agent i following agent j (with newcomers, every agent that held slot i).",
+    );
+    let pairs: Vec<(usize, usize)> = (0..n)
+        .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+        .collect();
+    let rows = advising.iter().map(|e| {
+        let runs = e.summary.advice_matrix.len().max(1) as f64;
+        let mean = |i: usize, j: usize| {
+            let total: u64 = (e.summary.advice_matrix.iter())
+                .filter_map(|m| m.get(i)?.get(j))
+                .sum();
+            format!("{:.1}", total as f64 / runs)
+        };
+        std::iter::once(label(&e.entry))
+            .chain(pairs.iter().map(|&(i, j)| mean(i, j)))
+            .collect::<Vec<String>>()
+    });
+    let header: Vec<String> = std::iter::once("algorithm".to_owned())
+        .chain(pairs.iter().map(|(i, j)| format!("{i} ← {j}")))
+        .collect();
+    md.table(header, rows);
 }
 
 /// How each entry's team fared around its newcomers' joins.
