@@ -13,8 +13,15 @@ pub enum Reachable {
     Everyone,
     /// These agent ids, in the given order (the asking agent itself is skipped).
     Agents(Vec<usize>),
-    /// Teammates whose field position is within this distance (metres).
+    /// Teammates whose field position is within this distance (metres):
+    /// a radio range.
     WithinDistance(f64),
+    /// Its two neighbours on a ring of the ids: `me - 1` and `me + 1`
+    /// (modulo the team size).
+    Ring,
+    /// A star around the hub of this id: the hub asks everyone, the others
+    /// only the hub.
+    Star(usize),
 }
 
 /// P_ask(s) = (1 + v_a)^(-sqrt(n(s))); 1 for an unvisited state.
@@ -65,6 +72,13 @@ pub fn reachable_set(
             };
             out.extend((0..team_size).filter(|&j| j != me && near(j)));
         }
+        Reachable::Ring => {
+            let (before, after) = ((me + team_size - 1) % team_size, (me + 1) % team_size);
+            out.extend([before, after].into_iter().filter(|&j| j != me));
+            out.dedup();
+        }
+        Reachable::Star(hub) if *hub == me => out.extend((0..team_size).filter(|&j| j != me)),
+        Reachable::Star(hub) => out.extend((*hub < team_size).then_some(*hub)),
     }
 }
 
@@ -130,6 +144,33 @@ mod tests {
         assert_eq!(g, vec![1]);
         reachable_set(&Reachable::WithinDistance(5.0), 0, 3, &[], &mut g);
         assert!(g.is_empty());
+        // A ring of 4: agent 0's neighbours are 3 and 1; of 2, the other once.
+        reachable_set(&Reachable::Ring, 0, 4, &[], &mut g);
+        assert_eq!(g, vec![3, 1]);
+        reachable_set(&Reachable::Ring, 1, 2, &[], &mut g);
+        assert_eq!(g, vec![0]);
+        // A star around agent 1: it asks everyone, the others only it.
+        reachable_set(&Reachable::Star(1), 1, 3, &[], &mut g);
+        assert_eq!(g, vec![0, 2]);
+        reachable_set(&Reachable::Star(1), 2, 3, &[], &mut g);
+        assert_eq!(g, vec![1]);
+    }
+
+    #[test]
+    fn topologies_read_as_team_files_write_them() {
+        let read = |toml: &str| -> Reachable {
+            #[derive(Deserialize)]
+            struct Key {
+                reachable: Reachable,
+            }
+            toml::from_str::<Key>(toml).unwrap().reachable
+        };
+        assert_eq!(read(r#"reachable = "ring""#), Reachable::Ring);
+        assert_eq!(read("reachable = { star = 2 }"), Reachable::Star(2));
+        assert_eq!(
+            read("reachable = { within-distance = 20.0 }"),
+            Reachable::WithinDistance(20.0)
+        );
     }
 
     #[test]

@@ -516,51 +516,38 @@ impl Strategy {
         }
     }
 
-    /// Checks the ids of a [`Reachable::Agents`] set against the team size.
-    pub(crate) fn check_team(&self, team_size: usize) -> Result<(), AgentConfigError> {
-        let ids = match self {
-            Strategy::AdHoc(AdHoc {
-                reachable: Reachable::Agents(ids),
-                ..
-            })
-            | Strategy::AdviceReuse(
-                AdHoc {
-                    reachable: Reachable::Agents(ids),
-                    ..
-                },
-                _,
-            )
-            | Strategy::PeerLearning(PeerLearning {
-                reachable: Reachable::Agents(ids),
-                ..
-            })
-            | Strategy::Rcmp(Rcmp {
-                reachable: Reachable::Agents(ids),
-                ..
-            })
-            | Strategy::Psaf(Psaf {
-                reachable: Reachable::Agents(ids),
-                ..
-            })
-            | Strategy::EarlyAdvising(Budgeted {
-                reachable: Reachable::Agents(ids),
-                ..
-            })
-            | Strategy::RandomAdvising(Budgeted {
-                reachable: Reachable::Agents(ids),
-                ..
-            }) => ids,
-            _ => return Ok(()),
-        };
-        for (k, &j) in ids.iter().enumerate() {
-            if j >= team_size || ids[..k].contains(&j) {
-                return Err(AgentConfigError::new(
-                    "reachable",
-                    format!("agent {j} is out of range or repeated"),
-                ));
-            }
+    /// Its reachable set, for the methods that ask a set of advisors.
+    pub fn reachable(&self) -> Option<&Reachable> {
+        match self {
+            Strategy::AdHoc(a) | Strategy::AdviceReuse(a, _) => Some(&a.reachable),
+            Strategy::PeerLearning(p) => Some(&p.reachable),
+            Strategy::Rcmp(r) => Some(&r.reachable),
+            Strategy::Psaf(p) => Some(&p.reachable),
+            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => Some(&b.reachable),
+            _ => None,
         }
-        Ok(())
+    }
+
+    /// Checks the agent ids its reachable set names against the team size.
+    pub(crate) fn check_team(&self, team_size: usize) -> Result<(), AgentConfigError> {
+        let bad = |j: usize| {
+            AgentConfigError::new(
+                "reachable",
+                format!("agent {j} is out of range or repeated"),
+            )
+        };
+        match self.reachable() {
+            Some(Reachable::Agents(ids)) => {
+                for (k, &j) in ids.iter().enumerate() {
+                    if j >= team_size || ids[..k].contains(&j) {
+                        return Err(bad(j));
+                    }
+                }
+                Ok(())
+            }
+            Some(&Reachable::Star(hub)) if hub >= team_size => Err(bad(hub)),
+            _ => Ok(()),
+        }
     }
 }
 
