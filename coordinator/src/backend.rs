@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::experiment::Experiment;
+use crate::membership::Restart;
 
 /// How one episode ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,6 +91,11 @@ pub trait Backend {
     /// newcomer, between episodes; returns how long the newcomer took to
     /// join (ms).
     fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error>;
+
+    /// The agents restarted after a crash so far (none in process).
+    fn restarts(&self) -> Vec<Restart> {
+        Vec::new()
+    }
 
     /// Who advised whom so far: row i, column j, the decisions agent i acted
     /// on agent j's advice.

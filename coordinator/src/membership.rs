@@ -38,6 +38,26 @@ pub struct Join {
     pub wait_ms: u64,
 }
 
+/// An agent process that died and was restarted from its latest
+/// checkpoint: the gap in its learning.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Restart {
+    /// Its slot.
+    pub slot: usize,
+    /// Training episodes played when it was found lost.
+    pub episode: u64,
+    /// The training episodes of the checkpoint it restarted from; `None`:
+    /// none yet (or a learner process, which keeps its state itself), it
+    /// restarted fresh.
+    pub checkpoint: Option<u64>,
+    /// Whether the episode in flight was abandoned and played again.
+    pub replayed: bool,
+    /// Wall time from the episode's end to the restarted agent ready (ms).
+    pub wait_ms: u64,
+    /// How it was lost.
+    pub cause: String,
+}
+
 impl MembershipEvent {
     /// The agent that joins: the newcomer, or the slot's agent `slot_spec`
     /// fresh (without its snapshot).

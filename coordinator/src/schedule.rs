@@ -9,7 +9,7 @@ use env_server::Outcome;
 use crate::backend::{AgentStats, Backend};
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::Join;
+use crate::membership::{Join, Restart};
 
 /// The measurements of one evaluation.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -101,6 +101,10 @@ pub struct RunResult {
     /// advice was acted on.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub advice_matrix: Vec<Vec<u64>>,
+    /// Agents restarted after their process died (none without
+    /// `restart_agents`, or without a crash).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub restarts: Vec<Restart>,
     /// The newcomers that joined, in order (none in a fixed team).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub joins: Vec<Join>,
@@ -191,6 +195,7 @@ pub fn play_run(
         timing,
         advice_rtt_ms: backend.advice_rtt_ms(),
         advice_matrix,
+        restarts: backend.restarts(),
         joins,
     })
 }

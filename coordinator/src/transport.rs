@@ -16,6 +16,10 @@ use crate::error::ConfigError;
 /// Where agents and simulator live.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", try_from = "TransportFile")]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "one value per experiment, cloned a few times, never on a hot path"
+)]
 pub enum Transport {
     /// Simulator and agents as library calls in the run's thread: fast and
     /// bit-for-bit deterministic.
@@ -37,6 +41,14 @@ pub struct ZenohSettings {
     /// How long a kicker may send no action, frame after frame, before its
     /// run ends with an error (ms).
     pub stall_limit_ms: u64,
+    /// Restart an agent process that dies from its latest checkpoint
+    /// instead of ending the run (recorded only when on).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub restart_agents: bool,
+    /// With `restart_agents`: a checkpoint of every agent every this many
+    /// training episodes (recorded only when not the default).
+    #[serde(skip_serializing_if = "is_default_checkpoint")]
+    pub checkpoint_every: u64,
     /// How to reach the processes.
     #[serde(skip)]
     pub endpoints: Endpoints,
@@ -48,9 +60,18 @@ impl Default for ZenohSettings {
             advice_timeout_ms: 5,
             step_timeout_ms: 1000,
             stall_limit_ms: 10_000,
+            restart_agents: false,
+            checkpoint_every: DEFAULT_CHECKPOINT_EVERY,
             endpoints: Endpoints::default(),
         }
     }
+}
+
+/// Training episodes between checkpoints of a run whose agents restart.
+pub const DEFAULT_CHECKPOINT_EVERY: u64 = 100;
+
+fn is_default_checkpoint(every: &u64) -> bool {
+    *every == DEFAULT_CHECKPOINT_EVERY
 }
 
 /// How the coordinator reaches an experiment's processes.
@@ -170,6 +191,7 @@ impl Transport {
                 1..=proto::MAX_WAIT_MS,
             ),
             ("step_timeout_ms", z.step_timeout_ms, 1..=proto::MAX_WAIT_MS),
+            ("checkpoint_every", z.checkpoint_every, 1..=u64::MAX),
             (
                 "stall_limit_ms",
                 z.stall_limit_ms,

@@ -35,6 +35,8 @@ fn network(tag: &str, port: u16, auth: Auth) -> ZenohTeam {
             advice_timeout_ms: 20,
             step_timeout_ms: 2000,
             stall_limit_ms: 10_000,
+            restart_agents: false,
+            checkpoint_every: 100,
             endpoints: Endpoints {
                 experiment: experiment_name(tag),
                 port,

@@ -108,6 +108,8 @@ fn attached_settings(name: &str, secret: &Secret, endpoints: &[String]) -> Zenoh
         advice_timeout_ms: 20,
         step_timeout_ms: 2000,
         stall_limit_ms: 10_000,
+        restart_agents: false,
+        checkpoint_every: 100,
         endpoints: Endpoints {
             experiment: name.to_owned(),
             port: 0,

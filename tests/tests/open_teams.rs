@@ -102,3 +102,106 @@ fn newcomers_join_while_the_others_keep_learning_in_both_transports() {
         }
     }
 }
+
+/// The pid of agent `id`'s process of experiment `experiment`, if running.
+fn agent_pid(experiment: &str, id: u8) -> Option<u32> {
+    let wanted = |cmdline: &str| {
+        let args: Vec<&str> = cmdline.split('\0').collect();
+        let after = |flag: &str| {
+            args.windows(2)
+                .any(|w| w[0] == flag && w[1] == id.to_string())
+        };
+        args.first().is_some_and(|p| p.ends_with("/agent"))
+            && after("--id")
+            && args
+                .windows(2)
+                .any(|w| w[0] == "--experiment" && w[1] == experiment)
+    };
+    std::fs::read_dir("/proc")
+        .ok()?
+        .flatten()
+        .find_map(|entry| {
+            let pid: u32 = entry.file_name().to_str()?.parse().ok()?;
+            let cmdline = std::fs::read_to_string(entry.path().join("cmdline")).ok()?;
+            wanted(&cmdline).then_some(pid)
+        })
+}
+
+#[test]
+fn an_agent_that_dies_is_restarted_from_its_checkpoint_and_the_run_completes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let experiment = format!("restart-{}", std::process::id());
+    let coordinator = Command::new(bin("coordinator"))
+        .args([
+            "run",
+            "--algorithm",
+            "adhoc-td",
+            "--runs",
+            "1",
+            "--episodes",
+            "300",
+        ])
+        .args([
+            "--eval-every",
+            "100",
+            "--eval-episodes",
+            "10",
+            "--transport",
+            "zenoh",
+        ])
+        .args([
+            "--restart-agents",
+            "--checkpoint-every",
+            "20",
+            "--stall-limit-ms",
+            "2000",
+        ])
+        .args(["--experiment", &experiment, "--quiet", "--out"])
+        .arg(&out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Kill agent 1 once training is under way (after its first checkpoint).
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    let pid = loop {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "agent 1 never started"
+        );
+        if let Some(pid) = agent_pid(&experiment, 1) {
+            break pid;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    };
+    std::thread::sleep(std::time::Duration::from_secs(6));
+    let killed = Command::new("kill")
+        .args(["-KILL", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let output = coordinator.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let run: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run-0.json")).unwrap()).unwrap();
+    let restarts = run["restarts"].as_array().unwrap();
+    assert_eq!(restarts.len(), 1, "{restarts:?}");
+    let restart = &restarts[0];
+    assert_eq!(restart["slot"], 1);
+    let (episode, checkpoint) = (
+        restart["episode"].as_u64().unwrap(),
+        restart["checkpoint"].as_u64(),
+    );
+    assert!(
+        checkpoint.is_some_and(|c| c <= episode && c % 20 == 0),
+        "{restart}"
+    );
+    assert!(
+        restart["cause"].as_str().unwrap().contains("agent/1"),
+        "{restart}"
+    );
+    assert_eq!(run["points"].as_array().unwrap().len(), 4);
+    // The new process is gone with the run.
+    assert_eq!(agent_pid(&experiment, 1), None);
+}

@@ -37,7 +37,8 @@ pub struct ZenohTeam {
     lost: watch::Sender<Option<Role>>,
     /// Roles leaving on purpose (a membership event): not a loss.
     leaving: Arc<Mutex<HashSet<Role>>>,
-    /// Per agent slot, the newcomers that took it so far.
+    /// Per agent slot, the processes that took it after the first
+    /// (newcomers and restarts).
     newcomers: Mutex<Vec<usize>>,
     /// The loopback port this coordinator listens on for its processes.
     port: u16,
@@ -334,12 +335,36 @@ impl ZenohTeam {
     }
 
     /// The name of agent `i`'s current process: `agent <i>`, then
-    /// `agent <i> (newcomer <k>)` for the k-th that took its slot.
+    /// `agent <i> (process <k>)` for the k-th that took its slot since (a
+    /// newcomer or a restart).
     fn agent_name(&self, i: usize) -> String {
         match lock(&self.newcomers).get(i).copied().unwrap_or(0) {
             0 => format!("agent {i}"),
-            k => format!("agent {i} (newcomer {k})"),
+            k => format!("agent {i} (process {})", k + 1),
         }
+    }
+
+    /// Agent `slot`'s process was lost: once it has exited, starts `spec`
+    /// in its place and waits until it has joined; the loss is cleared.
+    pub fn restart(&self, slot: usize, spec: &AgentSpec) -> Result<String, Error> {
+        let name = self.agent_name(slot);
+        let cause = self.loss(Role::Agent(slot as u8));
+        if !self.children.started(&name) {
+            return Err(net_error(format!(
+                "{cause}; it was not started by this coordinator, so it cannot be restarted"
+            )));
+        }
+        let exited = self
+            .runtime
+            .block_on(self.children.exit_status(&name, Duration::from_secs(2)));
+        if exited.is_none() {
+            return Err(net_error(format!(
+                "{cause}; its process still runs, so it is not restarted"
+            )));
+        }
+        self.admit(slot, spec)?;
+        self.lost.send_replace(None);
+        Ok(cause)
     }
 
     /// Agent `slot`'s process leaves the running experiment: it is asked to
@@ -542,7 +567,8 @@ impl ZenohTeam {
     }
 
     /// Sends `control` to `role` and returns its reply; gives up at once when
-    /// a process of the experiment is lost meanwhile.
+    /// a process of the experiment is lost meanwhile (with `restart_agents`,
+    /// only when `role` or env-server is: another agent is restarted).
     pub fn control(
         &self,
         role: Role,
@@ -558,7 +584,12 @@ impl ZenohTeam {
         self.count(Direction::Sent, MessageKind::Control, bytes.len());
         let key = self.keys.control(role);
         let mut lost = self.lost.subscribe();
-        if let Some(gone_role) = *lost.borrow_and_update() {
+        let fatal = |gone: Role| {
+            !self.settings.restart_agents || gone == role || !matches!(gone, Role::Agent(_))
+        };
+        if let Some(gone_role) = *lost.borrow_and_update()
+            && fatal(gone_role)
+        {
             return Err(self.loss(gone_role));
         }
         let sent = Instant::now();
@@ -579,8 +610,10 @@ impl ZenohTeam {
                         Err(_) => break,
                     },
                     Ok(()) = lost.changed() => match *lost.borrow_and_update() {
-                        Some(gone_role) => return Err(self.describe_loss(gone_role).await),
-                        None => continue,
+                        Some(gone_role) if fatal(gone_role) => {
+                            return Err(self.describe_loss(gone_role).await)
+                        }
+                        _ => continue,
                     },
                 };
                 let Ok(sample) = reply.result() else { continue };

@@ -15,6 +15,7 @@ use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
+use crate::membership::Restart;
 
 /// How long a process may take to answer a command other than playing.
 const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);
@@ -33,6 +34,15 @@ pub struct RemoteBackend<'a> {
     evaluation_seed: Option<u64>,
     /// Advice round-trip times of every agent, as of the last report.
     rtt_ms: Mutex<Vec<Vec<f32>>>,
+    /// Each slot's agent now and its seed (a newcomer's after its join).
+    members: Vec<(AgentSpec, u64)>,
+    /// Training episodes played.
+    trained: u64,
+    /// With `restart_agents`: the latest checkpoint, at these training
+    /// episodes, of every agent (none for a learner process).
+    checkpoint: Option<(u64, Vec<Option<Snapshot>>)>,
+    /// The agents restarted so far.
+    restarts: Vec<Restart>,
 }
 
 impl<'a> RemoteBackend<'a> {
@@ -47,6 +57,12 @@ impl<'a> RemoteBackend<'a> {
             episode: 0,
             evaluation_seed: None,
             rtt_ms: Mutex::new(Vec::new()),
+            members: (config.team.iter().cloned())
+                .zip(seeds.agents.iter().copied())
+                .collect(),
+            trained: 0,
+            checkpoint: None,
+            restarts: Vec::new(),
         };
         let env = proto::encode_settings(&config.env).map_err(|e| backend.error(e.to_string()))?;
         backend.expect_ok(
@@ -132,6 +148,39 @@ impl<'a> RemoteBackend<'a> {
         }
     }
 
+    /// Every agent's snapshot now, kept to restart an agent that dies (none
+    /// for a learner process, which keeps its state itself).
+    fn take_checkpoint(&mut self) -> Result<(), Error> {
+        let snapshots = self.snapshots()?;
+        let kept = (snapshots.into_iter().zip(&self.members))
+            .map(|(s, (spec, _))| spec.learner.is_none().then_some(s))
+            .collect();
+        self.checkpoint = Some((self.trained, kept));
+        Ok(())
+    }
+
+    /// Restarts the lost agent `slot` from the latest checkpoint and
+    /// records the gap; `replayed`: the episode in flight, begun at
+    /// `played`, is played again.
+    fn restart(&mut self, slot: usize, replayed: bool, played: Instant) -> Result<(), Error> {
+        let (spec, seed) = self.members[slot].clone();
+        let cause = self.network.restart(slot, &spec)?;
+        let snapshot = (self.checkpoint.as_ref())
+            .and_then(|(episode, s)| Some((*episode, s.get(slot)?.as_ref()?)));
+        self.reset_agent(slot, &spec, seed, snapshot.map(|(_, s)| s))?;
+        let restart = Restart {
+            slot,
+            episode: self.trained,
+            checkpoint: snapshot.map(|(episode, _)| episode),
+            replayed,
+            wait_ms: played.elapsed().as_millis() as u64,
+            cause,
+        };
+        tracing::warn!(run = self.run, ?restart, "agent restarted");
+        self.restarts.push(restart);
+        Ok(())
+    }
+
     /// The last played episode, which reports and snapshots wait for.
     fn last_episode(&self) -> u32 {
         self.episode.saturating_sub(1)
@@ -168,19 +217,43 @@ impl Backend for RemoteBackend<'_> {
             Mode::Training => None,
             Mode::Evaluation => self.evaluation_seed.take(),
         };
-        let reply = self.call(
-            Role::Server,
-            self.episode,
-            Control::PlayEpisode { mode, seed },
-            EPISODE_TIMEOUT,
-        )?;
-        self.episode += 1;
-        let ControlReply::Episode(result) = reply else {
+        let result = loop {
+            let played = Instant::now();
+            let reply = self.network.control(
+                Role::Server,
+                self.header(self.episode),
+                Control::PlayEpisode { mode, seed },
+                EPISODE_TIMEOUT,
+            );
+            self.episode += 1;
+            let lost = match self.network.lost() {
+                Some(Role::Agent(i)) if self.network.settings().restart_agents => Some(i),
+                _ => None,
+            };
+            let Some(slot) = lost else {
+                let reply =
+                    reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))?;
+                break reply;
+            };
+            let replayed = reply.is_err();
+            self.restart(slot.into(), replayed, played)?;
+            if let Ok(reply) = reply {
+                break reply;
+            }
+        };
+        let ControlReply::Episode(result) = result else {
             return Err(self.error(format!(
-                "env-server answered {reply:?} to an episode request"
+                "env-server answered {result:?} to an episode request"
             )));
         };
         self.check_alive()?;
+        if mode == Mode::Training {
+            self.trained += 1;
+            let every = self.network.settings().checkpoint_every;
+            if self.network.settings().restart_agents && self.trained % every == 0 {
+                self.take_checkpoint()?;
+            }
+        }
         Ok(EpisodeEnd {
             outcome: match result.outcome {
                 EpisodeOutcome::Goal => Outcome::Goal,
@@ -210,7 +283,16 @@ impl Backend for RemoteBackend<'_> {
         self.network.retire(slot).map_err(|e| self.error(e))?;
         self.network.admit(slot, &spec)?;
         self.reset_agent(slot, &spec, seed, snapshot)?;
+        if let Some((_, snapshots)) = &mut self.checkpoint {
+            // Until the next checkpoint, a restart starts it as it joined.
+            snapshots[slot] = snapshot.cloned();
+        }
+        self.members[slot] = (spec, seed);
         Ok(started.elapsed().as_millis() as u64)
+    }
+
+    fn restarts(&self) -> Vec<Restart> {
+        self.restarts.clone()
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {

@@ -34,6 +34,7 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
         })?;
         runs.push(RunResult {
             joins: Vec::new(),
+            restarts: Vec::new(),
             advice_matrix: Vec::new(),
             run,
             points,
