@@ -3,7 +3,9 @@
 //! an agent or env-server killed, or stopped and resumed; the coordinator
 //! killed, terminated or interrupted at a random moment from its start-up on;
 //! or the zenoh router that every process of an attached experiment connects
-//! to restarted mid-run.
+//! to restarted mid-run; or, in an open team with `--restart-agents`,
+//! newcomers joining at random episodes while a random agent is killed at a
+//! random moment (or none is).
 //!
 //! Every trial must end within a bound (no hang), leave no process of its
 //! experiment behind (no orphan), leave only result files that parse (no
@@ -17,7 +19,8 @@
 //! ADV_FAULTS=100 cargo test --release -p integration-tests --test faults -- --nocapture
 //! ```
 //!
-//! `ADV_FAULT_SEED` (default 1) picks the trials and their moments.
+//! `ADV_FAULT_SEED` (default 1) picks the trials and their moments;
+//! `ADV_FAULT_KIND` (a fault's name, e.g. `OpenTeam`) draws only that one.
 
 use std::fs::File;
 use std::path::{Path, PathBuf};
@@ -56,9 +59,12 @@ enum Fault {
     /// pause; env-server and the agents were started by hand and the
     /// coordinator attached to them, all connecting only to the router.
     RestartRouter,
+    /// An open team with `--restart-agents`: newcomers join at random
+    /// episodes, and a random agent (or none) is killed at a random moment.
+    OpenTeam,
 }
 
-const FAULTS: [Fault; 8] = [
+const FAULTS: [Fault; 9] = [
     Fault::KillAgent,
     Fault::StopAgent,
     Fault::KillServer,
@@ -67,16 +73,21 @@ const FAULTS: [Fault; 8] = [
     Fault::TermCoordinator,
     Fault::InterruptCoordinator,
     Fault::RestartRouter,
+    Fault::OpenTeam,
 ];
 
 /// One trial: a fault, when it strikes and how long a stop lasts.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Trial {
     fault: Fault,
     /// After the coordinator starts (its faults) or after the target
     /// process appears (the others).
     delay: Duration,
     pause: Duration,
+    /// An open team's joins: (training episode, slot, newcomer algorithm).
+    joins: Vec<(u64, usize, &'static str)>,
+    /// An open team's agent killed, if any.
+    victim: Option<u8>,
 }
 
 impl Trial {
@@ -89,14 +100,44 @@ impl Trial {
             | Fault::RestartRouter => rng.random_range(0..3000),
             _ => rng.random_range(0..1500),
         };
+        let (mut joins, mut victim) = (Vec::new(), None);
+        if fault == Fault::OpenTeam {
+            for _ in 0..rng.random_range(1..=3) {
+                let newcomer = ["adhoc-td", "peer-learning"][rng.random_range(0..2)];
+                joins.push((
+                    rng.random_range(1..EPISODES),
+                    rng.random_range(0..3),
+                    newcomer,
+                ));
+            }
+            joins.sort_unstable();
+            joins.dedup_by_key(|(episode, slot, _)| (*episode, *slot));
+            victim = rng.random_bool(0.75).then(|| rng.random_range(0..3));
+        }
         Self {
             fault,
             delay: Duration::from_millis(delay),
             // Within and beyond the stall limit.
             pause: Duration::from_millis(rng.random_range(200..2 * STALL_LIMIT_MS)),
+            joins,
+            victim,
         }
     }
+
+    /// The team file of an open team's trial.
+    fn team_file(&self) -> String {
+        let mut text = "[[agent]]\nalgorithm = \"adhoc-td\"\n".repeat(3);
+        for (episode, slot, algorithm) in &self.joins {
+            text.push_str(&format!(
+                "[[event]]\nepisode = {episode}\nslot = {slot}\nnewcomer = {{ algorithm = \"{algorithm}\" }}\n"
+            ));
+        }
+        text
+    }
 }
+
+/// Training episodes of a trial's run.
+const EPISODES: u64 = 200;
 
 /// What a trial ended in; anything but `Ok` fails the suite.
 #[derive(Debug, PartialEq, Eq)]
@@ -131,13 +172,21 @@ fn find(experiment: &str, part: &str, deadline: Instant) -> Option<u32> {
     None
 }
 
-fn start(experiment: &str, out: &Path, tmp: &Path, stderr: File, attach: &[String]) -> Child {
+/// Starts the coordinator of `experiment` with `extra` arguments (an
+/// attached experiment's, or an open team's) or else `--algorithm adhoc-td`.
+fn start(experiment: &str, out: &Path, tmp: &Path, stderr: File, extra: &[String]) -> Child {
+    let team = if extra.is_empty() {
+        ["--algorithm", "adhoc-td"].map(String::from).to_vec()
+    } else {
+        extra.to_vec()
+    };
     Command::new(bin("coordinator"))
         .env("TMPDIR", tmp)
-        .args(["run", "--algorithm", "adhoc-td", "--runs", "1"])
+        .args(["run", "--runs", "1"])
+        .args(team)
         .args([
             "--episodes",
-            "200",
+            &EPISODES.to_string(),
             "--eval-every",
             "100",
             "--eval-episodes",
@@ -145,7 +194,6 @@ fn start(experiment: &str, out: &Path, tmp: &Path, stderr: File, attach: &[Strin
         ])
         .args(["--transport", "zenoh", "--experiment", experiment])
         .args(["--stall-limit-ms", &STALL_LIMIT_MS.to_string(), "--quiet"])
-        .args(attach)
         .arg("--out")
         .arg(out)
         .stdin(Stdio::null())
@@ -250,7 +298,8 @@ impl Attached {
     }
 
     fn coordinator_args(&self) -> Vec<String> {
-        [vec!["--attach".to_string()], self.common_args()].concat()
+        let algorithm = ["--algorithm", "adhoc-td", "--attach"].map(String::from);
+        [algorithm.to_vec(), self.common_args()].concat()
     }
 
     /// SIGTERM to the router, then a new one on its port after `pause`.
@@ -276,25 +325,40 @@ impl Drop for Attached {
 /// Plays `trial` as experiment `name` in `dir`: starts the coordinator,
 /// injects the fault at its moment, waits for the end within the bound,
 /// then collects what the checks need. One sequence, read top to bottom.
-fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
+fn play(trial: &Trial, name: &str, dir: &Path) -> Verdict {
     let out = dir.join("out");
     let stderr_path = dir.join("stderr");
     let mut attached = (trial.fault == Fault::RestartRouter).then(|| Attached::start(name, dir));
-    let attach = attached
+    let mut attach = attached
         .as_ref()
         .map(Attached::coordinator_args)
         .unwrap_or_default();
+    if trial.fault == Fault::OpenTeam {
+        let team = dir.join("team.toml");
+        std::fs::write(&team, trial.team_file()).expect("team file");
+        attach = [
+            "--team".into(),
+            team.display().to_string(),
+            "--restart-agents".into(),
+        ]
+        .into_iter()
+        .chain(["--checkpoint-every", "20"].map(String::from))
+        .collect();
+    }
     let stderr = File::create(&stderr_path).expect("stderr file");
     let tmp = dir.join("tmp");
     std::fs::create_dir_all(&tmp).expect("temporary directory");
     let mut coordinator = start(name, &out, &tmp, stderr, &attach);
     let started = Instant::now();
+    let victim = trial.victim.map(|id| format!("--id\u{0}{id}\u{0}"));
     let target = match trial.fault {
         Fault::KillAgent | Fault::StopAgent => Some("--id\u{0}1\u{0}"),
         Fault::KillServer | Fault::StopServer => Some("serve\u{0}"),
+        Fault::OpenTeam => victim.as_deref(),
         _ => None,
     };
     match target {
+        None if trial.fault == Fault::OpenTeam => {}
         None if trial.fault == Fault::RestartRouter => {
             std::thread::sleep(trial.delay);
             if let Some(attached) = attached.as_mut() {
@@ -313,7 +377,10 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
         Some(part) => {
             if let Some(pid) = find(name, part, started + Duration::from_secs(30)) {
                 std::thread::sleep(trial.delay);
-                if matches!(trial.fault, Fault::KillAgent | Fault::KillServer) {
+                if matches!(
+                    trial.fault,
+                    Fault::KillAgent | Fault::KillServer | Fault::OpenTeam
+                ) {
                     signal(pid, "KILL");
                 } else {
                     signal(pid, "STOP");
@@ -360,7 +427,10 @@ fn play(trial: Trial, name: &str, dir: &Path) -> Verdict {
     match (status.code(), last) {
         (Some(0), _) => Verdict::Ok("finished".into()),
         // A signal before the handlers are installed, i.e. before any spawn.
-        (None, _) if target.is_none() && trial.fault != Fault::RestartRouter => {
+        (None, _)
+            if target.is_none()
+                && !matches!(trial.fault, Fault::RestartRouter | Fault::OpenTeam) =>
+        {
             Verdict::Ok(format!("{status}"))
         }
         (Some(code), Some(line)) if line.starts_with("error:") || line.contains("stopping") => {
@@ -426,12 +496,20 @@ fn every_fault_ends_bounded_without_orphans_or_corrupted_files() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let tmp = tempfile::tempdir().unwrap();
     let mut failures = Vec::new();
+    let kinds: Vec<Fault> = match std::env::var("ADV_FAULT_KIND") {
+        Ok(kind) => FAULTS
+            .into_iter()
+            .filter(|f| format!("{f:?}") == kind)
+            .collect(),
+        Err(_) => FAULTS.to_vec(),
+    };
+    assert!(!kinds.is_empty(), "ADV_FAULT_KIND names none of {FAULTS:?}");
     // The short mode plays each fault once, the long mode draws them.
     let faults: Vec<Fault> = if count == FAULTS.len() {
         FAULTS.to_vec()
     } else {
         (0..count)
-            .map(|_| FAULTS[rng.random_range(0..FAULTS.len())])
+            .map(|_| kinds[rng.random_range(0..kinds.len())])
             .collect()
     };
     for (i, &fault) in faults.iter().enumerate() {
@@ -440,12 +518,14 @@ fn every_fault_ends_bounded_without_orphans_or_corrupted_files() {
         std::fs::create_dir_all(&dir).unwrap();
         let name = format!("fault-{}-{i}", std::process::id());
         let began = Instant::now();
-        let verdict = play(trial, &name, &dir);
+        let verdict = play(&trial, &name, &dir);
         eprintln!(
-            "trial {i}: {:?} after {:?} (pause {:?}): {verdict:?} in {:.1} s",
+            "trial {i}: {:?} after {:?} (pause {:?}, joins {:?}, killed {:?}): {verdict:?} in {:.1} s",
             trial.fault,
             trial.delay,
             trial.pause,
+            trial.joins,
+            trial.victim,
             began.elapsed().as_secs_f64()
         );
         if !matches!(verdict, Verdict::Ok(_)) {
