@@ -3,7 +3,9 @@ object per line on standard input, one answer per query on standard output."""
 
 from __future__ import annotations
 
+import contextlib
 import json
+import sys
 from typing import IO, Callable
 
 
@@ -12,7 +14,14 @@ def serve_lines(
 ) -> int:
     """Answers each request line with ``answer`` until ``requests`` closes;
     returns the exit status. An exception is reported to the agent (which
-    ends with a line naming it) and ends the loop with 1."""
+    ends with a line naming it) and ends the loop with 1. Meanwhile
+    ``print()`` goes to standard error, the agent's log: the channel's
+    standard output carries answers only."""
+    with contextlib.redirect_stdout(sys.stderr):
+        return _serve(answer, requests, answers)
+
+
+def _serve(answer: Callable[[dict], dict | None], requests: IO[str], answers: IO[str]) -> int:
     for line in requests:
         try:
             reply = answer(json.loads(line))

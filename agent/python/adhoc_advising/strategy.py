@@ -296,7 +296,8 @@ def serve(
     """Answers the agent process until it closes ``requests``; returns the
     exit status. A strategy that raises is reported to the agent (which ends
     with a line naming it and the exception) and ends the loop with 1.
-    Print diagnostics to ``sys.stderr``: ``sys.stdout`` is the channel."""
+    ``print()`` in the class goes to standard error (the agent's log), not
+    to the channel."""
     strategy: AdvisingStrategy | None = None
 
     def answer(message: dict) -> dict | None:

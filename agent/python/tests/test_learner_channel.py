@@ -90,3 +90,17 @@ def test_a_failure_is_one_error_answer_and_ends_the_loop() -> None:
     assert (status, answers) == (1, [{"error": "RuntimeError: `values` before `start`"}])
     status, answers = talk(START, {"op": "dance"})
     assert answers[-1] == {"error": "ValueError: unknown request `dance`"}
+
+
+def test_print_in_a_learner_goes_to_the_log_not_the_channel(capsys) -> None:
+    class Chatty(Counting):
+        def choose(self, state, index) -> int:
+            print("debug: choosing")
+            return super().choose(state, index)
+
+    answers = io.StringIO()
+    query = {"op": "choose", "state": STATE, "index": 1}
+    lines = io.StringIO("".join(json.dumps(r) + "\n" for r in (START, query)))
+    assert serve(Chatty, lines, answers) == 0
+    assert [json.loads(line) for line in answers.getvalue().splitlines()][1] == {"action": 2}
+    assert "debug: choosing" in capsys.readouterr().err
