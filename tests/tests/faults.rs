@@ -98,6 +98,8 @@ impl Trial {
             | Fault::TermCoordinator
             | Fault::InterruptCoordinator
             | Fault::RestartRouter => rng.random_range(0..3000),
+            // Over the whole run: start-up, training, joins, evaluations.
+            Fault::OpenTeam => rng.random_range(0..10_000),
             _ => rng.random_range(0..1500),
         };
         let (mut joins, mut victim) = (Vec::new(), None);
