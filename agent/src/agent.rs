@@ -723,6 +723,14 @@ impl Agent {
     /// learner's values (all unlearned for a learner that keeps its values
     /// itself), counters and finished training episodes.
     pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            learner_state: self.learner.save_state(),
+            ..self.framework_state()
+        }
+    }
+
+    /// Its snapshot without a learner's own state (asked of no child).
+    fn framework_state(&self) -> Snapshot {
         let values = self.learner.table().unwrap_or_default();
         let mut entries: Vec<(u64, Entry)> = (0..self.states.len())
             .map(|i| {
@@ -741,6 +749,7 @@ impl Agent {
             entries,
             counters: self.counters,
             training_episodes: self.training_episodes,
+            learner_state: None,
         }
     }
 
@@ -764,9 +773,11 @@ impl Agent {
                 learned: e.tried,
             })
             .collect();
-        self.learner
-            .restore(values)
-            .map_err(PersistError::Invalid)?;
+        match &snapshot.learner_state {
+            Some(state) => self.learner.load_state(state),
+            None => self.learner.restore(values),
+        }
+        .map_err(PersistError::Invalid)?;
         self.states = states;
         self.counters = snapshot.counters;
         self.training_episodes = snapshot.training_episodes;
@@ -774,9 +785,10 @@ impl Agent {
         Ok(())
     }
 
-    /// A stable digest of the learned state (see [`Snapshot::digest`]).
+    /// A stable digest of the learned state the framework holds (see
+    /// [`Snapshot::digest`]; a learner's own state is not asked for).
     pub fn digest(&self) -> u64 {
-        self.snapshot().digest()
+        self.framework_state().digest()
     }
 }
 

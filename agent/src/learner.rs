@@ -107,6 +107,19 @@ pub trait Learner: fmt::Debug + Send {
     /// index order; an error says why it cannot.
     fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String>;
 
+    /// Its own state as bytes, for a learner that keeps it itself (a
+    /// learner process with snapshot hooks); `None` by default: its values
+    /// are its [`table`](Self::table).
+    fn save_state(&self) -> Option<Vec<u8>> {
+        None
+    }
+
+    /// Starts again from its own state saved by
+    /// [`save_state`](Self::save_state); an error says why it cannot.
+    fn load_state(&mut self, _state: &[u8]) -> Result<(), String> {
+        Err("this learner keeps no state of its own: a snapshot with a learner's state is not for it".into())
+    }
+
     /// Takes `values` as its own in `at` (a value-sharing method's shared
     /// values); false for a learner that cannot.
     fn absorb(&mut self, _at: Seen<'_>, _values: ActionValues) -> bool {

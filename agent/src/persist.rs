@@ -2,7 +2,10 @@
 //! read by the caller) and a stable digest.
 //!
 //! Layout: magic `ADVQTAB\0` | format version (u16 LE) | body length (u64 LE)
-//! | postcard body | FNV-1a 64 of the body (u64 LE).
+//! | postcard body | FNV-1a 64 of the body (u64 LE). Version 1's body holds
+//! the tiling, the entries, the counters and the finished episodes; version
+//! 2's, written only for a learner that keeps its state itself (a learner
+//! process), holds those and then the learner's own bytes.
 
 use std::hash::Hasher;
 
@@ -15,8 +18,14 @@ use crate::tiles::TilingParams;
 
 const MAGIC: [u8; 8] = *b"ADVQTAB\0";
 
-/// Version of the file format; files of another version are refused.
+/// Version of the file format of a snapshot without a learner's own state;
+/// files of versions other than it and [`LEARNER_STATE_FORMAT_VERSION`] are
+/// refused.
 pub const SNAPSHOT_FORMAT_VERSION: u16 = 1;
+
+/// Version of the file format of a snapshot that carries a learner's own
+/// state (its body: version 1's, then those bytes).
+pub const LEARNER_STATE_FORMAT_VERSION: u16 = 2;
 
 const HEADER: usize = MAGIC.len() + 2 + 8;
 const CHECKSUM: usize = 8;
@@ -86,6 +95,11 @@ pub struct Snapshot {
     pub counters: AdviceCounters,
     /// Training episodes finished.
     pub training_episodes: u64,
+    /// The learner's own state, for a learner that keeps it itself (a
+    /// learner process with snapshot hooks); its values are then not in
+    /// `entries`.
+    #[serde(skip)]
+    pub learner_state: Option<Vec<u8>>,
 }
 
 /// The file checksum of `bytes`: FNV-1a, 64 bits.
@@ -99,9 +113,14 @@ fn checksum(bytes: &[u8]) -> u64 {
 /// length), `body` and its checksum, as [`Snapshot::encode`] writes around
 /// its postcard body. For tools that build or fuzz snapshot files.
 pub fn snapshot_file(body: &[u8]) -> Vec<u8> {
+    file_of(SNAPSHOT_FORMAT_VERSION, body)
+}
+
+/// The file of `body` in format `version`.
+fn file_of(version: u16, body: &[u8]) -> Vec<u8> {
     let mut out = Vec::with_capacity(HEADER + body.len() + CHECKSUM);
     out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&SNAPSHOT_FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&version.to_le_bytes());
     out.extend_from_slice(&(body.len() as u64).to_le_bytes());
     out.extend_from_slice(body);
     out.extend_from_slice(&checksum(body).to_le_bytes());
@@ -125,6 +144,9 @@ impl Snapshot {
             }
             h.write(&[e.tried]);
             word(&mut h, e.visits);
+        }
+        if let Some(state) = &self.learner_state {
+            h.write(state);
         }
         let c = self.counters;
         for x in [
@@ -160,9 +182,16 @@ impl Snapshot {
         Ok(())
     }
 
-    /// The file image: header, body and checksum.
+    /// The file image: header, body and checksum (version 2 with a
+    /// learner's own state).
     pub fn encode(&self) -> Result<Vec<u8>, PersistError> {
-        Ok(snapshot_file(&postcard::to_allocvec(self)?))
+        Ok(match &self.learner_state {
+            None => snapshot_file(&postcard::to_allocvec(self)?),
+            Some(state) => file_of(
+                LEARNER_STATE_FORMAT_VERSION,
+                &postcard::to_allocvec(&(self, state))?,
+            ),
+        })
     }
 
     /// Parses a file image, checking magic, version, length and checksum.
@@ -176,7 +205,7 @@ impl Snapshot {
             found: bytes.len() as u64,
         };
         let version = u16::from_le_bytes(read_array(bytes, MAGIC.len()).ok_or_else(too_short)?);
-        if version != SNAPSHOT_FORMAT_VERSION {
+        if ![SNAPSHOT_FORMAT_VERSION, LEARNER_STATE_FORMAT_VERSION].contains(&version) {
             return Err(PersistError::UnsupportedVersion {
                 found: version,
                 expected: SNAPSHOT_FORMAT_VERSION,
@@ -197,7 +226,11 @@ impl Snapshot {
         if checksum(body) != sum {
             return Err(PersistError::Checksum);
         }
-        let (snapshot, rest): (Self, _) = postcard::take_from_bytes(body)?;
+        let (mut snapshot, mut rest): (Self, _) = postcard::take_from_bytes(body)?;
+        if version == LEARNER_STATE_FORMAT_VERSION {
+            let (state, after): (Vec<u8>, _) = postcard::take_from_bytes(rest)?;
+            (snapshot.learner_state, rest) = (Some(state), after);
+        }
         if !rest.is_empty() {
             return Err(PersistError::Invalid(format!(
                 "{} bytes after the body",
@@ -234,7 +267,31 @@ mod tests {
                 ..AdviceCounters::default()
             },
             training_episodes: 12,
+            learner_state: None,
         }
+    }
+
+    #[test]
+    fn a_learners_own_state_makes_a_version_2_file_that_reads_back() {
+        let plain = sample().encode().unwrap();
+        let with_state = Snapshot {
+            learner_state: Some(vec![1, 2, 3, 250]),
+            ..sample()
+        };
+        let bytes = with_state.encode().unwrap();
+        assert_eq!(
+            u16::from_le_bytes([bytes[8], bytes[9]]),
+            LEARNER_STATE_FORMAT_VERSION
+        );
+        assert_eq!(
+            u16::from_le_bytes([plain[8], plain[9]]),
+            SNAPSHOT_FORMAT_VERSION
+        );
+        assert_eq!(Snapshot::decode(&bytes).unwrap(), with_state);
+        assert_ne!(with_state.digest(), sample().digest());
+        // A SARSA agent takes no learner's state.
+        let mut agent = crate::Agent::new(0, 1, AgentConfig::default(), 1).unwrap();
+        assert!(agent.restore(with_state).is_err());
     }
 
     #[test]
@@ -263,13 +320,13 @@ mod tests {
         let good = sample().encode().unwrap();
 
         let mut version = good.clone();
-        version[8..10].copy_from_slice(&2u16.to_le_bytes());
+        version[8..10].copy_from_slice(&3u16.to_le_bytes());
         let err = Snapshot::decode(&version).unwrap_err();
         assert!(
             matches!(
                 err,
                 PersistError::UnsupportedVersion {
-                    found: 2,
+                    found: 3,
                     expected: 1
                 }
             ),

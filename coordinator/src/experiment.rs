@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use agent::{AdviceCounters, Agent, Snapshot};
+use agent::{AdviceCounters, Agent, PersistError, Snapshot};
 use serde::Serialize;
 
 use crate::config::{AgentSpec, ExperimentConfig};
@@ -79,13 +79,20 @@ fn build_agent(
 ) -> Result<Agent, Error> {
     let mut agent = Agent::new(id, n, spec.config.clone(), seed)
         .map_err(|e| crate::error::ConfigError::new(format!("team[{id}].{}", e.key), e.reason))?;
-    if let Some(s) = snapshot {
-        agent.restore(s.clone()).map_err(|source| Error::Snapshot {
-            agent: id,
-            path: spec.load.clone().unwrap_or_default(),
-            source,
-        })?;
-    }
+    let failed = |source| Error::Snapshot {
+        agent: id,
+        path: spec.load.clone().unwrap_or_default(),
+        source,
+    };
+    match (snapshot, &spec.learner) {
+        // A learner process restores its own state in its agent's process:
+        // here the snapshot only has to hold one.
+        (Some(s), Some(_)) if s.learner_state.is_none() => Err(failed(PersistError::Invalid(
+            "it holds no learner's own state, which a learner process needs (its `save`)".into(),
+        ))),
+        (Some(s), None) => agent.restore(s.clone()).map_err(failed),
+        _ => Ok(()),
+    }?;
     Ok(agent)
 }
 

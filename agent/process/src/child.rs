@@ -17,8 +17,9 @@ use std::time::Duration;
 use serde::Deserialize;
 use serde_json::Value;
 
-/// The longest answer line accepted from a child.
-const MAX_LINE: u64 = 1 << 20;
+/// The longest answer line accepted from a child (a learner's saved state
+/// travels in one).
+const MAX_LINE: u64 = 1 << 26;
 
 /// How long a child may take to start (imports, a model on a GPU) and
 /// answer `start`, if longer than its timeout: within the coordinator's

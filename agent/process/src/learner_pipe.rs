@@ -2,21 +2,27 @@
 //! framework stays here, the learner answers over the child's standard
 //! input and output, one JSON object per line ([`crate::child`]).
 //!
-//! Queries (`start`, `values`, `choose`) wait for one answer line, within
-//! the learner timeout; `learn`, `end_episode` and `replay` are sent
-//! without an answer.
+//! Queries (`start`, `values`, `choose`, `save`, `restore`) wait for one
+//! answer line, within the learner timeout; `learn`, `end_episode` and
+//! `replay` are sent without an answer. A saved state travels as base64.
 
 use agent::{ActionValues, AgentRng, Experience, Learner, Seen, Step};
 use proto::Action;
 use serde::Deserialize;
 use serde_json::{Value, json};
 
+use std::cell::RefCell;
+
+use base64::Engine;
+use base64::engine::general_purpose::STANDARD as BASE64;
+
 use crate::child::{ChildCommand, JsonChild, START_TIMEOUT};
 
 /// The learner process of one agent for one run.
 #[derive(Debug)]
 pub struct PipeLearner {
-    child: JsonChild,
+    /// Behind a cell: a snapshot asks `save_state` of a shared learner.
+    child: RefCell<JsonChild>,
 }
 
 /// What `start` answers: who the learner is.
@@ -53,7 +59,9 @@ impl PipeLearner {
             version = hello.version,
             "learner started"
         );
-        Ok(Self { child })
+        Ok(Self {
+            child: RefCell::new(child),
+        })
     }
 
     /// A state as the learner reads it.
@@ -67,6 +75,16 @@ impl PipeLearner {
 struct Values {
     q: [Option<f64>; Action::ALL.len()],
 }
+
+/// The answer to `save`: its state in base64, or none.
+#[derive(Deserialize)]
+struct Saved {
+    state: Option<String>,
+}
+
+/// The answer to `restore`.
+#[derive(Deserialize)]
+struct Restored {}
 
 /// The answer to `choose`.
 #[derive(Deserialize)]
@@ -87,12 +105,13 @@ impl Learner for PipeLearner {
     fn values(&mut self, at: Seen<'_>) -> ActionValues {
         let mut request = Self::state(at);
         request["op"] = "values".into();
-        let Values { q } = self.child.query("values", request);
+        let Values { q } = self.child.get_mut().query("values", request);
         let mut values = ActionValues::default();
         for (a, q) in Action::ALL.iter().zip(q) {
             let Some(q) = q else { continue };
             if !q.is_finite() {
                 self.child
+                    .get_mut()
                     .fail(&format!("valued {} at {q}, not a finite number", a.name()));
             }
             values.q[a.index()] = q;
@@ -104,10 +123,10 @@ impl Learner for PipeLearner {
     fn choose(&mut self, at: Seen<'_>, _rng: &mut AgentRng) -> Action {
         let mut request = Self::state(at);
         request["op"] = "choose".into();
-        let Choice { action } = self.child.query("choose", request);
+        let Choice { action } = self.child.get_mut().query("choose", request);
         match Action::ALL.get(action) {
             Some(&a) if a != Action::Move => a,
-            _ => self.child.fail(&format!(
+            _ => self.child.get_mut().fail(&format!(
                 "chose action {action}; a kicker's actions are 1 to {} (SHOOT, DRIBBLE, PASS_NEAR, PASS_FAR)",
                 Action::ALL.len() - 1
             )),
@@ -117,17 +136,19 @@ impl Learner for PipeLearner {
     fn learn(&mut self, step: Experience<'_>) {
         let mut request = transition(&step);
         request["op"] = "learn".into();
-        self.child.send("learn", &request);
+        self.child.get_mut().send("learn", &request);
     }
 
     fn end_episode(&mut self) {
         self.child
+            .get_mut()
             .send("end_episode", &json!({ "op": "end_episode" }));
     }
 
     fn replay(&mut self, episode: &[Experience<'_>]) {
         let episode: Vec<Value> = episode.iter().map(transition).collect();
         self.child
+            .get_mut()
             .send("replay", &json!({ "op": "replay", "episode": episode }));
     }
 
@@ -135,11 +156,32 @@ impl Learner for PipeLearner {
         None
     }
 
+    fn save_state(&self) -> Option<Vec<u8>> {
+        let Saved { state } = self
+            .child
+            .borrow_mut()
+            .query("save", json!({ "op": "save" }));
+        let state = state?;
+        match BASE64.decode(&state) {
+            Ok(bytes) => Some(bytes),
+            Err(e) => self.child.borrow_mut().fail(&format!(
+                "answered `save` with a state that is not base64: {e}"
+            )),
+        }
+    }
+
+    fn load_state(&mut self, state: &[u8]) -> Result<(), String> {
+        let request = json!({ "op": "restore", "state": BASE64.encode(state) });
+        let Restored {} = self.child.get_mut().query("restore", request);
+        Ok(())
+    }
+
     fn restore(&mut self, _: Vec<ActionValues>) -> Result<(), String> {
         Err(format!(
-            "agent {}'s learner `{}` keeps its learned state itself: it cannot load a snapshot",
-            self.child.agent(),
-            self.child.command_line()
+            "agent {}'s learner `{}` keeps its learned state itself and this snapshot holds none \
+             of it (a learner without `save`/`restore`, or a snapshot of another learner)",
+            self.child.borrow().agent(),
+            self.child.borrow().command_line()
         ))
     }
 }

@@ -17,6 +17,7 @@ never met). Actions are indices into ``actions`` of :class:`Start`:
 
 from __future__ import annotations
 
+import base64
 import math
 import sys
 from collections.abc import Sequence
@@ -78,6 +79,16 @@ class Learner:
     def end_episode(self) -> None:
         """The episode ended (e.g. clear eligibility traces)."""
 
+    def save(self) -> bytes | None:
+        """Its learned state as bytes, for a snapshot (``save_agents``,
+        ``load``, a restart after a crash); ``None`` (the default): it has no
+        snapshot."""
+        return None
+
+    def restore(self, state: bytes) -> None:
+        """Starts again from bytes :meth:`save` returned."""
+        raise NotImplementedError(f"{type(self).__name__} cannot restore a saved state")
+
     def replay(self, episode: Sequence[Transition]) -> None:
         """Learns a teammate's shared goal episode (EpisodeSharing); by
         default as its own steps, then ends that episode."""
@@ -120,6 +131,12 @@ def _answer(learner: Learner | None, message: dict, make: Callable[[Start], Lear
     if op == "choose":
         action = learner.choose(_state(message["state"]), message["index"])
         return learner, {"action": int(action)}
+    if op == "save":
+        state = learner.save()
+        return learner, {"state": None if state is None else base64.b64encode(state).decode()}
+    if op == "restore":
+        learner.restore(base64.b64decode(message["state"]))
+        return learner, {}
     if op == "learn":
         learner.learn(_transition(message))
     elif op == "end_episode":

@@ -14,6 +14,7 @@ probabilities) is the Rust agent's; this file only acts and learns.
 
 from __future__ import annotations
 
+import io
 from collections.abc import Sequence
 
 import numpy as np
@@ -83,6 +84,20 @@ class LinearSarsa(Learner):
 
     def end_episode(self) -> None:
         self.traces[:] = 0.0
+
+    def save(self) -> bytes:
+        """The weights, as numpy's .npy bytes (snapshots: --save-agents,
+        load, a restart after a crash)."""
+        out = io.BytesIO()
+        np.save(out, self.weights, allow_pickle=False)
+        return out.getvalue()
+
+    def restore(self, state: bytes) -> None:
+        weights = np.load(io.BytesIO(state), allow_pickle=False)
+        if weights.shape != self.weights.shape:
+            raise ValueError(f"saved weights of shape {weights.shape}, expected {self.weights.shape}")
+        self.weights = weights
+        self.traces = np.zeros_like(weights)
 
     def replay(self, episode: Sequence[Transition]) -> None:
         own = self.traces.copy()

@@ -108,3 +108,26 @@ def test_a_learner_that_raises_ends_the_run_with_its_cause(tmp_path: Path) -> No
     for written in out.glob("*.json"):
         json.loads(written.read_text())
     assert not (out / "run-0.json").exists()
+
+
+def test_a_python_learner_is_saved_and_loaded_with_its_own_state(tmp_path: Path) -> None:
+    """--save-agents keeps the numpy learner's weights (snapshot version 2);
+    a team file's `load` starts it from them."""
+    team = team_file(tmp_path, EXAMPLE)
+    agents = tmp_path / "agents"
+    first = subprocess.run(
+        [str(workspace_binary("coordinator").parent / "coordinator"), "run", "--team", str(team),
+         "--runs", "1", "--episodes", "100", "--eval-every", "100", "--eval-episodes", "5",
+         "--transport", "zenoh", "--quiet", "--save-agents", str(agents),
+         "--out", str(tmp_path / "first")],
+        capture_output=True, text=True, timeout=900,
+    )
+    assert first.returncode == 0, first.stderr
+    saved = (agents / "run-0-agent-2.qtable").read_bytes()
+    assert saved[:8] == b"ADVQTAB\0" and int.from_bytes(saved[8:10], "little") == 2
+    snapshot = agents / "run-0-agent-2.qtable"
+    team.write_text(team.read_text().replace("learner = ", f'load = "{snapshot}"\nlearner = ', 1))
+    second = run(team, tmp_path / "second", 20)
+    assert second.returncode == 0, second.stderr
+    config = json.loads((tmp_path / "second" / "config.json").read_text())
+    assert config["snapshot_digests"][2] is not None

@@ -149,11 +149,13 @@ impl<'a> RemoteBackend<'a> {
     }
 
     /// Every agent's snapshot now, kept to restart an agent that dies (none
-    /// for a learner process, which keeps its state itself).
+    /// for a learner process without snapshot hooks).
     fn take_checkpoint(&mut self) -> Result<(), Error> {
         let snapshots = self.snapshots()?;
         let kept = (snapshots.into_iter().zip(&self.members))
-            .map(|(s, (spec, _))| spec.learner.is_none().then_some(s))
+            .map(|(s, (spec, _))| {
+                (spec.learner.is_none() || s.learner_state.is_some()).then_some(s)
+            })
             .collect();
         self.checkpoint = Some((self.trained, kept));
         Ok(())
