@@ -42,7 +42,7 @@ pub struct RemoteBackend<'a> {
     /// episodes, of every agent (none for a learner process).
     checkpoint: Option<(u64, Vec<Option<Snapshot>>)>,
     /// The agents restarted so far.
-    restarts: Vec<Restart>,
+    restarts: Mutex<Vec<Restart>>,
 }
 
 impl<'a> RemoteBackend<'a> {
@@ -62,7 +62,7 @@ impl<'a> RemoteBackend<'a> {
                 .collect(),
             trained: 0,
             checkpoint: None,
-            restarts: Vec::new(),
+            restarts: Mutex::new(Vec::new()),
         };
         let env = proto::encode_settings(&config.env).map_err(|e| backend.error(e.to_string()))?;
         backend.expect_ok(
@@ -81,7 +81,7 @@ impl<'a> RemoteBackend<'a> {
     }
 
     /// Starts agent `i` on this run as `spec` says, seeded `seed`, from
-    /// `snapshot` if given.
+    /// `snapshot` if given (without restarting anyone: a restart resets).
     fn reset_agent(
         &self,
         i: usize,
@@ -92,7 +92,7 @@ impl<'a> RemoteBackend<'a> {
         let role = Role::Agent(i as u8);
         let config = proto::encode_settings(&spec.config).map_err(|e| self.error(e.to_string()))?;
         let settings = self.network.settings();
-        self.expect_ok(
+        self.expect_ok_once(
             role,
             Control::Reset {
                 seed,
@@ -104,7 +104,7 @@ impl<'a> RemoteBackend<'a> {
         if let Some(snapshot) = snapshot {
             let snapshot = (snapshot.encode())
                 .map_err(|e| self.error(format!("agent {i}'s snapshot: {e}")))?;
-            self.expect_ok(role, Control::Load { snapshot })?;
+            self.expect_ok_once(role, Control::Load { snapshot })?;
         }
         Ok(())
     }
@@ -128,7 +128,45 @@ impl<'a> RemoteBackend<'a> {
         }
     }
 
+    /// The slot of a lost agent the restart policy brings back, if any.
+    fn restartable(&self) -> Option<usize> {
+        match self.network.lost() {
+            Some(Role::Agent(i)) if self.network.settings().restart_agents => Some(i.into()),
+            _ => None,
+        }
+    }
+
+    /// With the restart policy, restarts a lost agent; then fails if a
+    /// process of the experiment is still gone.
+    fn recover(&self, replayed: bool, played: Instant) -> Result<(), Error> {
+        if let Some(slot) = self.restartable() {
+            self.restart(slot, replayed, played)?;
+        }
+        self.check_alive()
+    }
+
+    /// Sends `control` to `role`; under the restart policy an agent lost
+    /// meanwhile is restarted and the control sent once more.
     fn call(
+        &self,
+        role: Role,
+        episode: u32,
+        control: Control,
+        timeout: Duration,
+    ) -> Result<ControlReply, Error> {
+        self.recover(false, Instant::now())?;
+        let reply = self
+            .network
+            .control(role, self.header(episode), control.clone(), timeout);
+        if reply.is_err() && self.restartable().is_some() {
+            self.recover(false, Instant::now())?;
+            return self.call_once(role, episode, control, timeout);
+        }
+        reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))
+    }
+
+    /// Sends `control` to `role`; a process lost meanwhile is an error.
+    fn call_once(
         &self,
         role: Role,
         episode: u32,
@@ -143,6 +181,14 @@ impl<'a> RemoteBackend<'a> {
 
     fn expect_ok(&self, role: Role, control: Control) -> Result<(), Error> {
         match self.call(role, 0, control, CONTROL_TIMEOUT)? {
+            ControlReply::Ok => Ok(()),
+            other => Err(self.error(format!("{role} answered {other:?}"))),
+        }
+    }
+
+    /// As [`expect_ok`](Self::expect_ok), without restarting anyone.
+    fn expect_ok_once(&self, role: Role, control: Control) -> Result<(), Error> {
+        match self.call_once(role, 0, control, CONTROL_TIMEOUT)? {
             ControlReply::Ok => Ok(()),
             other => Err(self.error(format!("{role} answered {other:?}"))),
         }
@@ -164,7 +210,7 @@ impl<'a> RemoteBackend<'a> {
     /// Restarts the lost agent `slot` from the latest checkpoint and
     /// records the gap; `replayed`: the episode in flight, begun at
     /// `played`, is played again.
-    fn restart(&mut self, slot: usize, replayed: bool, played: Instant) -> Result<(), Error> {
+    fn restart(&self, slot: usize, replayed: bool, played: Instant) -> Result<(), Error> {
         let (spec, seed) = self.members[slot].clone();
         let cause = self.network.restart(slot, &spec)?;
         let snapshot = (self.checkpoint.as_ref())
@@ -179,7 +225,7 @@ impl<'a> RemoteBackend<'a> {
             cause,
         };
         tracing::warn!(run = self.run, ?restart, "agent restarted");
-        self.restarts.push(restart);
+        lock(&self.restarts).push(restart);
         Ok(())
     }
 
@@ -219,6 +265,7 @@ impl Backend for RemoteBackend<'_> {
             Mode::Training => None,
             Mode::Evaluation => self.evaluation_seed.take(),
         };
+        self.recover(false, Instant::now())?;
         let result = loop {
             let played = Instant::now();
             let reply = self.network.control(
@@ -228,17 +275,12 @@ impl Backend for RemoteBackend<'_> {
                 EPISODE_TIMEOUT,
             );
             self.episode += 1;
-            let lost = match self.network.lost() {
-                Some(Role::Agent(i)) if self.network.settings().restart_agents => Some(i),
-                _ => None,
-            };
-            let Some(slot) = lost else {
-                let reply =
-                    reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))?;
-                break reply;
-            };
-            let replayed = reply.is_err();
-            self.restart(slot.into(), replayed, played)?;
+            if self.restartable().is_none() {
+                break reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))?;
+            }
+            // An agent died during the episode: it comes back, and an
+            // abandoned episode is played again.
+            self.recover(reply.is_err(), played)?;
             if let Ok(reply) = reply {
                 break reply;
             }
@@ -282,6 +324,7 @@ impl Backend for RemoteBackend<'_> {
         let (spec, seed, snapshot) = experiment.newcomer_of(self.run, event);
         let slot = experiment.config().events[event].slot;
         let started = Instant::now();
+        self.recover(false, started)?;
         self.network.retire(slot).map_err(|e| self.error(e))?;
         self.network.admit(slot, &spec)?;
         self.reset_agent(slot, &spec, seed, snapshot)?;
@@ -294,7 +337,7 @@ impl Backend for RemoteBackend<'_> {
     }
 
     fn restarts(&self) -> Vec<Restart> {
-        self.restarts.clone()
+        lock(&self.restarts).clone()
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {
