@@ -47,7 +47,7 @@ pub struct Restart {
     /// Training episodes played when it was found lost.
     pub episode: u64,
     /// The training episodes of the checkpoint it restarted from; `None`:
-    /// none yet (or a learner process, which keeps its state itself), it
+    /// none yet (or a learner process without snapshot hooks), it
     /// restarted fresh.
     pub checkpoint: Option<u64>,
     /// Whether the episode in flight was abandoned and played again.

@@ -39,7 +39,8 @@ pub struct RemoteBackend<'a> {
     /// Training episodes played.
     trained: u64,
     /// With `restart_agents`: the latest checkpoint, at these training
-    /// episodes, of every agent (none for a learner process).
+    /// episodes, of every agent (none for a learner process without
+    /// snapshot hooks).
     checkpoint: Option<(u64, Vec<Option<Snapshot>>)>,
     /// The agents restarted so far.
     restarts: Mutex<Vec<Restart>>,
