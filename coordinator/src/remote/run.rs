@@ -277,7 +277,8 @@ impl Backend for RemoteBackend<'_> {
             );
             self.episode += 1;
             if self.restartable().is_none() {
-                break reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))?;
+                break reply
+                    .map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))?;
             }
             // An agent died during the episode: it comes back, and an
             // abandoned episode is played again.

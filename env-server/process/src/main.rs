@@ -61,7 +61,8 @@ enum EnvServerCommand {
         /// Which episode of that rollout to draw (1 is the first).
         #[arg(long, default_value_t = 1, value_parser = at_least_one)]
         episode: u64,
-        /// Output file, ending in .svg or .png.
+        /// Output file, ending in .svg or .png (a picture) or .rcg (an
+        /// rcssserver game log for rcssmonitor or soccerwindow2).
         #[arg(long)]
         out: PathBuf,
         /// Number of offense agents (1 to 4).

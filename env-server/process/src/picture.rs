@@ -1,9 +1,11 @@
-//! `env-server render`'s output: an episode's picture written as SVG or PNG
-//! (told by the file name's extension), atomically.
+//! `env-server render`'s output: an episode's picture written as SVG or PNG,
+//! or its rcssserver game log (`.rcg`) for the monitors (told by the file
+//! name's extension), atomically.
 
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
+use env_server::tools::rcg;
 use env_server::tools::render::Trace;
 
 /// Picture formats, told by the file name's extension.
@@ -13,6 +15,8 @@ pub enum Format {
     Svg,
     /// `.png`
     Png,
+    /// `.rcg`: an rcssserver game log.
+    Rcg,
 }
 
 impl Format {
@@ -25,21 +29,22 @@ impl Format {
         match ext.as_deref() {
             Some("svg") => Ok(Format::Svg),
             Some("png") => Ok(Format::Png),
+            Some("rcg") => Ok(Format::Rcg),
             _ => bail!(
-                "cannot tell the picture format of {}: the file name must end in .svg or .png",
+                "cannot tell the picture format of {}: the file name must end in .svg, .png or .rcg",
                 path.display()
             ),
         }
     }
 }
 
-/// Writes the picture of `trace` to `path` (SVG or PNG by extension), atomically.
+/// Writes the picture of `trace` to `path` (SVG, PNG or a game log by
+/// extension), atomically.
 pub fn write_picture(trace: &Trace, path: &Path) -> Result<()> {
-    let format = Format::of(path)?;
-    let svg = trace.to_svg();
-    let bytes = match format {
-        Format::Svg => svg.into_bytes(),
-        Format::Png => raster::png(&svg)?,
+    let bytes = match Format::of(path)? {
+        Format::Svg => trace.to_svg().into_bytes(),
+        Format::Png => raster::png(&trace.to_svg())?,
+        Format::Rcg => rcg::to_rcg(trace).into_bytes(),
     };
     node::files::write_atomically(path, &bytes)
         .with_context(|| format!("cannot write {}", path.display()))

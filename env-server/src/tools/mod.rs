@@ -1,8 +1,9 @@
 //! Tools built on the simulator: baseline policies, rollouts and their
-//! statistics, pictures, and a run's simulators.
+//! statistics, pictures, game logs for the monitors, and a run's simulators.
 
 pub mod baseline;
 pub mod decision_stats;
+pub mod rcg;
 pub mod render;
 pub mod rollout;
 pub mod run_envs;
