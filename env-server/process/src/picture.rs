@@ -82,6 +82,6 @@ mod tests {
             "{err:#}"
         );
         let err = write_picture(&t, Path::new("x.gif")).unwrap_err();
-        assert!(err.to_string().contains(".svg or .png"), "{err}");
+        assert!(err.to_string().contains(".svg, .png or .rcg"), "{err}");
     }
 }

@@ -5,10 +5,10 @@
 //! The log holds the header `ULG5`, the server parameters the monitors draw
 //! the field with, the play mode, the team names, then one `show` line per
 //! recorded state: the ball and every player (the offense as the left team
-//! with HFO's uniform numbers, the keeper as the right team's goalie, number
-//! 1) at their positions, as librcsc's version 5 reader parses them (absent
-//! players are left out, which it accepts). The trace holds positions only:
-//! velocities, body and neck directions are written as 0.
+//! with HFO's uniform numbers, the keeper as the right team's goalie with
+//! number one) at their positions, as librcsc's version 5 reader parses
+//! them (absent players are left out, which it accepts). The trace holds
+//! positions only: velocities, body and neck directions are written as 0.
 
 use std::fmt::Write as _;
 
