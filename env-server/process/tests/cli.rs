@@ -53,7 +53,7 @@ fn bad_input_is_one_line_and_exit_code_2() {
             &["render", "--out", "/nonexistent-dir/x.svg"],
             "/nonexistent-dir/x.svg",
         ),
-        (&["render", "--out", "picture.gif"], ".svg or .png"),
+        (&["render", "--out", "picture.gif"], ".svg, .png or .rcg"),
     ];
     for (args, needle) in cases {
         let out = env_server(args);
