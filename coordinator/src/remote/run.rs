@@ -166,7 +166,8 @@ impl<'a> RemoteBackend<'a> {
         reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))
     }
 
-    /// Sends `control` to `role`; a process lost meanwhile is an error.
+    /// Sends `control` to `role`; a process lost meanwhile is an error,
+    /// but, under the restart policy, another agent (restarted later).
     fn call_once(
         &self,
         role: Role,
@@ -174,10 +175,11 @@ impl<'a> RemoteBackend<'a> {
         control: Control,
         timeout: Duration,
     ) -> Result<ControlReply, Error> {
-        self.check_alive()?;
-        self.network
-            .control(role, self.header(episode), control, timeout)
-            .map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))
+        let reply = (self.network).control(role, self.header(episode), control, timeout);
+        reply.map_err(|e| match self.restartable() {
+            Some(_) => self.error(e),
+            None => self.check_alive().err().unwrap_or_else(|| self.error(e)),
+        })
     }
 
     fn expect_ok(&self, role: Role, control: Control) -> Result<(), Error> {
