@@ -561,6 +561,20 @@ impl ZenohTeam {
         *self.lost.borrow()
     }
 
+    /// Waits up to `within` for a process to be found lost (a query can
+    /// fail for want of a route a moment before the liveliness token goes);
+    /// the lost process, if any.
+    pub fn await_loss(&self, within: Duration) -> Option<Role> {
+        let mut lost = self.lost.subscribe();
+        let found = self.runtime.block_on(async {
+            tokio::time::timeout(within, lost.wait_for(Option::is_some))
+                .await
+                .ok()
+                .and_then(|r| r.ok().map(|role| *role))
+        });
+        found.flatten()
+    }
+
     /// Experiment id carried in every header.
     pub fn experiment(&self) -> u64 {
         self.experiment

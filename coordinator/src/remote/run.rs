@@ -19,6 +19,9 @@ use crate::membership::Restart;
 
 /// How long a process may take to answer a command other than playing.
 const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long a failed call to an agent waits to see it lost, under the
+/// restart policy.
+const LOSS_WAIT: Duration = Duration::from_secs(3);
 /// How long one episode may take (200 frames, each at most one step timeout).
 const EPISODE_TIMEOUT: Duration = Duration::from_secs(600);
 
@@ -159,9 +162,14 @@ impl<'a> RemoteBackend<'a> {
         let reply = self
             .network
             .control(role, self.header(episode), control.clone(), timeout);
-        if reply.is_err() && self.restartable().is_some() {
-            self.recover(false, Instant::now())?;
-            return self.call_once(role, episode, control, timeout);
+        if reply.is_err() && self.network.settings().restart_agents {
+            if matches!(role, Role::Agent(_)) {
+                self.network.await_loss(LOSS_WAIT);
+            }
+            if self.restartable().is_some() {
+                self.recover(false, Instant::now())?;
+                return self.call_once(role, episode, control, timeout);
+            }
         }
         reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))
     }
