@@ -43,6 +43,7 @@ compile_error!(
      (kill(2), SIGTERM and SIGINT handlers)"
 );
 
+pub mod agent_spec;
 pub mod backend;
 pub mod config;
 pub mod driver;

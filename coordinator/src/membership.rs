@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::AgentSpec;
+use crate::agent_spec::AgentSpec;
 use crate::error::ConfigError;
 
 /// At training episode `episode`, the agent in slot `slot` leaves and the

@@ -717,6 +717,16 @@ fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
         .restore(Snapshot::decode(&bytes).unwrap())
         .unwrap_err();
     assert!(matches!(err, PersistError::Incompatible { .. }), "{err}");
+    // A learner's own state is not for SARSA(lambda).
+    let foreign = Snapshot {
+        learner_state: Some(vec![1, 2, 3]),
+        ..Snapshot::decode(&bytes).unwrap()
+    };
+    let err = fresh.restore(foreign).unwrap_err();
+    assert!(
+        err.to_string().contains("keeps no state of its own"),
+        "{err}"
+    );
 }
 
 #[test]
