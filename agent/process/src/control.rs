@@ -85,6 +85,8 @@ async fn execute(ctx: &Context, header: Header, control: Control) -> ControlRepl
             let mut learner = ctx.learner();
             let result = learner.reset(header.run, seed, &config);
             if result.is_ok() {
+                // A reset for a later episode joins the run there.
+                learner.join_at(header.episode);
                 // Network conditions bring their own advice timeout.
                 let link = learner.agent().ok().and_then(|a| a.link().copied());
                 let timeout = link.map_or(Duration::from_millis(wait_ms), |l| {

@@ -125,6 +125,13 @@ impl Learning {
         Ok(())
     }
 
+    /// Makes the run just reset start at `episode`: an agent that joins a
+    /// running run (a newcomer or a restart) has finished the episodes
+    /// before it, for commands that wait for them, and drops their frames.
+    pub fn join_at(&mut self, episode: u32) {
+        self.stream = ObservationOrder::joining_at(episode);
+    }
+
     /// Replaces the learned state with a snapshot (the bytes of a snapshot
     /// file); on error the current state is kept.
     pub fn load(&mut self, snapshot: &[u8]) -> Result<(), String> {

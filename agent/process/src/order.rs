@@ -22,6 +22,15 @@ pub struct ObservationOrder {
 }
 
 impl ObservationOrder {
+    /// The position of an agent that joins a run at `episode` (a newcomer,
+    /// or a restart): the episodes before it count as finished.
+    pub fn joining_at(episode: u32) -> Self {
+        Self {
+            last: None,
+            finished: episode.checked_sub(1),
+        }
+    }
+
     /// Accepts frame `frame` of episode `episode` if it comes after
     /// everything seen so far; a terminal frame finishes its episode, after
     /// which nothing more of that episode is accepted.
@@ -70,6 +79,15 @@ mod tests {
         // A one-frame episode: new and terminal at once.
         assert_eq!(s.accept(3, 0, true), Ok(NewEpisode));
         assert_eq!(s.finished(), Some(3));
+    }
+
+    #[test]
+    fn an_agent_joining_at_an_episode_counts_the_earlier_ones_finished() {
+        let mut s = ObservationOrder::joining_at(30);
+        assert_eq!(s.finished(), Some(29));
+        assert_eq!(s.accept(29, 5, false), Err(Stale));
+        assert_eq!(s.accept(30, 0, false), Ok(NewEpisode));
+        assert_eq!(ObservationOrder::joining_at(0), ObservationOrder::default());
     }
 
     #[test]

@@ -85,7 +85,8 @@ impl<'a> RemoteBackend<'a> {
     }
 
     /// Starts agent `i` on this run as `spec` says, seeded `seed`, from
-    /// `snapshot` if given (without restarting anyone: a restart resets).
+    /// `snapshot` if given, from the next episode on (a newcomer or a
+    /// restarted agent joins there); without restarting anyone.
     fn reset_agent(
         &self,
         i: usize,
@@ -96,15 +97,20 @@ impl<'a> RemoteBackend<'a> {
         let role = Role::Agent(i as u8);
         let config = proto::encode_settings(&spec.config).map_err(|e| self.error(e.to_string()))?;
         let settings = self.network.settings();
-        self.expect_ok_once(
+        let reset = self.call_once(
             role,
+            self.episode,
             Control::Reset {
                 seed,
                 config,
                 wait_ms: settings.advice_timeout_ms,
                 stall_ms: settings.stall_limit_ms,
             },
+            CONTROL_TIMEOUT,
         )?;
+        if reset != ControlReply::Ok {
+            return Err(self.error(format!("{role} answered {reset:?}")));
+        }
         if let Some(snapshot) = snapshot {
             let snapshot = (snapshot.encode())
                 .map_err(|e| self.error(format!("agent {i}'s snapshot: {e}")))?;
