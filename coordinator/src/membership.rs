@@ -33,8 +33,8 @@ pub struct Join {
     pub slot: usize,
     /// The index of its event in the configuration.
     pub event: usize,
-    /// Wall time from the leaver's exit to the newcomer playing (ms; 0 in
-    /// process).
+    /// Wall time from asking the leaver to stop to the newcomer reset and
+    /// ready (ms; 0 in process).
     pub wait_ms: u64,
 }
 
@@ -52,7 +52,8 @@ pub struct Restart {
     pub checkpoint: Option<u64>,
     /// Whether the episode in flight was abandoned and played again.
     pub replayed: bool,
-    /// Wall time from the episode's end to the restarted agent ready (ms).
+    /// Wall time from the start of the episode (or call) that found it
+    /// lost to the restarted agent ready (ms).
     pub wait_ms: u64,
     /// How it was lost.
     pub cause: String,
