@@ -21,6 +21,7 @@ mod reuse;
 mod seam;
 mod settings;
 mod torrey;
+mod trust;
 
 pub use seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 pub use settings::{

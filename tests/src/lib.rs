@@ -1,9 +1,10 @@
 //! Helpers shared by the end-to-end tests in `tests/`: where the workspace's
-//! executables are, unique experiment names (free loopback ports come
-//! from `node::net::free_port`), and the module graph of a crate
-//! ([`modules`]).
+//! executables are, one run of a team file, unique experiment names (free
+//! loopback ports come from `node::net::free_port`), and the module graph of
+//! a crate ([`modules`]).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::Command;
 
 pub mod modules;
 
@@ -33,6 +34,35 @@ pub fn bin_dir() -> PathBuf {
 /// The path of one of the workspace's executables.
 pub fn bin(name: &str) -> PathBuf {
     bin_dir().join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
+}
+
+/// One run of the team file `team` over `transport` into `out`, played by
+/// `coordinator run` with `schedule` (`--episodes`, `--eval-every`, ...):
+/// its `run-0.json`, without the measured `timing`.
+///
+/// # Panics
+/// If the run fails (with its standard error) or its file does not parse.
+pub fn team_run(team: &Path, transport: &str, schedule: &[&str], out: &Path) -> serde_json::Value {
+    let output = Command::new(bin("coordinator"))
+        .args(["run", "--team"])
+        .arg(team)
+        .args(["--runs", "1"])
+        .args(schedule)
+        .args(["--transport", transport, "--quiet", "--out"])
+        .arg(out)
+        .output()
+        .expect("start the coordinator");
+    assert!(
+        output.status.success(),
+        "{transport}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = std::fs::read_to_string(out.join("run-0.json")).expect("run-0.json");
+    let mut run: serde_json::Value = serde_json::from_str(&text).expect("run-0.json parses");
+    if let Some(run) = run.as_object_mut() {
+        run.remove("timing");
+    }
+    run
 }
 
 /// An experiment name unique to this test process and `tag`.

@@ -4,9 +4,8 @@
 //! processes over zenoh as it does in process.
 
 use std::path::Path;
-use std::process::Command;
 
-use integration_tests::bin;
+use integration_tests::team_run;
 use serde_json::Value;
 
 /// Two mixed teams covering every method since 2017; the first agent of
@@ -34,28 +33,15 @@ fn team_file(dir: &Path, methods: &[&str]) -> std::path::PathBuf {
 
 /// Every agent's counters at the last evaluation of one run of `team`.
 fn last_counters(team: &Path, transport: &str, out: &Path) -> Vec<Value> {
-    let output = Command::new(bin("coordinator"))
-        .args(["run", "--team"])
-        .arg(team)
-        .args(["--runs", "1", "--episodes", "120", "--eval-every", "60"])
-        .args([
-            "--eval-episodes",
-            "10",
-            "--transport",
-            transport,
-            "--quiet",
-            "--out",
-        ])
-        .arg(out)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{transport}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let run: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("run-0.json")).unwrap()).unwrap();
+    let schedule = [
+        "--episodes",
+        "120",
+        "--eval-every",
+        "60",
+        "--eval-episodes",
+        "10",
+    ];
+    let run = team_run(team, transport, &schedule, out);
     let points = run["points"].as_array().unwrap();
     points.last().unwrap()["agents"].as_array().unwrap().clone()
 }

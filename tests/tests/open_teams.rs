@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use integration_tests::bin;
+use integration_tests::{bin, team_run};
 use serde_json::Value;
 
 /// Three AdHocTD agents; after training episode 60 a fresh learner takes
@@ -31,30 +31,15 @@ newcomer = { algorithm = "peer-learning" }
 
 /// One run of `team` over `transport` into `out`: its run JSON.
 fn run(team: &Path, transport: &str, out: &Path) -> Value {
-    let output = Command::new(bin("coordinator"))
-        .args(["run", "--team"])
-        .arg(team)
-        .args(["--runs", "1", "--episodes", "120", "--eval-every", "30"])
-        .args([
-            "--eval-episodes",
-            "5",
-            "--transport",
-            transport,
-            "--quiet",
-            "--out",
-        ])
-        .arg(out)
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{transport}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let mut run: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("run-0.json")).unwrap()).unwrap();
-    run.as_object_mut().unwrap().remove("timing");
-    run
+    let schedule = [
+        "--episodes",
+        "120",
+        "--eval-every",
+        "30",
+        "--eval-episodes",
+        "5",
+    ];
+    team_run(team, transport, &schedule, out)
 }
 
 /// Agent `i`'s advice requests at every evaluation point.

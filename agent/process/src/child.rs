@@ -14,8 +14,9 @@ use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, sync_channel};
 use std::time::Duration;
 
+use proto::Action;
 use serde::Deserialize;
-use serde_json::Value;
+use serde_json::{Value, json};
 
 /// The longest answer line accepted from a child (a learner's saved state
 /// travels in one).
@@ -24,7 +25,7 @@ const MAX_LINE: u64 = 1 << 26;
 /// How long a child may take to start (imports, a model on a GPU) and
 /// answer `start`, if longer than its timeout: within the coordinator's
 /// 10 s for a reset, so that the agent names the cause.
-pub const START_TIMEOUT: Duration = Duration::from_secs(8);
+const START_TIMEOUT: Duration = Duration::from_secs(8);
 
 /// How to start one of an agent's child processes.
 #[derive(Clone, Debug, PartialEq)]
@@ -110,6 +111,28 @@ impl JsonChild {
             input: BufWriter::new(input),
             answers,
         })
+    }
+
+    /// Starts `command` as agent `agent`'s `role` for run `run` of a team
+    /// of `team_size`, sends it `start` (the run, `seed` for its own random
+    /// choices, the action names, and `extra`'s fields) and waits for its
+    /// answer, within the start time.
+    pub fn start<T: for<'de> Deserialize<'de>>(
+        command: &ChildCommand,
+        role: &'static str,
+        (agent, team_size, run, seed): (u8, u8, u32, u64),
+        extra: Value,
+    ) -> Result<(Self, T), String> {
+        let mut child = Self::spawn(command, agent, role)?;
+        let mut request = json!({
+            "op": "start", "agent": agent, "team_size": team_size, "run": run, "seed": seed,
+            "actions": Action::ALL.iter().map(|a| a.name()).collect::<Vec<_>>(),
+        });
+        if let (Some(request), Value::Object(extra)) = (request.as_object_mut(), extra) {
+            request.extend(extra);
+        }
+        let hello = child.query_within(command.timeout.max(START_TIMEOUT), "start", request);
+        Ok((child, hello))
     }
 
     /// Sends one request line.

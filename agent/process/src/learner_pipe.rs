@@ -16,7 +16,7 @@ use std::cell::RefCell;
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD as BASE64;
 
-use crate::child::{ChildCommand, JsonChild, START_TIMEOUT};
+use crate::child::{ChildCommand, JsonChild};
 
 /// The learner process of one agent for one run.
 #[derive(Debug)]
@@ -43,16 +43,9 @@ impl PipeLearner {
         run: u32,
         seed: u64,
     ) -> Result<Self, String> {
-        let mut child = JsonChild::spawn(command, agent, "learner")?;
-        let hello: Hello = child.query_within(
-            command.timeout.max(START_TIMEOUT),
-            "start",
-            json!({
-                "op": "start", "agent": agent, "team_size": team_size, "run": run,
-                "seed": seed, "features": proto::STATE_FEATURES,
-                "actions": Action::ALL.iter().map(|a| a.name()).collect::<Vec<_>>(),
-            }),
-        );
+        let features = json!({ "features": proto::STATE_FEATURES });
+        let (child, hello): (_, Hello) =
+            JsonChild::start(command, "learner", (agent, team_size, run, seed), features)?;
         tracing::info!(
             agent,
             name = hello.name,

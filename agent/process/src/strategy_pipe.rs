@@ -14,7 +14,7 @@ use proto::{Action, SharedValues};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
-use crate::child::{ChildCommand, JsonChild, START_TIMEOUT};
+use crate::child::{ChildCommand, JsonChild};
 
 /// The strategy process of one agent for one run.
 #[derive(Debug)]
@@ -51,16 +51,12 @@ impl PipeStrategy {
         run: u32,
         seed: u64,
     ) -> Result<Self, String> {
-        let mut child = JsonChild::spawn(command, agent, "strategy")?;
-        let traits: Traits = child.query_within(
-            command.timeout.max(START_TIMEOUT),
-            "start",
-            json!({
-                "op": "start", "agent": agent, "team_size": team_size, "run": run,
-                "seed": seed,
-                "actions": Action::ALL.iter().map(|a| a.name()).collect::<Vec<_>>(),
-            }),
-        );
+        let (child, traits): (_, Traits) = JsonChild::start(
+            command,
+            "strategy",
+            (agent, team_size, run, seed),
+            json!({}),
+        )?;
         tracing::info!(
             agent,
             name = traits.name,

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import json
 import os
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -30,3 +32,22 @@ def workspace_binary(name: str) -> Path:
     if os.environ.get("CI"):
         pytest.fail(message)
     pytest.skip(message)
+
+
+def assert_ended_cleanly(
+    result: subprocess.CompletedProcess[str], out: Path, script: Path, *words: str
+) -> None:
+    """A run whose child `script` failed: it ended with one error line holding
+    every one of `words`, left no process of `script` behind, and wrote only
+    whole files (no `run-0.json` for the broken run)."""
+    assert result.returncode != 0
+    line = next(x for x in result.stderr.splitlines() if words[0] in x)
+    assert all(w in line for w in words), result.stderr
+    for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
+        try:
+            assert str(script) not in cmdline.read_text(), f"{cmdline.parent} outlived the run"
+        except OSError:
+            pass
+    for written in out.glob("*.json"):
+        json.loads(written.read_text())
+    assert not (out / "run-0.json").exists()

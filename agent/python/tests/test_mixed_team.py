@@ -10,7 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from conftest import ROOT, workspace_binary
+from conftest import ROOT, assert_ended_cleanly, workspace_binary
 
 EXAMPLE = ROOT / "agent" / "python" / "examples" / "numpy_learner.py"
 
@@ -96,18 +96,7 @@ def test_a_learner_that_raises_ends_the_run_with_its_cause(tmp_path: Path) -> No
     faulty.write_text(FAULTY.format(examples=str(EXAMPLE.parent)))
     out = tmp_path / "out"
     result = run(team_file(tmp_path, faulty), out, 300)
-    assert result.returncode != 0
-    line = next(x for x in result.stderr.splitlines() if "ZeroDivisionError" in x)
-    assert "agent 2" in line and "a planned fault" in line, result.stderr
-    # No process of the run is left, and what was written is whole.
-    for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
-        try:
-            assert str(faulty) not in cmdline.read_text(), f"{cmdline.parent} outlived the run"
-        except OSError:
-            pass
-    for written in out.glob("*.json"):
-        json.loads(written.read_text())
-    assert not (out / "run-0.json").exists()
+    assert_ended_cleanly(result, out, faulty, "ZeroDivisionError", "agent 2", "a planned fault")
 
 
 def test_a_python_learner_is_saved_and_loaded_with_its_own_state(tmp_path: Path) -> None:

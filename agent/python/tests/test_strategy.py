@@ -11,7 +11,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from conftest import ROOT, workspace_binary
+from conftest import ROOT, assert_ended_cleanly, workspace_binary
 
 from adhoc_advising.strategy import AdvisingStrategy, Outcome, Start, serve
 
@@ -175,15 +175,6 @@ def test_a_strategy_that_raises_ends_the_run_with_its_cause(tmp_path: Path) -> N
     faulty.write_text(FAULTY.format(examples=str(EXAMPLE.parent)))
     out = tmp_path / "out"
     result = run(team_file(tmp_path, faulty), out, 300)
-    assert result.returncode != 0
-    line = next(x for x in result.stderr.splitlines() if "ZeroDivisionError" in x)
-    assert "agent 2: its strategy" in line and "a planned fault" in line, result.stderr
-    # No process of the run is left, and what was written is whole.
-    for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
-        try:
-            assert str(faulty) not in cmdline.read_text(), f"{cmdline.parent} outlived the run"
-        except OSError:
-            pass
-    for written in out.glob("*.json"):
-        json.loads(written.read_text())
-    assert not (out / "run-0.json").exists()
+    assert_ended_cleanly(
+        result, out, faulty, "ZeroDivisionError", "agent 2: its strategy", "a planned fault"
+    )

@@ -8,6 +8,7 @@
 
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::settings::{AdHoc, Confidence};
+use super::trust::Trust;
 use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::exchange::Advice;
@@ -25,10 +26,8 @@ pub(super) struct AdHocAdvising {
     unanswered: u32,
     /// Chances to ask still to let pass.
     skips: u64,
-    /// With trust: the mean advantage of the decisions on each advisor's
-    /// advice (by id, 0 until followed), and of its own.
-    trust: Vec<f64>,
-    own_trust: f64,
+    /// With trust: what it learned of its advisors and itself.
+    trust: Trust,
 }
 
 impl AdHocAdvising {
@@ -37,23 +36,20 @@ impl AdHocAdvising {
             settings,
             unanswered: 0,
             skips: 0,
-            trust: Vec::new(),
-            own_trust: 0.0,
+            trust: Trust::default(),
         }
     }
 
     /// Its trust in `advisor` (0 for one never followed).
     pub fn trust(&self, advisor: usize) -> f64 {
-        self.trust.get(advisor).copied().unwrap_or(0.0)
+        self.trust.of(advisor)
     }
 
     /// The advice whose advisors it trusts most together, each weighing
     /// e^(trust / the largest trust magnitude), if that outweighs its own
     /// choice alone (ties to the advice, as without trust).
     fn most_trusted(&self, advice: &[Advice]) -> Option<Advice> {
-        let scale = (advice.iter().map(|a| self.trust(a.advisor).abs()))
-            .fold(self.own_trust.abs(), f64::max);
-        let weight = |t: f64| if scale > 0.0 { (t / scale).exp() } else { 1.0 };
+        let weight = self.trust.weigh(advice, 1.0);
         let support = |action| {
             (advice.iter().filter(|a| a.action == action))
                 .map(|a| weight(self.trust(a.advisor)))
@@ -67,7 +63,7 @@ impl AdHocAdvising {
                 (best, most)
             }
         });
-        best.filter(|_| most >= weight(self.own_trust))
+        best.filter(|_| most >= weight(self.trust.own()))
     }
 }
 
@@ -136,19 +132,9 @@ impl AdvisingStrategy for AdHocAdvising {
     /// Moves its trust in whoever decided (an advisor, or itself) toward the
     /// decision's advantage.
     fn learn_outcome(&mut self, outcome: &Outcome) {
-        let Some(lr) = self.settings.trust_lr else {
-            return;
-        };
-        let trust = match outcome.advisor {
-            Some(j) => {
-                if self.trust.len() <= j {
-                    self.trust.resize(j + 1, 0.0);
-                }
-                &mut self.trust[j]
-            }
-            None => &mut self.own_trust,
-        };
-        *trust += lr * (outcome.advantage - *trust);
+        if let Some(lr) = self.settings.trust_lr {
+            self.trust.learn(outcome, lr);
+        }
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {

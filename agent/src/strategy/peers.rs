@@ -7,6 +7,7 @@
 
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::settings::PeerLearning;
+use super::trust::Trust;
 use crate::advice::reachable_set;
 use crate::advice_counters::AdviceCounters;
 use crate::exchange::Advice;
@@ -29,10 +30,7 @@ enum Following {
 #[derive(Clone, Debug)]
 pub(super) struct Peers {
     settings: PeerLearning,
-    /// Trust in each advisor, by id (0 until learned).
-    trust: Vec<f64>,
-    /// Trust in its own choice.
-    own_trust: f64,
+    trust: Trust,
     following: Following,
 }
 
@@ -40,27 +38,21 @@ impl Peers {
     pub fn new(settings: PeerLearning) -> Self {
         Self {
             settings,
-            trust: Vec::new(),
-            own_trust: 0.0,
+            trust: Trust::default(),
             following: Following::Nobody,
         }
     }
 
     /// Its trust in `advisor` (0 for one never followed).
     pub fn trust(&self, advisor: usize) -> f64 {
-        self.trust.get(advisor).copied().unwrap_or(0.0)
+        self.trust.of(advisor)
     }
 
     /// Chooses among its own choice (`None`) and the `advice`, by a softmax
     /// of their trust (scaled by the largest magnitude) over the temperature.
     fn choose(&self, advice: &[Advice], rng: &mut AgentRng) -> Option<Advice> {
-        let scale = (advice.iter().map(|a| self.trust(a.advisor).abs()))
-            .fold(self.own_trust.abs(), f64::max);
-        let weight = |trust: f64| {
-            let value = if scale > 0.0 { trust / scale } else { 0.0 };
-            (value / self.settings.temperature).exp()
-        };
-        let own = weight(self.own_trust);
+        let weight = self.trust.weigh(advice, self.settings.temperature);
+        let own = weight(self.trust.own());
         let total = own
             + advice
                 .iter()
@@ -155,17 +147,7 @@ impl AdvisingStrategy for Peers {
 
     /// Moves the trust in whoever it followed towards the advantage.
     fn learn_outcome(&mut self, outcome: &Outcome) {
-        let lr = self.settings.trust_lr;
-        let trust = match outcome.advisor {
-            Some(j) => {
-                if self.trust.len() <= j {
-                    self.trust.resize(j + 1, 0.0);
-                }
-                &mut self.trust[j]
-            }
-            None => &mut self.own_trust,
-        };
-        *trust += lr * (outcome.advantage - *trust);
+        self.trust.learn(outcome, self.settings.trust_lr);
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
@@ -237,8 +219,7 @@ mod tests {
             ..PeerLearning::default()
         };
         let mut peers = Peers::new(settings);
-        peers.trust = vec![0.0, 1.0, -1.0];
-        peers.own_trust = -1.0;
+        peers.trust = Trust::set(vec![0.0, 1.0, -1.0], -1.0);
         let mut rng = AgentRng::seed_from_u64(1);
         let one = Advice {
             advisor: 1,
