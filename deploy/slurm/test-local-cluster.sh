@@ -41,9 +41,21 @@ coordinator="${BIN:-$here/target/debug}/coordinator"
 work=$(mktemp -d /tmp/adv-slurm.XXXXXX)
 chmod 755 "$work"
 pids=()
+# True while any daemon started here is still running.
+any_alive() {
+    local pid
+    for pid in "${pids[@]}"; do kill -0 "$pid" 2>/dev/null && return 0; done
+    return 1
+}
+# The daemons write their state as they stop: the files go only once they are
+# gone (10 s each for SIGTERM, then SIGKILL). Nothing here changes the verdict.
 cleanup() {
-    for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-    rm -rf "$work"
+    local signal pid
+    for signal in TERM KILL; do
+        for pid in "${pids[@]}"; do kill -s "$signal" "$pid" 2>/dev/null || true; done
+        for _ in $(seq 100); do any_alive || break; sleep 0.1; done
+    done
+    rm -rf "$work" 2>/dev/null || echo "warning: could not remove $work" >&2
 }
 trap cleanup EXIT
 
