@@ -7,11 +7,14 @@ use std::path::{Path, PathBuf};
 use agent::{AgentConfig, Algorithm, Fidelity, Profile, Strategy};
 use serde::{Deserialize, Serialize};
 
+use crate::plugin::PluginSpec;
+
 /// One agent of the team: its configuration (with its strategy) and,
 /// optionally, a saved snapshot it starts from.
 ///
 /// In a file it is one flat table: every [`AgentConfig`] key, plus `load`
-/// (path of a snapshot), `keep_counters`, `learner` and `strategy_process`.
+/// (path of a snapshot), `keep_counters`, `learner`, `strategy_process` and
+/// `plugin` (recorded, never read from a file).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "serde_json::Map<String, serde_json::Value>")]
 #[serde(into = "serde_json::Map<String, serde_json::Value>")]
@@ -29,6 +32,9 @@ pub struct AgentSpec {
     /// A strategy process making algorithm `external`'s decisions
     /// (docs/strategies.md).
     pub strategy_process: Option<ChildSpec>,
+    /// A learner or strategy given as an object in process
+    /// ([`crate::plugin`]): what the results record of it.
+    pub plugin: Option<PluginSpec>,
 }
 
 /// A learner or a strategy that runs as a child of its agent's
@@ -104,6 +110,13 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
         };
         let learner = child("learner")?;
         let strategy_process = child("strategy_process")?;
+        let plugin =
+            match map.remove("plugin") {
+                None | Some(serde_json::Value::Null) => None,
+                Some(value) => Some(serde_json::from_value(value).map_err(|e| {
+                    format!("`plugin` must be a table of `learner`, `strategy`: {e}")
+                })?),
+            };
         let config = serde_json::from_value(serde_json::Value::Object(map))
             .map_err(|e| format!("agent config: {e}"))?;
         Ok(Self {
@@ -112,6 +125,7 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
             keep_counters,
             learner,
             strategy_process,
+            plugin,
         })
     }
 }
@@ -139,6 +153,10 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
                 let child = serde_json::to_value(child).expect("a child spec serialises");
                 map.insert(key.into(), child);
             }
+        }
+        if let Some(plugin) = spec.plugin {
+            let plugin = serde_json::to_value(plugin).expect("a plugin spec serialises");
+            map.insert("plugin".into(), plugin);
         }
         map
     }

@@ -152,23 +152,39 @@ impl ExperimentConfig {
         Ok(())
     }
 
-    /// An agent's learner and strategy processes can run as given; errors
-    /// name the agent's key.
+    /// An agent's learner and strategy, processes or objects, can run as
+    /// given; errors name the agent's key.
     fn check_children(&self, spec: &AgentSpec) -> Result<(), ConfigError> {
         let in_process = self.transport == Transport::InProcess;
+        let plugin = spec.plugin.clone().unwrap_or_default();
         if spec.learner.is_some() && in_process {
             let reason = "a learner process is its agent's: run with --transport zenoh";
             return Err(ConfigError::new("learner", reason));
         }
+        if spec.plugin.is_some() && !in_process {
+            let reason = "a learner or strategy given as an object runs in process only: use \
+                          transport in-process, or give it as a process \
+                          (`learner = { command = [...] }`) over zenoh";
+            return Err(ConfigError::new("plugin", reason));
+        }
+        if spec.learner.is_some() && plugin.learner.is_some() {
+            let reason = "an agent has one learner: a process or an object, not both";
+            return Err(ConfigError::new("learner", reason));
+        }
         let external = spec.config.strategy.name() == Algorithm::External;
+        let given = spec.strategy_process.is_some() || plugin.strategy.is_some();
         let reason = match (&spec.strategy_process, external) {
-            (Some(_), false) => {
-                "a strategy process makes the decisions of algorithm `external`: \
+            _ if given && !external => {
+                "a strategy process or object makes the decisions of algorithm `external`: \
                  set `algorithm = \"external\"`"
             }
-            (None, true) => {
-                "algorithm `external` needs its strategy process: \
-                 `strategy_process = { command = [\"python3\", \"my_strategy.py\"] }`"
+            _ if !given && external => {
+                "algorithm `external` needs its strategy: \
+                 `strategy_process = { command = [\"python3\", \"my_strategy.py\"] }`, or \
+                 an object from Python (`strategy=`)"
+            }
+            (Some(_), true) if plugin.strategy.is_some() => {
+                "an agent has one strategy: a process or an object, not both"
             }
             (Some(_), true) if in_process => {
                 "a strategy process is its agent's: run with --transport zenoh"
@@ -250,27 +266,46 @@ pub fn load_team_file(path: &Path) -> Result<Team, ConfigError> {
         let e = e.split_whitespace().collect::<Vec<_>>().join(" ");
         ConfigError::new(key, format!("{}: {e}", path.display()))
     })?;
-    let in_file = |key: String, reason: String| {
-        ConfigError::new(key, format!("{}: {reason}", path.display()))
-    };
     let base = path.parent().unwrap_or(Path::new(""));
-    let mut team = Team::default();
-    for (i, table) in file.agent.into_iter().enumerate() {
-        let mut spec = AgentSpec::try_from(table).map_err(|r| in_file(format!("team[{i}]"), r))?;
-        spec.resolve(base)
-            .map_err(|(key, r)| in_file(format!("team[{i}].{key}"), r))?;
-        team.agents.push(spec);
+    Team::from_file(file, base, &path.display().to_string())
+}
+
+impl Team {
+    /// The team of a team file's tables as JSON, `{"agent": [...], "event":
+    /// [...]}`; relative paths are taken from `base`, and errors start with
+    /// `origin` (what gave the tables).
+    pub fn from_json(
+        tables: serde_json::Value,
+        base: &Path,
+        origin: &str,
+    ) -> Result<Team, ConfigError> {
+        let file: TeamFile = serde_json::from_value(tables)
+            .map_err(|e| ConfigError::new("team", format!("{origin}: {e}")))?;
+        Team::from_file(file, base, origin)
     }
-    for (k, value) in file.event.into_iter().enumerate() {
-        let mut event: MembershipEvent = serde_json::from_value(value)
-            .map_err(|e| in_file(format!("event[{k}]"), e.to_string()))?;
-        if let Some(spec) = &mut event.newcomer {
+
+    fn from_file(file: TeamFile, base: &Path, origin: &str) -> Result<Team, ConfigError> {
+        let in_file =
+            |key: String, reason: String| ConfigError::new(key, format!("{origin}: {reason}"));
+        let mut team = Team::default();
+        for (i, table) in file.agent.into_iter().enumerate() {
+            let mut spec =
+                AgentSpec::try_from(table).map_err(|r| in_file(format!("team[{i}]"), r))?;
             spec.resolve(base)
-                .map_err(|(key, r)| in_file(format!("event[{k}].newcomer.{key}"), r))?;
+                .map_err(|(key, r)| in_file(format!("team[{i}].{key}"), r))?;
+            team.agents.push(spec);
         }
-        team.events.push(event);
+        for (k, value) in file.event.into_iter().enumerate() {
+            let mut event: MembershipEvent = serde_json::from_value(value)
+                .map_err(|e| in_file(format!("event[{k}]"), e.to_string()))?;
+            if let Some(spec) = &mut event.newcomer {
+                spec.resolve(base)
+                    .map_err(|(key, r)| in_file(format!("event[{k}].newcomer.{key}"), r))?;
+            }
+            team.events.push(event);
+        }
+        Ok(team)
     }
-    Ok(team)
 }
 
 #[cfg(test)]
@@ -510,5 +545,44 @@ mod tests {
             let e = load_team_file(&path).unwrap_err();
             assert!(e.reason.contains(says), "{e}");
         }
+    }
+
+    #[test]
+    fn objects_run_in_process_and_strategies_only_for_external() {
+        use crate::plugin::PluginSpec;
+        let with = |plugin: PluginSpec, algorithm: Algorithm, transport| ExperimentConfig {
+            transport,
+            team: vec![
+                AgentSpec::default(),
+                AgentSpec::default(),
+                AgentSpec {
+                    plugin: Some(plugin),
+                    ..AgentSpec::of(algorithm, Profile::Paper)
+                },
+            ],
+            ..ExperimentConfig::default()
+        };
+        let learner = PluginSpec {
+            learner: Some("mine 1".into()),
+            strategy: None,
+        };
+        let strategy = PluginSpec {
+            learner: None,
+            strategy: Some("mine 1".into()),
+        };
+        let zenoh = Transport::Zenoh(Default::default());
+        with(learner.clone(), Algorithm::AdHocTd, Transport::InProcess)
+            .validate()
+            .unwrap();
+        with(strategy.clone(), Algorithm::External, Transport::InProcess)
+            .validate()
+            .unwrap();
+        let key = |c: ExperimentConfig| c.validate().unwrap_err().key;
+        assert_eq!(
+            key(with(learner, Algorithm::AdHocTd, zenoh)),
+            "team[2].plugin"
+        );
+        let not_external = with(strategy, Algorithm::AdHocTd, Transport::InProcess);
+        assert_eq!(key(not_external), "team[2].strategy_process");
     }
 }

@@ -6,6 +6,7 @@ use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::in_process::InProcess;
+#[cfg(feature = "zenoh")]
 use crate::remote::{RemoteBackend, ZenohTeam};
 use crate::transport::Transport;
 
@@ -23,7 +24,18 @@ pub trait Driver: Sync {
 pub fn open(transport: &Transport, team: &[AgentSpec]) -> Result<Box<dyn Driver>, Error> {
     Ok(match transport {
         Transport::InProcess => Box::new(InProcessDriver),
+        #[cfg(feature = "zenoh")]
         Transport::Zenoh(settings) => Box::new(ZenohTeam::start(settings, team)?),
+        #[cfg(not(feature = "zenoh"))]
+        Transport::Zenoh(_) => {
+            let _ = team;
+            return Err(crate::error::ConfigError::new(
+                "transport",
+                "this build has no zenoh transport (built without the `zenoh` feature, as the \
+                 Python package is): use transport in-process, or the `coordinator` command",
+            )
+            .into());
+        }
     })
 }
 
@@ -41,6 +53,7 @@ impl Driver for InProcessDriver {
 }
 
 /// Over zenoh the runs play one after another on the same processes.
+#[cfg(feature = "zenoh")]
 impl Driver for ZenohTeam {
     fn backend(&self, experiment: &Experiment, run: u64) -> Result<Box<dyn Backend + '_>, Error> {
         Ok(Box::new(RemoteBackend::new(self, experiment, run)?))

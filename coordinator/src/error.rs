@@ -80,6 +80,9 @@ pub enum Error {
     /// The processes of an experiment could not be started, joined or reached.
     #[error("{0}")]
     Transport(String),
+    /// Stopped on request (Ctrl-C in Python) after the episodes in flight.
+    #[error("interrupted: the runs finished so far are kept, and the same call resumes")]
+    Interrupted,
 }
 
 impl Error {

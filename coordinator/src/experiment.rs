@@ -7,8 +7,12 @@ use agent::{AdviceCounters, Agent, PersistError, Snapshot};
 use serde::Serialize;
 
 use crate::config::{AgentSpec, ExperimentConfig};
-use crate::error::Error;
+use crate::error::{ConfigError, Error};
+use crate::plugin::{Plugin, PluginStart};
 use crate::seeds::{SeedFor, derive};
+
+/// One agent's objects given in process, if any (see [`crate::plugin`]).
+pub type Plugins = Vec<Option<Arc<dyn Plugin>>>;
 
 /// An experiment ready to run: the configuration checked, every snapshot
 /// read, verified and shown to fit its agent.
@@ -18,6 +22,8 @@ pub struct Experiment {
     snapshots: Vec<Option<Arc<Snapshot>>>,
     /// The snapshot each membership event's newcomer starts from, if any.
     newcomer_snapshots: Vec<Option<Arc<Snapshot>>>,
+    /// Per slot, the objects its agents (and newcomers) are made with.
+    plugins: Plugins,
 }
 
 /// The seeds of one run (see [`crate::seeds`]).
@@ -68,17 +74,39 @@ fn load_snapshot(id: usize, spec: &AgentSpec) -> Result<Option<Arc<Snapshot>>, E
     Ok(Some(Arc::new(snapshot)))
 }
 
-/// Agent `id` of a team of `n` from `spec`, seeded `seed`, restored from
-/// `snapshot` if given.
+/// Agent `id` of a team of `n` from `spec` in run `run`, seeded `seed`,
+/// made with `plugin`'s objects if it has one, restored from `snapshot` if
+/// given.
 fn build_agent(
-    id: usize,
-    n: usize,
+    start: PluginStart,
     spec: &AgentSpec,
-    seed: u64,
+    plugin: Option<&dyn Plugin>,
     snapshot: Option<&Snapshot>,
 ) -> Result<Agent, Error> {
-    let mut agent = Agent::new(id, n, spec.config.clone(), seed)
-        .map_err(|e| crate::error::ConfigError::new(format!("team[{id}].{}", e.key), e.reason))?;
+    let PluginStart {
+        agent: id,
+        team_size: n,
+        seed,
+        ..
+    } = start;
+    let bad = |key: String, reason: String| ConfigError::new(format!("team[{id}].{key}"), reason);
+    let made = |what: &'static str| move |e: String| bad(format!("plugin.{what}"), e);
+    let learner = match plugin {
+        Some(p) => p.learner(start).map_err(made("learner"))?,
+        None => None,
+    };
+    let agent = match learner {
+        Some(learner) => Agent::with_learner(id, n, spec.config.clone(), seed, learner),
+        None => Agent::new(id, n, spec.config.clone(), seed),
+    };
+    let mut agent = agent.map_err(|e| bad(e.key.to_owned(), e.reason))?;
+    let strategy = match plugin {
+        Some(p) => p.strategy(start).map_err(made("strategy"))?,
+        None => None,
+    };
+    if let Some(strategy) = strategy {
+        agent = agent.with_strategy(strategy);
+    }
     let failed = |source| Error::Snapshot {
         agent: id,
         path: spec.load.clone().unwrap_or_default(),
@@ -100,6 +128,39 @@ impl Experiment {
     /// Validates `config` and loads every agent's and newcomer's snapshot.
     /// Writes nothing.
     pub fn prepare(config: ExperimentConfig) -> Result<Self, Error> {
+        let plugins = vec![None; config.team.len()];
+        Self::prepare_with(config, plugins)
+    }
+
+    /// [`prepare`](Self::prepare) with objects for some agents, by slot
+    /// (see [`crate::plugin`]), which the configuration then records.
+    pub fn prepare_with(mut config: ExperimentConfig, plugins: Plugins) -> Result<Self, Error> {
+        if plugins.len() != config.team.len() {
+            let reason = format!(
+                "{} agents, objects for {}",
+                config.team.len(),
+                plugins.len()
+            );
+            return Err(ConfigError::new("team", reason).into());
+        }
+        let from_file = |key: String| {
+            let reason = "names an object, which only Python's `run()` can give (docs/python.md)";
+            Error::from(ConfigError::new(key, reason))
+        };
+        for (id, (spec, plugin)) in config.team.iter_mut().zip(&plugins).enumerate() {
+            match plugin {
+                Some(plugin) => spec.plugin = Some(plugin.spec()),
+                None if spec.plugin.is_some() => {
+                    return Err(from_file(format!("team[{id}].plugin")));
+                }
+                None => {}
+            }
+        }
+        for (k, event) in config.events.iter().enumerate() {
+            if event.newcomer.as_ref().is_some_and(|n| n.plugin.is_some()) {
+                return Err(from_file(format!("events[{k}].newcomer.plugin")));
+            }
+        }
         config.validate()?;
         let snapshots = (config.team.iter().enumerate())
             .map(|(id, spec)| load_snapshot(id, spec))
@@ -111,10 +172,11 @@ impl Experiment {
             config,
             snapshots,
             newcomer_snapshots,
+            plugins,
         };
         // Builds one team and every newcomer to find agents that cannot be
         // built or restored.
-        experiment.agents(&experiment.seeds(0))?;
+        experiment.agents(0)?;
         for k in 0..experiment.config.events.len() {
             experiment.newcomer(0, k)?;
         }
@@ -159,7 +221,9 @@ impl Experiment {
     pub fn newcomer(&self, run: u64, event: usize) -> Result<Agent, Error> {
         let (spec, seed, snapshot) = self.newcomer_of(run, event);
         let slot = self.config.events[event].slot;
-        build_agent(slot, self.config.team.len(), &spec, seed, snapshot)
+        let start = self.start(slot, run, seed);
+        let plugin = spec.plugin.as_ref().and(self.plugins[slot].as_deref());
+        build_agent(start, &spec, plugin, snapshot)
     }
 
     /// The seed of the simulator of evaluation point `point` of run `run`.
@@ -167,15 +231,36 @@ impl Experiment {
         derive(self.config.seed, run, SeedFor::Evaluation(point))
     }
 
-    /// The agents of a run at its start, each restored from its snapshot if
-    /// it has one.
-    pub fn agents(&self, seeds: &RunSeeds) -> Result<Vec<Agent>, Error> {
-        let n = self.config.team.len();
+    /// The agents of run `run` at its start, each restored from its
+    /// snapshot if it has one.
+    pub fn agents(&self, run: u64) -> Result<Vec<Agent>, Error> {
+        let seeds = self.seeds(run);
         (self.config.team.iter().zip(&self.snapshots).enumerate())
             .map(|(id, (spec, snapshot))| {
-                build_agent(id, n, spec, seeds.agents[id], snapshot.as_deref())
+                let start = self.start(id, run, seeds.agents[id]);
+                build_agent(
+                    start,
+                    spec,
+                    self.plugins[id].as_deref(),
+                    snapshot.as_deref(),
+                )
             })
             .collect()
+    }
+
+    /// Who slot `id`'s objects are made for in run `run`.
+    fn start(&self, id: usize, run: u64, seed: u64) -> PluginStart {
+        PluginStart {
+            agent: id,
+            team_size: self.config.team.len(),
+            run,
+            seed,
+        }
+    }
+
+    /// The objects given in process, of every slot that has them.
+    pub fn plugins(&self) -> impl Iterator<Item = &Arc<dyn Plugin>> {
+        self.plugins.iter().flatten()
     }
 
     /// What `config.json` holds.
@@ -189,5 +274,24 @@ impl Experiment {
                 .map(|s| s.as_ref().map(|s| format!("{:016x}", s.digest())))
                 .collect(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plugin::PluginSpec;
+
+    #[test]
+    fn a_file_cannot_name_an_object() {
+        let mut config = ExperimentConfig::default();
+        config.team[1].plugin = Some(PluginSpec {
+            learner: Some("mine".into()),
+            strategy: None,
+        });
+        let Err(Error::Config(e)) = Experiment::prepare(config) else {
+            panic!("a recorded object without the object was accepted")
+        };
+        assert_eq!(e.key, "team[1].plugin");
     }
 }

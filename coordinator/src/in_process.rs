@@ -1,12 +1,15 @@
 //! The in-process backend: the simulator and an `agent::Team` in the run's
 //! own thread, called directly: fast and bit-for-bit deterministic.
 
+use std::sync::Arc;
+
 use agent::{Agent, Mode, Observation, Snapshot, Team};
 use env_server::RunEnvs;
 
 use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::{ConfigError, Error};
 use crate::experiment::{Experiment, RunSeeds};
+use crate::plugin::Plugin;
 
 /// The in-process backend of one run.
 #[derive(Debug)]
@@ -15,6 +18,8 @@ pub struct InProcess {
     simulators: RunEnvs,
     team: Team,
     observations: Vec<Observation>,
+    /// The objects some agents are made with, whose failures end the run.
+    plugins: Vec<Arc<dyn Plugin>>,
 }
 
 impl InProcess {
@@ -24,14 +29,23 @@ impl InProcess {
         let env_config = experiment.config().env.clone();
         let simulators = RunEnvs::new(env_config, seeds.simulator)
             .map_err(|e| ConfigError::new("env", e.to_string()))?;
-        let team = Team::new(experiment.agents(&seeds)?).map_err(|e| Error::run(run, e))?;
+        let team = Team::new(experiment.agents(run)?).map_err(|e| Error::run(run, e))?;
         let n = simulators.offense();
         Ok(Self {
             run,
             simulators,
             team,
             observations: Vec::with_capacity(n),
+            plugins: experiment.plugins().cloned().collect(),
         })
+    }
+}
+
+/// Run `run`'s end, if an object given in process failed.
+fn check(plugins: &[Arc<dyn Plugin>], run: u64) -> Result<(), Error> {
+    match plugins.iter().find_map(|p| p.failure()) {
+        Some(failure) => Err(Error::run(run, failure)),
+        None => Ok(()),
     }
 }
 
@@ -63,9 +77,11 @@ impl Backend for InProcess {
                 .team
                 .act(&self.observations, reward)
                 .map_err(|e| Error::run(run, e))?;
+            check(&self.plugins, run)?;
             let outcome = env.step(actions);
             if outcome.is_terminal() {
                 self.team.end_episode(outcome.reward());
+                check(&self.plugins, run)?;
                 return Ok(EpisodeEnd {
                     outcome,
                     frames: env.frame(),
@@ -93,10 +109,13 @@ impl Backend for InProcess {
     fn replace(&mut self, experiment: &Experiment, event: usize) -> Result<u64, Error> {
         let newcomer = experiment.newcomer(self.run, event)?;
         (self.team.replace(newcomer)).map_err(|e| Error::run(self.run, e))?;
+        check(&self.plugins, self.run)?;
         Ok(0)
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {
-        Ok(self.team.agents().iter().map(Agent::snapshot).collect())
+        let snapshots = self.team.agents().iter().map(Agent::snapshot).collect();
+        check(&self.plugins, self.run)?;
+        Ok(snapshots)
     }
 }

@@ -9,6 +9,8 @@
 //!   an experiment's identity.
 //! - [`seeds`]: the seed of every random stream of a run from `(seed, run, stream)`.
 //! - [`experiment`]: a validated configuration with its snapshots loaded.
+//! - [`request`]: what one `coordinator run` asks for, from the command line or Python.
+//! - [`plugin`]: learners and strategies given as objects in this process (Python's `run()`).
 //! - [`backend`]: the [`Backend`] a run is played on; [`in_process`] calls
 //!   the simulator and an `agent::Team` directly, [`remote`] drives
 //!   env-server and agents as processes over zenoh.
@@ -52,7 +54,10 @@ pub mod experiment;
 pub mod figures;
 pub mod in_process;
 pub mod membership;
+pub mod plugin;
+#[cfg(feature = "zenoh")]
 pub mod remote;
+pub mod request;
 pub mod runner;
 pub mod schedule;
 pub mod seeds;
@@ -67,6 +72,7 @@ pub use error::{ConfigError, Error};
 pub use experiment::{Experiment, RunSeeds};
 pub use figures::{Figure, FigureError, Metric, Series, SeriesSet, draw_figures};
 pub use in_process::InProcess;
+#[cfg(feature = "zenoh")]
 pub use remote::{RemoteBackend, ZenohTeam};
 pub use runner::{Report, RunOptions, run_experiment};
 pub use schedule::{EvalPoint, RunResult, Timing};

@@ -5,16 +5,17 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use agent::{Algorithm, Latency, NetworkConditions, Profile};
+use agent::{Algorithm, Latency, Profile};
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
+use coordinator::request::{Agents, RunRequest};
 use coordinator::stats::aggregates::score_aggregates;
 use coordinator::study::{StudyConfig, StudyOptions, gains_table, published_gains};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
-    AgentSpec, Endpoints, Estimate, Experiment, ExperimentConfig, ExperimentDir, RunOptions, Team,
-    Transport, ZenohSettings, load_team_file, run_experiment,
+    Endpoints, Estimate, Experiment, ExperimentDir, RunOptions, Transport, ZenohSettings,
+    load_team_file, run_experiment,
 };
 use env_server::EvaluationMemory;
 
@@ -415,6 +416,7 @@ fn run_study(args: StudyArgs) -> Result<()> {
             .map_or_else(coordinator::runner::default_threads, |t| t as usize),
         progress: !args.quiet && std::io::stderr().is_terminal(),
         shard: args.shard,
+        stop: None,
     };
     let outcome = coordinator::study::run_study(&study, &args.out, &options)?;
     let wall = outcome.wall.as_secs_f64();
@@ -439,64 +441,37 @@ fn algorithm_names() -> impl TypedValueParser<Value = Algorithm> {
 }
 
 fn run_one(args: RunArgs) -> Result<()> {
-    let (
-        Team {
-            agents: mut team,
-            events,
+    let agents = match (&args.team, args.algorithm) {
+        (Some(path), _) => Agents::Team(load_team_file(path)?),
+        (None, Some(algorithm)) => Agents::Algorithm {
+            algorithm,
+            mistake_correcting: args.mistake_correcting,
         },
-        label,
-    ) = match (&args.team, args.algorithm) {
-        (Some(path), _) => (load_team_file(path)?, format!("team {}", path.display())),
-        (None, Some(algorithm)) => {
-            let offense = args.offense.unwrap_or(3);
-            let mut spec = AgentSpec::of(algorithm, args.profile);
-            spec.config
-                .strategy
-                .set_mistake_correcting(args.mistake_correcting)?;
-            let name = algorithm.name();
-            let mc = if args.mistake_correcting {
-                " (mistake correcting)"
-            } else {
-                ""
-            };
-            let team = Team {
-                agents: vec![spec; offense],
-                events: Vec::new(),
-            };
-            (team, format!("{name}{mc}"))
-        }
         (None, None) => unreachable!("clap requires --algorithm or --team"),
     };
-    if args.advice_latency.is_some() || args.advice_loss.is_some() {
-        let base = NetworkConditions::default();
-        let conditions = NetworkConditions {
-            latency: args.advice_latency.unwrap_or(base.latency),
-            loss: args.advice_loss.unwrap_or(base.loss),
-            timeout_ms: args
-                .network
-                .advice_timeout_ms
-                .map_or(base.timeout_ms, |ms| ms as f64),
-        };
-        for spec in &mut team {
-            spec.config.network = Some(conditions);
-        }
-    }
-    let mut config = ExperimentConfig {
+    let request = RunRequest {
         runs: args.runs,
         episodes: args.episodes,
         eval_every: args.eval_every,
         eval_episodes: args.eval_episodes,
         seed: args.seed,
-        ci_level: args.ci_level.unwrap_or(args.profile.ci_level()),
+        profile: args.profile,
+        ci_level: args.ci_level,
+        offense: args.offense,
+        evaluation_memory: args.evaluation_memory,
         transport: args
             .network
             .transport(Some(&args.transport), &Transport::InProcess)?,
-        team,
-        events,
-        ..ExperimentConfig::default()
+        advice_latency: args.advice_latency,
+        advice_loss: args.advice_loss,
+        advice_timeout_ms: args.network.advice_timeout_ms,
+        ..RunRequest::new(agents)
     };
-    config.env.offense = args.offense.unwrap_or(config.team.len());
-    config.env.evaluation_memory = args.evaluation_memory;
+    let label = match &args.team {
+        Some(path) => format!("team {}", path.display()),
+        None => request.label(),
+    };
+    let config = request.config()?;
     let experiment = Experiment::prepare(config)?;
     let out = ExperimentDir::check(&args.out, &experiment.record())?;
     let options = RunOptions {
@@ -506,6 +481,7 @@ fn run_one(args: RunArgs) -> Result<()> {
         save_agents: args.save_agents,
         progress: !args.quiet && std::io::stderr().is_terminal(),
         bar: None,
+        stop: None,
     };
     let report = run_experiment(&experiment, &out, &options)?;
     let c = experiment.config();

@@ -5,7 +5,8 @@
 //! byte-identical whatever the number of threads.
 
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -31,6 +32,9 @@ pub struct RunOptions {
     /// A progress bar to advance instead of a new one (a study's, over all
     /// its experiments): one step per episode.
     pub bar: Option<ProgressBar>,
+    /// Set to stop after the episodes in flight ([`Error::Interrupted`]);
+    /// the runs finished so far are kept.
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 impl Default for RunOptions {
@@ -40,6 +44,7 @@ impl Default for RunOptions {
             save_agents: None,
             progress: false,
             bar: None,
+            stop: None,
         }
     }
 }
@@ -157,7 +162,13 @@ fn play_in_parallel(
         .num_threads(threads)
         .build()
         .map_err(|e| Error::Transport(format!("cannot start {threads} worker threads: {e}")))?;
-    let episode = |frames| progress.episode(frames);
+    let episode = |frames| {
+        progress.episode(frames);
+        match &options.stop {
+            Some(stop) if stop.load(Ordering::Relaxed) => Err(Error::Interrupted),
+            _ => Ok(()),
+        }
+    };
     pool.install(|| {
         pending
             .par_iter()
@@ -234,7 +245,7 @@ fn one_run(
     options: &RunOptions,
     driver: &dyn Driver,
     run: u64,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: &(dyn Fn(u64) -> Result<(), Error> + Sync),
 ) -> Result<RunResult, Error> {
     let mut backend = driver.backend(experiment, run)?;
     let mut writer = out.run_writer(run, experiment.config().team.len())?;

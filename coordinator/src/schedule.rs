@@ -112,13 +112,13 @@ pub struct RunResult {
 
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
 /// evaluation as soon as it is measured, `progress` the frames of every
-/// episode just played.
+/// episode just played (an error from it ends the run).
 pub fn play_run(
     experiment: &Experiment,
     backend: &mut dyn Backend,
     run: u64,
     mut on_point: impl FnMut(&EvalPoint) -> Result<(), Error>,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: &(dyn Fn(u64) -> Result<(), Error> + Sync),
 ) -> Result<RunResult, Error> {
     let config = experiment.config();
     let mut timing = Timing::default();
@@ -133,7 +133,7 @@ pub fn play_run(
             timed_out += u64::from(episode.actions_timed_out);
             timing.training_frames += u64::from(episode.frames);
             trained += 1;
-            progress(u64::from(episode.frames));
+            progress(u64::from(episode.frames))?;
             for (event, e) in config.events.iter().enumerate() {
                 if e.episode == trained {
                     let wait_ms = backend.replace(experiment, event)?;
@@ -162,7 +162,7 @@ pub fn play_run(
             let episode = backend.play_episode(Mode::Evaluation)?;
             timed_out += u64::from(episode.actions_timed_out);
             timing.evaluation_frames += u64::from(episode.frames);
-            progress(u64::from(episode.frames));
+            progress(u64::from(episode.frames))?;
             if episode.outcome == Outcome::Goal {
                 goals += 1;
                 goal_frames += u64::from(episode.frames);

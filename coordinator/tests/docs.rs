@@ -20,6 +20,7 @@ use agent::{AdHoc, AgentConfig, Algorithm, NetworkConditions, Profile, Reachable
 use coordinator::config::ChildSpec;
 use coordinator::experiment::Record;
 use coordinator::membership::MembershipEvent;
+use coordinator::plugin::PluginSpec;
 use coordinator::study::{PRESETS, StudyConfig};
 use coordinator::{
     AgentSpec, AgentStats, EvalPoint, ExperimentConfig, RunResult, Timing, Transport,
@@ -507,6 +508,10 @@ fn team_file_keys() -> BTreeMap<String, String> {
             keep_counters: true,
             learner: Some(child.clone()),
             strategy_process: Some(child.clone()),
+            plugin: Some(PluginSpec {
+                learner: Some("numpy-linear-sarsa 1".into()),
+                strategy: Some("nearest-teammate 1".into()),
+            }),
         };
         keys_of(&serde_json::to_value(spec).unwrap(), "", &mut keys);
     }

@@ -7,8 +7,11 @@ Costa, AAMAS 2017), from Python.
   returns.
 - :mod:`adhoc_advising.learner`: a learner written in Python as one agent of
   an advising team, run by the Rust agent process (docs/learners.md).
-- :func:`load` (:mod:`adhoc_advising.results`): what `coordinator run` and
-  `coordinator study` wrote, as pandas DataFrames.
+- :func:`run` and :func:`study` (:mod:`adhoc_advising.experiments`):
+  experiments and studies in this process, as `coordinator run` and
+  `coordinator study`, with Python learners as objects (docs/python.md).
+- :func:`load` (:mod:`adhoc_advising.results`): what `run`/`study` and the
+  command line wrote, as pandas DataFrames.
 - :mod:`adhoc_advising.strategy`: an advising strategy written in Python:
   one agent's decisions of when to ask, whom, when to give and what to
   follow (docs/strategies.md).
@@ -19,6 +22,7 @@ The simulator is the separate package ``halffield``.
 from __future__ import annotations
 
 from adhoc_advising._adhoc_advising import PAPER_ACTIONS, GreedyAgent
+from adhoc_advising.experiments import run, study
 from adhoc_advising.results import load
 
-__all__ = ["PAPER_ACTIONS", "GreedyAgent", "load"]
+__all__ = ["PAPER_ACTIONS", "GreedyAgent", "load", "run", "study"]

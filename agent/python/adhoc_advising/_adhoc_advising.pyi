@@ -1,5 +1,5 @@
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 PAPER_ACTIONS: list[str]
 
@@ -8,3 +8,45 @@ class GreedyAgent:
     def act(self, state: Sequence[float], can_kick: bool) -> int: ...
     @property
     def digest(self) -> int: ...
+
+STATE_FEATURES: int
+
+def run(
+    *,
+    out: str,
+    objects: list[
+        tuple[
+            tuple[Callable[[int, int, int, int], object], str] | None,
+            tuple[Callable[[int, int, int, int], object], str] | None,
+        ]
+    ],
+    algorithm: str | None = None,
+    team_file: str | None = None,
+    team_tables: str | None = None,
+    mistake_correcting: bool = False,
+    runs: int = 50,
+    episodes: int = 5000,
+    eval_every: int = 20,
+    eval_episodes: int = 100,
+    seed: int = 1,
+    profile: str = "paper",
+    ci_level: float | None = None,
+    offense: int | None = None,
+    evaluation_memory: str = "carried",
+    advice_latency: str | None = None,
+    advice_loss: float | None = None,
+    advice_timeout_ms: int | None = None,
+    threads: int | None = None,
+    save_agents: str | None = None,
+    progress: bool = False,
+) -> str: ...
+def study(
+    *,
+    out: str,
+    preset: str | None = None,
+    config: str | None = None,
+    runs: int | None = None,
+    episodes: int | None = None,
+    threads: int | None = None,
+    progress: bool = False,
+) -> str | None: ...

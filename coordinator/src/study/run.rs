@@ -24,6 +24,8 @@ pub struct StudyOptions {
     pub progress: bool,
     /// Play only this share of the runs, and no statistics.
     pub shard: Option<Shard>,
+    /// Set to stop after the episodes in flight (see [`RunOptions::stop`]).
+    pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
 /// What a finished study reports besides its files.
@@ -126,6 +128,7 @@ impl Invocation<'_> {
             save_agents,
             progress: self.options.progress,
             bar: Some(self.bar.clone()),
+            stop: self.options.stop.clone(),
         }
     }
 

@@ -148,6 +148,7 @@ impl Secret {
 
     /// zenoh's `transport/auth/usrpwd` setting: present these credentials,
     /// accept only peers that present them.
+    #[cfg(feature = "zenoh")]
     pub(crate) fn usrpwd_setting(&self) -> serde_json::Value {
         serde_json::json!({
             "user": self.user,

@@ -1,0 +1,147 @@
+"""Experiments and studies in this process: :func:`run` and :func:`study`
+take the arguments of ``coordinator run`` and ``coordinator study`` and
+write the same files (docs/results.md), which :func:`adhoc_advising.load`
+reads back as DataFrames.
+
+The Rust learners are the command line's, bit for bit. A team may also give
+an agent a Python learner (``learner=``, an
+:class:`adhoc_advising.learner.Learner`) or a Python strategy
+(``strategy=``, an :class:`adhoc_advising.strategy.AdvisingStrategy`, with
+``algorithm = "external"``): as a class, made for every run with its
+``Start`` (whose ``seed`` is the agent's), or as an instance, copied for
+every run. It is called directly, in this process. Its exceptions end the
+run and are raised again as the cause of a ``RuntimeError`` naming the agent
+and the call; the runs finished before stay on disk.
+
+The GIL is released while Rust plays; Ctrl-C stops after the episodes in
+flight, the files whole, and the same call resumes.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any, Union
+
+from adhoc_advising import _adhoc_advising
+from adhoc_advising._objects import Made, made
+
+#: A team: a team file's path, the agents' tables (each as a team file's
+#: ``[[agent]]`` table, ``learner`` may be a Python learner), or both
+#: ``{"agent": [...], "event": [...]}``.
+TeamSpec = Union[str, "os.PathLike[str]", Sequence[Mapping[str, Any]], Mapping[str, Any]]
+
+
+def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]:
+    """The team's tables as JSON and, per agent, its Python learner and
+    strategy (``learner``/``strategy`` given as objects)."""
+    tables = {"agent": team} if not isinstance(team, Mapping) else dict(team)
+    agents = []
+    objects: list[tuple[Made | None, Made | None]] = []
+    for i, table in enumerate(tables.get("agent", [])):
+        if not isinstance(table, Mapping):
+            raise TypeError(f"team[{i}] must be a dict of an agent's keys, got {type(table).__name__}")
+        table = dict(table)
+        learner = table.pop("learner", None)
+        if isinstance(learner, Mapping):  # a learner process, as in a file
+            table["learner"], learner = learner, None
+        strategy = table.pop("strategy", None)
+        objects.append((made("learner", learner), made("strategy", strategy)))
+        agents.append(table)
+    tables["agent"] = agents
+    return json.dumps(tables), objects
+
+
+def run(
+    *,
+    out: str | os.PathLike[str],
+    algorithm: str | None = None,
+    team: TeamSpec | None = None,
+    mistake_correcting: bool = False,
+    runs: int = 50,
+    episodes: int = 5000,
+    eval_every: int = 20,
+    eval_episodes: int = 100,
+    seed: int = 1,
+    profile: str = "paper",
+    ci_level: float | None = None,
+    offense: int | None = None,
+    evaluation_memory: str = "carried",
+    advice_latency: str | None = None,
+    advice_loss: float | None = None,
+    advice_timeout_ms: int | None = None,
+    threads: int | None = None,
+    save_agents: str | os.PathLike[str] | None = None,
+    progress: bool | None = None,
+) -> Path:
+    """Plays an experiment into ``out`` as ``coordinator run --transport
+    in-process`` does with the same options (docs/settings.md), and returns
+    ``out``. ``algorithm`` (every agent) or ``team``: a team file's path, or
+    its agents' tables as dicts, where ``learner`` and ``strategy`` may be
+    Python objects.
+    ``progress``: a bar on stderr (default: when stderr is a terminal).
+    An existing ``out`` of the same experiment is resumed."""
+    objects: list[tuple[Made | None, Made | None]] = []
+    team_file = team_tables = None
+    if isinstance(team, (str, os.PathLike)):
+        team_file = os.fspath(team)
+    elif team is not None:
+        team_tables, objects = _team_tables(team)
+    if progress is None:
+        progress = sys.stderr.isatty()
+    _adhoc_advising.run(
+        out=os.fspath(out),
+        objects=objects,
+        algorithm=algorithm,
+        team_file=team_file,
+        team_tables=team_tables,
+        mistake_correcting=mistake_correcting,
+        runs=runs,
+        episodes=episodes,
+        eval_every=eval_every,
+        eval_episodes=eval_episodes,
+        seed=seed,
+        profile=profile,
+        ci_level=ci_level,
+        offense=offense,
+        evaluation_memory=evaluation_memory,
+        advice_latency=advice_latency,
+        advice_loss=advice_loss,
+        advice_timeout_ms=advice_timeout_ms,
+        threads=threads,
+        save_agents=None if save_agents is None else os.fspath(save_agents),
+        progress=progress,
+    )
+    return Path(out)
+
+
+def study(
+    *,
+    out: str | os.PathLike[str],
+    preset: str | None = None,
+    config: str | os.PathLike[str] | None = None,
+    runs: int | None = None,
+    episodes: int | None = None,
+    threads: int | None = None,
+    progress: bool | None = None,
+) -> Path:
+    """Plays a study into ``out`` as ``coordinator study`` does: ``preset``
+    (e.g. ``"quick"``, ``"paper-scratch"``) or a study file ``config``,
+    with ``runs`` and ``episodes`` overriding every experiment's; statistics,
+    figures and ``REPORT.md``. Returns ``out``; an existing ``out`` of the
+    same study is resumed."""
+    if progress is None:
+        progress = sys.stderr.isatty()
+    _adhoc_advising.study(
+        out=os.fspath(out),
+        preset=preset,
+        config=None if config is None else os.fspath(config),
+        runs=runs,
+        episodes=episodes,
+        threads=threads,
+        progress=progress,
+    )
+    return Path(out)

@@ -1,0 +1,239 @@
+"""run() and study() in this process: the same files as the command line,
+a Python learner joining AdHocTD teammates as an object, its exception
+raised with its traceback, its snapshots saved and loaded, Ctrl-C stopping
+cleanly and resuming."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+import traceback
+from pathlib import Path
+
+import pytest
+from conftest import ROOT, workspace_binary
+
+import adhoc_advising
+from adhoc_advising.learner import Learner, Start, Transition
+
+sys.path.insert(0, str(ROOT / "agent" / "python" / "examples"))
+from nearest_teammate import NearestTeammate  # noqa: E402
+from numpy_learner import LinearSarsa  # noqa: E402
+
+#: Keys of measured times, which differ from one invocation to the next.
+MEASURED = {"training_s", "evaluation_s", "wall_s", "frames_per_sec"}
+
+
+def without_times(value: object) -> object:
+    """A JSON value without its measured times."""
+    if isinstance(value, dict):
+        return {k: without_times(v) for k, v in value.items() if k not in MEASURED}
+    if isinstance(value, list):
+        return [without_times(v) for v in value]
+    return value
+
+
+def assert_same_results(a: Path, b: Path) -> None:
+    """The same files, the CSVs byte for byte, the JSONs but for times."""
+    names = sorted(p.name for p in a.iterdir())
+    assert names == sorted(p.name for p in b.iterdir())
+    for name in names:
+        if name.endswith(".json"):
+            left = without_times(json.loads((a / name).read_text()))
+            assert left == without_times(json.loads((b / name).read_text())), name
+        else:
+            assert (a / name).read_bytes() == (b / name).read_bytes(), name
+
+
+def mixed_team(learner: object) -> list[dict]:
+    """Two Rust AdHocTD agents and one AdHocTD agent learning with `learner`."""
+    return [{"algorithm": "adhoc-td"}, {"algorithm": "adhoc-td"},
+            {"algorithm": "adhoc-td", "learner": learner}]
+
+
+SMALL = {"runs": 2, "episodes": 100, "eval_every": 50, "eval_episodes": 10, "threads": 2}
+
+
+def test_run_writes_what_the_command_line_writes(tmp_path: Path) -> None:
+    options = {"runs": 2, "episodes": 150, "eval_every": 50, "eval_episodes": 10, "seed": 7}
+    adhoc_advising.run(out=tmp_path / "py", algorithm="adhoc-visit", mistake_correcting=True,
+                       advice_loss=0.1, **options)
+    subprocess.run(
+        [str(workspace_binary("coordinator")), "run", "--algorithm", "adhoc-visit",
+         "--mistake-correcting", "--advice-loss", "0.1", "--runs", "2", "--episodes", "150",
+         "--eval-every", "50", "--eval-episodes", "10", "--seed", "7",
+         "--transport", "in-process", "--quiet", "--out", str(tmp_path / "cli")],
+        check=True, capture_output=True, timeout=300,
+    )
+    assert_same_results(tmp_path / "py", tmp_path / "cli")
+
+
+def test_a_team_file_and_its_tables_give_the_same_results(tmp_path: Path) -> None:
+    team = tmp_path / "team.toml"
+    team.write_text('[[agent]]\nalgorithm = "torrey"\n\n[[agent]]\nalgorithm = "adhoc-td"\n\n'
+                    '[[agent]]\nalgorithm = "no-advice"\n')
+    adhoc_advising.run(out=tmp_path / "file", team=team, **SMALL)
+    tables = [{"algorithm": a} for a in ("torrey", "adhoc-td", "no-advice")]
+    adhoc_advising.run(out=tmp_path / "tables", team=tables, **SMALL)
+    assert_same_results(tmp_path / "file", tmp_path / "tables")
+
+
+def test_a_python_learner_learns_beside_adhoc_td_and_is_deterministic(tmp_path: Path) -> None:
+    for out in ("a", "b"):
+        adhoc_advising.run(out=tmp_path / out, team=mixed_team(LinearSarsa), seed=3, **SMALL)
+    assert_same_results(tmp_path / "a", tmp_path / "b")
+    config = json.loads((tmp_path / "a" / "config.json").read_text())
+    recorded = config["config"]["team"][2]["plugin"]["learner"]
+    assert recorded == "numpy-linear-sarsa 1 (numpy_learner.LinearSarsa)"
+    run = json.loads((tmp_path / "a" / "run-0.json").read_text())
+    python_agent = run["points"][-1]["agents"][2]
+    assert python_agent["advice_requests"] > 0 and python_agent["advice_given"] > 0
+
+
+def test_an_instance_is_copied_for_every_run(tmp_path: Path) -> None:
+    template = LinearSarsa(Start(0, 3, 0, 11, 6, tuple(adhoc_advising.PAPER_ACTIONS)))
+    adhoc_advising.run(out=tmp_path / "out", team=mixed_team(template), **SMALL)
+    assert not template.weights.any(), "the given instance itself learned"
+
+
+class Failing(LinearSarsa):
+    """Raises in its 30th `learn`."""
+
+    name = "failing"
+
+    def __init__(self, start: Start) -> None:
+        super().__init__(start)
+        self.calls = 0
+
+    def learn(self, t: Transition) -> None:
+        self.calls += 1
+        if self.calls == 30:
+            raise ValueError("a broken update")
+        super().learn(t)
+
+
+def test_a_learner_raising_ends_the_run_with_its_traceback(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    with pytest.raises(RuntimeError) as raised:
+        adhoc_advising.run(out=out, team=mixed_team(Failing), **SMALL)
+    message = str(raised.value)
+    assert "agent 2's learner `failing" in message and "raised in `learn`" in message, message
+    cause = raised.value.__cause__
+    assert isinstance(cause, ValueError) and str(cause) == "a broken update"
+    frames = [f.name for f in traceback.extract_tb(cause.__traceback__)]
+    assert "learn" in frames, frames
+    for written in out.glob("*.json"):
+        json.loads(written.read_text())
+    assert not [p for p in out.iterdir() if p.name.startswith(".")], list(out.iterdir())
+
+
+def test_a_python_learner_is_saved_and_loaded(tmp_path: Path) -> None:
+    saved = tmp_path / "saved"
+    adhoc_advising.run(out=tmp_path / "train", team=mixed_team(LinearSarsa),
+                       save_agents=saved, **{**SMALL, "runs": 1})
+    snapshot = saved / "run-0-agent-2.qtable"
+    assert snapshot.stat().st_size > 0
+
+    restored: list[bytes] = []
+
+    class Recording(LinearSarsa):
+        def restore(self, state: bytes) -> None:
+            restored.append(state)
+            super().restore(state)
+
+    team = mixed_team(Recording)
+    team[2]["load"] = str(snapshot)
+    adhoc_advising.run(out=tmp_path / "again", team=team, **{**SMALL, "runs": 1})
+    assert restored and restored[0].startswith(b"\x93NUMPY"), restored[:1]
+
+
+def test_a_python_strategy_decides_in_process(tmp_path: Path) -> None:
+    team = [{"algorithm": "adhoc-td"}, {"algorithm": "adhoc-td"},
+            {"algorithm": "external", "strategy": NearestTeammate}]
+    for out in ("a", "b"):
+        adhoc_advising.run(out=tmp_path / out, team=team, seed=5, **SMALL)
+    assert_same_results(tmp_path / "a", tmp_path / "b")
+    config = json.loads((tmp_path / "a" / "config.json").read_text())
+    recorded = config["config"]["team"][2]["plugin"]["strategy"]
+    assert recorded == "nearest-teammate 1 (nearest_teammate.NearestTeammate)"
+    agents = json.loads((tmp_path / "a" / "run-0.json").read_text())["points"][-1]["agents"]
+    # It asks one teammate a time: about one reply per request.
+    assert 0 < agents[2]["advice_replies_received"] <= agents[2]["advice_requests"]
+    assert agents[2]["advice_given"] > 0
+
+
+class Unreachable(NearestTeammate):
+    """Names itself as an advisor."""
+
+    def advisors(self, me: int, team_size: int, positions: object) -> list[int]:
+        return [me]
+
+
+def test_a_strategy_answering_wrongly_is_named(tmp_path: Path) -> None:
+    team = [{"algorithm": "adhoc-td"}, {"algorithm": "adhoc-td"},
+            {"algorithm": "external", "strategy": Unreachable}]
+    with pytest.raises(RuntimeError, match=r"agent 2's strategy `nearest-teammate.*`advisors`"):
+        adhoc_advising.run(out=tmp_path / "out", team=team, **SMALL)
+
+
+def test_bad_arguments_are_named(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="algorithm"):
+        adhoc_advising.run(out=tmp_path / "a", algorithm="no-such-method")
+    with pytest.raises(ValueError, match="runs"):
+        adhoc_advising.run(out=tmp_path / "b", algorithm="adhoc-td", runs=0)
+    with pytest.raises(TypeError, match="learner"):
+        adhoc_advising.run(out=tmp_path / "c", team=mixed_team(42))
+    with pytest.raises(ValueError, match="zenoh"):
+        adhoc_advising.study(out=tmp_path / "d", config=study_file(tmp_path, "zenoh"))
+
+
+def study_file(directory: Path, transport: str = "in-process") -> Path:
+    """A small study of two entries."""
+    path = directory / f"{transport}.toml"
+    path.write_text(
+        f'name = "small"\nruns = 2\nepisodes = 100\neval_every = 50\neval_episodes = 10\n'
+        f'transport = "{transport}"\nbaseline = "no-advice"\n\n'
+        '[[entry]]\nname = "no-advice"\nalgorithm = "no-advice"\n\n'
+        '[[entry]]\nname = "adhoc-td"\nalgorithm = "adhoc-td"\n'
+    )
+    return path
+
+
+def test_a_study_in_process_reads_back_as_dataframes(tmp_path: Path) -> None:
+    pytest.importorskip("pandas")
+    out = adhoc_advising.study(out=tmp_path / "small", config=study_file(tmp_path))
+    assert (out / "REPORT.md").is_file()
+    study = adhoc_advising.load(out)
+    assert set(study.curves["entry"]) == {"no-advice", "adhoc-td"}
+    assert list(study.gains["entry"]) == ["adhoc-td"]
+
+
+CTRL_C = """
+import adhoc_advising, sys
+adhoc_advising.run(out=sys.argv[1], algorithm="adhoc-td", runs=4, episodes=3000,
+                   eval_every=500, eval_episodes=20, threads=2)
+print("finished")
+"""
+
+
+def test_ctrl_c_stops_cleanly_and_the_same_call_resumes(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    child = subprocess.Popen([sys.executable, "-c", CTRL_C, str(out)],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not (out / "config.json").exists() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    _, stderr = child.communicate(timeout=120)
+    assert child.returncode != 0 and "KeyboardInterrupt" in stderr, stderr
+    for written in out.glob("*.json"):
+        json.loads(written.read_text())
+    assert not [p for p in out.iterdir() if p.name.startswith(".")], list(out.iterdir())
+    again = subprocess.run([sys.executable, "-c", CTRL_C, str(out)],
+                           capture_output=True, text=True, timeout=600)
+    assert again.returncode == 0 and "finished" in again.stdout, again.stderr
+    assert (out / "summary.json").is_file()

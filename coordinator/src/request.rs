@@ -1,0 +1,154 @@
+//! What one `coordinator run` asks for, whoever asks: the command line and
+//! Python's `run()` build the same [`ExperimentConfig`] from the same
+//! arguments, so they write the same files.
+
+use agent::{Algorithm, Latency, NetworkConditions, Profile};
+use env_server::EvaluationMemory;
+
+use crate::config::{AgentSpec, ExperimentConfig, Team};
+use crate::error::ConfigError;
+use crate::transport::Transport;
+
+/// Who plays.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Agents {
+    /// Every agent runs `algorithm` with `profile`'s constants and fidelity.
+    Algorithm {
+        /// The algorithm.
+        algorithm: Algorithm,
+        /// Mistake Correcting (adhoc-visit, adhoc-td and torrey only).
+        mistake_correcting: bool,
+    },
+    /// A team file's agents and events.
+    Team(Team),
+}
+
+/// One experiment as `coordinator run`'s arguments describe it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunRequest {
+    /// Who plays.
+    pub agents: Agents,
+    /// Independent runs R.
+    pub runs: u64,
+    /// Training episodes N per run.
+    pub episodes: u64,
+    /// An evaluation every K training episodes.
+    pub eval_every: u64,
+    /// Episodes M of one evaluation.
+    pub eval_episodes: u64,
+    /// The experiment seed.
+    pub seed: u64,
+    /// The fidelity profile of [`Agents::Algorithm`], and the default level
+    /// of the intervals.
+    pub profile: Profile,
+    /// The intervals' level (default: the profile's).
+    pub ci_level: Option<f64>,
+    /// Offense agents (default: 3, or the team's size).
+    pub offense: Option<usize>,
+    /// What an evaluation's simulator remembers at its start.
+    pub evaluation_memory: EvaluationMemory,
+    /// Where agents and simulator live.
+    pub transport: Transport,
+    /// Every agent's advice messages' latency; with `advice_loss`, sets the
+    /// network conditions.
+    pub advice_latency: Option<Latency>,
+    /// The probability that an advice message is lost.
+    pub advice_loss: Option<f64>,
+    /// With network conditions, how long an agent waits for advice (ms).
+    pub advice_timeout_ms: Option<u64>,
+}
+
+impl RunRequest {
+    /// `agents` under the command line's defaults: the paper's protocol (50
+    /// runs of 5000 episodes, 100 evaluation episodes every 20), seed 1, in
+    /// process.
+    pub fn new(agents: Agents) -> Self {
+        Self {
+            agents,
+            runs: 50,
+            episodes: 5000,
+            eval_every: 20,
+            eval_episodes: 100,
+            seed: 1,
+            profile: Profile::Paper,
+            ci_level: None,
+            offense: None,
+            evaluation_memory: EvaluationMemory::default(),
+            transport: Transport::InProcess,
+            advice_latency: None,
+            advice_loss: None,
+            advice_timeout_ms: None,
+        }
+    }
+
+    /// What plays, as the command line prints it: `adhoc-td`,
+    /// `adhoc-td (mistake correcting)` or `team`.
+    pub fn label(&self) -> String {
+        match &self.agents {
+            Agents::Algorithm {
+                algorithm,
+                mistake_correcting,
+            } => {
+                let mc = if *mistake_correcting {
+                    " (mistake correcting)"
+                } else {
+                    ""
+                };
+                format!("{}{mc}", algorithm.name())
+            }
+            Agents::Team(_) => "team".into(),
+        }
+    }
+
+    /// The experiment's configuration (validated later, by
+    /// [`crate::Experiment::prepare`]).
+    pub fn config(self) -> Result<ExperimentConfig, ConfigError> {
+        let Team {
+            agents: mut team,
+            events,
+        } = match self.agents {
+            Agents::Team(team) => team,
+            Agents::Algorithm {
+                algorithm,
+                mistake_correcting,
+            } => {
+                let mut spec = AgentSpec::of(algorithm, self.profile);
+                (spec.config.strategy)
+                    .set_mistake_correcting(mistake_correcting)
+                    .map_err(|e| ConfigError::new(e.key, e.reason))?;
+                Team {
+                    agents: vec![spec; self.offense.unwrap_or(3)],
+                    events: Vec::new(),
+                }
+            }
+        };
+        if self.advice_latency.is_some() || self.advice_loss.is_some() {
+            let base = NetworkConditions::default();
+            let conditions = NetworkConditions {
+                latency: self.advice_latency.unwrap_or(base.latency),
+                loss: self.advice_loss.unwrap_or(base.loss),
+                timeout_ms: self
+                    .advice_timeout_ms
+                    .map_or(base.timeout_ms, |ms| ms as f64),
+            };
+            for spec in &mut team {
+                spec.config.network = Some(conditions);
+            }
+        }
+        let mut config = ExperimentConfig {
+            runs: self.runs,
+            episodes: self.episodes,
+            eval_every: self.eval_every,
+            eval_episodes: self.eval_episodes,
+            seed: self.seed,
+            ci_level: self.ci_level.unwrap_or(self.profile.ci_level()),
+            transport: self.transport,
+            team,
+            events,
+            ..ExperimentConfig::default()
+        };
+        config.env.offense = self.offense.unwrap_or(config.team.len());
+        config.env.evaluation_memory = self.evaluation_memory;
+        Ok(config)
+    }
+}
