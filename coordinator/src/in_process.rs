@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use agent::{Agent, Mode, Observation, Snapshot, Team};
-use env_server::RunEnvs;
+use env_server::{Env, Outcome, RunEnvs};
 
 use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::error::{ConfigError, Error};
@@ -41,14 +41,6 @@ impl InProcess {
     }
 }
 
-/// Run `run`'s end, if an object given in process failed.
-fn check(plugins: &[Arc<dyn Plugin>], run: u64) -> Result<(), Error> {
-    match plugins.iter().find_map(|p| p.failure()) {
-        Some(failure) => Err(Error::run(run, failure)),
-        None => Ok(()),
-    }
-}
-
 impl Backend for InProcess {
     fn begin_evaluation(&mut self, seed: u64) -> Result<(), Error> {
         self.simulators.begin_evaluation(seed);
@@ -59,37 +51,17 @@ impl Backend for InProcess {
         let run = self.run;
         let env = (self.simulators.env(mode))
             .ok_or_else(|| Error::run(run, "evaluation episode before begin_evaluation"))?;
-        env.reset();
-        self.team.begin_episode(mode);
-        let mut reward = 0.0;
-        loop {
-            self.observations.clear();
-            self.observations
-                .extend(env.states().enumerate().map(|(i, state)| {
-                    let pos = env.world().offense[i].pos;
-                    Observation {
-                        state,
-                        can_kick: env.can_kick(i),
-                        position: [pos.x, pos.y],
-                    }
-                }));
-            let actions = self
-                .team
-                .act(&self.observations, reward)
-                .map_err(|e| Error::run(run, e))?;
-            check(&self.plugins, run)?;
-            let outcome = env.step(actions);
-            if outcome.is_terminal() {
-                self.team.end_episode(outcome.reward());
-                check(&self.plugins, run)?;
-                return Ok(EpisodeEnd {
-                    outcome,
-                    frames: env.frame(),
-                    actions_timed_out: 0,
-                });
-            }
-            reward = outcome.reward();
-        }
+        let players = Players {
+            team: &mut self.team,
+            plugins: &self.plugins,
+            run,
+        };
+        let outcome = players.play(env, mode, &mut self.observations, |_| {})?;
+        Ok(EpisodeEnd {
+            outcome,
+            frames: env.frame(),
+            actions_timed_out: 0,
+        })
     }
 
     fn agent_stats(&self) -> Result<Vec<AgentStats>, Error> {
@@ -117,5 +89,60 @@ impl Backend for InProcess {
         let snapshots = self.team.agents().iter().map(Agent::snapshot).collect();
         check(&self.plugins, self.run)?;
         Ok(snapshots)
+    }
+}
+
+/// A team in a run, and the objects whose failures end it.
+pub(crate) struct Players<'a> {
+    pub team: &'a mut Team,
+    pub plugins: &'a [Arc<dyn Plugin>],
+    pub run: u64,
+}
+
+impl Players<'_> {
+    /// Plays one episode on `env` in `mode` (`observations` a buffer of the
+    /// agents' views), `observe` seeing every state from the reset on;
+    /// returns how it ended.
+    pub fn play(
+        self,
+        env: &mut Env,
+        mode: Mode,
+        observations: &mut Vec<Observation>,
+        mut observe: impl FnMut(&Env),
+    ) -> Result<Outcome, Error> {
+        let run = self.run;
+        env.reset();
+        observe(env);
+        self.team.begin_episode(mode);
+        let mut reward = 0.0;
+        loop {
+            observations.clear();
+            observations.extend(env.states().enumerate().map(|(i, state)| {
+                let pos = env.world().offense[i].pos;
+                Observation {
+                    state,
+                    can_kick: env.can_kick(i),
+                    position: [pos.x, pos.y],
+                }
+            }));
+            let actions = (self.team.act(observations, reward)).map_err(|e| Error::run(run, e))?;
+            check(self.plugins, run)?;
+            let outcome = env.step(actions);
+            observe(env);
+            if outcome.is_terminal() {
+                self.team.end_episode(outcome.reward());
+                check(self.plugins, run)?;
+                return Ok(outcome);
+            }
+            reward = outcome.reward();
+        }
+    }
+}
+
+/// Run `run`'s end, if an object given in process failed.
+fn check(plugins: &[Arc<dyn Plugin>], run: u64) -> Result<(), Error> {
+    match plugins.iter().find_map(|p| p.failure()) {
+        Some(failure) => Err(Error::run(run, failure)),
+        None => Ok(()),
     }
 }

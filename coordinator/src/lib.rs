@@ -9,6 +9,7 @@
 //!   an experiment's identity.
 //! - [`seeds`]: the seed of every random stream of a run from `(seed, run, stream)`.
 //! - [`experiment`]: a validated configuration with its snapshots loaded.
+//! - [`replay`]: one evaluation episode of a team, recorded for pictures and monitors.
 //! - [`request`]: what one `coordinator run` asks for, from the command line or Python.
 //! - [`plugin`]: learners and strategies given as objects in this process (Python's `run()`).
 //! - [`backend`]: the [`Backend`] a run is played on; [`in_process`] calls
@@ -57,6 +58,7 @@ pub mod membership;
 pub mod plugin;
 #[cfg(feature = "zenoh")]
 pub mod remote;
+pub mod replay;
 pub mod request;
 pub mod runner;
 pub mod schedule;

@@ -9,7 +9,8 @@ Costa, AAMAS 2017), from Python.
   an advising team, run by the Rust agent process (docs/learners.md).
 - :func:`run` and :func:`study` (:mod:`adhoc_advising.experiments`):
   experiments and studies in this process, as `coordinator run` and
-  `coordinator study`, with Python learners as objects (docs/python.md).
+  `coordinator study`, with Python learners as objects (docs/python.md);
+  :func:`replay`: one evaluation episode of a saved team, animated.
 - :func:`load` (:mod:`adhoc_advising.results`): what `run`/`study` and the
   command line wrote, as pandas DataFrames.
 - :mod:`adhoc_advising.strategy`: an advising strategy written in Python:
@@ -22,7 +23,7 @@ The simulator is the separate package ``halffield``.
 from __future__ import annotations
 
 from adhoc_advising._adhoc_advising import PAPER_ACTIONS, GreedyAgent
-from adhoc_advising.experiments import run, study
+from adhoc_advising.experiments import replay, run, study
 from adhoc_advising.results import load
 
-__all__ = ["PAPER_ACTIONS", "GreedyAgent", "load", "run", "study"]
+__all__ = ["PAPER_ACTIONS", "GreedyAgent", "load", "replay", "run", "study"]

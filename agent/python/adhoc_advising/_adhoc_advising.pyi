@@ -50,3 +50,18 @@ def study(
     threads: int | None = None,
     progress: bool = False,
 ) -> str | None: ...
+def replay(
+    *,
+    objects: list[
+        tuple[
+            tuple[Callable[[int, int, int, int], object], str] | None,
+            tuple[Callable[[int, int, int, int], object], str] | None,
+        ]
+    ],
+    algorithm: str | None = None,
+    team_file: str | None = None,
+    team_tables: str | None = None,
+    seed: int = 1,
+    episode: int = 1,
+    profile: str = "paper",
+) -> tuple[str, str, str, str]: ...

@@ -23,6 +23,7 @@ import json
 import os
 import sys
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Union
 
@@ -55,6 +56,16 @@ def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]
     return json.dumps(tables), objects
 
 
+def _team(team: TeamSpec | None) -> tuple[str | None, str | None, list]:
+    """A team as the native side takes it: a file, or tables and objects."""
+    if isinstance(team, (str, os.PathLike)):
+        return os.fspath(team), None, []
+    if team is None:
+        return None, None, []
+    tables, objects = _team_tables(team)
+    return None, tables, objects
+
+
 def run(
     *,
     out: str | os.PathLike[str],
@@ -84,12 +95,7 @@ def run(
     Python objects.
     ``progress``: a bar on stderr (default: when stderr is a terminal).
     An existing ``out`` of the same experiment is resumed."""
-    objects: list[tuple[Made | None, Made | None]] = []
-    team_file = team_tables = None
-    if isinstance(team, (str, os.PathLike)):
-        team_file = os.fspath(team)
-    elif team is not None:
-        team_tables, objects = _team_tables(team)
+    team_file, team_tables, objects = _team(team)
     if progress is None:
         progress = sys.stderr.isatty()
     _adhoc_advising.run(
@@ -145,3 +151,56 @@ def study(
         progress=progress,
     )
     return Path(out)
+
+
+@dataclass(frozen=True)
+class Replay:
+    """One recorded evaluation episode of a team. In a notebook it shows
+    as its animation."""
+
+    #: How it ended, e.g. ``"goal after 87 frames"``.
+    summary: str
+    #: The animation: players and ball moving, 10 frames a second (SVG).
+    svg: str
+    #: Every path of the episode in one still picture (SVG).
+    paths_svg: str
+    #: The episode as an rcssserver game log (version 5), for rcssmonitor
+    #: or soccerwindow2.
+    rcg: str
+
+    def _repr_svg_(self) -> str:
+        return self.svg
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Writes it by the name's suffix: ``.svg`` (the animation),
+        ``.html`` (the animation in a page) or ``.rcg`` (the game log)."""
+        path = Path(path)
+        contents = {
+            ".svg": self.svg,
+            ".html": f"<!doctype html><title>{self.summary}</title>\n{self.svg}\n",
+            ".rcg": self.rcg,
+        }.get(path.suffix)
+        if contents is None:
+            raise ValueError(f"{path}: the name must end in .svg, .html or .rcg")
+        path.write_text(contents)
+        return path
+
+
+def replay(
+    *,
+    algorithm: str | None = None,
+    team: TeamSpec | None = None,
+    seed: int = 1,
+    episode: int = 1,
+    profile: str = "paper",
+) -> Replay:
+    """Plays evaluation episode ``episode`` (1-based) of a team on a
+    simulator seeded ``seed`` and records it: its agents as a run starts
+    them (a team's ``load`` snapshots, e.g. ``run(save_agents=...)``'s),
+    greedy, learning nothing."""
+    team_file, team_tables, objects = _team(team)
+    summary, svg, paths_svg, rcg = _adhoc_advising.replay(
+        objects=objects, algorithm=algorithm, team_file=team_file, team_tables=team_tables,
+        seed=seed, episode=episode, profile=profile,
+    )
+    return Replay(summary, svg, paths_svg, rcg)

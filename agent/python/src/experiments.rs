@@ -16,9 +16,11 @@ use std::time::Duration;
 use agent::{Algorithm, Profile};
 use coordinator::experiment::Plugins;
 use coordinator::plugin::{Plugin, PluginSpec};
+use coordinator::replay::record_evaluation;
 use coordinator::request::{Agents, RunRequest};
 use coordinator::study::{StudyConfig, StudyOptions};
 use coordinator::{Error, Experiment, ExperimentDir, RunOptions, Team, load_team_file};
+use env_server::tools::rcg;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -100,6 +102,52 @@ fn with_cause(py: Python<'_>, e: Error, failures: &[Arc<Failure>]) -> PyErr {
     err
 }
 
+/// Who plays: `algorithm` for every agent, or a team file, or a team
+/// file's tables as JSON.
+fn agents(
+    algorithm: Option<&str>,
+    team_file: Option<PathBuf>,
+    team_tables: Option<&str>,
+    mistake_correcting: bool,
+) -> PyResult<Agents> {
+    let team = |t: Result<Team, coordinator::ConfigError>| t.map_err(|e| to_python(e.into()));
+    Ok(match (algorithm, team_file, team_tables) {
+        (Some(name), None, None) => Agents::Algorithm {
+            algorithm: parse::<Algorithm>("algorithm", name)?,
+            mistake_correcting,
+        },
+        (None, Some(path), None) => Agents::Team(team(load_team_file(&path))?),
+        (None, None, Some(json)) => {
+            let tables = serde_json::from_str(json)
+                .map_err(|e| PyValueError::new_err(format!("team: {e}")))?;
+            Agents::Team(team(Team::from_json(tables, Path::new(""), "team"))?)
+        }
+        _ => return Err(PyValueError::new_err("give one of algorithm= and team=")),
+    })
+}
+
+/// The plugins of `objects` for a team of `n` (agents not given: none),
+/// and each agent's failure slot.
+fn plugins(mut objects: Vec<AgentObjects>, n: usize) -> (Plugins, Vec<Arc<Failure>>) {
+    objects.resize_with(n.max(objects.len()), || (None, None));
+    let failures: Vec<Arc<Failure>> = objects.iter().map(|_| Arc::default()).collect();
+    let plugins = (objects.into_iter().zip(&failures))
+        .map(|(objects, failure)| match objects {
+            (None, None) => None,
+            (learner, strategy) => Some(Arc::new(PythonObjects {
+                spec: PluginSpec {
+                    learner: learner.as_ref().map(|(_, label)| label.clone()),
+                    strategy: strategy.as_ref().map(|(_, label)| label.clone()),
+                },
+                learner: learner.map(|(make, _)| make),
+                strategy: strategy.map(|(make, _)| make),
+                failure: failure.clone(),
+            }) as Arc<dyn Plugin>),
+        })
+        .collect();
+    (plugins, failures)
+}
+
 /// Plays an experiment into `out` as `coordinator run --transport
 /// in-process` does; returns the summary's path. `objects`: per agent, its
 /// Python learner and strategy, if any (agents not given: none).
@@ -115,7 +163,7 @@ fn with_cause(py: Python<'_>, e: Error, failures: &[Arc<Failure>]) -> PyErr {
 pub(crate) fn run(
     py: Python<'_>,
     out: PathBuf,
-    mut objects: Vec<AgentObjects>,
+    objects: Vec<AgentObjects>,
     algorithm: Option<&str>,
     team_file: Option<PathBuf>,
     team_tables: Option<&str>,
@@ -136,28 +184,7 @@ pub(crate) fn run(
     save_agents: Option<PathBuf>,
     progress: bool,
 ) -> PyResult<PathBuf> {
-    let agents = match (algorithm, team_file, team_tables) {
-        (Some(name), None, None) => Agents::Algorithm {
-            algorithm: parse::<Algorithm>("algorithm", name)?,
-            mistake_correcting,
-        },
-        (None, Some(path), None) => Agents::Team(
-            load_team_file(&path)
-                .map_err(Error::from)
-                .map_err(to_python)?,
-        ),
-        (None, None, Some(json)) => {
-            let tables = serde_json::from_str(json)
-                .map_err(|e| PyValueError::new_err(format!("team: {e}")))?;
-            let here = Path::new("");
-            Agents::Team(
-                Team::from_json(tables, here, "team")
-                    .map_err(Error::from)
-                    .map_err(to_python)?,
-            )
-        }
-        _ => return Err(PyValueError::new_err("give one of algorithm= and team=")),
-    };
+    let agents = agents(algorithm, team_file, team_tables, mistake_correcting)?;
     let request = RunRequest {
         runs,
         episodes,
@@ -175,23 +202,8 @@ pub(crate) fn run(
         advice_timeout_ms,
         ..RunRequest::new(agents)
     };
-    let config = request.config().map_err(Error::from).map_err(to_python)?;
-    objects.resize_with(config.team.len().max(objects.len()), || (None, None));
-    let failures: Vec<Arc<Failure>> = objects.iter().map(|_| Arc::default()).collect();
-    let plugins: Plugins = (objects.into_iter().zip(&failures))
-        .map(|(objects, failure)| match objects {
-            (None, None) => None,
-            (learner, strategy) => Some(Arc::new(PythonObjects {
-                spec: PluginSpec {
-                    learner: learner.as_ref().map(|(_, label)| label.clone()),
-                    strategy: strategy.as_ref().map(|(_, label)| label.clone()),
-                },
-                learner: learner.map(|(make, _)| make),
-                strategy: strategy.map(|(make, _)| make),
-                failure: failure.clone(),
-            }) as Arc<dyn Plugin>),
-        })
-        .collect();
+    let config = request.config().map_err(|e| to_python(e.into()))?;
+    let (plugins, failures) = plugins(objects, config.team.len());
     let stop = Arc::new(AtomicBool::new(false));
     let options = RunOptions {
         threads: threads.unwrap_or_else(coordinator::runner::default_threads),
@@ -248,4 +260,47 @@ pub(crate) fn study(
         coordinator::study::run_study(&study, &out, &options)
     })?;
     outcome.map(|o| o.report).map_err(to_python)
+}
+
+/// Plays evaluation episode `episode` of a team (`algorithm` for every
+/// agent, or a team whose agents `load` their snapshots) on a simulator
+/// seeded `seed`; returns its summary, its animation and its paths (SVG),
+/// and its rcssserver log.
+#[pyfunction]
+#[pyo3(signature = (
+    *, objects, algorithm=None, team_file=None, team_tables=None, seed=1, episode=1,
+    profile="paper"
+))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn replay(
+    py: Python<'_>,
+    objects: Vec<AgentObjects>,
+    algorithm: Option<&str>,
+    team_file: Option<PathBuf>,
+    team_tables: Option<&str>,
+    seed: u64,
+    episode: u64,
+    profile: &str,
+) -> PyResult<(String, String, String, String)> {
+    let request = RunRequest {
+        runs: 1,
+        episodes: 0,
+        profile: parse::<Profile>("profile", profile)?,
+        ..RunRequest::new(agents(algorithm, team_file, team_tables, false)?)
+    };
+    let label = request.label();
+    let config = request.config().map_err(|e| to_python(e.into()))?;
+    let (plugins, failures) = plugins(objects, config.team.len());
+    let trace = py
+        .detach(|| {
+            let experiment = Experiment::prepare_with(config, plugins)?;
+            record_evaluation(&experiment, seed, episode, &label)
+        })
+        .map_err(|e| with_cause(py, e, &failures))?;
+    Ok((
+        trace.summary(),
+        trace.to_animated_svg(),
+        trace.to_svg(),
+        rcg::to_rcg(&trace),
+    ))
 }

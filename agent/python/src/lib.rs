@@ -19,5 +19,6 @@ fn _adhoc_advising(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("STATE_FEATURES", proto::STATE_FEATURES)?;
     m.add_function(wrap_pyfunction!(experiments::run, m)?)?;
     m.add_function(wrap_pyfunction!(experiments::study, m)?)?;
+    m.add_function(wrap_pyfunction!(experiments::replay, m)?)?;
     Ok(())
 }

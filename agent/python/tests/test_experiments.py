@@ -6,6 +6,7 @@ cleanly and resuming."""
 from __future__ import annotations
 
 import json
+import re
 import signal
 import subprocess
 import sys
@@ -177,6 +178,26 @@ def test_a_strategy_answering_wrongly_is_named(tmp_path: Path) -> None:
             {"algorithm": "external", "strategy": Unreachable}]
     with pytest.raises(RuntimeError, match=r"agent 2's strategy `nearest-teammate.*`advisors`"):
         adhoc_advising.run(out=tmp_path / "out", team=team, **SMALL)
+
+
+def test_a_saved_team_replays_as_an_animation_and_a_game_log(tmp_path: Path) -> None:
+    saved = tmp_path / "saved"
+    adhoc_advising.run(out=tmp_path / "train", algorithm="adhoc-td", save_agents=saved,
+                       **{**SMALL, "runs": 1})
+    team = [{"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.qtable")}
+            for i in range(3)]
+    replay = adhoc_advising.replay(team=team, seed=4)
+    assert replay == adhoc_advising.replay(team=team, seed=4)
+    frames = int(re.search(r"after (\d+) frames?", replay.summary).group(1))
+    shows = [line for line in replay.rcg.splitlines() if line.startswith("(show ")]
+    assert len(shows) == frames + 1 and replay.rcg.startswith("ULG5")
+    # The three attackers, the keeper and the ball move.
+    assert replay.svg.count("<animateTransform") == 5
+    assert replay._repr_svg_() == replay.svg
+    assert replay.save(tmp_path / "episode.rcg").read_text() == replay.rcg
+    assert replay.svg in replay.save(tmp_path / "episode.html").read_text()
+    with pytest.raises(ValueError, match=".svg, .html or .rcg"):
+        replay.save(tmp_path / "episode.png")
 
 
 def test_bad_arguments_are_named(tmp_path: Path) -> None:

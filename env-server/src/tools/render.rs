@@ -1,5 +1,6 @@
 //! Pictures on the half field as SVG documents: a recorded episode's paths
-//! ([`record_episode`], [`Trace::to_svg`]), or an [`Env`] as it stands
+//! ([`record_episode`], [`Trace::to_svg`]) or its animation
+//! ([`Trace::to_animated_svg`]), or an [`Env`] as it stands
 //! ([`frame_svg`]). Writing them to a file, or as PNG, is the binary's job.
 //!
 //! The documents are built element by element with the `svg` crate, which
@@ -18,7 +19,7 @@ use crate::sim::referee::Outcome;
 use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
 use glam::DVec2;
 use svg::node::element::path::Data;
-use svg::node::element::{Circle, Group, Line, Path, Polyline, Rectangle, Text};
+use svg::node::element::{AnimateTransform, Circle, Group, Line, Path, Polyline, Rectangle, Text};
 use svg::{Document, Node as _};
 
 /// A player: who kicked, or whom a marker shows.
@@ -42,8 +43,8 @@ pub struct Kick {
 /// Everything drawn of one episode: positions of every state from the reset on.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trace {
-    /// Policy that played it.
-    pub policy: BaselinePolicy,
+    /// Who played it, as the title says it: `policy random`, `team adhoc-td`.
+    pub played_by: String,
     /// Seed of the run.
     pub seed: u64,
     /// Episode number within the run (1-based).
@@ -74,10 +75,11 @@ pub enum RenderError {
 }
 
 impl Trace {
-    /// An empty trace of an `offense`-agent episode.
-    fn new(policy: BaselinePolicy, seed: u64, episode: u64, offense: usize) -> Self {
+    /// An empty trace of an `offense`-agent episode played by `played_by`;
+    /// [`observe`](Self::observe) records its states.
+    pub fn new(played_by: String, seed: u64, episode: u64, offense: usize) -> Self {
         Trace {
-            policy,
+            played_by,
             seed,
             episode,
             ball: Vec::new(),
@@ -89,8 +91,9 @@ impl Trace {
         }
     }
 
-    /// Records the state of `env` and the kicks that led to it.
-    fn observe(&mut self, env: &Env) {
+    /// Records the state of `env` and the kicks that led to it; at the
+    /// episode's end, its outcome and frames.
+    pub fn observe(&mut self, env: &Env) {
         let world = env.world();
         if let Some(state) = self.ball.len().checked_sub(1) {
             let n = world.offense.len();
@@ -110,6 +113,8 @@ impl Trace {
             path.push(p.pos);
         }
         self.keeper.push(world.keeper.pos);
+        self.outcome = env.outcome();
+        self.frames = env.frame();
     }
 
     /// "goal after 104 frames" and the like.
@@ -125,6 +130,36 @@ impl Trace {
     /// The picture as an SVG document.
     pub fn to_svg(&self) -> String {
         self.picture().to_string()
+    }
+
+    /// The episode as an animation (SVG's own, which browsers and notebooks
+    /// play): every player and the ball moving over their faint paths, ten
+    /// frames a second as the server plays them, then again.
+    pub fn to_animated_svg(&self) -> String {
+        let (mut doc, w) = canvas();
+        let n = self.offense.len();
+        let detail = format!(
+            "{} · {n} offense vs keeper · seed {} · episode {} · 10 frames/s",
+            self.played_by, self.seed, self.episode
+        );
+        title(&mut doc, w, &self.summary(), self.outcome, &detail);
+        field(&mut doc);
+        let players = (self.offense.iter().enumerate())
+            .map(|(i, p)| (p, Kicker::Offense(i)))
+            .chain([(&self.keeper, Kicker::Keeper)]);
+        let duration = format!("{:.1}s", self.ball.len().max(1) as f64 / 10.0);
+        for (points, who) in players {
+            if let Some(line) = path(points, colour(who), 2.0, 0.35) {
+                doc.append(line);
+            }
+            let mut marker = Group::new();
+            end_marker(&mut marker, (0.0, 0.0), colour(who), &label(n, who));
+            doc.append(moving(marker, points, &duration));
+        }
+        let mut ball_marker = Group::new();
+        ball_marker.append(ball((0.0, 0.0)));
+        doc.append(moving(ball_marker, &self.ball, &duration));
+        doc.to_string()
     }
 
     /// The picture: title band, field, paths, kicks and markers.
@@ -192,8 +227,8 @@ impl Trace {
     fn header(&self, doc: &mut Document, w: f64) {
         let n = self.offense.len();
         let detail = format!(
-            "policy {} · {n} offense vs keeper · seed {} · episode {} · {} kick{}",
-            self.policy,
+            "{} · {n} offense vs keeper · seed {} · episode {} · {} kick{}",
+            self.played_by,
             self.seed,
             self.episode,
             self.kicks.len(),
@@ -254,10 +289,8 @@ pub fn record_episode(
     for _ in 1..episode {
         play_episode(&mut env, policy, &mut rng, |_, _| {});
     }
-    let mut trace = Trace::new(policy, seed, episode, offense);
-    let (outcome, frames) = play_episode(&mut env, policy, &mut rng, |env, _| trace.observe(env));
-    trace.outcome = outcome;
-    trace.frames = frames;
+    let mut trace = Trace::new(format!("policy {policy}"), seed, episode, offense);
+    play_episode(&mut env, policy, &mut rng, |env, _| trace.observe(env));
     Ok(trace)
 }
 
@@ -663,8 +696,29 @@ fn start_marker(doc: &mut Document, at: Px, colour: &str, label: &str) {
     marker_label(doc, at, label, "#ffffff");
 }
 
+/// `group` (drawn around the origin) following `points`, one a frame over
+/// `duration`, again and again.
+fn moving(group: Group, points: &[DVec2], duration: &str) -> Group {
+    let values: Vec<String> = (points.iter())
+        .map(|&p| {
+            let (x, y) = px(p);
+            format!("{} {}", tenth(x), tenth(y))
+        })
+        .collect();
+    let (x, y) = points.first().map_or((0.0, 0.0), |&p| px(p));
+    let motion = AnimateTransform::new()
+        .set("attributeName", "transform")
+        .set("type", "translate")
+        .set("values", values.join(";"))
+        .set("dur", duration)
+        .set("repeatCount", "indefinite");
+    group
+        .set("transform", format!("translate({} {})", tenth(x), tenth(y)))
+        .add(motion)
+}
+
 /// A filled disc at a player's end, its label inside.
-fn end_marker(doc: &mut Document, at: Px, colour: &str, label: &str) {
+fn end_marker(doc: &mut impl svg::Node, at: Px, colour: &str, label: &str) {
     let disc = circle(at, marker_radius(label))
         .set("class", "end")
         .set("fill", colour)
@@ -675,7 +729,7 @@ fn end_marker(doc: &mut Document, at: Px, colour: &str, label: &str) {
 }
 
 /// A marker's label, centred on it (none if empty).
-fn marker_label(doc: &mut Document, (x, y): Px, label: &str, colour: &str) {
+fn marker_label(doc: &mut impl svg::Node, (x, y): Px, label: &str, colour: &str) {
     if label.is_empty() {
         return;
     }
@@ -796,6 +850,32 @@ mod tests {
             .filter(|e| e.name == "text")
             .map(|e| e.text.as_str())
             .collect()
+    }
+
+    #[test]
+    fn the_animation_moves_every_player_and_the_ball_through_every_state() {
+        let trace = trace(3, 1);
+        let elements = read(&trace.to_animated_svg());
+        let moves: Vec<&Element> = (elements.iter())
+            .filter(|e| e.name == "animateTransform")
+            .collect();
+        // Three attackers, the keeper, then the ball.
+        assert_eq!(moves.len(), 5);
+        let duration = format!("{:.1}s", trace.ball.len() as f64 / 10.0);
+        let paths = trace.offense.iter().chain([&trace.keeper, &trace.ball]);
+        for (motion, path) in moves.iter().zip(paths) {
+            assert_eq!(motion.get("dur"), duration);
+            let values: Vec<(f64, f64)> = (motion.get("values").split(';'))
+                .map(|v| {
+                    let (x, y) = v.split_once(' ').unwrap();
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect();
+            let expected: Vec<(f64, f64)> = path.iter().map(|&p| at(p)).collect();
+            assert_eq!(values, expected);
+        }
+        let said = |what: &str| texts(&elements).iter().any(|t| t.contains(what));
+        assert!(said("policy random") && said(&format!("{} frames", trace.frames)));
     }
 
     /// The elements of `elements` of class `class`.
