@@ -47,15 +47,25 @@ class LinearSarsa(Learner):
         self.traces = np.zeros_like(self.weights)
         self.alpha = alpha / (start.features * TILINGS)
         self.gamma, self.lam, self.epsilon = gamma, lam, epsilon
+        self.decay = gamma * lam
         offsets = np.arange(TILINGS) * WIDTH / TILINGS
         self.offsets = offsets[None, :]
         self.base = (np.arange(start.features)[:, None] * TILINGS + np.arange(TILINGS)) * TILES
+        #: The tiles of the states met lately: a transition's next state is
+        #: the next one's state, and values, choose and learn ask in turn.
+        self.tiles: dict[State, np.ndarray] = {}
 
     def active(self, state: State) -> np.ndarray:
         """The indices of the tiles `state` lies in, one per feature and tiling."""
-        x = np.asarray(state)[:, None] + 1.0 + self.offsets
-        tile = np.clip((x / WIDTH).astype(int), 0, TILES - 1)
-        return (self.base + tile).ravel()
+        tiles = self.tiles.get(state)
+        if tiles is None:
+            x = np.asarray(state)[:, None] + 1.0 + self.offsets
+            tile = np.clip((x / WIDTH).astype(int), 0, TILES - 1)
+            tiles = (self.base + tile).ravel()
+            if len(self.tiles) >= 64:
+                self.tiles.clear()
+            self.tiles[state] = tiles
+        return tiles
 
     def q(self, state: State) -> np.ndarray:
         return self.weights[:, self.active(state)].sum(axis=1)
@@ -75,11 +85,11 @@ class LinearSarsa(Learner):
         tiles = self.active(t.state)
         target = t.reward
         if t.next_state is not None and t.next_action is not None:
-            target += self.gamma * self.weights[t.next_action, self.active(t.next_state)].sum()
-        error = target - self.weights[t.action, tiles].sum()
-        self.traces *= self.gamma * self.lam
+            target += self.gamma * self.weights[t.next_action][self.active(t.next_state)].sum()
+        error = target - self.weights[t.action][tiles].sum()
+        self.traces *= self.decay
         self.traces[:, tiles] = 0.0
-        self.traces[t.action, tiles] = 1.0
+        self.traces[t.action][tiles] = 1.0
         self.weights += self.alpha * error * self.traces
 
     def end_episode(self) -> None:

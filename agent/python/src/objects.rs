@@ -7,7 +7,8 @@
 //! from) and every later call returns at once; the in-process backend asks
 //! for it after every frame and ends the run.
 
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, PoisonError, mpsc};
 
 use agent::{
     ActionValues, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng, AskContext,
@@ -94,7 +95,7 @@ impl Plugin for PythonObjects {
         };
         let label = self.spec.learner.as_deref().unwrap_or_default();
         let object = self.make(make, start, "learner", label)?;
-        Ok(Some(Box::new(PythonLearner(object))))
+        Ok(Some(Box::new(PythonLearner::start(object)?)))
     }
 
     fn strategy(&self, start: PluginStart) -> Result<Option<Box<dyn AdvisingStrategy>>, String> {
@@ -197,9 +198,51 @@ impl PythonObject {
     }
 }
 
-/// A learner adapter.
+/// One call to a learner, made by its thread.
+type Job = Box<dyn FnOnce(Python<'_>) + Send>;
+
+/// A learner adapter, called by a thread of its own in the order of the
+/// calls: `learn` and `replay` return at once, as they do over a learner
+/// process's pipe, so that the learner's work overlaps the simulator's and
+/// the other agents'; the others wait for every call before them (and
+/// `end_episode`, so that a failure is known when its episode ends), made
+/// directly when none is waiting. The same calls in the same order: the
+/// same results.
 #[derive(Debug)]
-struct PythonLearner(PythonObject);
+struct PythonLearner {
+    object: Arc<PythonObject>,
+    /// Calls posted and not yet made.
+    pending: Arc<AtomicUsize>,
+    jobs: Option<mpsc::Sender<Job>>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl PythonLearner {
+    /// `object`, with its thread started.
+    fn start(object: PythonObject) -> Result<Self, String> {
+        let (jobs, queue) = mpsc::channel::<Job>();
+        let thread = std::thread::Builder::new()
+            .name("python-learner".into())
+            .spawn(move || {
+                // The GIL is held while calls wait, released when none does.
+                while let Ok(job) = queue.recv() {
+                    Python::attach(|py| {
+                        job(py);
+                        while let Ok(job) = queue.try_recv() {
+                            job(py);
+                        }
+                    });
+                }
+            })
+            .map_err(|e| format!("cannot start {}'s thread: {e}", object.what))?;
+        Ok(Self {
+            object: Arc::new(object),
+            pending: Arc::default(),
+            jobs: Some(jobs),
+            thread: Some(thread),
+        })
+    }
+}
 
 /// The six features as a Python tuple.
 type Features = (f64, f64, f64, f64, f64, f64);
@@ -227,46 +270,96 @@ fn transition((from, reward, next): &Experience<'_>) -> PyTransition {
     )
 }
 
+impl PythonLearner {
+    /// `call` made by the learner's thread after every call before it.
+    fn post(&self, call: impl FnOnce(Python<'_>, &PythonObject) + Send + 'static) {
+        let (object, pending) = (self.object.clone(), self.pending.clone());
+        let job: Job = Box::new(move |py| {
+            call(py, &object);
+            pending.fetch_sub(1, Ordering::Release);
+        });
+        self.pending.fetch_add(1, Ordering::Relaxed);
+        if let Some(jobs) = &self.jobs {
+            // Its thread only ends when the learner is dropped.
+            let _ = jobs.send(job);
+        }
+    }
+
+    /// What `call` answers, made after every call before it: here when
+    /// none is waiting, else by the learner's thread; `None` if that thread
+    /// is gone.
+    fn ask<T: Send + 'static>(
+        &self,
+        call: impl FnOnce(Python<'_>, &PythonObject) -> T + Send + 'static,
+    ) -> Option<T> {
+        if self.pending.load(Ordering::Acquire) == 0 {
+            return Some(Python::attach(|py| call(py, &self.object)));
+        }
+        let (tx, rx) = mpsc::sync_channel(1);
+        self.post(move |py, object| {
+            let _ = tx.send(call(py, object));
+        });
+        rx.recv().ok()
+    }
+}
+
+impl Drop for PythonLearner {
+    /// Ends the learner's thread once it has made every call.
+    fn drop(&mut self) {
+        self.jobs.take();
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
 impl Learner for PythonLearner {
     fn values(&mut self, at: Seen<'_>) -> ActionValues {
-        Python::attach(|py| {
-            let q = self.0.answer(py, "values", state(at));
-            q.and_then(|q| self.0.values(py, "values", q))
-                .unwrap_or_default()
+        let at = state(at);
+        self.ask(move |py, o| {
+            let q = o.answer(py, "values", at);
+            q.and_then(|q| o.values(py, "values", q))
         })
+        .flatten()
+        .unwrap_or_default()
     }
 
     fn choose(&mut self, at: Seen<'_>, _: &mut AgentRng) -> Action {
-        Python::attach(|py| {
-            let action: Option<usize> = self.0.answer(py, "choose", state(at));
+        let at = state(at);
+        self.ask(move |py, o| {
+            let action: Option<usize> = o.answer(py, "choose", at);
             match action.map(|a| (a, Action::ALL.get(a))) {
                 Some((_, Some(&a))) if a.is_kick() => a,
                 Some((a, _)) => {
                     let reason = format!("action {a}; a kicker's actions are 1 to 4");
-                    self.0.refuse(py, "choose", reason);
+                    o.refuse(py, "choose", reason);
                     Action::Shoot
                 }
                 None => Action::Shoot,
             }
         })
+        .unwrap_or(Action::Shoot)
     }
 
     fn learn(&mut self, step: Experience<'_>) {
-        Python::attach(|py| {
-            self.0.call(py, "learn", (transition(&step),));
+        let t = transition(&step);
+        self.post(move |py, o| {
+            o.call(py, "learn", (t,));
         });
     }
 
+    /// Waits for the episode's calls: a failure among them is known when
+    /// the episode ends.
     fn end_episode(&mut self) {
-        Python::attach(|py| {
-            self.0.call(py, "end_episode", ());
+        self.ask(|py, o| {
+            o.call(py, "end_episode", ());
         });
     }
 
     fn replay(&mut self, episode: &[Experience<'_>]) {
         let episode: Vec<PyTransition> = episode.iter().map(transition).collect();
-        Python::attach(|py| {
-            self.0.call(py, "replay", (episode,));
+        self.post(move |py, o| {
+            o.call(py, "replay", (episode,));
         });
     }
 
@@ -275,24 +368,31 @@ impl Learner for PythonLearner {
     }
 
     fn save_state(&self) -> Option<Vec<u8>> {
-        Python::attach(|py| self.0.answer::<Option<Vec<u8>>>(py, "save", ())).flatten()
+        self.ask(|py, o| o.answer::<Option<Vec<u8>>>(py, "save", ()))
+            .flatten()
+            .flatten()
     }
 
     fn load_state(&mut self, state: &[u8]) -> Result<(), String> {
-        Python::attach(|py| {
-            let bytes = pyo3::types::PyBytes::new(py, state);
-            match self.0.call(py, "restore", (bytes,)) {
-                Some(_) => Ok(()),
-                None => Err(format!("{} could not restore its saved state", self.0.what)),
-            }
-        })
+        let state = state.to_vec();
+        let restored = self.ask(move |py, o| {
+            let bytes = pyo3::types::PyBytes::new(py, &state);
+            o.call(py, "restore", (bytes,)).is_some()
+        });
+        match restored {
+            Some(true) => Ok(()),
+            _ => Err(format!(
+                "{} could not restore its saved state",
+                self.object.what
+            )),
+        }
     }
 
     fn restore(&mut self, _: Vec<ActionValues>) -> Result<(), String> {
         Err(format!(
             "{} keeps its learned state itself and this snapshot holds none of it (a learner \
              without `save`/`restore`, or a snapshot of another learner)",
-            self.0.what
+            self.object.what
         ))
     }
 }
