@@ -72,8 +72,9 @@ def gains(study: Study, window: str = "last_ten_gain", ax: Axes | None = None) -
     ``area_gain``) with its paired interval, from ``significance.json``."""
     ax = _axes(ax)
     g = study.gains.iloc[::-1]
-    errors = [g[window] - g[f"{window}_ci_low"], g[f"{window}_ci_high"] - g[window]]
-    ax.errorbar(g[window], g.entry, xerr=errors, fmt="o", capsize=3)
+    gain = g[window].to_numpy()
+    errors = [gain - g[f"{window}_ci_low"].to_numpy(), g[f"{window}_ci_high"].to_numpy() - gain]
+    ax.errorbar(gain, g.entry.to_numpy(), xerr=errors, fmt="o", capsize=3)
     ax.axvline(0, color="grey", linewidth=0.8)
     baseline = study.gains.baseline.iloc[0] if len(study.gains) else "the baseline"
     ax.set_xlabel(f"goal % gain over {baseline}")

@@ -1,4 +1,4 @@
-//! `run()` and `study()`: the coordinator's experiments in this process,
+//! `run()`, `study()` and `replay()`: the coordinator's experiments in this process,
 //! from the same arguments as `coordinator run` and `coordinator study`
 //! (the package's `adhoc_advising.experiments` gives them their Python
 //! signatures and turns Python learners into [`PythonObjects`]).

@@ -1,6 +1,7 @@
-//! Python learners and strategies given as objects to `run()`: called
-//! directly, in this process, with the GIL taken for each call
-//! (coordinator's `plugin` seam).
+//! Python learners and strategies given as objects to `run()`
+//! (coordinator's `plugin` seam), called in this process with the GIL taken
+//! for each call: a strategy by its run's thread, a learner by a thread of
+//! its own ([`PythonLearner`]).
 //!
 //! The seams cannot return errors, so the first exception of an
 //! agent's objects is kept (with the exception itself, for `run()` to raise

@@ -86,3 +86,26 @@ def test_one_run_and_a_wrong_path(study_dir: Path) -> None:
     assert list(run.episode) == [0, 20, 40] and set(run.run) == {1}
     with pytest.raises(FileNotFoundError, match="neither study.json"):
         load(study_dir / "figures")
+
+
+def test_what_a_reproduction_carries_redraws_its_figures(study_dir: Path, tmp_path: Path) -> None:
+    """docs/reproduction/<study>/ keeps study.json, significance.json and each
+    entry's config.json and summary.json, not the runs: enough for load()
+    and the plots."""
+    plots = pytest.importorskip("adhoc_advising.plots")
+    pytest.importorskip("matplotlib")
+    import shutil
+
+    kept = tmp_path / "kept"
+    kept.mkdir()
+    for name in ("study.json", "significance.json"):
+        shutil.copy(study_dir / name, kept / name)
+    for entry in ("no-advice", "adhoc-td"):
+        (kept / entry).mkdir()
+        for name in ("config.json", "summary.json"):
+            shutil.copy(study_dir / entry / name, kept / entry / name)
+    study = load(kept)
+    assert study.curves.empty and list(study.gains.entry) == ["adhoc-td"]
+    assert study.summary.equals(load(study_dir).summary)
+    for draw in (plots.curves, plots.gains, plots.gain_vs_messages):
+        assert draw(study).has_data()
