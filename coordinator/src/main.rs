@@ -37,6 +37,11 @@ enum CoordinatorCommand {
     /// Run a study: every algorithm of a preset or study file, statistics,
     /// figures and REPORT.md; resumes in the same directory.
     Study(StudyArgs),
+    /// Play one evaluation episode of a team (its agents from their
+    /// snapshots, greedy, learning nothing) and write it: an animation (.svg,
+    /// or .html) or an rcssserver game log for rcssmonitor or soccerwindow2
+    /// (.rcg).
+    Replay(ReplayArgs),
     /// Write a new random experiment secret to FILE (mode 600), for
     /// processes started by hand: give every one `--secret-file FILE`.
     Secret {
@@ -80,6 +85,35 @@ enum CoordinatorCommand {
         #[arg(long, value_name = "LEVEL", default_value_t = 0.95)]
         level: f64,
     },
+}
+
+#[derive(Args)]
+#[command(group = clap::ArgGroup::new("agents").required(true).args(["algorithm", "team"]))]
+struct ReplayArgs {
+    /// Algorithm of every agent, from scratch.
+    #[arg(long, value_name = "NAME", value_parser = algorithm_names())]
+    algorithm: Option<Algorithm>,
+    /// Team file whose agents `load` their snapshots (e.g. --save-agents').
+    #[arg(long, value_name = "FILE")]
+    team: Option<PathBuf>,
+    /// Fidelity profile of the agents with --algorithm.
+    #[arg(
+        long,
+        value_name = "PROFILE",
+        default_value = "paper",
+        conflicts_with = "team"
+    )]
+    profile: Profile,
+    /// Seed of the simulator.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    seed: u64,
+    /// Which evaluation episode on that simulator (1 is the first).
+    #[arg(long, value_name = "K", default_value_t = 1,
+          value_parser = clap::value_parser!(u64).range(1..))]
+    episode: u64,
+    /// Output file, ending in .svg, .html or .rcg.
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
 }
 
 #[derive(Args)]
@@ -345,6 +379,7 @@ fn run(cli: CoordinatorCli) -> Result<()> {
     match cli.command {
         CoordinatorCommand::Run(args) => run_one(args),
         CoordinatorCommand::Study(args) => run_study(args),
+        CoordinatorCommand::Replay(args) => replay(args),
         CoordinatorCommand::Secret { file } => {
             node::secret::Secret::create(&file)?;
             Ok(())
@@ -387,6 +422,34 @@ fn aggregate(path: &std::path::Path, baseline: &str, level: f64) -> Result<()> {
     let report = score_aggregates(&scores, baseline, level)
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     println!("{}", serde_json::to_string_pretty(&report)?);
+    Ok(())
+}
+
+fn replay(args: ReplayArgs) -> Result<()> {
+    let format = coordinator::replay::TraceFile::of(&args.out)?;
+    let agents = match (&args.team, args.algorithm) {
+        (Some(path), _) => Agents::Team(load_team_file(path)?),
+        (None, Some(algorithm)) => Agents::Algorithm {
+            algorithm,
+            mistake_correcting: false,
+        },
+        (None, None) => unreachable!("clap requires --algorithm or --team"),
+    };
+    let request = RunRequest {
+        runs: 1,
+        episodes: 0,
+        profile: args.profile,
+        ..RunRequest::new(agents)
+    };
+    let label = match &args.team {
+        Some(path) => format!("team {}", path.display()),
+        None => request.label(),
+    };
+    let experiment = Experiment::prepare(request.config()?)?;
+    let trace =
+        coordinator::replay::record_evaluation(&experiment, args.seed, args.episode, &label)?;
+    format.write(&trace, &args.out)?;
+    println!("wrote {}: {}", args.out.display(), trace.summary());
     Ok(())
 }
 

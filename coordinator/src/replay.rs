@@ -2,8 +2,11 @@
 //! researcher looks at (an animated picture, the paths, an rcssserver log
 //! for rcssmonitor or soccerwindow2; `env_server::tools`).
 
+use std::path::Path;
+
 use agent::{Mode, Team};
 use env_server::Env;
+use env_server::tools::rcg;
 use env_server::tools::render::Trace;
 
 use crate::error::{ConfigError, Error};
@@ -44,4 +47,47 @@ pub fn record_evaluation(
         })?;
     }
     Ok(trace)
+}
+
+/// What a trace is written as, told by the file's name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TraceFile {
+    /// `.svg`: the animation.
+    Svg,
+    /// `.html`: the animation in a page.
+    Html,
+    /// `.rcg`: an rcssserver game log.
+    Rcg,
+}
+
+impl TraceFile {
+    /// The format `path`'s name asks for, or an error naming the accepted ones.
+    pub fn of(path: &Path) -> Result<Self, Error> {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("svg") => Ok(Self::Svg),
+            Some("html") => Ok(Self::Html),
+            Some("rcg") => Ok(Self::Rcg),
+            _ => {
+                let reason = format!(
+                    "{}: the name must end in .svg, .html or .rcg",
+                    path.display()
+                );
+                Err(ConfigError::new("out", reason).into())
+            }
+        }
+    }
+
+    /// Writes `trace` to `path` in this format.
+    pub fn write(self, trace: &Trace, path: &Path) -> Result<(), Error> {
+        let text = match self {
+            Self::Svg => trace.to_animated_svg(),
+            Self::Html => format!(
+                "<!doctype html><title>{}</title>\n{}\n",
+                trace.summary(),
+                trace.to_animated_svg()
+            ),
+            Self::Rcg => rcg::to_rcg(trace),
+        };
+        crate::store::write_atomically(path, text.as_bytes())
+    }
 }

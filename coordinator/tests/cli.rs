@@ -215,6 +215,64 @@ fn the_summary_is_byte_identical_whatever_the_threads() {
 }
 
 #[test]
+fn a_saved_team_replays_as_a_game_log_that_reads_back() {
+    let tmp = tempfile::tempdir().unwrap();
+    let agents = tmp.path().join("agents");
+    let trained = tmp.path().join("trained");
+    ok(&run_tiny(
+        "adhoc-td",
+        &trained,
+        &["--save-agents", agents.to_str().unwrap()],
+    ));
+    let team = tmp.path().join("team.toml");
+    let tables: Vec<String> = (0..3)
+        .map(|i| {
+            format!(
+                "[[agent]]\nalgorithm = \"adhoc-td\"\nload = \"agents/run-0-agent-{i}.qtable\"\n"
+            )
+        })
+        .collect();
+    fs::write(&team, tables.join("\n")).unwrap();
+    let replay = |out: &Path| {
+        let (team, out) = (team.to_str().unwrap(), out.to_str().unwrap());
+        coordinator(&[
+            "replay",
+            "--team",
+            team,
+            "--seed",
+            "5",
+            "--episode",
+            "2",
+            "--out",
+            out,
+        ])
+    };
+    let log = tmp.path().join("episode.rcg");
+    let output = replay(&log);
+    ok(&output);
+    // "wrote <path>: goal after 87 frames", and one show line per state.
+    let said = String::from_utf8_lossy(&output.stdout);
+    let frames: usize = (said.split(" after ").nth(1))
+        .and_then(|rest| rest.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("{said}"));
+    let shows = env_server::tools::rcg::read_shows(&fs::read_to_string(&log).unwrap()).unwrap();
+    assert_eq!(shows.len(), frames + 1);
+    assert!(shows.iter().all(|s| s.players.len() == 4));
+    // The same episode again, the same bytes; an animation beside it.
+    let again = tmp.path().join("again.rcg");
+    ok(&replay(&again));
+    assert_eq!(fs::read(&log).unwrap(), fs::read(&again).unwrap());
+    let animation = tmp.path().join("episode.svg");
+    ok(&replay(&animation));
+    let svg = fs::read_to_string(&animation).unwrap();
+    assert_eq!(svg.matches("<animateTransform").count(), 5);
+    refused(
+        &replay(&tmp.path().join("episode.png")),
+        ".svg, .html or .rcg",
+    );
+}
+
+#[test]
 fn saved_agents_start_a_mixed_team() {
     let tmp = tempfile::tempdir().unwrap();
     let agents = tmp.path().join("agents");
