@@ -126,6 +126,8 @@ pub fn play_run(
     let mut trained = 0u64;
     let mut timed_out = 0u64;
     let mut joins = Vec::new();
+    // By slot, the advice acted on by the agents that left it.
+    let mut departed = vec![Vec::new(); config.team.len()];
     for (index, at) in config.eval_points().into_iter().enumerate() {
         let start = Instant::now();
         while trained < at {
@@ -136,6 +138,9 @@ pub fn play_run(
             progress(u64::from(episode.frames))?;
             for (event, e) in config.events.iter().enumerate() {
                 if e.episode == trained {
+                    // Who advised the agent that leaves stays in its slot's row.
+                    let row = backend.advice_matrix()?.swap_remove(e.slot);
+                    add(&mut departed[e.slot], &row);
                     let wait_ms = backend.replace(experiment, event)?;
                     tracing::info!(
                         run,
@@ -186,6 +191,9 @@ pub fn play_run(
         points.push(point);
     }
     let mut advice_matrix = backend.advice_matrix()?;
+    for (row, left) in advice_matrix.iter_mut().zip(&departed) {
+        add(row, left);
+    }
     if advice_matrix.iter().flatten().all(|&n| n == 0) {
         advice_matrix.clear();
     }
@@ -198,4 +206,12 @@ pub fn play_run(
         restarts: backend.restarts(),
         joins,
     })
+}
+
+/// Adds `more` to `row`, element by element (an empty `row` becomes `more`).
+fn add(row: &mut Vec<u64>, more: &[u64]) {
+    row.resize(row.len().max(more.len()), 0);
+    for (n, m) in row.iter_mut().zip(more) {
+        *n += m;
+    }
 }

@@ -273,6 +273,45 @@ fn a_saved_team_replays_as_a_game_log_that_reads_back() {
 }
 
 #[test]
+fn who_advised_whom_keeps_the_advice_of_an_agent_that_left() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Early advising asks at every step; its newcomer never asks.
+    let team = tmp.path().join("team.toml");
+    let agent = "[[agent]]\nalgorithm = \"early-advising\"\n";
+    let event = "[[event]]\nepisode = 30\nslot = 2\n\
+                 newcomer = { algorithm = \"early-advising\", ask_budget = 0 }\n";
+    fs::write(&team, format!("{agent}{agent}{agent}{event}")).unwrap();
+    let out = tmp.path().join("out");
+    let mut args = vec!["run", "--team", team.to_str().unwrap()];
+    args.extend(TINY);
+    args.extend([
+        "--transport",
+        "in-process",
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    ok(&coordinator(&args));
+    let run: Value = serde_json::from_slice(&fs::read(out.join("run-0.json")).unwrap()).unwrap();
+    let acted_on = |episode: u64, agent: usize| {
+        let points = run["points"].as_array().unwrap();
+        let point = points.iter().find(|p| p["episode"] == episode).unwrap();
+        point["agents"][agent]["ask_spent"].as_u64().unwrap()
+    };
+    // Before the join the first agent of slot 2 acted on advice; after it
+    // the newcomer acted on none, and the slot's row still counts the first's.
+    let before = acted_on(20, 2);
+    assert!(before > 0 && acted_on(40, 2) == 0, "{before}");
+    let row: u64 = (run["advice_matrix"][2].as_array().unwrap().iter())
+        .map(|n| n.as_u64().unwrap())
+        .sum();
+    assert!(
+        row >= before,
+        "slot 2's row {row} < {before} acted on before the join"
+    );
+}
+
+#[test]
 fn saved_agents_start_a_mixed_team() {
     let tmp = tempfile::tempdir().unwrap();
     let agents = tmp.path().join("agents");
