@@ -235,6 +235,21 @@ fn draw_chart(
         };
         chart.draw_series(c.marks.iter().map(triangle))?;
     }
+    // Each dot's label beside it, moved down where it would cover another.
+    let at = |p: &SeriesPoint| {
+        p.mean
+            .map(|mean| chart.backend_coord(&(p.episode, clamp(mean))))
+    };
+    let labelled: Vec<((i32, i32), &str)> = (dots.iter())
+        .flat_map(|c| {
+            c.series
+                .points
+                .iter()
+                .map(move |p| (p, c.series.label.as_str()))
+        })
+        .filter_map(|(p, label)| Some((at(p)?, label)))
+        .collect();
+    let mut shifts = label_shifts(&labelled).into_iter();
     for c in &dots {
         let label = font(14.0, &c.colour).pos(Pos::new(HPos::Left, VPos::Center));
         for p in &c.series.points {
@@ -250,9 +265,10 @@ fn draw_chart(
                 chart.draw_series([cap(low), cap(high)])?;
             }
             if let Some(mean) = p.mean {
+                let shift = shifts.next().unwrap_or_default();
                 let dot = EmptyElement::at((p.episode, clamp(mean)))
                     + Circle::new((0, 0), DOT, c.colour.filled())
-                    + Text::new(c.series.label.clone(), (DOT + 4, 0), label.clone());
+                    + Text::new(c.series.label.clone(), (DOT + 4, shift), label.clone());
                 chart.draw_series([dot])?;
             }
         }
@@ -262,6 +278,43 @@ fn draw_chart(
         draw_legend(&area, curves, legend)?;
     }
     Ok(())
+}
+
+/// How far down (pixels) to draw each label of `labelled` (a dot's centre
+/// and its label, in drawing order) so that none covers another: the
+/// highest placed first, each moved down a line at a time while it would.
+fn label_shifts(labelled: &[((i32, i32), &str)]) -> Vec<i32> {
+    const LINE: i32 = 16;
+    // A generous average glyph width: DejaVu Sans is wide.
+    let boxed = |((x, y), label): ((i32, i32), &str), shift: i32| {
+        let left = x + DOT + 4;
+        let width = 8 * label.chars().count() as i32;
+        (
+            left,
+            y + shift - LINE / 2,
+            left + width,
+            y + shift + LINE / 2,
+        )
+    };
+    let overlap = |a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)| {
+        a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+    };
+    let mut order: Vec<usize> = (0..labelled.len()).collect();
+    order.sort_by_key(|&i| labelled[i].0.1);
+    let mut shifts = vec![0; labelled.len()];
+    let mut placed = Vec::new();
+    for i in order {
+        let mut shift = 0;
+        while placed
+            .iter()
+            .any(|&b| overlap(boxed(labelled[i], shift), b))
+        {
+            shift += LINE;
+        }
+        shifts[i] = shift;
+        placed.push(boxed(labelled[i], shift));
+    }
+    shifts
 }
 
 /// Tick labels on the y axis of a plotting area `height` pixels high: at
@@ -350,6 +403,19 @@ fn runs<T>(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn labels_that_would_cover_one_another_move_down_a_line() {
+        // Two dots at the same place, a third far away, a fourth just below.
+        let labelled = [
+            ((100, 200), "adhoc-td"),
+            ((100, 200), "psaf"),
+            ((600, 200), "torrey"),
+            ((102, 210), "advice-reuse"),
+        ];
+        assert_eq!(label_shifts(&labelled), vec![0, 16, 0, 32]);
+    }
+
     use super::super::data::Metric;
     use super::super::fixtures::set;
     use super::*;

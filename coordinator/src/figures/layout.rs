@@ -91,6 +91,23 @@ impl Layout {
         Self::sized(shown, y, PLOT)
     }
 
+    /// The layout of `shown` with y range rule `y` and no legend (each
+    /// curve labelled where it is drawn).
+    pub(super) fn unlabelled(shown: &[Series], y: YRange) -> Self {
+        Self {
+            ranges: Ranges {
+                x: x_range(shown),
+                y: y_range(y, shown),
+            },
+            legend: None,
+            rule: match y {
+                YRange::Around(reference) => Some(reference),
+                _ => None,
+            },
+            plot: PLOT,
+        }
+    }
+
     /// The layout of the curves `shown` with y range rule `y` in a plotting
     /// area of `plot` pixels: the legend where it covers the least data; if
     /// it covers some and the range is not fixed, the y range grows to make

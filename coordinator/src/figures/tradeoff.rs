@@ -45,9 +45,8 @@ pub fn draw_tradeoff(
             style: Style::Dots,
         })
         .collect();
-    let mut layout = Layout::of(&series, YRange::Around(0.0));
     // Each dot is labelled beside it; room on the right for the last label.
-    layout.legend = None;
+    let mut layout = Layout::unlabelled(&series, YRange::Around(0.0));
     let (lo, hi) = layout.ranges.x;
     layout.ranges.x = (lo.min(0.0), hi + (hi - lo.min(0.0)).max(1.0) * 0.25);
     let note = format!(
