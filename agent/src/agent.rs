@@ -700,23 +700,38 @@ impl Agent {
         }
     }
 
-    /// Tells the strategy how a decision turned out: the advantage of its
-    /// action under the values just learned, r + gamma Q(s', a') - Q(s, a).
+    /// Tells the strategy how a decision turned out: its advantage under
+    /// the values just learned, r + gamma V(s') - V(s) (peer learning's
+    /// Eq. 8 with `use_advantage`), so that an action worse than the best
+    /// one known there counts against whoever advised it.
     fn tell_outcome(&mut self, prev: &OpenStep, reward: f64, next: Option<&OpenStep>) {
-        let q = |agent: &mut Self, step: &OpenStep| {
-            let at = Seen {
-                state: &step.state,
-                index: Some(step.index),
-            };
-            agent.learner.values(at).q[step.action.index()]
-        };
-        let ahead = next.map_or(0.0, |n| q(self, n));
-        let advantage = reward + self.config.gamma * ahead - q(self, prev);
+        let ahead = next.map_or(0.0, |n| self.state_value(n));
+        let advantage = reward + self.config.gamma * ahead - self.state_value(prev);
         let outcome = Outcome {
             advisor: prev.advisor,
             advantage,
         };
         self.strategy.learn_outcome(&outcome);
+    }
+
+    /// V of a step's state under its learner's values: the best learned
+    /// kick action's value where it chose among them (its own action's if it
+    /// learned none), its action's value where it could only move.
+    fn state_value(&mut self, step: &OpenStep) -> f64 {
+        let at = Seen {
+            state: &step.state,
+            index: Some(step.index),
+        };
+        let values = self.learner.values(at);
+        let own = values.q[step.action.index()];
+        if !step.action.is_kick() {
+            return own;
+        }
+        (Action::KICK_TIE_ORDER.iter())
+            .filter(|&&a| values.is_learned(a))
+            .map(|&a| values.q[a.index()])
+            .reduce(f64::max)
+            .unwrap_or(own)
     }
 
     /// The learned state: every state met with its visit count and its

@@ -120,7 +120,8 @@ class Outcome:
 
     #: The advisor whose advice was played, ``None`` for its own choice.
     advisor: int | None
-    #: r + gamma Q(s', a') - Q(s, a) under the values just learned.
+    #: r + gamma V(s') - V(s) under the values just learned, V a state's
+    #: best learned kick action's value (docs/algorithms.md, peer learning).
     advantage: float
 
 

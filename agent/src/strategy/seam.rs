@@ -71,8 +71,10 @@ impl GiveContext<'_> {
 pub struct Outcome {
     /// The advisor whose advice was played, `None` for its own choice.
     pub advisor: Option<usize>,
-    /// Its advantage under the values just learned: r + gamma Q(s', a') -
-    /// Q(s, a) (Q(s', a') is 0 at the episode's end).
+    /// Its advantage under the values just learned: r + gamma V(s') - V(s),
+    /// V a state's best learned kick action's value where the agent chose
+    /// (its action's where it could only move; V(s') is 0 at the episode's
+    /// end).
     pub advantage: f64,
 }
 
