@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Sequence
-from typing import Any, Callable, Optional, Tuple
+from typing import Any, Callable, Optional
 
 from adhoc_advising import _adhoc_advising
 from adhoc_advising import learner as learners
@@ -14,7 +14,7 @@ from adhoc_advising import strategy as strategies
 
 #: What the native side gets of one object: ``make(agent, team_size, run,
 #: seed)`` of its adapter, and what the results record of it.
-Made = Tuple[Callable[[int, int, int, int], Any], str]
+Made = tuple[Callable[[int, int, int, int], Any], str]
 
 #: Q(s, a) by action index as the native side passes them.
 RawValues = Sequence[Optional[float]]

@@ -31,8 +31,8 @@ from adhoc_advising import _adhoc_advising
 from adhoc_advising._objects import Made, made
 
 #: A team: a team file's path, the agents' tables (each as a team file's
-#: ``[[agent]]`` table, ``learner`` may be a Python learner), or both
-#: ``{"agent": [...], "event": [...]}``.
+#: ``[[agent]]`` table, where ``learner`` and ``strategy`` may be Python
+#: objects), or both ``{"agent": [...], "event": [...]}``.
 TeamSpec = Union[str, "os.PathLike[str]", Sequence[Mapping[str, Any]], Mapping[str, Any]]
 
 
@@ -44,13 +44,18 @@ def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]
     objects: list[tuple[Made | None, Made | None]] = []
     for i, table in enumerate(tables.get("agent", [])):
         if not isinstance(table, Mapping):
-            raise TypeError(f"team[{i}] must be a dict of an agent's keys, got {type(table).__name__}")
+            kind = type(table).__name__
+            raise TypeError(f"team[{i}] must be a dict of an agent's keys, got {kind}")
         table = dict(table)
-        learner = table.pop("learner", None)
-        if isinstance(learner, Mapping):  # a learner process, as in a file
-            table["learner"], learner = learner, None
-        strategy = table.pop("strategy", None)
-        objects.append((made("learner", learner), made("strategy", strategy)))
+        # What a file could say (a learner process, the old spelling of
+        # `algorithm`) stays in the table; anything else is an object.
+        given = {
+            role: table.pop(role)
+            for role in ("learner", "strategy")
+            if role in table and not isinstance(table[role], (str, Mapping))
+        }
+        objects.append((made("learner", given.get("learner")),
+                        made("strategy", given.get("strategy"))))
         agents.append(table)
     tables["agent"] = agents
     return json.dumps(tables), objects

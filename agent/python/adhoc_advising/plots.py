@@ -13,7 +13,7 @@ reproductions under docs/reproduction/ carry.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any
 
 from adhoc_advising.results import Experiment, Study
 
@@ -36,12 +36,13 @@ def _axes(ax: Axes | None) -> Axes:
     try:
         import matplotlib.pyplot as plt
     except ImportError as error:  # pragma: no cover - depends on the environment
-        raise ImportError("adhoc_advising.plots needs matplotlib: pip install matplotlib") from error
+        message = "adhoc_advising.plots needs matplotlib: pip install matplotlib"
+        raise ImportError(message) from error
     return plt.subplots(figsize=(7, 4.5))[1]
 
 
 def curves(
-    results: Union[Study, Experiment],
+    results: Study | Experiment,
     metric: str = "goal_pct",
     ax: Axes | None = None,
     last: int | None = None,

@@ -25,7 +25,9 @@ if TYPE_CHECKING:
 
 #: The estimates of a `summary.json` evaluation point, each with its mean and
 #: interval (columns `<metric>`, `<metric>_ci_low`, `<metric>_ci_high`, `<metric>_n`).
-SUMMARY_METRICS = ("goal_pct", "time_to_goal", "spent_budget", "advising_messages", "advising_bytes")
+SUMMARY_METRICS = (
+    "goal_pct", "time_to_goal", "spent_budget", "advising_messages", "advising_bytes"
+)
 
 
 def _pandas() -> Any:

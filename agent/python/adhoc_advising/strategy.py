@@ -23,12 +23,12 @@ import sys
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import IO, Callable, Optional, Tuple
+from typing import IO, Callable, Optional
 
 from adhoc_advising._channel import serve_lines
 
 #: Q(s, a) by action index, ``None`` where unlearned.
-Values = Tuple[Optional[float], ...]
+Values = tuple[Optional[float], ...]
 
 #: Kick actions in the order the framework breaks ties: SHOOT, DRIBBLE,
 #: PASS_FAR, PASS_NEAR.

@@ -105,7 +105,8 @@ class LinearSarsa(Learner):
     def restore(self, state: bytes) -> None:
         weights = np.load(io.BytesIO(state), allow_pickle=False)
         if weights.shape != self.weights.shape:
-            raise ValueError(f"saved weights of shape {weights.shape}, expected {self.weights.shape}")
+            expected = self.weights.shape
+            raise ValueError(f"saved weights of shape {weights.shape}, expected {expected}")
         self.weights = weights
         self.traces = np.zeros_like(weights)
 

@@ -18,7 +18,7 @@ import pytest
 from conftest import ROOT, workspace_binary
 
 import adhoc_advising
-from adhoc_advising.learner import Learner, Start, Transition
+from adhoc_advising.learner import Start, Transition
 
 sys.path.insert(0, str(ROOT / "agent" / "python" / "examples"))
 from nearest_teammate import NearestTeammate  # noqa: E402

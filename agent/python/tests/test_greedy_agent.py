@@ -6,10 +6,9 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
+import halffield
 import pytest
 from conftest import workspace_binary
-
-import halffield
 
 import adhoc_advising
 
