@@ -74,9 +74,8 @@ fn load_snapshot(id: usize, spec: &AgentSpec) -> Result<Option<Arc<Snapshot>>, E
     Ok(Some(Arc::new(snapshot)))
 }
 
-/// Agent `id` of a team of `n` from `spec` in run `run`, seeded `seed`,
-/// made with `plugin`'s objects if it has one, restored from `snapshot` if
-/// given.
+/// The agent `start` describes, from `spec`, made with `plugin`'s objects
+/// if it has one, restored from `snapshot` if given.
 fn build_agent(
     start: PluginStart,
     spec: &AgentSpec,
