@@ -78,13 +78,10 @@ class StrategyAdapter:
             raise TypeError(f"{type(strategy).__name__} is not an AdvisingStrategy")
         self.strategy = strategy
 
-    def traits(self) -> tuple[bool, ...]:
-        """learns, reuses, asks_by_uncertainty, mistake_correcting,
-        intends_greedy, shares_values, learns_from_outcomes."""
-        t = strategies._traits(self.strategy)
-        return tuple(bool(t[k]) for k in (
-            "learns", "reuses", "asks_by_uncertainty", "mistake_correcting", "intends_greedy",
-            "shares_values", "learns_from_outcomes"))
+    def traits(self) -> dict:
+        """Who it is and which decisions it makes, as a strategy process
+        answers ``start``."""
+        return strategies._traits(self.strategy)
 
     def reuse(self, key: int, values: RawValues) -> int | None:
         return strategies._action(self.strategy.reuse(key, strategies._values(values)))

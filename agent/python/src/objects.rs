@@ -398,9 +398,19 @@ impl Learner for PythonLearner {
     }
 }
 
-/// What a strategy's `traits` answer: which decisions it makes, in the
-/// order of `StrategyAdapter.traits`.
-type Traits = (bool, bool, bool, bool, bool, bool, bool);
+/// What a strategy's `traits` answer: which decisions it makes (the
+/// class attributes and overridden methods of `AdvisingStrategy`).
+#[derive(Debug, FromPyObject)]
+#[pyo3(from_item_all)]
+struct Traits {
+    learns: bool,
+    reuses: bool,
+    asks_by_uncertainty: bool,
+    mistake_correcting: bool,
+    intends_greedy: bool,
+    shares_values: bool,
+    learns_from_outcomes: bool,
+}
 
 /// A strategy adapter, with the traits it answered at its start.
 #[derive(Debug)]
@@ -467,7 +477,7 @@ impl PythonStrategy {
 
 impl AdvisingStrategy for PythonStrategy {
     fn learns(&self) -> bool {
-        self.traits.0
+        self.traits.learns
     }
 
     fn reuse(
@@ -476,7 +486,7 @@ impl AdvisingStrategy for PythonStrategy {
         learner: &mut dyn FnMut() -> ActionValues,
         _: &mut AgentRng,
     ) -> Option<Action> {
-        if !self.traits.1 {
+        if !self.traits.reuses {
             return None;
         }
         let v = values(&learner());
@@ -487,7 +497,7 @@ impl AdvisingStrategy for PythonStrategy {
     }
 
     fn asks_by_uncertainty(&self) -> bool {
-        self.traits.2
+        self.traits.asks_by_uncertainty
     }
 
     fn asks(&mut self, at: &AskContext<'_>, _: &mut AgentRng) -> bool {
@@ -523,15 +533,15 @@ impl AdvisingStrategy for PythonStrategy {
     }
 
     fn mistake_correcting(&self) -> bool {
-        self.traits.3
+        self.traits.mistake_correcting
     }
 
     fn intends_greedy(&self) -> bool {
-        self.traits.4
+        self.traits.intends_greedy
     }
 
     fn shares_values(&self) -> bool {
-        self.traits.5
+        self.traits.shares_values
     }
 
     fn adopt(&mut self, r: &Replies<'_>, visits: u64) -> Option<SharedValues> {
@@ -581,7 +591,7 @@ impl AdvisingStrategy for PythonStrategy {
     }
 
     fn learns_from_outcomes(&self) -> bool {
-        self.traits.6
+        self.traits.learns_from_outcomes
     }
 
     fn learn_outcome(&mut self, outcome: &Outcome) {
