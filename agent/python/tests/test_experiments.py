@@ -234,7 +234,7 @@ def test_a_study_in_process_reads_back_as_dataframes(tmp_path: Path) -> None:
 
 CTRL_C = """
 import adhoc_advising, sys
-adhoc_advising.run(out=sys.argv[1], algorithm="adhoc-td", runs=4, episodes=3000,
+adhoc_advising.run(out=sys.argv[1], algorithm="adhoc-td", runs=2, episodes=20000,
                    eval_every=500, eval_episodes=20, threads=2)
 print("finished")
 """
@@ -245,9 +245,11 @@ def test_ctrl_c_stops_cleanly_and_the_same_call_resumes(tmp_path: Path) -> None:
     child = subprocess.Popen([sys.executable, "-c", CTRL_C, str(out)],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
-    while not (out / "config.json").exists() and time.monotonic() < deadline:
+    # Interrupted once its runs are under way (their first evaluation
+    # written), seconds before they could end.
+    while not (out / "run-0.csv").exists() and time.monotonic() < deadline:
         time.sleep(0.1)
-    time.sleep(1.0)
+    time.sleep(0.5)
     child.send_signal(signal.SIGINT)
     _, stderr = child.communicate(timeout=120)
     assert child.returncode != 0 and "KeyboardInterrupt" in stderr, stderr
