@@ -233,7 +233,9 @@ def test_a_study_in_process_reads_back_as_dataframes(tmp_path: Path) -> None:
 
 
 CTRL_C = """
-import adhoc_advising, sys
+import adhoc_advising, signal, sys
+# As in a terminal, whatever the shell that started the tests ignores.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 adhoc_advising.run(out=sys.argv[1], algorithm="adhoc-td", runs=2, episodes=20000,
                    eval_every=500, eval_episodes=20, threads=2)
 print("finished")
