@@ -6,6 +6,7 @@ use std::path::Path;
 
 use agent::{Algorithm, Profile};
 use env_server::EnvConfig;
+use proto::Simulator;
 use serde::{Deserialize, Serialize};
 
 pub use crate::agent_spec::{AgentSpec, ChildSpec};
@@ -122,6 +123,13 @@ impl ExperimentConfig {
         }
         self.transport.validate()?;
         self.env.validate().map_err(env_error)?;
+        let real_hfo = self.transport.zenoh().map(|z| z.simulator) == Some(Simulator::RealHfo);
+        if let Some(setting) = self.env.unlike_real_hfo().filter(|_| real_hfo) {
+            return Err(ConfigError::new(
+                format!("env.{setting}"),
+                "is a setting of our simulator, which the real HFO cannot play: leave it at its default",
+            ));
+        }
         if self.team.len() != self.env.offense {
             return Err(ConfigError::new(
                 "team",

@@ -18,6 +18,7 @@ use coordinator::{
     load_team_file, run_experiment,
 };
 use env_server::EvaluationMemory;
+use proto::Simulator;
 
 #[derive(Parser)]
 #[command(
@@ -318,6 +319,17 @@ struct NetworkArgs {
     #[arg(long, value_name = "S", default_value_t = 30,
           value_parser = clap::value_parser!(u64).range(1..=3600))]
     startup_timeout: u64,
+    /// What env-server plays: our simulator (ours), or the real HFO
+    /// (real-hfo: over zenoh, not deterministic; docs/calibration.md).
+    #[arg(long, value_name = "SIMULATOR", value_parser = ["ours", "real-hfo"])]
+    simulator: Option<String>,
+    /// With --simulator real-hfo: the real HFO's directory, built by
+    /// env-server/oracle/build_hfo.sh DIR.
+    #[arg(long, value_name = "DIR", env = "HFO_DIR")]
+    hfo_dir: Option<PathBuf>,
+    /// With --simulator real-hfo: its Python interpreter (default: DIR/venv/bin/python).
+    #[arg(long, value_name = "FILE")]
+    hfo_python: Option<PathBuf>,
 }
 
 impl NetworkArgs {
@@ -337,6 +349,7 @@ impl NetworkArgs {
             stall_limit_ms: self.stall_limit_ms.unwrap_or(base.stall_limit_ms),
             restart_agents: self.restart_agents || base.restart_agents,
             checkpoint_every: self.checkpoint_every.unwrap_or(base.checkpoint_every),
+            simulator: self.simulator().unwrap_or(base.simulator),
             endpoints: Endpoints {
                 experiment: self.experiment.clone().unwrap_or_else(unique),
                 port: self.port,
@@ -351,13 +364,33 @@ impl NetworkArgs {
                 },
                 zenoh_config: self.zenoh_config.clone(),
                 startup_timeout: std::time::Duration::from_secs(self.startup_timeout),
+                hfo_dir: self.hfo_dir.clone(),
+                hfo_python: self.hfo_python.clone(),
             },
         }
     }
 
-    /// The transport named `name` (or `current`'s kind), with these settings.
+    /// The simulator `--simulator` names, if it does.
+    fn simulator(&self) -> Option<Simulator> {
+        self.simulator.as_deref().map(|name| match name {
+            "real-hfo" => Simulator::RealHfo,
+            _ => Simulator::Ours,
+        })
+    }
+
+    /// The transport named `name` (or `current`'s kind; zenoh for the real
+    /// HFO), with these settings.
     fn transport(&self, name: Option<&str>, current: &Transport) -> Result<Transport> {
-        let name = name.unwrap_or(current.name());
+        let real_hfo = self.simulator() == Some(Simulator::RealHfo);
+        let name = match name {
+            Some("in-process") if real_hfo => anyhow::bail!(
+                "--simulator real-hfo: env-server plays the real HFO over zenoh, \
+                 not in process; use --transport zenoh"
+            ),
+            Some(name) => name,
+            None if real_hfo => "zenoh",
+            None => current.name(),
+        };
         Ok(Transport::named(name, self.zenoh(current.zenoh()))?)
     }
 }

@@ -3,12 +3,14 @@
 //!
 //! In a file: `transport = "in-process"`, `transport = "zenoh"` (default
 //! timeouts) or `[transport.zenoh]` with `advice_timeout_ms`,
-//! `step_timeout_ms` and `stall_limit_ms`. How to reach the processes ([`Endpoints`]) changes no
+//! `step_timeout_ms`, `stall_limit_ms` and `simulator` (`"real-hfo"`: the
+//! real HFO instead of ours). How to reach the processes ([`Endpoints`]) changes no
 //! result and is not recorded.
 
 use std::path::PathBuf;
 use std::time::Duration;
 
+use proto::Simulator;
 use serde::{Deserialize, Serialize};
 
 use crate::error::ConfigError;
@@ -29,8 +31,8 @@ pub enum Transport {
     Zenoh(ZenohSettings),
 }
 
-/// The zenoh transport's settings: its timeouts (recorded: they change
-/// results) and its endpoints (not recorded).
+/// The zenoh transport's settings: its timeouts and simulator (recorded:
+/// they change results) and its endpoints (not recorded).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ZenohSettings {
@@ -49,6 +51,10 @@ pub struct ZenohSettings {
     /// training episodes (recorded only when not the default).
     #[serde(skip_serializing_if = "is_default_checkpoint")]
     pub checkpoint_every: u64,
+    /// What env-server plays: our simulator or the real HFO (recorded,
+    /// with whether it is deterministic, only when the real HFO).
+    #[serde(skip_serializing_if = "is_ours", with = "simulator_record")]
+    pub simulator: Simulator,
     /// How to reach the processes.
     #[serde(skip)]
     pub endpoints: Endpoints,
@@ -62,6 +68,7 @@ impl Default for ZenohSettings {
             stall_limit_ms: 10_000,
             restart_agents: false,
             checkpoint_every: DEFAULT_CHECKPOINT_EVERY,
+            simulator: Simulator::Ours,
             endpoints: Endpoints::default(),
         }
     }
@@ -72,6 +79,42 @@ pub const DEFAULT_CHECKPOINT_EVERY: u64 = 100;
 
 fn is_default_checkpoint(every: &u64) -> bool {
     *every == DEFAULT_CHECKPOINT_EVERY
+}
+
+fn is_ours(simulator: &Simulator) -> bool {
+    *simulator == Simulator::Ours
+}
+
+/// The simulator as results record it, `{"name": "real-hfo",
+/// "deterministic": false}`; files may give the name alone.
+mod simulator_record {
+    use proto::Simulator;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    #[serde(untagged)]
+    enum Record {
+        Full {
+            name: Simulator,
+            deterministic: bool,
+        },
+        Name(Simulator),
+    }
+
+    pub fn serialize<S: Serializer>(name: &Simulator, s: S) -> Result<S::Ok, S::Error> {
+        let deterministic = *name == Simulator::Ours;
+        Record::Full {
+            name: *name,
+            deterministic,
+        }
+        .serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Simulator, D::Error> {
+        match Record::deserialize(d)? {
+            Record::Full { name, .. } | Record::Name(name) => Ok(name),
+        }
+    }
 }
 
 /// How the coordinator reaches an experiment's processes.
@@ -100,6 +143,10 @@ pub struct Endpoints {
     pub zenoh_config: Option<PathBuf>,
     /// How long to wait for every process to join.
     pub startup_timeout: Duration,
+    /// With the real HFO: where it is built (`env-server serve --real-hfo`).
+    pub hfo_dir: Option<PathBuf>,
+    /// With the real HFO: its Python interpreter (default: its venv's).
+    pub hfo_python: Option<PathBuf>,
 }
 
 impl Default for Endpoints {
@@ -114,6 +161,8 @@ impl Default for Endpoints {
             auth: Auth::Generated,
             zenoh_config: None,
             startup_timeout: Duration::from_secs(30),
+            hfo_dir: None,
+            hfo_python: None,
         }
     }
 }
@@ -216,6 +265,10 @@ impl Transport {
 /// What a file may say: a name, or the zenoh table.
 #[derive(Deserialize)]
 #[serde(untagged)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "read once per file, straight into a `Transport`"
+)]
 enum TransportFile {
     Name(String),
     Zenoh { zenoh: ZenohSettings },
@@ -284,6 +337,20 @@ mod tests {
         );
         let back: Transport = serde_json::from_value(json).unwrap();
         assert_eq!(back, Transport::Zenoh(ZenohSettings::default()));
+    }
+
+    #[test]
+    fn the_real_hfo_is_recorded_as_not_deterministic() {
+        let t = parse("[transport.zenoh]\nsimulator = \"real-hfo\"\n").unwrap();
+        assert_eq!(t.zenoh().unwrap().simulator, Simulator::RealHfo);
+        let json = serde_json::to_value(&t).unwrap();
+        assert_eq!(
+            json["zenoh"]["simulator"],
+            serde_json::json!({"name": "real-hfo", "deterministic": false})
+        );
+        let back: Transport = serde_json::from_value(json).unwrap();
+        assert_eq!(back, t);
+        assert!(parse("[transport.zenoh]\nsimulator = \"rcssserver\"\n").is_err());
     }
 
     #[test]

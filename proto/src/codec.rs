@@ -205,6 +205,11 @@ mod tests {
                     config,
                     wait_ms: seed % 1000,
                     stall_ms: seed % 7919,
+                    simulator: if seed % 2 == 0 {
+                        Simulator::Ours
+                    } else {
+                        Simulator::RealHfo
+                    },
                 })
             }),
             prop::collection::vec(any::<u8>(), 0..100)

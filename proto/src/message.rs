@@ -9,7 +9,7 @@ use crate::action::{Action, State};
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 6;
+pub const PROTOCOL_VERSION: u16 = 7;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -53,6 +53,20 @@ pub enum Mode {
     Training,
     /// Frozen: greedy play, nothing learned, asked or given.
     Evaluation,
+}
+
+/// What env-server plays an experiment's episodes on: our simulator, or
+/// the real HFO behind it (`env-server serve --real-hfo`). A Reset that
+/// names the other one is refused, so an experiment never mixes them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Simulator {
+    /// This project's simulator, `env_server::Env`: deterministic.
+    #[default]
+    Ours,
+    /// The real HFO (rcssserver, agent2d's goalkeeper) as a child process
+    /// of env-server: not deterministic.
+    RealHfo,
 }
 
 /// One message: a header and its body.
@@ -219,6 +233,9 @@ pub enum Control {
         /// after frame, before the episode is abandoned (ms; `wait_ms` to
         /// [`MAX_STALL_MS`]). Agents ignore it.
         stall_ms: u64,
+        /// env-server: the simulator the experiment was configured for,
+        /// refused when the server plays another. Agents ignore it.
+        simulator: Simulator,
     },
     /// env-server: play episode `header.episode` in `mode` and report its result.
     PlayEpisode {
@@ -248,12 +265,14 @@ impl fmt::Debug for Control {
                 config,
                 wait_ms,
                 stall_ms,
+                simulator,
             } => f
                 .debug_struct("Reset")
                 .field("seed", seed)
                 .field("config", &ByteCount(config.len()))
                 .field("wait_ms", wait_ms)
                 .field("stall_ms", stall_ms)
+                .field("simulator", simulator)
                 .finish(),
             Control::PlayEpisode { mode, seed } => f
                 .debug_struct("PlayEpisode")
@@ -395,10 +414,11 @@ mod tests {
             config: vec![1, 2],
             wait_ms: 5,
             stall_ms: 10,
+            simulator: Simulator::Ours,
         };
         assert_eq!(
             format!("{reset:?}"),
-            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5, stall_ms: 10 }"
+            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5, stall_ms: 10, simulator: Ours }"
         );
         let load = Control::Load {
             snapshot: vec![0; 1000],

@@ -35,19 +35,15 @@ fn network(tag: &str, port: u16, auth: Auth) -> ZenohTeam {
             advice_timeout_ms: 20,
             step_timeout_ms: 2000,
             stall_limit_ms: 10_000,
-            restart_agents: false,
-            checkpoint_every: 100,
             endpoints: Endpoints {
                 experiment: experiment_name(tag),
                 port,
-                listen: None,
-                connect: Vec::new(),
-                attach: false,
                 bin_dir: Some(bin_dir()),
                 auth,
-                zenoh_config: None,
                 startup_timeout: Duration::from_secs(60),
+                ..Endpoints::default()
             },
+            ..ZenohSettings::default()
         },
         &[
             AgentSpec::default(),

@@ -112,15 +112,14 @@ fn attached_settings(name: &str, secret: &Secret, endpoints: &[String]) -> Zenoh
         checkpoint_every: 100,
         endpoints: Endpoints {
             experiment: name.to_owned(),
-            port: 0,
-            listen: None,
             connect: endpoints.to_vec(),
             attach: true,
             bin_dir: Some(bin_dir()),
             auth: Auth::File(secret.path().to_owned()),
-            zenoh_config: None,
             startup_timeout: Duration::from_secs(60),
+            ..Endpoints::default()
         },
+        ..ZenohSettings::default()
     }
 }
 

@@ -75,6 +75,7 @@ async fn execute(ctx: &Context, header: Header, control: Control) -> ControlRepl
             config,
             wait_ms,
             stall_ms: _,
+            simulator: _,
         } => {
             if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
                 return ControlReply::Error(format!(

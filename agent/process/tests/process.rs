@@ -135,6 +135,7 @@ impl Fake {
                     // Generous, for a loaded test machine.
                     wait_ms: 200,
                     stall_ms: 10_000,
+                    simulator: proto::Simulator::Ours,
                 },
             )
             .await;

@@ -10,6 +10,7 @@ use node::sync::lock;
 use proto::keys::{Keys, Role};
 use proto::{
     Body, Control, ControlReply, Direction, Envelope, Header, MessageCounters, MessageKind,
+    Simulator,
 };
 use tokio::sync::watch;
 use tokio::time::timeout_at;
@@ -267,7 +268,20 @@ impl ZenohTeam {
     fn launch(&self, team: &[AgentSpec]) -> Result<(), Error> {
         let options = &self.settings.endpoints;
         let server = find_binary(options.bin_dir.as_deref(), "env-server")?;
-        let serve = ["serve".into(), "--exit-with-coordinator".into()];
+        let mut serve = vec!["serve".into(), "--exit-with-coordinator".into()];
+        if self.settings.simulator == Simulator::RealHfo {
+            let dir = options.hfo_dir.as_ref().ok_or_else(|| {
+                ConfigError::new(
+                    "hfo_dir",
+                    "the real HFO is not located: pass --hfo-dir DIR (or set HFO_DIR), \
+                     DIR built by env-server/oracle/build_hfo.sh",
+                )
+            })?;
+            serve.extend(["--real-hfo".into(), dir.display().to_string()]);
+            if let Some(python) = &options.hfo_python {
+                serve.extend(["--hfo-python".into(), python.display().to_string()]);
+            }
+        }
         self.children
             .spawn("env-server", &server, &self.common_args(&serve))?;
         for (i, spec) in team.iter().enumerate() {

@@ -76,6 +76,7 @@ impl<'a> RemoteBackend<'a> {
                 config: env,
                 wait_ms: network.settings().step_timeout_ms,
                 stall_ms: network.settings().stall_limit_ms,
+                simulator: network.settings().simulator,
             },
         )?;
         for (i, spec) in config.team.iter().enumerate() {
@@ -105,6 +106,7 @@ impl<'a> RemoteBackend<'a> {
                 config,
                 wait_ms: settings.advice_timeout_ms,
                 stall_ms: settings.stall_limit_ms,
+                simulator: settings.simulator,
             },
             CONTROL_TIMEOUT,
         )?;

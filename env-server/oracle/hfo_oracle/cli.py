@@ -152,10 +152,18 @@ def _parse_and_drop(batch: launch.Batch, tally: Tally, keep_logs: bool) -> None:
 
 
 def main(argv: Sequence[str]) -> int:
-    """``agent ...`` runs one agent process, anything else the harness."""
+    """``agent ...`` runs one agent process, ``relay ...`` one player of
+    the backend, ``backend ...`` the real HFO as env-server's simulator,
+    anything else the harness."""
     if argv and argv[0] == "agent":
         from hfo_oracle import agent
         return agent.main(argv[1:])
+    if argv and argv[0] == "relay":
+        from hfo_oracle import relay
+        return relay.main(argv[1:])
+    if argv and argv[0] == "backend":
+        from hfo_oracle import backend
+        return backend.main(argv[1:])
     return harness_main(argv)
 
 

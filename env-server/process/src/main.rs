@@ -77,7 +77,42 @@ enum EnvServerCommand {
     Serve {
         #[command(flatten)]
         connection: ConnectionArgs,
+        #[command(flatten)]
+        real_hfo: RealHfoArgs,
     },
+}
+
+/// Where the real HFO is, for a server that plays it instead of ours.
+#[derive(clap::Args)]
+struct RealHfoArgs {
+    /// Play the real HFO built in DIR (env-server/oracle/build_hfo.sh DIR)
+    /// instead of our simulator: its runs are not deterministic.
+    #[arg(long, value_name = "DIR")]
+    real_hfo: Option<PathBuf>,
+    /// With --real-hfo: the Python interpreter of HFO's launcher and
+    /// players [default: DIR/venv/bin/python].
+    #[arg(long, value_name = "FILE", requires = "real_hfo")]
+    hfo_python: Option<PathBuf>,
+    /// With --real-hfo: the directory holding the harness `hfo_oracle`
+    /// [default: this source tree's env-server/oracle].
+    #[arg(long, value_name = "DIR", requires = "real_hfo")]
+    hfo_harness: Option<PathBuf>,
+}
+
+impl RealHfoArgs {
+    /// Where the real HFO is, when asked for.
+    fn install(self) -> Option<serve::RealHfoInstall> {
+        let hfo_dir = self.real_hfo?;
+        Some(serve::RealHfoInstall {
+            python: self
+                .hfo_python
+                .unwrap_or_else(|| hfo_dir.join("venv").join("bin").join("python")),
+            harness: self.hfo_harness.unwrap_or_else(|| {
+                PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../oracle"))
+            }),
+            hfo_dir,
+        })
+    }
 }
 
 fn main() {
@@ -157,7 +192,10 @@ fn run(cli: EnvServerCli) -> Result<()> {
             picture::write_picture(&trace, &out)?;
             println!("wrote {}: {}", out.display(), trace.summary());
         }
-        EnvServerCommand::Serve { connection } => serve::run(connection)?,
+        EnvServerCommand::Serve {
+            connection,
+            real_hfo,
+        } => serve::run(connection, real_hfo.install())?,
     }
     Ok(())
 }

@@ -175,6 +175,7 @@ impl Harness {
             config,
             wait_ms: self.step_timeout_ms,
             stall_ms: proto::MAX_STALL_MS,
+            simulator: proto::Simulator::Ours,
         };
         let reply = self.control(run, 0, reset).await;
         assert_eq!(reply, ControlReply::Ok);
@@ -475,6 +476,7 @@ async fn an_agent_silent_for_the_stall_limit_ends_the_episode_with_an_error() {
         config,
         wait_ms: 20,
         stall_ms: 100,
+        simulator: proto::Simulator::Ours,
     };
     assert_eq!(h.control(0, 0, reset).await, ControlReply::Ok);
     let reply = h
@@ -535,6 +537,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
         config: config.to_owned(),
         wait_ms: 10_000,
         stall_ms: proto::MAX_STALL_MS,
+        simulator: proto::Simulator::Ours,
     };
     let nine = EnvConfig {
         offense: 9,
@@ -550,6 +553,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
             config: good.clone(),
             wait_ms,
             stall_ms: proto::MAX_STALL_MS,
+            simulator: proto::Simulator::Ours,
         };
         assert!(error(h.control(0, 0, unbounded).await).contains("step timeout"));
     }
@@ -559,6 +563,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
             config: good.clone(),
             wait_ms: 1000,
             stall_ms,
+            simulator: proto::Simulator::Ours,
         };
         assert!(error(h.control(0, 0, unbounded).await).contains("stall limit"));
     }

@@ -60,6 +60,19 @@ impl EnvConfig {
         }
         Ok(())
     }
+
+    /// The first setting that only our simulator has, set otherwise than
+    /// the real HFO plays (which passes as HFO does and plays a run on one
+    /// server); `None` when the real HFO can play these settings.
+    pub fn unlike_real_hfo(&self) -> Option<&'static str> {
+        if self.pass_to_named_receiver {
+            return Some("pass_to_named_receiver");
+        }
+        if self.evaluation_memory != EvaluationMemory::Carried {
+            return Some("evaluation_memory");
+        }
+        None
+    }
 }
 
 /// What the agents of an evaluation block's simulator remember at its

@@ -1,50 +1,104 @@
-//! The simulator side of a run, without any I/O: the run's simulators, the
-//! episode being played, the observations it shows and the actions it
-//! awaits. Its simulators are the in-process backend's (`RunEnvs`):
-//! one training simulator per run seeded at Reset, and an evaluation block
-//! begun whenever `PlayEpisode` carries a seed.
+//! The simulator side of a run, without any I/O of its own: the run's
+//! simulators, the episode being played, the observations it shows and the
+//! actions it awaits. Its simulators are the in-process backend's
+//! (`RunEnvs`: one training simulator per run seeded at Reset, and an
+//! evaluation block begun whenever `PlayEpisode` carries a seed), or the
+//! real HFO (one server for the whole run, seeds only at its start).
 
 use env_server::MAX_OFFENSE;
-use env_server::{Env, EnvConfig, Outcome, RunEnvs};
+use env_server::{EnvConfig, Outcome, RunEnvs};
 use proto::{
     Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode,
-    State,
+    Simulator as SimulatorKind,
 };
+
+use super::real_hfo::{RealHfo, RealHfoInstall};
+use super::simulator::Simulator;
 
 /// The simulators of one run.
 #[derive(Debug)]
-pub struct ServedRun(RunEnvs);
+#[allow(
+    clippy::large_enum_variant,
+    reason = "one per run, made at its reset and never moved after"
+)]
+pub enum ServedRun {
+    /// Ours: a training simulator and the current evaluation block's.
+    Ours(RunEnvs),
+    /// The real HFO, one server for training and evaluation alike; whether
+    /// an evaluation block began.
+    RealHfo(RealHfo, bool),
+}
 
 impl ServedRun {
     /// The simulators of a run with settings `config` (an `EnvConfig`
     /// encoded with `proto::encode_settings`), the training one seeded with
-    /// `seed`; the error is one line.
-    pub fn new(config: &[u8], seed: u64) -> Result<Self, String> {
+    /// `seed`, on the simulator `kind`, which must be the one this server
+    /// plays (the real HFO when `real_hfo` says where it is); the error is
+    /// one line.
+    pub fn new(
+        config: &[u8],
+        seed: u64,
+        kind: SimulatorKind,
+        real_hfo: Option<&RealHfoInstall>,
+    ) -> Result<Self, String> {
         let config: EnvConfig =
             proto::decode_settings(config).map_err(|e| format!("invalid env config: {e}"))?;
-        RunEnvs::new(config, seed)
-            .map(ServedRun)
-            .map_err(|e| format!("invalid env config: {e}"))
+        config
+            .validate()
+            .map_err(|e| format!("invalid env config: {e}"))?;
+        match (kind, real_hfo) {
+            (SimulatorKind::Ours, None) => RunEnvs::new(config, seed)
+                .map(ServedRun::Ours)
+                .map_err(|e| format!("invalid env config: {e}")),
+            (SimulatorKind::RealHfo, Some(install)) => {
+                let hfo = RealHfo::start(install, &config, seed)?;
+                Ok(ServedRun::RealHfo(hfo, false))
+            }
+            (SimulatorKind::RealHfo, None) => Err(
+                "the experiment plays the real HFO, this env-server our simulator: \
+                 start it with --real-hfo DIR"
+                    .to_owned(),
+            ),
+            (SimulatorKind::Ours, Some(_)) => Err(
+                "the experiment plays our simulator, this env-server the real HFO \
+                 (--real-hfo): start it without"
+                    .to_owned(),
+            ),
+        }
     }
 
     /// Number of offense agents.
     pub fn offense(&self) -> usize {
-        self.0.offense()
+        match self {
+            ServedRun::Ours(envs) => envs.offense(),
+            ServedRun::RealHfo(hfo, _) => hfo.offense(),
+        }
     }
 
     /// The simulator of an episode in `mode`: `seed` first begins a new
-    /// evaluation block; evaluation needs one.
-    pub fn prepare(&mut self, mode: Mode, seed: Option<u64>) -> Result<&mut Env, String> {
+    /// evaluation block (the real HFO plays on, unseeded); evaluation needs
+    /// one.
+    pub fn prepare(&mut self, mode: Mode, seed: Option<u64>) -> Result<&mut dyn Simulator, String> {
         if let Some(seed) = seed {
-            self.0.begin_evaluation(seed);
+            match self {
+                ServedRun::Ours(envs) => envs.begin_evaluation(seed),
+                ServedRun::RealHfo(_, evaluating) => *evaluating = true,
+            }
         }
         self.env(mode)
             .ok_or_else(|| "evaluation episode before any evaluation seed".to_owned())
     }
 
     /// The simulator of `mode`, if there is one (see [`ServedRun::prepare`]).
-    pub fn env(&mut self, mode: Mode) -> Option<&mut Env> {
-        self.0.env(mode)
+    pub fn env(&mut self, mode: Mode) -> Option<&mut dyn Simulator> {
+        match self {
+            ServedRun::Ours(envs) => envs.env(mode).map(|env| env as &mut dyn Simulator),
+            ServedRun::RealHfo(hfo, evaluating) => match mode {
+                Mode::Training => Some(hfo),
+                Mode::Evaluation if *evaluating => Some(hfo),
+                Mode::Evaluation => None,
+            },
+        }
     }
 }
 
@@ -84,8 +138,8 @@ pub struct Episode {
 
 impl Episode {
     /// Starts an episode on `env` (which resets it) at frame 0 of `header`.
-    pub fn start(env: &mut Env, header: Header, mode: Mode) -> Self {
-        env.reset();
+    pub fn start(env: &mut dyn Simulator, header: Header, mode: Mode) -> Result<Self, String> {
+        env.reset()?;
         let mut episode = Episode {
             header: Header { frame: 0, ..header },
             mode,
@@ -98,7 +152,7 @@ impl Episode {
             timed_out: 0,
         };
         episode.await_kickers(env);
-        episode
+        Ok(episode)
     }
 
     /// Whether the episode has reached its terminal frame.
@@ -123,20 +177,14 @@ impl Episode {
         self.awaited = 0;
     }
 
-    /// Agent `agent`'s observation of the current frame, whose state is
-    /// `state`. The terminal frame carries the final reward and no decision.
-    pub fn observe(&self, env: &Env, agent: usize, state: State) -> AgentFrame {
+    /// Agent `agent`'s observation of the current frame. The terminal frame carries the final reward and no decision.
+    pub fn observe(&self, env: &dyn Simulator, agent: usize) -> AgentFrame {
         AgentFrame {
             agent: agent as u8,
             mode: self.mode,
-            state,
+            state: env.state(agent),
             can_kick: self.kickers & (1 << agent) != 0,
-            positions: env
-                .world()
-                .offense
-                .iter()
-                .map(|p| [p.pos.x, p.pos.y])
-                .collect(),
+            positions: env.positions(),
             reward: self.reward,
             terminal: self.is_over(),
         }
@@ -162,8 +210,8 @@ impl Episode {
 
     /// Steps `env` with the actions received, Move for every agent whose
     /// action is missing or who could not kick, and moves to the next frame.
-    pub fn step(&mut self, env: &mut Env) {
-        let outcome = env.step(&self.actions[..self.offense]);
+    pub fn step(&mut self, env: &mut dyn Simulator) -> Result<(), String> {
+        let outcome = env.step(&self.actions[..self.offense])?;
         self.outcome = outcome;
         self.reward = outcome.reward();
         self.header.frame = env.frame();
@@ -174,6 +222,7 @@ impl Episode {
         } else {
             self.await_kickers(env);
         }
+        Ok(())
     }
 
     /// The result, once the episode is over.
@@ -192,7 +241,7 @@ impl Episode {
         })
     }
 
-    fn await_kickers(&mut self, env: &Env) {
+    fn await_kickers(&mut self, env: &dyn Simulator) {
         self.kickers = (0..self.offense)
             .filter(|&i| env.can_kick(i))
             .fold(0, |m, i| m | 1 << i);
@@ -212,11 +261,11 @@ pub struct Batches {
 
 impl Batches {
     /// Adds every agent's observation of `episode`'s current frame on `env`.
-    pub fn push(&mut self, episode: &Episode, env: &Env) {
+    pub fn push(&mut self, episode: &Episode, env: &dyn Simulator) {
         self.first.get_or_insert(episode.header);
         self.frames.resize_with(env.offense(), Vec::new);
-        for (agent, state) in env.states().enumerate() {
-            self.frames[agent].push(episode.observe(env, agent, state));
+        for (agent, frames) in self.frames.iter_mut().enumerate() {
+            frames.push(episode.observe(env, agent));
         }
     }
 
@@ -255,6 +304,8 @@ impl Batches {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use env_server::Env;
+    use proto::State;
 
     fn header(run: u32, episode: u32, frame: u32) -> Header {
         Header::new(1, run, episode, frame)
@@ -263,10 +314,10 @@ mod tests {
     /// An episode on a fresh simulator, stepped until some agent can kick.
     fn episode_with_kicker() -> (Env, Episode, usize) {
         let mut env = Env::new(EnvConfig::default(), 5).unwrap();
-        let mut episode = Episode::start(&mut env, header(2, 3, 0), Mode::Training);
+        let mut episode = Episode::start(&mut env, header(2, 3, 0), Mode::Training).unwrap();
         while !episode.is_waiting() {
             assert!(!episode.is_over(), "no kicker before the episode ended");
-            episode.step(&mut env);
+            episode.step(&mut env).unwrap();
         }
         let kicker = episode.missing().next().unwrap();
         (env, episode, kicker)
@@ -307,7 +358,7 @@ mod tests {
         // simulator directly with the same seed. The frames are batched up
         // to each decision, as the server sends them.
         let mut env = Env::new(EnvConfig::default(), 11).unwrap();
-        let mut e = Episode::start(&mut env, header(0, 0, 0), Mode::Training);
+        let mut e = Episode::start(&mut env, header(0, 0, 0), Mode::Training).unwrap();
         let mut direct = Env::new(EnvConfig::default(), 11).unwrap();
         direct.reset();
         let mut batches = Batches::default();
@@ -352,7 +403,7 @@ mod tests {
                 })
                 .collect();
             direct.step(&actions);
-            e.step(&mut env);
+            e.step(&mut env).unwrap();
         }
         let result = e.result().unwrap();
         assert_eq!(result.frames, direct.frame());
@@ -373,7 +424,7 @@ mod tests {
     #[test]
     fn a_batch_is_full_at_the_message_limit() {
         let mut env = Env::new(EnvConfig::default(), 3).unwrap();
-        let e = Episode::start(&mut env, header(1, 2, 0), Mode::Evaluation);
+        let e = Episode::start(&mut env, header(1, 2, 0), Mode::Evaluation).unwrap();
         let mut batches = Batches::default();
         for _ in 0..proto::MAX_FRAMES_PER_MESSAGE {
             assert!(!batches.is_full());
@@ -385,13 +436,17 @@ mod tests {
         assert!(batches.take().is_empty());
     }
 
+    fn ours(config: &[u8]) -> Result<ServedRun, String> {
+        ServedRun::new(config, 1, SimulatorKind::Ours, None)
+    }
+
     fn settings(config: &EnvConfig) -> Vec<u8> {
         proto::encode_settings(config).unwrap()
     }
 
     #[test]
     fn evaluation_needs_a_seed_first() {
-        let mut s = ServedRun::new(&settings(&EnvConfig::default()), 1).unwrap();
+        let mut s = ours(&settings(&EnvConfig::default())).unwrap();
         assert!(s.prepare(Mode::Evaluation, None).is_err());
         assert!(s.prepare(Mode::Training, None).is_ok());
         assert!(s.prepare(Mode::Evaluation, Some(4)).is_ok());
@@ -404,12 +459,12 @@ mod tests {
             offense: 9,
             ..EnvConfig::default()
         };
-        let e = ServedRun::new(&settings(&nine), 1).unwrap_err();
+        let e = ours(&settings(&nine)).unwrap_err();
         assert!(e.contains("offense"), "{e}");
         let mut long = settings(&EnvConfig::default());
         long.push(1);
         for bytes in [&b"{"[..], &long] {
-            let e = ServedRun::new(bytes, 1).unwrap_err();
+            let e = ours(bytes).unwrap_err();
             assert!(e.starts_with("invalid env config: "), "{e}");
         }
     }

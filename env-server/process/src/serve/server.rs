@@ -14,13 +14,14 @@
 
 use super::episode::{Batches, Episode, Offer, ServedRun};
 use super::link::{Inbox, Link};
+use super::real_hfo::RealHfoInstall;
+use super::simulator::Simulator;
 use anyhow::{Result, bail};
-use env_server::Env;
 use env_server::MAX_OFFENSE;
 use node::sync::lock;
 use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
-    MessageCounters, MessageKind, Mode, ServerReport,
+    MessageCounters, MessageKind, Mode, ServerReport, Simulator as SimulatorKind,
 };
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -56,6 +57,8 @@ struct CurrentRun {
 struct Server {
     link: Link,
     experiment: u64,
+    /// Where the real HFO is, when this server plays it instead of ours.
+    real_hfo: Option<RealHfoInstall>,
     step_timeout: Duration,
     /// How long a kicker may stay silent, frame after frame.
     stall_limit: Duration,
@@ -72,13 +75,14 @@ struct Server {
 }
 
 impl Server {
-    /// A server on `link`; each run's reset sets how long it waits for a
-    /// frame's actions.
-    fn new(link: Link) -> Self {
+    /// A server on `link`, playing the real HFO where `real_hfo` says; each
+    /// run's reset sets how long it waits for a frame's actions.
+    fn new(link: Link, real_hfo: Option<RealHfoInstall>) -> Self {
         let experiment = link.experiment();
         Server {
             link,
             experiment,
+            real_hfo,
             step_timeout: Duration::ZERO,
             stall_limit: Duration::ZERO,
             silent_since: [None; MAX_OFFENSE],
@@ -147,8 +151,9 @@ impl Server {
                 config,
                 wait_ms,
                 stall_ms,
+                simulator,
             } => (
-                self.reset(header, seed, &config, wait_ms, stall_ms)?,
+                self.reset(header, seed, &config, (wait_ms, stall_ms), simulator)?,
                 Flow::Continue,
             ),
             Control::Report => (
@@ -169,15 +174,17 @@ impl Server {
     }
 
     /// Starts run `header.run` with a training simulator seeded with
-    /// `seed`; an in-progress episode is abandoned. A bad config changes
+    /// `seed`, waiting `wait_ms` for actions and abandoning an episode after
+    /// `stall_ms` of silence; an in-progress episode is abandoned. A bad
+    /// config, or another simulator than this server plays, changes
     /// nothing.
     fn reset(
         &mut self,
         header: Header,
         seed: u64,
         config: &[u8],
-        wait_ms: u64,
-        stall_ms: u64,
+        (wait_ms, stall_ms): (u64, u64),
+        simulator: SimulatorKind,
     ) -> Result<ControlReply> {
         if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
             return Ok(ControlReply::Error(format!(
@@ -191,7 +198,7 @@ impl Server {
                 proto::MAX_STALL_MS
             )));
         }
-        let envs = match ServedRun::new(config, seed) {
+        let envs = match ServedRun::new(config, seed, simulator, self.real_hfo.as_ref()) {
             Ok(s) => s,
             Err(text) => return Ok(ControlReply::Error(text)),
         };
@@ -254,7 +261,14 @@ impl Server {
         };
         run.last_episode = Some(header.episode);
         let start = Header::new(self.experiment, header.run, header.episode, 0);
-        let episode = Episode::start(env, start, mode);
+        let episode = match Episode::start(env, start, mode) {
+            Ok(episode) => episode,
+            Err(text) => {
+                warn!(run = header.run, episode = header.episode, "{text}");
+                self.reply(&query, header, ControlReply::Error(text));
+                return Ok(());
+            }
+        };
         self.play = Some(Play {
             query,
             episode,
@@ -288,7 +302,10 @@ impl Server {
                 play.deadline = Some(Instant::now() + self.step_timeout);
                 return Ok(());
             }
-            play.episode.step(env);
+            if let Err(why) = play.episode.step(env) {
+                self.abandon(&why);
+                return Ok(());
+            }
             self.frames += 1;
         }
     }
@@ -307,7 +324,10 @@ impl Server {
     fn proceed(&mut self) -> Result<()> {
         if let Some((play, env)) = playing(&mut self.play, &mut self.run) {
             play.deadline = None;
-            play.episode.step(env);
+            if let Err(why) = play.episode.step(env) {
+                self.abandon(&why);
+                return Ok(());
+            }
             self.frames += 1;
         }
         self.advance()
@@ -457,9 +477,10 @@ impl Server {
 
 /// Serves on `link` until `Stop`, then closes the session: actions are
 /// handled in the subscriber's callback as they arrive, control queries
-/// and the step deadline here.
-pub async fn run(link: Link, mut inbox: Inbox) -> Result<()> {
-    let server = Arc::new(Mutex::new(Server::new(link)));
+/// and the step deadline here. Episodes are played on our simulator, or on
+/// the real HFO where `real_hfo` says.
+pub async fn run(link: Link, mut inbox: Inbox, real_hfo: Option<RealHfoInstall>) -> Result<()> {
+    let server = Arc::new(Mutex::new(Server::new(link, real_hfo)));
     let (failed, mut failure) = unbounded_channel();
     // Weak: the callback must not keep the server (and its session) alive.
     let weak = Arc::downgrade(&server);
@@ -508,7 +529,7 @@ pub async fn run(link: Link, mut inbox: Inbox) -> Result<()> {
 fn playing<'a>(
     play: &'a mut Option<Play>,
     run: &'a mut Option<CurrentRun>,
-) -> Option<(&'a mut Play, &'a mut Env)> {
+) -> Option<(&'a mut Play, &'a mut dyn Simulator)> {
     let play = play.as_mut()?;
     let env = run.as_mut()?.envs.env(play.episode.mode)?;
     Some((play, env))
