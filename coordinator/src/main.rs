@@ -139,7 +139,7 @@ struct RouterArgs {
 struct StudyArgs {
     /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
     /// fidelity-sensitivity, advice-network, advising-methods, newcomer,
-    /// untrusted.
+    /// untrusted, real-hfo.
     #[arg(long, value_name = "NAME")]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).

@@ -4,7 +4,8 @@
 //! A directory is claimed by its identity file (`config.json` for an
 //! experiment, `study.json` for a study): a directory holding another
 //! identity, or files without one, is refused before anything is written;
-//! the same identity resumes over its own files. An experiment directory
+//! the same identity resumes over its own files, with as many runs as it
+//! now asks for. An experiment directory
 //! gets `config.json` first, one `run-<k>.csv` per run written as it goes,
 //! `run-<k>.json` when a run is complete and `summary.json` at the end.
 
@@ -74,7 +75,7 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
         let mut theirs: Value = serde_json::from_slice(&bytes)
             .map_err(|e| other(format!("its {name} is unreadable: {e}")))?;
         todays_spellings(&mut theirs);
-        match first_difference(identity, &theirs, "") {
+        match first_difference(&without_runs(identity), &without_runs(&theirs), "") {
             Some(diff) => Err(other(format!("{name} differs at {diff}"))),
             None => Ok(()),
         }
@@ -104,6 +105,20 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
         }
     }
     Ok(())
+}
+
+/// An identity without its count of runs: a directory resumes with more
+/// runs (a run's seeds depend only on its index, so those played stay
+/// valid) or reports on fewer; the identity file then says the new count.
+fn without_runs(identity: &Value) -> Value {
+    let mut identity = identity.clone();
+    if let Some(map) = identity.as_object_mut() {
+        map.remove("runs");
+        if let Some(config) = map.get_mut("config").and_then(Value::as_object_mut) {
+            config.remove("runs");
+        }
+    }
+    identity
 }
 
 /// Rewrites the keys an earlier version wrote under another name as they
@@ -396,9 +411,14 @@ mod tests {
              20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4,0,0\n"
         );
         ExperimentDir::check(&dir, &ours).unwrap();
-        let theirs = json!({"format": 1, "config": {"runs": 3}});
+        // More runs (or fewer) resume the same experiment.
+        ExperimentDir::check(&dir, &json!({"format": 1, "config": {"runs": 9}})).unwrap();
+        let theirs = json!({"format": 1, "config": {"runs": 2, "episodes": 3}});
         let err = ExperimentDir::check(&dir, &theirs).unwrap_err().to_string();
-        assert!(err.contains("config.runs") && err.contains("out"), "{err}");
+        assert!(
+            err.contains("config.episodes") && err.contains("out"),
+            "{err}"
+        );
         assert_eq!(fs::read_to_string(dir.join("run-0.csv")).unwrap(), csv);
 
         // Results without a config.json are someone else's too.

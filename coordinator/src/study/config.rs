@@ -15,7 +15,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 9] = [
+pub const PRESETS: [(&str, &str); 10] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -43,6 +43,7 @@ pub const PRESETS: [(&str, &str); 9] = [
     ),
     ("newcomer", include_str!("../../presets/newcomer.toml")),
     ("untrusted", include_str!("../../presets/untrusted.toml")),
+    ("real-hfo", include_str!("../../presets/real-hfo.toml")),
 ];
 
 /// What a study runs.
