@@ -37,8 +37,11 @@ class LearnerAdapter:
     def choose(self, state: learners.State, index: int | None) -> int:
         return int(self.learner.choose(state, index))
 
-    def learn(self, transition: tuple) -> None:
-        self.learner.learn(learners.Transition(*transition))
+    def learn(self, transitions: list[tuple]) -> None:
+        """The transitions queued since the last call, in order."""
+        learn, make = self.learner.learn, learners.Transition
+        for t in transitions:
+            learn(make(*t))
 
     def end_episode(self) -> None:
         self.learner.end_episode()

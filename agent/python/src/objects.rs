@@ -199,8 +199,15 @@ impl PythonObject {
     }
 }
 
-/// One call to a learner, made by its thread.
-type Job = Box<dyn FnOnce(Python<'_>) + Send>;
+/// A call to a learner, made by its thread: one transition to learn (those
+/// queued one after another are learned in one call), or any other call.
+enum Job {
+    Learn(PyTransition),
+    Call(Box<dyn FnOnce(Python<'_>, &PythonObject) + Send>),
+}
+
+/// The most transitions handed to the learner in one call.
+const MAX_LEARNED_AT_ONCE: usize = 64;
 
 /// A learner adapter, called by a thread of its own in the order of the
 /// calls: `learn` and `replay` return at once, as they do over a learner
@@ -222,27 +229,61 @@ impl PythonLearner {
     /// `object`, with its thread started.
     fn start(object: PythonObject) -> Result<Self, String> {
         let (jobs, queue) = mpsc::channel::<Job>();
+        let object = Arc::new(object);
+        let pending = Arc::<AtomicUsize>::default();
+        let (theirs, their_pending) = (object.clone(), pending.clone());
         let thread = std::thread::Builder::new()
             .name("python-learner".into())
             .spawn(move || {
                 // The GIL is held while calls wait, released when none does.
-                while let Ok(job) = queue.recv() {
+                while let Ok(first) = queue.recv() {
                     Python::attach(|py| {
-                        job(py);
-                        while let Ok(job) = queue.try_recv() {
-                            job(py);
+                        let mut learns = Vec::new();
+                        let mut next = Some(first);
+                        while let Some(job) = next {
+                            match job {
+                                Job::Learn(t) => {
+                                    learns.push(t);
+                                    if learns.len() == MAX_LEARNED_AT_ONCE {
+                                        learn(py, &theirs, &their_pending, &mut learns);
+                                    }
+                                }
+                                Job::Call(call) => {
+                                    learn(py, &theirs, &their_pending, &mut learns);
+                                    call(py, &theirs);
+                                    their_pending.fetch_sub(1, Ordering::Release);
+                                }
+                            }
+                            next = queue.try_recv().ok();
                         }
+                        learn(py, &theirs, &their_pending, &mut learns);
                     });
                 }
             })
             .map_err(|e| format!("cannot start {}'s thread: {e}", object.what))?;
         Ok(Self {
-            object: Arc::new(object),
-            pending: Arc::default(),
+            object,
+            pending,
             jobs: Some(jobs),
             thread: Some(thread),
         })
     }
+}
+
+/// Hands `learns` to the learner in one call (its adapter's `learn` takes
+/// a list) and counts them made.
+fn learn(
+    py: Python<'_>,
+    object: &PythonObject,
+    pending: &AtomicUsize,
+    learns: &mut Vec<PyTransition>,
+) {
+    if learns.is_empty() {
+        return;
+    }
+    let made = learns.len();
+    object.call(py, "learn", (std::mem::take(learns),));
+    pending.fetch_sub(made, Ordering::Release);
 }
 
 /// The six features as a Python tuple.
@@ -272,13 +313,8 @@ fn transition((from, reward, next): &Experience<'_>) -> PyTransition {
 }
 
 impl PythonLearner {
-    /// `call` made by the learner's thread after every call before it.
-    fn post(&self, call: impl FnOnce(Python<'_>, &PythonObject) + Send + 'static) {
-        let (object, pending) = (self.object.clone(), self.pending.clone());
-        let job: Job = Box::new(move |py| {
-            call(py, &object);
-            pending.fetch_sub(1, Ordering::Release);
-        });
+    /// `job` made by the learner's thread after every call before it.
+    fn post(&self, job: Job) {
         self.pending.fetch_add(1, Ordering::Relaxed);
         if let Some(jobs) = &self.jobs {
             // Its thread only ends when the learner is dropped.
@@ -297,9 +333,9 @@ impl PythonLearner {
             return Some(Python::attach(|py| call(py, &self.object)));
         }
         let (tx, rx) = mpsc::sync_channel(1);
-        self.post(move |py, object| {
+        self.post(Job::Call(Box::new(move |py, object| {
             let _ = tx.send(call(py, object));
-        });
+        })));
         rx.recv().ok()
     }
 }
@@ -343,10 +379,7 @@ impl Learner for PythonLearner {
     }
 
     fn learn(&mut self, step: Experience<'_>) {
-        let t = transition(&step);
-        self.post(move |py, o| {
-            o.call(py, "learn", (t,));
-        });
+        self.post(Job::Learn(transition(&step)));
     }
 
     /// Waits for the episode's calls: a failure among them is known when
@@ -359,9 +392,9 @@ impl Learner for PythonLearner {
 
     fn replay(&mut self, episode: &[Experience<'_>]) {
         let episode: Vec<PyTransition> = episode.iter().map(transition).collect();
-        self.post(move |py, o| {
+        self.post(Job::Call(Box::new(move |py, o| {
             o.call(py, "replay", (episode,));
-        });
+        })));
     }
 
     fn table(&self) -> Option<Vec<ActionValues>> {
