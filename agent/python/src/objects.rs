@@ -199,11 +199,14 @@ impl PythonObject {
     }
 }
 
+/// Any call to a learner but `learn`, made by its thread.
+type Call = Box<dyn FnOnce(Python<'_>, &PythonObject) + Send>;
+
 /// A call to a learner, made by its thread: one transition to learn (those
-/// queued one after another are learned in one call), or any other call.
+/// queued one after another are learned in one call), or another call.
 enum Job {
     Learn(PyTransition),
-    Call(Box<dyn FnOnce(Python<'_>, &PythonObject) + Send>),
+    Call(Call),
 }
 
 /// The most transitions handed to the learner in one call.
