@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use agent::Algorithm;
+use proto::Simulator;
 
 use serde::Serialize;
 
@@ -23,6 +24,7 @@ use crate::stats::analysis::{Comparison, EntryResults};
 use crate::stats::gains::{Gain, LAST_POINTS, gains};
 use crate::stats::holm::{HolmComparison, holm_against};
 use crate::store;
+use crate::transport::Transport;
 
 /// What `significance.json` holds.
 #[derive(Serialize)]
@@ -176,6 +178,16 @@ impl Markdown {
     }
 }
 
+/// The simulator the study was played on, when not ours.
+fn simulator(transport: &Transport) -> &'static str {
+    match transport.zenoh().map(|z| z.simulator) {
+        Some(Simulator::RealHfo) => {
+            " on the real HFO (not deterministic: docs/protocol.md, \"The real HFO\")"
+        }
+        _ => "",
+    }
+}
+
 /// The title, the study's description, its protocol and its pretraining.
 fn introduction(md: &mut Markdown, study: &StudyConfig, entries: &[EntryResults]) {
     let pct = 100.0 * study.ci_level();
@@ -186,7 +198,7 @@ fn introduction(md: &mut Markdown, study: &StudyConfig, entries: &[EntryResults]
     }
     md.paragraph(&format!(
         "{} runs x {} training episodes per algorithm; an evaluation of {} episodes with every agent \
-         frozen before training and every {} episodes ({points} points); seed {}; transport {}; \
+         frozen before training and every {} episodes ({points} points); seed {}; transport {}{}; \
          fidelity profile {} (docs/fidelity.md). Intervals: {pct}% Student's t over runs. Tests: Wilcoxon signed-rank on goal percentage, \
          paired by run, two-sided, at the {pct}% level.",
         study.runs,
@@ -195,6 +207,7 @@ fn introduction(md: &mut Markdown, study: &StudyConfig, entries: &[EntryResults]
         study.eval_every,
         study.seed,
         study.transport.name(),
+        simulator(&study.transport),
         study.profile,
     ));
     if let Some(p) = &study.pretrain {
