@@ -278,15 +278,34 @@ fn bad_studies_are_refused_and_nothing_is_overwritten() {
             "--config",
             &tiny,
             "--runs",
-            "2",
+            "1",
             "--episodes",
-            "50",
+            "60",
             "--out",
             o,
         ]),
-        "study.json differs at `runs`",
+        "study.json differs at `episodes`",
     );
     assert_eq!(read(&out.join("study.json")), before);
+
+    // Only its runs may differ: the same study grows by a run.
+    let grown = run(&[
+        "--config",
+        &tiny,
+        "--runs",
+        "2",
+        "--episodes",
+        "50",
+        "--out",
+        o,
+    ]);
+    assert!(
+        grown.status.success(),
+        "{}",
+        String::from_utf8_lossy(&grown.stderr)
+    );
+    assert!(read(&out.join("study.json")).contains("\"runs\": 2"));
+    assert!(out.join("no-advice").join("run-1.json").exists());
 }
 
 /// Every file under `dir`, relative to it, sorted.
