@@ -48,8 +48,8 @@ class LinearSarsa(Learner):
         self.alpha = alpha / (start.features * TILINGS)
         self.gamma, self.lam, self.epsilon = gamma, lam, epsilon
         self.decay = gamma * lam
-        offsets = np.arange(TILINGS) * WIDTH / TILINGS
-        self.offsets = offsets[None, :]
+        #: A feature x lies in tile (x + 1 + offset) / WIDTH of each tiling.
+        self.shift = 1.0 + (np.arange(TILINGS) * WIDTH / TILINGS)[None, :]
         self.base = (np.arange(start.features)[:, None] * TILINGS + np.arange(TILINGS)) * TILES
         #: The tiles of the states met lately: a transition's next state is
         #: the next one's state, and values, choose and learn ask in turn.
@@ -59,9 +59,11 @@ class LinearSarsa(Learner):
         """The indices of the tiles `state` lies in, one per feature and tiling."""
         tiles = self.tiles.get(state)
         if tiles is None:
-            x = np.asarray(state)[:, None] + 1.0 + self.offsets
-            tile = np.clip((x / WIDTH).astype(int), 0, TILES - 1)
-            tiles = (self.base + tile).ravel()
+            x = np.asarray(state)[:, None] + self.shift
+            x /= WIDTH
+            np.maximum(x, 0.0, out=x)
+            np.minimum(x, TILES - 1, out=x)
+            tiles = (x.astype(np.intp) + self.base).ravel()
             if len(self.tiles) >= 64:
                 self.tiles.clear()
             self.tiles[state] = tiles
@@ -76,10 +78,11 @@ class LinearSarsa(Learner):
 
     def choose(self, state: State, index: int | None) -> int:
         if self.rng.random() < self.epsilon:
-            return int(self.rng.choice(KICKS))
-        q = self.q(state)[list(KICKS)]
-        best = np.flatnonzero(q == q.max())
-        return KICKS[int(self.rng.choice(best))]
+            return KICKS[self.rng.integers(len(KICKS))]
+        q = self.q(state).tolist()
+        best = max(q[a] for a in KICKS)
+        ties = [a for a in KICKS if q[a] == best]
+        return ties[0] if len(ties) == 1 else ties[self.rng.integers(len(ties))]
 
     def learn(self, t: Transition) -> None:
         tiles = self.active(t.state)
@@ -90,7 +93,7 @@ class LinearSarsa(Learner):
         self.traces *= self.decay
         self.traces[:, tiles] = 0.0
         self.traces[t.action][tiles] = 1.0
-        self.weights += self.alpha * error * self.traces
+        self.weights += (self.alpha * error) * self.traces
 
     def end_episode(self) -> None:
         self.traces[:] = 0.0
