@@ -1,15 +1,14 @@
 //! Python learners and strategies given as objects to `run()`
 //! (coordinator's `plugin` seam), called in this process with the GIL taken
-//! for each call: a strategy by its run's thread, a learner by a thread of
-//! its own ([`PythonLearner`]).
+//! for each call by the run's thread.
 //!
 //! The seams cannot return errors, so the first exception of an
 //! agent's objects is kept (with the exception itself, for `run()` to raise
 //! from) and every later call returns at once; the in-process backend asks
 //! for it after every frame and ends the run.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex, PoisonError, mpsc};
+use std::cell::RefCell;
+use std::sync::{Arc, Mutex, PoisonError};
 
 use agent::{
     ActionValues, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng, AskContext,
@@ -96,7 +95,7 @@ impl Plugin for PythonObjects {
         };
         let label = self.spec.learner.as_deref().unwrap_or_default();
         let object = self.make(make, start, "learner", label)?;
-        Ok(Some(Box::new(PythonLearner::start(object)?)))
+        Ok(Some(Box::new(PythonLearner::new(object))))
     }
 
     fn strategy(&self, start: PluginStart) -> Result<Option<Box<dyn AdvisingStrategy>>, String> {
@@ -130,7 +129,7 @@ fn describe(py: Python<'_>, err: &PyErr) -> String {
 #[derive(Debug)]
 struct PythonObject {
     object: Py<PyAny>,
-    /// "agent 2's learner `numpy-linear-sarsa 1`", for failures.
+    /// "agent 2's learner `numpy-linear-sarsa 2`", for failures.
     what: String,
     failure: Arc<Failure>,
 }
@@ -199,94 +198,47 @@ impl PythonObject {
     }
 }
 
-/// Any call to a learner but `learn`, made by its thread.
-type Call = Box<dyn FnOnce(Python<'_>, &PythonObject) + Send>;
-
-/// A call to a learner, made by its thread: one transition to learn (those
-/// queued one after another are learned in one call), or another call.
-enum Job {
-    Learn(PyTransition),
-    Call(Call),
-}
-
-/// The most transitions handed to the learner in one call.
+/// The most transitions kept for the learner before they are handed over.
 const MAX_LEARNED_AT_ONCE: usize = 64;
 
-/// A learner adapter, called by a thread of its own in the order of the
-/// calls: `learn` and `replay` return at once, as they do over a learner
-/// process's pipe, so that the learner's work overlaps the simulator's and
-/// the other agents'; the others wait for every call before them (and
-/// `end_episode`, so that a failure is known when its episode ends), made
-/// directly when none is waiting. The same calls in the same order: the
+/// A learner adapter, called by its run's thread. `learn` keeps the
+/// transition and returns at once, as it does over a learner process's
+/// pipe; the kept transitions are handed over in one call (its adapter's
+/// `learn` takes a list) before any other call, at the end of an episode
+/// (so that a failure among them is known when its episode ends) and when
+/// [`MAX_LEARNED_AT_ONCE`] are kept. The same calls in the same order: the
 /// same results.
 #[derive(Debug)]
 struct PythonLearner {
-    object: Arc<PythonObject>,
-    /// Calls posted and not yet made.
-    pending: Arc<AtomicUsize>,
-    jobs: Option<mpsc::Sender<Job>>,
-    thread: Option<std::thread::JoinHandle<()>>,
+    object: PythonObject,
+    /// Transitions not yet handed over (a `RefCell` for `save_state`,
+    /// which takes `&self`).
+    learns: RefCell<Vec<PyTransition>>,
 }
 
 impl PythonLearner {
-    /// `object`, with its thread started.
-    fn start(object: PythonObject) -> Result<Self, String> {
-        let (jobs, queue) = mpsc::channel::<Job>();
-        let object = Arc::new(object);
-        let pending = Arc::<AtomicUsize>::default();
-        let (theirs, their_pending) = (object.clone(), pending.clone());
-        let thread = std::thread::Builder::new()
-            .name("python-learner".into())
-            .spawn(move || {
-                // The GIL is held while calls wait, released when none does.
-                while let Ok(first) = queue.recv() {
-                    Python::attach(|py| {
-                        let mut learns = Vec::new();
-                        let mut next = Some(first);
-                        while let Some(job) = next {
-                            match job {
-                                Job::Learn(t) => {
-                                    learns.push(t);
-                                    if learns.len() == MAX_LEARNED_AT_ONCE {
-                                        learn(py, &theirs, &their_pending, &mut learns);
-                                    }
-                                }
-                                Job::Call(call) => {
-                                    learn(py, &theirs, &their_pending, &mut learns);
-                                    call(py, &theirs);
-                                    their_pending.fetch_sub(1, Ordering::Release);
-                                }
-                            }
-                            next = queue.try_recv().ok();
-                        }
-                        learn(py, &theirs, &their_pending, &mut learns);
-                    });
-                }
-            })
-            .map_err(|e| format!("cannot start {}'s thread: {e}", object.what))?;
-        Ok(Self {
+    fn new(object: PythonObject) -> Self {
+        Self {
             object,
-            pending,
-            jobs: Some(jobs),
-            thread: Some(thread),
+            learns: RefCell::default(),
+        }
+    }
+
+    /// What `call` answers, made after the kept transitions are learned.
+    fn ask<T>(&self, call: impl FnOnce(Python<'_>, &PythonObject) -> T) -> T {
+        Python::attach(|py| {
+            self.flush(py);
+            call(py, &self.object)
         })
     }
-}
 
-/// Hands `learns` to the learner in one call (its adapter's `learn` takes
-/// a list) and counts them made.
-fn learn(
-    py: Python<'_>,
-    object: &PythonObject,
-    pending: &AtomicUsize,
-    learns: &mut Vec<PyTransition>,
-) {
-    if learns.is_empty() {
-        return;
+    /// Hands the kept transitions to the learner.
+    fn flush(&self, py: Python<'_>) {
+        let learns = std::mem::take(&mut *self.learns.borrow_mut());
+        if !learns.is_empty() {
+            self.object.call(py, "learn", (learns,));
+        }
     }
-    let made = learns.len();
-    object.call(py, "learn", (std::mem::take(learns),));
-    pending.fetch_sub(made, Ordering::Release);
 }
 
 /// The six features as a Python tuple.
@@ -315,59 +267,18 @@ fn transition((from, reward, next): &Experience<'_>) -> PyTransition {
     )
 }
 
-impl PythonLearner {
-    /// `job` made by the learner's thread after every call before it.
-    fn post(&self, job: Job) {
-        self.pending.fetch_add(1, Ordering::Relaxed);
-        if let Some(jobs) = &self.jobs {
-            // Its thread only ends when the learner is dropped.
-            let _ = jobs.send(job);
-        }
-    }
-
-    /// What `call` answers, made after every call before it: here when
-    /// none is waiting, else by the learner's thread; `None` if that thread
-    /// is gone.
-    fn ask<T: Send + 'static>(
-        &self,
-        call: impl FnOnce(Python<'_>, &PythonObject) -> T + Send + 'static,
-    ) -> Option<T> {
-        if self.pending.load(Ordering::Acquire) == 0 {
-            return Some(Python::attach(|py| call(py, &self.object)));
-        }
-        let (tx, rx) = mpsc::sync_channel(1);
-        self.post(Job::Call(Box::new(move |py, object| {
-            let _ = tx.send(call(py, object));
-        })));
-        rx.recv().ok()
-    }
-}
-
-impl Drop for PythonLearner {
-    /// Ends the learner's thread once it has made every call.
-    fn drop(&mut self) {
-        self.jobs.take();
-        if let Some(thread) = self.thread.take() {
-            let _ = thread.join();
-        }
-    }
-}
-
 impl Learner for PythonLearner {
     fn values(&mut self, at: Seen<'_>) -> ActionValues {
-        let at = state(at);
-        self.ask(move |py, o| {
-            let q = o.answer(py, "values", at);
+        self.ask(|py, o| {
+            let q = o.answer(py, "values", state(at));
             q.and_then(|q| o.values(py, "values", q))
         })
-        .flatten()
         .unwrap_or_default()
     }
 
     fn choose(&mut self, at: Seen<'_>, _: &mut AgentRng) -> Action {
-        let at = state(at);
-        self.ask(move |py, o| {
-            let action: Option<usize> = o.answer(py, "choose", at);
+        self.ask(|py, o| {
+            let action: Option<usize> = o.answer(py, "choose", state(at));
             match action.map(|a| (a, Action::ALL.get(a))) {
                 Some((_, Some(&a))) if a.is_kick() => a,
                 Some((a, _)) => {
@@ -378,15 +289,16 @@ impl Learner for PythonLearner {
                 None => Action::Shoot,
             }
         })
-        .unwrap_or(Action::Shoot)
     }
 
     fn learn(&mut self, step: Experience<'_>) {
-        self.post(Job::Learn(transition(&step)));
+        let learns = self.learns.get_mut();
+        learns.push(transition(&step));
+        if learns.len() == MAX_LEARNED_AT_ONCE {
+            Python::attach(|py| self.flush(py));
+        }
     }
 
-    /// Waits for the episode's calls: a failure among them is known when
-    /// the episode ends.
     fn end_episode(&mut self) {
         self.ask(|py, o| {
             o.call(py, "end_episode", ());
@@ -395,9 +307,9 @@ impl Learner for PythonLearner {
 
     fn replay(&mut self, episode: &[Experience<'_>]) {
         let episode: Vec<PyTransition> = episode.iter().map(transition).collect();
-        self.post(Job::Call(Box::new(move |py, o| {
+        self.ask(|py, o| {
             o.call(py, "replay", (episode,));
-        })));
+        });
     }
 
     fn table(&self) -> Option<Vec<ActionValues>> {
@@ -407,21 +319,20 @@ impl Learner for PythonLearner {
     fn save_state(&self) -> Option<Vec<u8>> {
         self.ask(|py, o| o.answer::<Option<Vec<u8>>>(py, "save", ()))
             .flatten()
-            .flatten()
     }
 
     fn load_state(&mut self, state: &[u8]) -> Result<(), String> {
-        let state = state.to_vec();
-        let restored = self.ask(move |py, o| {
-            let bytes = pyo3::types::PyBytes::new(py, &state);
+        let restored = self.ask(|py, o| {
+            let bytes = pyo3::types::PyBytes::new(py, state);
             o.call(py, "restore", (bytes,)).is_some()
         });
-        match restored {
-            Some(true) => Ok(()),
-            _ => Err(format!(
+        if restored {
+            Ok(())
+        } else {
+            Err(format!(
                 "{} could not restore its saved state",
                 self.object.what
-            )),
+            ))
         }
     }
 

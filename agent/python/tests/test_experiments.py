@@ -88,7 +88,7 @@ def test_a_python_learner_learns_beside_adhoc_td_and_is_deterministic(tmp_path: 
     assert_same_results(tmp_path / "a", tmp_path / "b")
     config = json.loads((tmp_path / "a" / "config.json").read_text())
     recorded = config["config"]["team"][2]["plugin"]["learner"]
-    assert recorded == "numpy-linear-sarsa 1 (numpy_learner.LinearSarsa)"
+    assert recorded == "numpy-linear-sarsa 2 (numpy_learner.LinearSarsa)"
     run = json.loads((tmp_path / "a" / "run-0.json").read_text())
     python_agent = run["points"][-1]["agents"][2]
     assert python_agent["advice_requests"] > 0 and python_agent["advice_given"] > 0
