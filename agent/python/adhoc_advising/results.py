@@ -77,6 +77,8 @@ class Study:
     agents: pd.DataFrame = field(repr=False)
     #: Every entry's summary points, with an `entry` column first.
     summary: pd.DataFrame = field(repr=False)
+    #: Every entry's who advised whom, with an `entry` column first.
+    advice: pd.DataFrame = field(repr=False)
     #: `significance.json`'s `gains`: one row per entry, each estimate as
     #: `<name>`, `<name>_ci_low`, `<name>_ci_high`, `<name>_n`.
     gains: pd.DataFrame = field(repr=False)
@@ -241,6 +243,7 @@ def _study(directory: Path) -> Study:
         curves=_with_entry({n: e.curves for n, e in entries.items()}),
         agents=_with_entry({n: e.agents for n, e in entries.items()}),
         summary=_with_entry({n: e.summary for n, e in entries.items()}),
+        advice=_with_entry({n: e.advice for n, e in entries.items()}),
         gains=gains,
         aggregate=pandas.DataFrame(aggregate_rows),
         holm=pandas.DataFrame(significance.get("holm", [])),

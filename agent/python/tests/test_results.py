@@ -65,6 +65,10 @@ def test_a_study_loads_as_tidy_frames_that_agree(study_dir: Path) -> None:
     # Every agent's counters at every point, as the runs' JSON hold them.
     assert set(study.agents.agent) == {0, 1, 2}
     assert len(study.agents) == 2 * 2 * 3 * 3
+    # Who advised whom, each entry's as its experiment holds it.
+    adhoc_td = study.advice[study.advice.entry == "adhoc-td"].drop(columns="entry")
+    assert adhoc_td.reset_index(drop=True).equals(study.entries["adhoc-td"].advice)
+    assert set(study.advice.columns) == {"entry", "run", "advisee", "advisor", "decisions"}
     # The gains and aggregates name every entry but the baseline's gain.
     assert list(study.gains.entry) == ["adhoc-td"]
     assert {"last_ten_gain", "last_ten_gain_ci_low", "area_gain"} <= set(study.gains.columns)
