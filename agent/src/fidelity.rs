@@ -32,12 +32,12 @@ impl Profile {
         }
     }
 
-    /// AdHocVisit's default giving scale v_g: 0.5 in the paper, 0.4 in
-    /// adhocvisit.py.
+    /// AdHocVisit's default giving scale v_g: 0.5 in the paper, 0.2 in the
+    /// authors' runs (docs/fidelity.md, item 4).
     pub fn visit_v_g(self) -> f64 {
         match self {
             Profile::Paper => 0.5,
-            Profile::Authors => 0.4,
+            Profile::Authors => 0.2,
         }
     }
 
@@ -185,7 +185,7 @@ mod tests {
         assert_ne!(p.shared_bootstrap, a.shared_bootstrap);
         assert_eq!(
             (Profile::Paper.visit_v_g(), Profile::Authors.visit_v_g()),
-            (0.5, 0.4)
+            (0.5, 0.2)
         );
         assert_eq!("authors".parse::<Profile>(), Ok(Profile::Authors));
         assert!(

@@ -683,7 +683,7 @@ mod tests {
         let Strategy::AdHoc(a) = &c.strategy else {
             panic!("ad hoc expected");
         };
-        assert_eq!(a.v_g, 0.4);
+        assert_eq!(a.v_g, 0.2);
         let text = "algorithm = \"adhoc-visit\"\nprofile = \"authors\"\nv_g = 0.5\n\
                     advisor_ties = \"first\"\n";
         let c: AgentConfig = toml::from_str(text).unwrap();

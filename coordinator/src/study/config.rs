@@ -413,7 +413,7 @@ mod tests {
             Strategy::AdHoc(a) => a.v_g,
             other => panic!("ad hoc expected, got {other:?}"),
         };
-        assert_eq!((v_g("adhoc-visit"), v_g("adhoc-visit-vg-0-5")), (0.4, 0.5));
+        assert_eq!((v_g("adhoc-visit"), v_g("adhoc-visit-vg-0-5")), (0.2, 0.5));
         // The paper presets follow the authors; the quick one the paper.
         for name in ["paper-scratch", "paper-mistake-correcting", "paper-expert"] {
             assert_eq!(StudyConfig::preset(name).unwrap().profile, Profile::Authors);
