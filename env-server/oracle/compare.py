@@ -29,8 +29,12 @@ from typing import Any
 from hfo_oracle.schema import NEXT_KEYS, POLICIES
 from hfo_oracle.stats import Z95, normal_half_width, wilson, z_means, z_proportions
 
-OUTCOMES = [("goal", "goal %"), ("captured", "captured %"),
-            ("out_of_bounds", "out of bounds %"), ("out_of_time", "time-out %")]
+OUTCOMES = [
+    ("goal", "goal %"),
+    ("captured", "captured %"),
+    ("out_of_bounds", "out of bounds %"),
+    ("out_of_time", "time-out %"),
+]
 
 
 class Cell:
@@ -79,14 +83,28 @@ def rows_for(d: dict[str, Any]) -> list[tuple[str, Cell]]:
     rows = []
     for key, label in OUTCOMES:
         rows.append((label, Cell("prop", k=out.get(key, 0), n=n)))
-    rows.append(("frames per episode", Cell("mean", mean=d.get("mean_frames"),
-                                            sd=sd_of(d, "frames"), n=n)))
-    rows.append(("frames to goal", Cell("mean", mean=d.get("mean_frames_to_goal"),
-                                        sd=sd_of(d, "frames_to_goal"), n=out.get("goal", 0))))
+    rows.append(
+        ("frames per episode", Cell("mean", mean=d.get("mean_frames"), sd=sd_of(d, "frames"), n=n))
+    )
+    rows.append(
+        (
+            "frames to goal",
+            Cell(
+                "mean",
+                mean=d.get("mean_frames_to_goal"),
+                sd=sd_of(d, "frames_to_goal"),
+                n=out.get("goal", 0),
+            ),
+        )
+    )
     for b in dec["shots"]:
         hi = "∞" if b["to_m"] is None else "%g" % b["to_m"]
-        rows.append(("shot success %% [%g, %s) m" % (b["from_m"], hi),
-                     Cell("prop", k=b["goals"], n=b["released"])))
+        rows.append(
+            (
+                "shot success %% [%g, %s) m" % (b["from_m"], hi),
+                Cell("prop", k=b["goals"], n=b["released"]),
+            )
+        )
     shots = sum(b["released"] for b in dec["shots"])
     goals = sum(b["goals"] for b in dec["shots"])
     rows.append(("shot success % (all)", Cell("prop", k=goals, n=shots)))
@@ -95,9 +113,17 @@ def rows_for(d: dict[str, Any]) -> list[tuple[str, Cell]]:
         tot = sum(mix.get(k, 0) for k in NEXT_KEYS)
         for k in NEXT_KEYS:
             rows.append(("%s: %s %%" % (name, k), Cell("prop", k=mix.get(k, 0), n=tot)))
-    rows.append(("possessions per episode",
-                 Cell("mean", mean=dec.get("possessions_per_episode"),
-                      sd=sd_of(d, "possessions_per_episode"), n=n)))
+    rows.append(
+        (
+            "possessions per episode",
+            Cell(
+                "mean",
+                mean=dec.get("possessions_per_episode"),
+                sd=sd_of(d, "possessions_per_episode"),
+                n=n,
+            ),
+        )
+    )
     return rows
 
 
@@ -110,14 +136,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         with open(f) as fh:
             d = json.load(fh)
         by_policy.setdefault(d["policy"], []).append((f, d))
-    for policy in sorted(by_policy,
-                         key=lambda x: (POLICIES.index(x) if x in POLICIES else 99, x)):
-        cols = sorted(by_policy[policy],
-                      key=lambda fd: (fd[1].get("simulator") != "ours", fd[0]))
+    for policy in sorted(by_policy, key=lambda x: (POLICIES.index(x) if x in POLICIES else 99, x)):
+        cols = sorted(by_policy[policy], key=lambda fd: (fd[1].get("simulator") != "ours", fd[0]))
         labels = []
         for f, d in cols:
-            lab = "%s (%s episodes, seed %s)" % (d.get("simulator", "?"), d["episodes"],
-                                                 d.get("seed"))
+            lab = "%s (%s episodes, seed %s)" % (
+                d.get("simulator", "?"),
+                d["episodes"],
+                d.get("seed"),
+            )
             if sum(1 for g, e in cols if e.get("simulator") == d.get("simulator")) > 1:
                 lab += " " + os.path.basename(f)
             labels.append(lab)

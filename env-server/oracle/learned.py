@@ -37,8 +37,14 @@ def pool(stats: list[dict[str, Any]]) -> dict[str, Any]:
     n, mean, sd = pooled((d["episodes"], d["mean_frames"], d["sd"]["frames"]) for d in stats)
     out = {k: sum(d["outcomes"][k] for d in stats) for k in OUTCOMES}
     actions = {k: sum(d["actions"][k] for d in stats) for k in ACTIONS}
-    return {"episodes": n, "outcomes": out, "actions": actions, "mean_frames": mean,
-            "sd_frames": sd, "runs": len(stats)}
+    return {
+        "episodes": n,
+        "outcomes": out,
+        "actions": actions,
+        "mean_frames": mean,
+        "sd_frames": sd,
+        "runs": len(stats),
+    }
 
 
 def pct(k: int, n: int) -> str:
@@ -72,22 +78,36 @@ def main(argv: Sequence[str] | None = None) -> int:
         with open(f) as fh:
             d = json.load(fh)
         runs[team_name(d)][d["simulator"]].append(d)
-    print("| team (runs) | goal %: ours | real HFO | z | captured / out / time-out %: ours "
-          "| real HFO | frames: ours | real HFO | kickers' choices % (move / shoot / dribble "
-          "/ pass near / far): ours | real HFO |")
+    print(
+        "| team (runs) | goal %: ours | real HFO | z | captured / out / time-out %: ours "
+        "| real HFO | frames: ours | real HFO | kickers' choices % (move / shoot / dribble "
+        "/ pass near / far): ours | real HFO |"
+    )
     print("|" + "---|" * 11)
     for name in sorted(runs, key=lambda t: (t.rsplit("-", 1)[0], int(t.rsplit("-", 1)[1]))):
         sims = runs[name]
         if set(sims) != {"ours", "hfo"}:
             continue
         a, b = pool(sims["ours"]), pool(sims["hfo"])
-        z = z_proportions(a["outcomes"]["goal"], a["episodes"],
-                          b["outcomes"]["goal"], b["episodes"])
-        print("| %s (%d) | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            name, a["runs"], pct(a["outcomes"]["goal"], a["episodes"]),
-            pct(b["outcomes"]["goal"], b["episodes"]),
-            "–" if z is None else "%.2f%s" % (z, " *" if abs(z) > Z95 else ""),
-            rest(a), rest(b), frames(a), frames(b), mix(a), mix(b)))
+        z = z_proportions(
+            a["outcomes"]["goal"], a["episodes"], b["outcomes"]["goal"], b["episodes"]
+        )
+        print(
+            "| %s (%d) | %s | %s | %s | %s | %s | %s | %s | %s | %s |"
+            % (
+                name,
+                a["runs"],
+                pct(a["outcomes"]["goal"], a["episodes"]),
+                pct(b["outcomes"]["goal"], b["episodes"]),
+                "–" if z is None else "%.2f%s" % (z, " *" if abs(z) > Z95 else ""),
+                rest(a),
+                rest(b),
+                frames(a),
+                frames(b),
+                mix(a),
+                mix(b),
+            )
+        )
     return 0
 
 

@@ -19,7 +19,6 @@ import sys
 from typing import Any
 
 import halffield
-
 from hfo_oracle.schema import ACTIONS, STATUS_OUTCOMES, write_json
 from hfo_oracle.stats import mean, sample_sd
 from hfo_oracle.team import greedy_agent

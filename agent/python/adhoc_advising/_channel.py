@@ -9,9 +9,7 @@ import sys
 from typing import IO, Callable
 
 
-def serve_lines(
-    answer: Callable[[dict], dict | None], requests: IO[str], answers: IO[str]
-) -> int:
+def serve_lines(answer: Callable[[dict], dict | None], requests: IO[str], answers: IO[str]) -> int:
     """Answers each request line with ``answer`` until ``requests`` closes;
     returns the exit status. An exception is reported to the agent (which
     ends with a line naming it) and ends the loop with 1. Meanwhile

@@ -89,8 +89,14 @@ class StrategyAdapter:
     def reuse(self, key: int, values: RawValues) -> int | None:
         return strategies._action(self.strategy.reuse(key, strategies._values(values)))
 
-    def asks(self, fresh: bool, visits: int, episodes: int, counters: Sequence[int],
-             uncertainty: float | None) -> bool:
+    def asks(
+        self,
+        fresh: bool,
+        visits: int,
+        episodes: int,
+        counters: Sequence[int],
+        uncertainty: float | None,
+    ) -> bool:
         at = strategies.AskContext(fresh, visits, episodes, _counters(counters), uncertainty)
         return bool(self.strategy.asks(at))
 
@@ -104,13 +110,15 @@ class StrategyAdapter:
     def advice(self, values: RawValues) -> int:
         return int(self.strategy.advice(strategies._values(values)))
 
-    def follow(self, key: int, advice: Sequence[tuple], shared: Sequence[tuple]
-               ) -> tuple[int, int] | None:
+    def follow(
+        self, key: int, advice: Sequence[tuple], shared: Sequence[tuple]
+    ) -> tuple[int, int] | None:
         followed = self.strategy.follow(_replies(key, advice, shared))
         return None if followed is None else (int(followed.advisor), int(followed.action))
 
-    def adopt(self, key: int, advice: Sequence[tuple], shared: Sequence[tuple], visits: int
-              ) -> list[float | None] | None:
+    def adopt(
+        self, key: int, advice: Sequence[tuple], shared: Sequence[tuple], visits: int
+    ) -> list[float | None] | None:
         taken = self.strategy.adopt(_replies(key, advice, shared), visits)
         return None if taken is None else list(strategies._values(taken))
 

@@ -54,8 +54,9 @@ def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]
             for role in ("learner", "strategy")
             if role in table and not isinstance(table[role], (str, Mapping))
         }
-        objects.append((made("learner", given.get("learner")),
-                        made("strategy", given.get("strategy"))))
+        objects.append(
+            (made("learner", given.get("learner")), made("strategy", given.get("strategy")))
+        )
         agents.append(table)
     tables["agent"] = agents
     return json.dumps(tables), objects
@@ -205,7 +206,12 @@ def replay(
     greedy, learning nothing."""
     team_file, team_tables, objects = _team(team)
     summary, svg, paths_svg, rcg = _adhoc_advising.replay(
-        objects=objects, algorithm=algorithm, team_file=team_file, team_tables=team_tables,
-        seed=seed, episode=episode, profile=profile,
+        objects=objects,
+        algorithm=algorithm,
+        team_file=team_file,
+        team_tables=team_tables,
+        seed=seed,
+        episode=episode,
+        profile=profile,
     )
     return Replay(summary, svg, paths_svg, rcg)

@@ -52,15 +52,19 @@ def curves(
     episodes (the reports' ``goal_pct_last`` zooms on the last 20%)."""
     ax = _axes(ax)
     summary = results.summary
-    groups: Any = (
-        summary.groupby("entry", sort=False) if "entry" in summary else [("", summary)]
-    )
+    groups: Any = summary.groupby("entry", sort=False) if "entry" in summary else [("", summary)]
     for name, points in groups:
         if last is not None:
             points = points[points.episode >= points.episode.max() - last]
         line = ax.plot(points.episode, points[metric], label=name or None)[0]
-        ax.fill_between(points.episode, points[f"{metric}_ci_low"], points[f"{metric}_ci_high"],
-                        color=line.get_color(), alpha=0.2, linewidth=0)
+        ax.fill_between(
+            points.episode,
+            points[f"{metric}_ci_low"],
+            points[f"{metric}_ci_high"],
+            color=line.get_color(),
+            alpha=0.2,
+            linewidth=0,
+        )
     ax.set_xlabel("training episodes")
     ax.set_ylabel(LABELS.get(metric, metric))
     if "entry" in summary:
@@ -87,9 +91,7 @@ def gain_vs_messages(study: Study, ax: Axes | None = None) -> Axes:
     advising messages each agent sent per training episode, over the whole
     training (``gain_vs_messages.svg``)."""
     ax = _axes(ax)
-    team_size = {
-        name: len(e.config["config"]["team"]) for name, e in study.entries.items()
-    }
+    team_size = {name: len(e.config["config"]["team"]) for name, e in study.entries.items()}
     s = study.summary.dropna(subset=["advising_messages"])
     s = s.assign(episodes=s.groupby("entry").episode.diff().fillna(s.episode))
     s = s.assign(sent=s.advising_messages * s.episodes)
@@ -97,8 +99,13 @@ def gain_vs_messages(study: Study, ax: Axes | None = None) -> Axes:
     for _, g in study.gains.iterrows():
         x = sent[g.entry] / team_size[g.entry]
         y = g.last_ten_gain
-        ax.errorbar([x], [y], yerr=[[y - g.last_ten_gain_ci_low], [g.last_ten_gain_ci_high - y]],
-                    fmt="o", capsize=3)
+        ax.errorbar(
+            [x],
+            [y],
+            yerr=[[y - g.last_ten_gain_ci_low], [g.last_ten_gain_ci_high - y]],
+            fmt="o",
+            capsize=3,
+        )
         ax.annotate(g.entry, (x, y), xytext=(5, 3), textcoords="offset points")
     ax.axhline(0, color="grey", linewidth=0.8)
     ax.set_xlabel("advising messages per agent per training episode")

@@ -26,7 +26,11 @@ if TYPE_CHECKING:
 #: The estimates of a `summary.json` evaluation point, each with its mean and
 #: interval (columns `<metric>`, `<metric>_ci_low`, `<metric>_ci_high`, `<metric>_n`).
 SUMMARY_METRICS = (
-    "goal_pct", "time_to_goal", "spent_budget", "advising_messages", "advising_bytes"
+    "goal_pct",
+    "time_to_goal",
+    "spent_budget",
+    "advising_messages",
+    "advising_bytes",
 )
 
 
@@ -34,9 +38,7 @@ def _pandas() -> Any:
     try:
         import pandas
     except ImportError as error:  # pragma: no cover - depends on the environment
-        raise ImportError(
-            "adhoc_advising.results needs pandas: pip install pandas"
-        ) from error
+        raise ImportError("adhoc_advising.results needs pandas: pip install pandas") from error
     return pandas
 
 

@@ -51,8 +51,11 @@ def assert_same_results(a: Path, b: Path) -> None:
 
 def mixed_team(learner: object) -> list[dict]:
     """Two Rust AdHocTD agents and one AdHocTD agent learning with `learner`."""
-    return [{"algorithm": "adhoc-td"}, {"algorithm": "adhoc-td"},
-            {"algorithm": "adhoc-td", "learner": learner}]
+    return [
+        {"algorithm": "adhoc-td"},
+        {"algorithm": "adhoc-td"},
+        {"algorithm": "adhoc-td", "learner": learner},
+    ]
 
 
 SMALL = {"runs": 2, "episodes": 100, "eval_every": 50, "eval_episodes": 10, "threads": 2}
@@ -60,22 +63,51 @@ SMALL = {"runs": 2, "episodes": 100, "eval_every": 50, "eval_episodes": 10, "thr
 
 def test_run_writes_what_the_command_line_writes(tmp_path: Path) -> None:
     options = {"runs": 2, "episodes": 150, "eval_every": 50, "eval_episodes": 10, "seed": 7}
-    adhoc_advising.run(out=tmp_path / "py", algorithm="adhoc-visit", mistake_correcting=True,
-                       advice_loss=0.1, **options)
+    adhoc_advising.run(
+        out=tmp_path / "py",
+        algorithm="adhoc-visit",
+        mistake_correcting=True,
+        advice_loss=0.1,
+        **options,
+    )
     subprocess.run(
-        [str(workspace_binary("coordinator")), "run", "--algorithm", "adhoc-visit",
-         "--mistake-correcting", "--advice-loss", "0.1", "--runs", "2", "--episodes", "150",
-         "--eval-every", "50", "--eval-episodes", "10", "--seed", "7",
-         "--transport", "in-process", "--quiet", "--out", str(tmp_path / "cli")],
-        check=True, capture_output=True, timeout=300,
+        [
+            str(workspace_binary("coordinator")),
+            "run",
+            "--algorithm",
+            "adhoc-visit",
+            "--mistake-correcting",
+            "--advice-loss",
+            "0.1",
+            "--runs",
+            "2",
+            "--episodes",
+            "150",
+            "--eval-every",
+            "50",
+            "--eval-episodes",
+            "10",
+            "--seed",
+            "7",
+            "--transport",
+            "in-process",
+            "--quiet",
+            "--out",
+            str(tmp_path / "cli"),
+        ],
+        check=True,
+        capture_output=True,
+        timeout=300,
     )
     assert_same_results(tmp_path / "py", tmp_path / "cli")
 
 
 def test_a_team_file_and_its_tables_give_the_same_results(tmp_path: Path) -> None:
     team = tmp_path / "team.toml"
-    team.write_text('[[agent]]\nalgorithm = "torrey"\n\n[[agent]]\nalgorithm = "adhoc-td"\n\n'
-                    '[[agent]]\nalgorithm = "no-advice"\n')
+    team.write_text(
+        '[[agent]]\nalgorithm = "torrey"\n\n[[agent]]\nalgorithm = "adhoc-td"\n\n'
+        '[[agent]]\nalgorithm = "no-advice"\n'
+    )
     adhoc_advising.run(out=tmp_path / "file", team=team, **SMALL)
     tables = [{"algorithm": a} for a in ("torrey", "adhoc-td", "no-advice")]
     adhoc_advising.run(out=tmp_path / "tables", team=tables, **SMALL)
@@ -133,8 +165,12 @@ def test_a_learner_raising_ends_the_run_with_its_traceback(tmp_path: Path) -> No
 
 def test_a_python_learner_is_saved_and_loaded(tmp_path: Path) -> None:
     saved = tmp_path / "saved"
-    adhoc_advising.run(out=tmp_path / "train", team=mixed_team(LinearSarsa),
-                       save_agents=saved, **{**SMALL, "runs": 1})
+    adhoc_advising.run(
+        out=tmp_path / "train",
+        team=mixed_team(LinearSarsa),
+        save_agents=saved,
+        **{**SMALL, "runs": 1},
+    )
     snapshot = saved / "run-0-agent-2.qtable"
     assert snapshot.stat().st_size > 0
 
@@ -152,8 +188,11 @@ def test_a_python_learner_is_saved_and_loaded(tmp_path: Path) -> None:
 
 
 def test_a_python_strategy_decides_in_process(tmp_path: Path) -> None:
-    team = [{"algorithm": "adhoc-td"}, {"algorithm": "adhoc-td"},
-            {"algorithm": "external", "strategy": NearestTeammate}]
+    team = [
+        {"algorithm": "adhoc-td"},
+        {"algorithm": "adhoc-td"},
+        {"algorithm": "external", "strategy": NearestTeammate},
+    ]
     for out in ("a", "b"):
         adhoc_advising.run(out=tmp_path / out, team=team, seed=5, **SMALL)
     assert_same_results(tmp_path / "a", tmp_path / "b")
@@ -174,18 +213,23 @@ class Unreachable(NearestTeammate):
 
 
 def test_a_strategy_answering_wrongly_is_named(tmp_path: Path) -> None:
-    team = [{"algorithm": "adhoc-td"}, {"algorithm": "adhoc-td"},
-            {"algorithm": "external", "strategy": Unreachable}]
+    team = [
+        {"algorithm": "adhoc-td"},
+        {"algorithm": "adhoc-td"},
+        {"algorithm": "external", "strategy": Unreachable},
+    ]
     with pytest.raises(RuntimeError, match=r"agent 2's strategy `nearest-teammate.*`advisors`"):
         adhoc_advising.run(out=tmp_path / "out", team=team, **SMALL)
 
 
 def test_a_saved_team_replays_as_an_animation_and_a_game_log(tmp_path: Path) -> None:
     saved = tmp_path / "saved"
-    adhoc_advising.run(out=tmp_path / "train", algorithm="adhoc-td", save_agents=saved,
-                       **{**SMALL, "runs": 1})
-    team = [{"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.qtable")}
-            for i in range(3)]
+    adhoc_advising.run(
+        out=tmp_path / "train", algorithm="adhoc-td", save_agents=saved, **{**SMALL, "runs": 1}
+    )
+    team = [
+        {"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.qtable")} for i in range(3)
+    ]
     replay = adhoc_advising.replay(team=team, seed=4)
     assert replay == adhoc_advising.replay(team=team, seed=4)
     frames = int(re.search(r"after (\d+) frames?", replay.summary).group(1))
@@ -244,8 +288,12 @@ print("finished")
 
 def test_ctrl_c_stops_cleanly_and_the_same_call_resumes(tmp_path: Path) -> None:
     out = tmp_path / "out"
-    child = subprocess.Popen([sys.executable, "-c", CTRL_C, str(out)],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    child = subprocess.Popen(
+        [sys.executable, "-c", CTRL_C, str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     deadline = time.monotonic() + 120
     # Interrupted once its runs are under way (their first evaluation
     # written), seconds before they could end.
@@ -258,7 +306,8 @@ def test_ctrl_c_stops_cleanly_and_the_same_call_resumes(tmp_path: Path) -> None:
     for written in out.glob("*.json"):
         json.loads(written.read_text())
     assert not [p for p in out.iterdir() if p.name.startswith(".")], list(out.iterdir())
-    again = subprocess.run([sys.executable, "-c", CTRL_C, str(out)],
-                           capture_output=True, text=True, timeout=600)
+    again = subprocess.run(
+        [sys.executable, "-c", CTRL_C, str(out)], capture_output=True, text=True, timeout=600
+    )
     assert again.returncode == 0 and "finished" in again.stdout, again.stderr
     assert (out / "summary.json").is_file()

@@ -6,11 +6,11 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
-import halffield
 import pytest
 from conftest import workspace_binary
 
 import adhoc_advising
+import halffield
 
 
 def _trained_team(out: Path) -> list[Path]:

@@ -105,11 +105,30 @@ def test_a_python_learner_is_saved_and_loaded_with_its_own_state(tmp_path: Path)
     team = team_file(tmp_path, EXAMPLE)
     agents = tmp_path / "agents"
     first = subprocess.run(
-        [str(workspace_binary("coordinator").parent / "coordinator"), "run", "--team", str(team),
-         "--runs", "1", "--episodes", "100", "--eval-every", "100", "--eval-episodes", "5",
-         "--transport", "zenoh", "--quiet", "--save-agents", str(agents),
-         "--out", str(tmp_path / "first")],
-        capture_output=True, text=True, timeout=900,
+        [
+            str(workspace_binary("coordinator").parent / "coordinator"),
+            "run",
+            "--team",
+            str(team),
+            "--runs",
+            "1",
+            "--episodes",
+            "100",
+            "--eval-every",
+            "100",
+            "--eval-episodes",
+            "5",
+            "--transport",
+            "zenoh",
+            "--quiet",
+            "--save-agents",
+            str(agents),
+            "--out",
+            str(tmp_path / "first"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
     )
     assert first.returncode == 0, first.stderr
     saved = (agents / "run-0-agent-2.qtable").read_bytes()

@@ -18,7 +18,9 @@ EXAMPLES = ROOT / "agent" / "python" / "examples"
 def test_the_quickstart_notebook_runs(tmp_path: Path) -> None:
     notebook = nbformat.read(EXAMPLES / "quickstart.ipynb", as_version=4)
     client = nbclient.NotebookClient(
-        notebook, timeout=900, kernel_name="python3",
+        notebook,
+        timeout=900,
+        kernel_name="python3",
         resources={"metadata": {"path": str(EXAMPLES)}},
     )
     client.execute()

@@ -42,8 +42,15 @@ def study_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     config.write_text(STUDY)
     out = directory / "out"
     subprocess.run(
-        [str(workspace_binary("coordinator")), "study", "--config", str(config), "--quiet",
-         "--out", str(out)],
+        [
+            str(workspace_binary("coordinator")),
+            "study",
+            "--config",
+            str(config),
+            "--quiet",
+            "--out",
+            str(out),
+        ],
         check=True,
         capture_output=True,
         timeout=600,

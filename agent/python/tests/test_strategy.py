@@ -50,13 +50,26 @@ def test_the_defaults_are_the_seams() -> None:
     status, answers = talk(
         lambda start: AdvisingStrategy(),
         START,
-        {"op": "asks", "fresh": True, "visits": 0, "training_episodes": 3,
-         "counters": COUNTERS, "uncertainty": None},
+        {
+            "op": "asks",
+            "fresh": True,
+            "visits": 0,
+            "training_episodes": 3,
+            "counters": COUNTERS,
+            "uncertainty": None,
+        },
         {"op": "gives", "visits": 9, "values": values, "counters": COUNTERS},
         {"op": "advice", "values": values},
-        {"op": "follow", "key": 11, "values": [],
-         "advice": [{"advisor": 0, "action": 3}, {"advisor": 1, "action": 2},
-                    {"advisor": 2, "action": 2}]},
+        {
+            "op": "follow",
+            "key": 11,
+            "values": [],
+            "advice": [
+                {"advisor": 0, "action": 3},
+                {"advisor": 1, "action": 2},
+                {"advisor": 2, "action": 2},
+            ],
+        },
         {"op": "spent_budget", "counters": COUNTERS},
     )
     assert status == 0
@@ -98,7 +111,9 @@ def test_a_strategy_that_raises_is_reported_and_ends_the_loop() -> None:
             raise KeyError("no such advisor")
 
     status, answers = talk(
-        Broken, START, {"op": "learn_outcome", "advisor": 5, "advantage": 0.0},
+        Broken,
+        START,
+        {"op": "learn_outcome", "advisor": 5, "advantage": 0.0},
         {"op": "spent_budget", "counters": COUNTERS},
     )
     assert status == 1
@@ -121,10 +136,23 @@ def run(team: Path, out: Path, episodes: int) -> subprocess.CompletedProcess[str
     """`coordinator run` of one run of `team` over loopback zenoh."""
     return subprocess.run(
         [
-            str(workspace_binary("coordinator")), "run", "--team", str(team),
-            "--runs", "1", "--episodes", str(episodes), "--eval-every", "100",
-            "--eval-episodes", "20", "--transport", "zenoh", "--quiet",
-            "--out", str(out),
+            str(workspace_binary("coordinator")),
+            "run",
+            "--team",
+            str(team),
+            "--runs",
+            "1",
+            "--episodes",
+            str(episodes),
+            "--eval-every",
+            "100",
+            "--eval-episodes",
+            "20",
+            "--transport",
+            "zenoh",
+            "--quiet",
+            "--out",
+            str(out),
         ],
         capture_output=True,
         text=True,

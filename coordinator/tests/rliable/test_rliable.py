@@ -5,8 +5,8 @@ against rliable's (Agarwal et al. 2021) on the same per-run scores
 Point estimates agree to 1e-9. The intervals are bootstrap percentiles, so
 they agree up to Monte-Carlo error: ours come from 2000 resamples, rliable's
 here from 20000. With the scores' bootstrap standard deviation s (about 2
-goal-% points for the mean and IQM here, 0.12 for P(X > Y)), the standard error of a 2.5 % quantile of
-B resamples is sqrt(0.025 * 0.975 / B) / phi(1.96), about 0.06 s for
+goal-% points for the mean and IQM here, 0.12 for P(X > Y)), the standard
+error of a 2.5 % quantile of B resamples is sqrt(0.025 * 0.975 / B) / phi(1.96), about 0.06 s for
 B = 2000: 0.12 to 0.16 points, and 0.007. The tolerances, 1 point and 0.05,
 are some 6 of those standard errors, so the test does not fail by chance
 (the endpoints measured differ by at most 0.25 points and 0.008)."""
@@ -54,9 +54,19 @@ def coordinator_binary() -> Path:
 @pytest.fixture(scope="module")
 def ours() -> dict:
     out = subprocess.run(
-        [coordinator_binary(), "aggregate", "--scores", FIXTURE, "--baseline", BASELINE,
-         "--level", str(LEVEL)],
-        check=True, capture_output=True, text=True,
+        [
+            coordinator_binary(),
+            "aggregate",
+            "--scores",
+            FIXTURE,
+            "--baseline",
+            BASELINE,
+            "--level",
+            str(LEVEL),
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
     ).stdout
     return json.loads(out)
 
@@ -69,21 +79,33 @@ def scores() -> dict[str, np.ndarray]:
 
 def theirs(score_dict, func):
     return rly.get_interval_estimates(
-        score_dict, func, reps=REPS, confidence_interval_size=LEVEL,
+        score_dict,
+        func,
+        reps=REPS,
+        confidence_interval_size=LEVEL,
         random_state=np.random.RandomState(0),
     )
 
 
-@pytest.mark.parametrize("name,func", [("mean", metrics.aggregate_mean),
-                                        ("iqm", metrics.aggregate_iqm)])
+@pytest.mark.parametrize(
+    "name,func", [("mean", metrics.aggregate_mean), ("iqm", metrics.aggregate_iqm)]
+)
 def test_mean_and_iqm(ours, scores, name, func):
     points, intervals = theirs(scores, func)
     for algorithm in scores:
         got = ours["algorithms"][algorithm]
         assert got[name] == pytest.approx(points[algorithm], abs=1e-9), algorithm
         low, high = got[name + "_ci"]
-        assert abs(low - intervals[algorithm][0]) < SCORE_TOLERANCE, (algorithm, low, intervals[algorithm])
-        assert abs(high - intervals[algorithm][1]) < SCORE_TOLERANCE, (algorithm, high, intervals[algorithm])
+        assert abs(low - intervals[algorithm][0]) < SCORE_TOLERANCE, (
+            algorithm,
+            low,
+            intervals[algorithm],
+        )
+        assert abs(high - intervals[algorithm][1]) < SCORE_TOLERANCE, (
+            algorithm,
+            high,
+            intervals[algorithm],
+        )
 
 
 def test_probability_of_improvement(ours, scores):
@@ -95,14 +117,32 @@ def test_probability_of_improvement(ours, scores):
         got = ours["algorithms"][algorithm]["p_improvement"]
         assert got["estimate"] == pytest.approx(points[algorithm], abs=1e-9), algorithm
         low, high = got["ci"]
-        assert abs(low - intervals[algorithm][0]) < PROBABILITY_TOLERANCE, (algorithm, low, intervals[algorithm])
-        assert abs(high - intervals[algorithm][1]) < PROBABILITY_TOLERANCE, (algorithm, high, intervals[algorithm])
+        assert abs(low - intervals[algorithm][0]) < PROBABILITY_TOLERANCE, (
+            algorithm,
+            low,
+            intervals[algorithm],
+        )
+        assert abs(high - intervals[algorithm][1]) < PROBABILITY_TOLERANCE, (
+            algorithm,
+            high,
+            intervals[algorithm],
+        )
 
 
 def test_the_intervals_are_reproducible(ours):
     again = subprocess.run(
-        [coordinator_binary(), "aggregate", "--scores", FIXTURE, "--baseline", BASELINE,
-         "--level", str(LEVEL)],
-        check=True, capture_output=True, text=True,
+        [
+            coordinator_binary(),
+            "aggregate",
+            "--scores",
+            FIXTURE,
+            "--baseline",
+            BASELINE,
+            "--level",
+            str(LEVEL),
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
     ).stdout
     assert json.loads(again) == ours

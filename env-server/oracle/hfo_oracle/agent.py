@@ -21,8 +21,7 @@ from hfo_oracle.schema import ACTION_CODES, POLICIES
 # The codes a fixed policy draws from, uniformly, with the ball
 # (:data:`hfo_oracle.schema.ACTION_CODES`): the paper's random agent draws
 # DRIBBLE, SHOOT and the two PASSes with weights 2, 2, 1, 1.
-POLICY_CODES = {"random": "DDSSFN", "shoot": "S", "dribble": "D", "pass": "N",
-                "uniform": "SDNF"}
+POLICY_CODES = {"random": "DDSSFN", "shoot": "S", "dribble": "D", "pass": "N", "uniform": "SDNF"}
 
 HALF_LENGTH, HALF_WIDTH = 52.5, 34.0
 # HFO normalises positions over the HFO area plus 10 % on each side.
@@ -49,7 +48,7 @@ def teammates(state: Sequence[float], num_teammates: int) -> list[tuple[float, i
     base = 10 + 3 * num_teammates
     out = []
     for i in range(num_teammates):
-        x, y, unum = state[base + 3 * i:base + 3 * i + 3]
+        x, y, unum = state[base + 3 * i : base + 3 * i + 3]
         if unum <= 0 or x < -1.5 or y < -1.5:
             continue
         tx, ty = unnormalise(x, *X_RANGE), unnormalise(y, *Y_RANGE)
@@ -78,8 +77,14 @@ def paper_state(state: Sequence[float]) -> list[float]:
     max_r = math.hypot(HALF_LENGTH, 2 * HALF_WIDTH)
     distance = (state[6] + 1.0) * 0.5 * max_r
     authors_max = math.hypot(HALF_LENGTH, HALF_WIDTH)
-    return [state[ABLE_KICK], 2.0 * min(distance, authors_max) / authors_max - 1.0,
-            state[7], state[8], state[10], state[11]]
+    return [
+        state[ABLE_KICK],
+        2.0 * min(distance, authors_max) / authors_max - 1.0,
+        state[7],
+        state[8],
+        state[10],
+        state[11],
+    ]
 
 
 def parse_args(argv: Sequence[str]) -> argparse.Namespace:
@@ -102,12 +107,14 @@ def main(argv: Sequence[str]) -> int:
     learner = None
     if a.policy == "team":
         from hfo_oracle.team import greedy_agent
+
         learner = greedy_agent(a.snapshot)
     codes = POLICY_CODES.get(a.policy, "")
     rng = random.Random(a.seed)
     env = hfo.HFOEnvironment()
-    env.connectToServer(hfo.HIGH_LEVEL_FEATURE_SET, a.config_dir, a.port,
-                        "localhost", "base_left", False)
+    env.connectToServer(
+        hfo.HIGH_LEVEL_FEATURE_SET, a.config_dir, a.port, "localhost", "base_left", False
+    )
     num_teammates = env.getNumTeammates()
     kick_actions = {"M": hfo.MOVE, "S": hfo.SHOOT, "D": hfo.DRIBBLE}
     with open(a.out, "w", buffering=1 << 16) as out:

@@ -43,8 +43,9 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     """The backend's command line (given by env-server)."""
     p = argparse.ArgumentParser(prog="hfo_oracle.py backend")
     p.add_argument("--hfo-dir", required=True)
-    p.add_argument("--python", required=True,
-                   help="interpreter with HFO's Python interface's needs (numpy)")
+    p.add_argument(
+        "--python", required=True, help="interpreter with HFO's Python interface's needs (numpy)"
+    )
     p.add_argument("--offense", type=int, required=True)
     p.add_argument("--frames-per-trial", type=int, required=True)
     p.add_argument("--untouched-time", type=int, required=True)
@@ -68,8 +69,10 @@ class Players:
                 tail = " | ".join(line.strip() for line in f.readlines()[-3:])
         except OSError:
             tail = ""
-        return BackendError("player %d of the real HFO ended (exit status %s)%s"
-                            % (i, self.procs[i].poll(), ": " + tail if tail else ""))
+        return BackendError(
+            "player %d of the real HFO ended (exit status %s)%s"
+            % (i, self.procs[i].poll(), ": " + tail if tail else "")
+        )
 
     def read(self) -> list[dict[str, Any]]:
         """Each relay's line of the current cycle."""
@@ -86,8 +89,9 @@ class Players:
             try:
                 lines.append(json.loads(text))
             except ValueError:
-                raise BackendError("player %d of the real HFO wrote %r, not a cycle's line"
-                                   % (i, text[:80])) from None
+                raise BackendError(
+                    "player %d of the real HFO wrote %r, not a cycle's line" % (i, text[:80])
+                ) from None
         return lines
 
     def send(self, codes: str) -> None:
@@ -117,8 +121,7 @@ class Game:
         if "server-down" in statuses:
             raise BackendError("the real HFO's server went down")
         if len(statuses) != 1:
-            raise BackendError("the players disagree on the game's status: %s"
-                               % sorted(statuses))
+            raise BackendError("the players disagree on the game's status: %s" % sorted(statuses))
         return statuses.pop()
 
     def cycle(self, codes: str) -> str:
@@ -148,13 +151,19 @@ class Game:
 
     def frame_line(self, outcome: str) -> str:
         """The answer to a command: the current frame."""
-        return json.dumps({
-            "frame": self.frame,
-            "outcome": outcome,
-            "kick": [line["kick"] for line in self.lines],
-            "states": [line["state"] for line in self.lines],
-            "pos": [line["pos"] for line in self.lines],
-        }, separators=(",", ":")) + "\n"
+        return (
+            json.dumps(
+                {
+                    "frame": self.frame,
+                    "outcome": outcome,
+                    "kick": [line["kick"] for line in self.lines],
+                    "states": [line["state"] for line in self.lines],
+                    "pos": [line["pos"] for line in self.lines],
+                },
+                separators=(",", ":"),
+            )
+            + "\n"
+        )
 
 
 def start(a: argparse.Namespace, procs: launch.Procs, workdir: str) -> Players:
@@ -162,14 +171,29 @@ def start(a: argparse.Namespace, procs: launch.Procs, workdir: str) -> Players:
     port = launch.free_port()
     env = launch.with_package_path(dict(os.environ), a.hfo_dir)
     hfo_out = os.path.join(workdir, "hfo.out")
-    cmd = [a.python, "-u", os.path.join(a.hfo_dir, "bin", "HFO"),
-           "--offense-agents=%d" % a.offense, "--defense-npcs=1", "--fullstate", "--headless",
-           "--frames-per-trial=%d" % a.frames_per_trial,
-           "--untouched-time=%d" % a.untouched_time, "--no-logging",
-           "--port=%d" % port, "--seed=%d" % (a.seed % 2147483647)]
+    cmd = [
+        a.python,
+        "-u",
+        os.path.join(a.hfo_dir, "bin", "HFO"),
+        "--offense-agents=%d" % a.offense,
+        "--defense-npcs=1",
+        "--fullstate",
+        "--headless",
+        "--frames-per-trial=%d" % a.frames_per_trial,
+        "--untouched-time=%d" % a.untouched_time,
+        "--no-logging",
+        "--port=%d" % port,
+        "--seed=%d" % (a.seed % 2147483647),
+    ]
     with open(hfo_out, "w") as out:
-        launcher = procs.start(cmd, cwd=a.hfo_dir, env=env, stdout=out,
-                               stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+        launcher = procs.start(
+            cmd,
+            cwd=a.hfo_dir,
+            env=env,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+        )
     config_dir = os.path.join(a.hfo_dir, "bin", "teams", "base", "config", "formations-dt")
     relays, logs = [], []
     for i in range(a.offense):
@@ -177,14 +201,31 @@ def start(a: argparse.Namespace, procs: launch.Procs, workdir: str) -> Players:
         if not launch.wait_for_line(hfo_out, needle, launcher, CONNECT_WAIT):
             with open(hfo_out, errors="replace") as f:
                 tail = " | ".join(line.strip() for line in f.readlines()[-5:])
-            raise BackendError("HFO did not ask for player %d within %.0f s; its last lines: %s"
-                               % (i, CONNECT_WAIT, tail or "(none)"))
-        cmd = [a.python, "-m", "hfo_oracle", "relay", "--port=%d" % port,
-               "--config-dir=%s" % config_dir]
+            raise BackendError(
+                "HFO did not ask for player %d within %.0f s; its last lines: %s"
+                % (i, CONNECT_WAIT, tail or "(none)")
+            )
+        cmd = [
+            a.python,
+            "-m",
+            "hfo_oracle",
+            "relay",
+            "--port=%d" % port,
+            "--config-dir=%s" % config_dir,
+        ]
         logs.append(os.path.join(workdir, "player%d.err" % i))
         with open(logs[-1], "w") as err:
-            relays.append(procs.start(cmd, cwd=a.hfo_dir, env=env, stdin=subprocess.PIPE,
-                                      stdout=subprocess.PIPE, stderr=err, text=True))
+            relays.append(
+                procs.start(
+                    cmd,
+                    cwd=a.hfo_dir,
+                    env=env,
+                    stdin=subprocess.PIPE,
+                    stdout=subprocess.PIPE,
+                    stderr=err,
+                    text=True,
+                )
+            )
     return Players(relays, logs)
 
 
@@ -197,12 +238,16 @@ def serve(game: Game, inp: IO[str], out: IO[str]) -> None:
         if command == "R":
             game.begin()
             outcome = "in-game"
-        elif command.startswith("S") and len(command) == 1 + len(game.players.procs) \
-                and all(c in "MSDNF" for c in command[1:]):
+        elif (
+            command.startswith("S")
+            and len(command) == 1 + len(game.players.procs)
+            and all(c in "MSDNF" for c in command[1:])
+        ):
             outcome = game.step(command[1:])
         else:
-            raise BackendError("unknown command %r: expected R, S and one of MSDNF per "
-                               "player, or Q" % command[:40])
+            raise BackendError(
+                "unknown command %r: expected R, S and one of MSDNF per player, or Q" % command[:40]
+            )
         out.write(game.frame_line(outcome))
         out.flush()
 
@@ -212,13 +257,21 @@ def main(argv: Sequence[str]) -> int:
     warm-up trial)."""
     a = parse_args(argv)
     if not os.path.isfile(os.path.join(a.hfo_dir, "bin", "HFO")):
-        print(json.dumps({"error": "no built HFO at %s (bin/HFO is missing): build it with "
-                          "env-server/oracle/build_hfo.sh" % a.hfo_dir}), flush=True)
+        print(
+            json.dumps(
+                {
+                    "error": "no built HFO at %s (bin/HFO is missing): build it with "
+                    "env-server/oracle/build_hfo.sh" % a.hfo_dir
+                }
+            ),
+            flush=True,
+        )
         return 1
     launch.enter_network_namespace(a.net, ["backend"] + list(argv))
 
     def on_term(signum: int, _frame: Any) -> None:
         raise KeyboardInterrupt("signal %d" % signum)
+
     signal.signal(signal.SIGTERM, on_term)
     procs = launch.Procs()
     workdir = tempfile.mkdtemp(prefix="hfo-backend-")

@@ -34,26 +34,44 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     p = argparse.ArgumentParser(
         prog="hfo_oracle.py",
         description="Play N episodes of a fixed policy on the real HFO (3 offense agents vs "
-                    "agent2d's goalie) and write per-decision statistics as JSON.")
-    p.add_argument("--hfo-dir", default=os.environ.get("HFO_DIR"),
-                   help="built HFO tree (bin/HFO, bin/rcssserver, hfo/libhfo_c.so); "
-                        "default $HFO_DIR")
-    p.add_argument("--python", default=sys.executable,
-                   help="Python interpreter with numpy, for HFO's launcher and the agents")
+        "agent2d's goalie) and write per-decision statistics as JSON.",
+    )
+    p.add_argument(
+        "--hfo-dir",
+        default=os.environ.get("HFO_DIR"),
+        help="built HFO tree (bin/HFO, bin/rcssserver, hfo/libhfo_c.so); default $HFO_DIR",
+    )
+    p.add_argument(
+        "--python",
+        default=sys.executable,
+        help="Python interpreter with numpy, for HFO's launcher and the agents",
+    )
     who = p.add_mutually_exclusive_group(required=True)
     who.add_argument("--policy", choices=POLICIES)
-    who.add_argument("--team", nargs=launch.OFFENSE_AGENTS, metavar="SNAPSHOT",
-                     help="a learned team: our agents' snapshot files (coordinator run "
-                          "--save-agents), played greedily as our evaluations play; --python "
-                          "must have the package that binds our agents")
+    who.add_argument(
+        "--team",
+        nargs=launch.OFFENSE_AGENTS,
+        metavar="SNAPSHOT",
+        help="a learned team: our agents' snapshot files (coordinator run "
+        "--save-agents), played greedily as our evaluations play; --python "
+        "must have the package that binds our agents",
+    )
     p.add_argument("--episodes", type=int, required=True)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--out", required=True, help="output JSON file")
-    p.add_argument("--batch", type=int, default=500,
-                   help="episodes per HFO run (the logs of one run are parsed and deleted "
-                        "while the next one plays); default 500")
-    p.add_argument("--net", choices=("auto", "isolated", "host"), default="auto",
-                   help="auto: run in a loopback-only network namespace when possible")
+    p.add_argument(
+        "--batch",
+        type=int,
+        default=500,
+        help="episodes per HFO run (the logs of one run are parsed and deleted "
+        "while the next one plays); default 500",
+    )
+    p.add_argument(
+        "--net",
+        choices=("auto", "isolated", "host"),
+        default="auto",
+        help="auto: run in a loopback-only network namespace when possible",
+    )
     p.add_argument("--tmp", default=None, help="parent directory for the temporary logs")
     p.add_argument("--keep-logs", action="store_true", help="do not delete the logs (debugging)")
     args = p.parse_args(argv)
@@ -90,6 +108,7 @@ def harness_main(argv: Sequence[str]) -> int:
 
     def on_term(signum: int, _frame: Any) -> None:
         raise KeyboardInterrupt("signal %d" % signum)
+
     signal.signal(signal.SIGTERM, on_term)
     signal.signal(signal.SIGHUP, on_term)
 
@@ -126,18 +145,24 @@ def harness_main(argv: Sequence[str]) -> int:
                     if attempt >= MAX_ATTEMPTS:
                         raise
             prev = b
-            print("[hfo_oracle] %s: %d/%d episodes played, %.0f s"
-                  % (args.policy, sum(sizes[:i + 1]), args.episodes, time.time() - t0),
-                  file=sys.stderr, flush=True)
+            print(
+                "[hfo_oracle] %s: %d/%d episodes played, %.0f s"
+                % (args.policy, sum(sizes[: i + 1]), args.episodes, time.time() - t0),
+                file=sys.stderr,
+                flush=True,
+            )
         _parse_and_drop(prev, tally, args.keep_logs)
         res = tally.result(args.policy, args.seed)
         if args.team:
             res["team"] = args.team
         res["wall_seconds"] = round(time.time() - t0, 1)
         write_json(args.out, res)
-        print("[hfo_oracle] %s: goal %.2f%%, mean frames %.1f, wrote %s (%.0f s)"
-              % (args.policy, res["goal_pct"], res["mean_frames"], args.out, time.time() - t0),
-              file=sys.stderr, flush=True)
+        print(
+            "[hfo_oracle] %s: goal %.2f%%, mean frames %.1f, wrote %s (%.0f s)"
+            % (args.policy, res["goal_pct"], res["mean_frames"], args.out, time.time() - t0),
+            file=sys.stderr,
+            flush=True,
+        )
         return 0
     finally:
         procs.kill_all()
@@ -157,12 +182,15 @@ def main(argv: Sequence[str]) -> int:
     anything else the harness."""
     if argv and argv[0] == "agent":
         from hfo_oracle import agent
+
         return agent.main(argv[1:])
     if argv and argv[0] == "relay":
         from hfo_oracle import relay
+
         return relay.main(argv[1:])
     if argv and argv[0] == "backend":
         from hfo_oracle import backend
+
         return backend.main(argv[1:])
     return harness_main(argv)
 

@@ -128,8 +128,9 @@ class Batch:
     """One HFO run of ``episodes`` counted episodes (plus the warm-up trial)
     and its files in ``workdir``."""
 
-    def __init__(self, index: int, episodes: int, seed: int, workdir: str,
-                 attempt: int = 0) -> None:
+    def __init__(
+        self, index: int, episodes: int, seed: int, workdir: str, attempt: int = 0
+    ) -> None:
         self.index = index
         self.episodes = episodes
         self.seed = seed
@@ -137,8 +138,9 @@ class Batch:
         self.logdir = os.path.join(self.dir, "log")
         os.makedirs(self.logdir)
         self.hfo_out = os.path.join(self.dir, "hfo.out")
-        self.agent_files = [os.path.join(self.dir, "agent%d.txt" % i)
-                            for i in range(OFFENSE_AGENTS)]
+        self.agent_files = [
+            os.path.join(self.dir, "agent%d.txt" % i) for i in range(OFFENSE_AGENTS)
+        ]
         self.launcher: subprocess.Popen | None = None
         self.agents: list[subprocess.Popen] = []
 
@@ -162,28 +164,62 @@ def start_batch(batch: Batch, setup: Setup, procs: Procs) -> None:
     for it."""
     port = free_port()
     env = with_package_path(dict(os.environ), setup.hfo_dir)
-    cmd = [setup.python, "-u", os.path.join(setup.hfo_dir, "bin", "HFO"),
-           "--offense-agents=%d" % OFFENSE_AGENTS, "--defense-npcs=1", "--fullstate",
-           "--headless", "--frames-per-trial=200", "--trials=%d" % batch.trials,
-           "--port=%d" % port, "--log-dir=%s" % batch.logdir,
-           "--seed=%d" % (batch.seed % 2147483647)]
+    cmd = [
+        setup.python,
+        "-u",
+        os.path.join(setup.hfo_dir, "bin", "HFO"),
+        "--offense-agents=%d" % OFFENSE_AGENTS,
+        "--defense-npcs=1",
+        "--fullstate",
+        "--headless",
+        "--frames-per-trial=200",
+        "--trials=%d" % batch.trials,
+        "--port=%d" % port,
+        "--log-dir=%s" % batch.logdir,
+        "--seed=%d" % (batch.seed % 2147483647),
+    ]
     with open(batch.hfo_out, "w") as out:
-        batch.launcher = procs.start(cmd, cwd=setup.hfo_dir, env=env, stdout=out,
-                                     stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+        batch.launcher = procs.start(
+            cmd,
+            cwd=setup.hfo_dir,
+            env=env,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+        )
     config_dir = os.path.join(setup.hfo_dir, "bin", "teams", "base", "config", "formations-dt")
     for i in range(OFFENSE_AGENTS):
-        if not wait_for_line(batch.hfo_out, "Waiting for player-controlled agent base_left-%d" % i,
-                             batch.launcher, 60):
+        if not wait_for_line(
+            batch.hfo_out,
+            "Waiting for player-controlled agent base_left-%d" % i,
+            batch.launcher,
+            60,
+        ):
             raise StuckBatchError("batch %d: HFO did not ask for agent %d" % (batch.index, i))
-        acmd = [setup.python, "-m", "hfo_oracle", "agent", "--port=%d" % port,
-                "--policy=%s" % setup.policy, "--seed=%d" % (batch.seed * 7 + 1000 * i + 1),
-                "--config-dir=%s" % config_dir, "--out=%s" % batch.agent_files[i]]
+        acmd = [
+            setup.python,
+            "-m",
+            "hfo_oracle",
+            "agent",
+            "--port=%d" % port,
+            "--policy=%s" % setup.policy,
+            "--seed=%d" % (batch.seed * 7 + 1000 * i + 1),
+            "--config-dir=%s" % config_dir,
+            "--out=%s" % batch.agent_files[i],
+        ]
         if setup.team:
             acmd.append("--snapshot=%s" % setup.team[i])
         with open(os.path.join(batch.dir, "agent%d.err" % i), "w") as err:
-            batch.agents.append(procs.start(acmd, cwd=setup.hfo_dir, env=env,
-                                            stdout=subprocess.DEVNULL, stderr=err,
-                                            stdin=subprocess.DEVNULL))
+            batch.agents.append(
+                procs.start(
+                    acmd,
+                    cwd=setup.hfo_dir,
+                    env=env,
+                    stdout=subprocess.DEVNULL,
+                    stderr=err,
+                    stdin=subprocess.DEVNULL,
+                )
+            )
 
 
 def finish_batch(batch: Batch, stall: float = 30.0) -> None:
@@ -223,24 +259,28 @@ def finish_batch(batch: Batch, stall: float = 30.0) -> None:
         try:
             p.wait(timeout=stall)
         except subprocess.TimeoutExpired:
-            raise StuckBatchError("batch %d: an agent did not exit after the server quit"
-                             % batch.index) from None
+            raise StuckBatchError(
+                "batch %d: an agent did not exit after the server quit" % batch.index
+            ) from None
 
 
 def logs_closed(logdir: str) -> bool:
     """Whether rcssserver has closed (renamed) its game and action logs."""
     names = os.listdir(logdir)
-    return (not any(n.startswith("incomplete.rc") for n in names)
-            and any(n.endswith(".rcg") for n in names)
-            and any(n.endswith(".rcl") for n in names))
+    return (
+        not any(n.startswith("incomplete.rc") for n in names)
+        and any(n.endswith(".rcg") for n in names)
+        and any(n.endswith(".rcl") for n in names)
+    )
 
 
 def report_stuck(batch: Batch, err: BaseException, stream: IO[str] = sys.stderr) -> None:
     """Prints why ``batch`` is replayed, with the last lines of the
     launcher's and the agents' output."""
     print("[hfo_oracle] %s; replaying it. Last lines of its output:" % err, file=stream)
-    paths = [batch.hfo_out] + [os.path.join(batch.dir, "agent%d.err" % i)
-                               for i in range(OFFENSE_AGENTS)]
+    paths = [batch.hfo_out] + [
+        os.path.join(batch.dir, "agent%d.err" % i) for i in range(OFFENSE_AGENTS)
+    ]
     for path in paths:
         try:
             with open(path, errors="replace") as f:
@@ -264,17 +304,38 @@ def enter_network_namespace(net: str, argv: Sequence[str]) -> None:
     unshare, ip = shutil.which("unshare"), shutil.which("ip")
     ok = False
     if unshare and ip:
-        ok = subprocess.run([unshare, "-rn", ip, "link", "set", "lo", "up"],
-                            stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL).returncode == 0
+        ok = (
+            subprocess.run(
+                [unshare, "-rn", ip, "link", "set", "lo", "up"],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            ).returncode
+            == 0
+        )
     if not ok:
         if net == "isolated":
             sys.exit("--net isolated: cannot create a network namespace (unshare -rn)")
-        print("note: no network namespace available; processes use 127.0.0.1 only, "
-              "but rcssserver binds its ports on all interfaces", file=sys.stderr)
+        print(
+            "note: no network namespace available; processes use 127.0.0.1 only, "
+            "but rcssserver binds its ports on all interfaces",
+            file=sys.stderr,
+        )
         return
     os.environ.update(with_package_path(dict(os.environ)), HFO_ORACLE_NETNS="1")
     sys.stdout.flush()
     sys.stderr.flush()
-    os.execvp(unshare, [unshare, "-rn", "sh", "-c", ip + ' link set lo up && exec "$@"', "sh",
-                        sys.executable, "-m", "hfo_oracle"] + list(argv))
+    os.execvp(
+        unshare,
+        [
+            unshare,
+            "-rn",
+            "sh",
+            "-c",
+            ip + ' link set lo up && exec "$@"',
+            "sh",
+            sys.executable,
+            "-m",
+            "hfo_oracle",
+        ]
+        + list(argv),
+    )

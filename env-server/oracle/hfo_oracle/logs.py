@@ -86,8 +86,9 @@ def parse_trainer_output(path: str) -> list[tuple[int, str]]:
     return ends
 
 
-def parse_rcl(path: str,
-              offense: Iterable[int]) -> tuple[dict[int, list[int]], list[tuple[int, str]]]:
+def parse_rcl(
+    path: str, offense: Iterable[int]
+) -> tuple[dict[int, list[int]], list[tuple[int, str]]]:
     """From the ``.rcl`` action log: the uniform numbers of the ``offense``
     players that sent a ``(kick ...)`` command, by cycle, and the referee's
     end-of-trial messages as ``(cycle, status name)``."""
@@ -104,7 +105,7 @@ def parse_rcl(path: str,
                 line = raw.decode("ascii", "replace")
                 m = _REFEREE_END.search(line)
                 if m:
-                    ends.append((int(line[:line.index(",")]), m.group(1)))
+                    ends.append((int(line[: line.index(",")]), m.group(1)))
     return kicks, ends
 
 
@@ -174,7 +175,7 @@ def _show(line: str, wanted: set[str]) -> Show:
     ball = (float(b[1]), float(b[2]))
     players = {}
     for chunk in chunks[2:]:
-        key = chunk[:chunk.index(")")]
+        key = chunk[: chunk.index(")")]
         if key not in wanted:
             continue
         t = chunk.split()  # side, "unum)", type, state, x, y, ...

@@ -42,17 +42,30 @@ def frame_line(status: str, state: Sequence[float] | None) -> str:
         # HFO's features are numpy's float32: plain numbers for JSON.
         line["kick"] = bool(state[ABLE_KICK] > 0.5)
         line["state"] = [float(x) for x in paper_state(state)]
-        line["pos"] = [float(unnormalise(state[0], *X_RANGE)),
-                       float(unnormalise(state[1], *Y_RANGE))]
+        line["pos"] = [
+            float(unnormalise(state[0], *X_RANGE)),
+            float(unnormalise(state[1], *Y_RANGE)),
+        ]
     return json.dumps(line, separators=(",", ":")) + "\n"
 
 
 def play(env: Any, hfo: Any, inp: IO[str], out: IO[str]) -> int:
     """Relays ``env``'s cycles to ``out`` and the actions read from ``inp``
     to ``env`` until the server goes down or the input ends."""
-    statuses = {getattr(hfo, name): text for name, text in zip(
-        ("IN_GAME", "GOAL", "CAPTURED_BY_DEFENSE", "OUT_OF_BOUNDS", "OUT_OF_TIME",
-         "SERVER_DOWN"), STATUS_NAMES)}
+    statuses = {
+        getattr(hfo, name): text
+        for name, text in zip(
+            (
+                "IN_GAME",
+                "GOAL",
+                "CAPTURED_BY_DEFENSE",
+                "OUT_OF_BOUNDS",
+                "OUT_OF_TIME",
+                "SERVER_DOWN",
+            ),
+            STATUS_NAMES,
+        )
+    }
     kicks = {"M": hfo.MOVE, "S": hfo.SHOOT, "D": hfo.DRIBBLE}
     num_teammates = env.getNumTeammates()
     status = "in-game"
@@ -85,8 +98,9 @@ def main(argv: Sequence[str]) -> int:
     import hfo  # HFO's own interface, from PYTHONPATH=<hfo-dir>
 
     env = hfo.HFOEnvironment()
-    env.connectToServer(hfo.HIGH_LEVEL_FEATURE_SET, a.config_dir, a.port,
-                        "localhost", "base_left", False)
+    env.connectToServer(
+        hfo.HIGH_LEVEL_FEATURE_SET, a.config_dir, a.port, "localhost", "base_left", False
+    )
     try:
         return play(env, hfo, sys.stdin, lines)
     finally:

@@ -28,7 +28,13 @@ NEXT_KEYS = ("teammate", "same", "captured", "out_of_bounds", "goal", "out_of_ti
 
 # Shot release distance bins in metres, [from, to); None is open-ended.
 SHOT_BINS: tuple[tuple[float, float | None], ...] = (
-    (0, 10), (10, 15), (15, 20), (20, 25), (25, 30), (30, None))
+    (0, 10),
+    (10, 15),
+    (15, 20),
+    (20, 25),
+    (25, 30),
+    (30, None),
+)
 
 # The paper's actions by their index in our simulator
 # (``halffield.PAPER_ACTIONS``), as the statistics name them, and the

@@ -57,13 +57,14 @@ def z_proportions(k1: int, n1: int, k2: int, n2: int) -> float | None:
     return None if se == 0 else (k1 / n1 - k2 / n2) / se
 
 
-def z_means(mean1: float | None, sd1: float | None, n1: int,
-            mean2: float | None, sd2: float | None, n2: int) -> float | None:
+def z_means(
+    mean1: float | None, sd1: float | None, n1: int, mean2: float | None, sd2: float | None, n2: int
+) -> float | None:
     """Welch's z statistic of ``mean1 - mean2``, or None when a mean or a
     standard deviation is missing, a sample is empty or the error is 0."""
     if None in (mean1, sd1, mean2, sd2) or not n1 or not n2:
         return None
-    se = math.sqrt(sd1 ** 2 / n1 + sd2 ** 2 / n2)
+    se = math.sqrt(sd1**2 / n1 + sd2**2 / n2)
     return None if se == 0 else (mean1 - mean2) / se
 
 
@@ -74,5 +75,5 @@ def pooled(groups: Iterable[tuple[int, float, float]]) -> tuple[int, float, floa
     groups = list(groups)
     n = sum(g[0] for g in groups)
     m = sum(g[0] * g[1] for g in groups) / n
-    ss = sum((gn - 1) * gsd ** 2 + gn * (gm - m) ** 2 for gn, gm, gsd in groups)
+    ss = sum((gn - 1) * gsd**2 + gn * (gm - m) ** 2 for gn, gm, gsd in groups)
     return n, m, math.sqrt(ss / (n - 1))

@@ -34,11 +34,19 @@ from hfo_oracle.schema import (
 # `shots_not_released`, `passes_not_released` and `choices_without_kick`
 # should stay 0 (README.md, "checks").
 CHECKS = (
-    "kicks", "kick_commands_not_kickable", "kicks_without_choice",
-    "kick_count_mismatches", "shots_not_released", "passes_not_released",
-    "trainer_outcome_mismatches", "referee_outcome_mismatches",
-    "agent_frames_mismatches", "agent_outcome_mismatches", "choices_without_kick",
-    "batches_replayed")
+    "kicks",
+    "kick_commands_not_kickable",
+    "kicks_without_choice",
+    "kick_count_mismatches",
+    "shots_not_released",
+    "passes_not_released",
+    "trainer_outcome_mismatches",
+    "referee_outcome_mismatches",
+    "agent_frames_mismatches",
+    "agent_outcome_mismatches",
+    "choices_without_kick",
+    "batches_replayed",
+)
 
 
 class Kick(NamedTuple):
@@ -62,31 +70,34 @@ class Tally:
         self.frames: list[int] = []
         self.frames_goal: list[int] = []
         self.shots = [[0, 0] for _ in SHOT_BINS]  # [released, goals] per bin
-        self.after = {"PASS": dict.fromkeys(NEXT_KEYS, 0),
-                      "DRIBBLE": dict.fromkeys(NEXT_KEYS, 0)}
+        self.after = {"PASS": dict.fromkeys(NEXT_KEYS, 0), "DRIBBLE": dict.fromkeys(NEXT_KEYS, 0)}
         self.possessions: list[int] = []
         # The kickers' choices, every decision with the ball.
         self.actions = dict.fromkeys(ACTION_NAMES.values(), 0)
         self.checks = dict.fromkeys(CHECKS, 0)
 
-    def add_batch(self, logdir: str, trainer_output: str, agent_files: Sequence[str],
-                  trials: int) -> None:
+    def add_batch(
+        self, logdir: str, trainer_output: str, agent_files: Sequence[str], trials: int
+    ) -> None:
         """Adds one HFO run of ``trials`` trials (the warm-up included):
         rcssserver's logs in ``logdir``, the launcher's output
         ``trainer_output`` and the agents' choice files."""
         trial_log = logs.parse_hfo_log(logs.find_log(logdir, ".hfo"))
         if len(trial_log) != trials:
-            raise RuntimeError("%s: %d trials in the .hfo log, expected %d"
-                               % (logdir, len(trial_log), trials))
-        self._check_ends("trainer_outcome_mismatches", trial_log,
-                         logs.parse_trainer_output(trainer_output))
+            raise RuntimeError(
+                "%s: %d trials in the .hfo log, expected %d" % (logdir, len(trial_log), trials)
+            )
+        self._check_ends(
+            "trainer_outcome_mismatches", trial_log, logs.parse_trainer_output(trainer_output)
+        )
         agents = [logs.read_agent_file(p) for p in agent_files]
         offense = {a.unum for a in agents}
         choices = self._choices(trial_log, agents)
         kick_commands, referee_ends = logs.parse_rcl(logs.find_log(logdir, ".rcl"), offense)
         self._check_ends("referee_outcome_mismatches", trial_log, referee_ends)
-        kicks = self._kicks(logs.find_log(logdir, ".rcg"), trial_log, offense,
-                            kick_commands, choices)
+        kicks = self._kicks(
+            logs.find_log(logdir, ".rcg"), trial_log, offense, kick_commands, choices
+        )
         # Decisions in which an agent that could kick chose a kicking action
         # but no kick followed (e.g. DRIBBLE dashing, PASS with no safe pass).
         kicked = {(k.unum, k.cycle) for ks in kicks for k in ks}
@@ -95,8 +106,9 @@ class Tally:
             if trial > 0:  # trial 0 is the warm-up
                 self._add_episode(t, ks)
 
-    def _check_ends(self, counter: str, trial_log: list[logs.Trial],
-                    ends: list[tuple[int, str]]) -> None:
+    def _check_ends(
+        self, counter: str, trial_log: list[logs.Trial], ends: list[tuple[int, str]]
+    ) -> None:
         """Counts the trials whose (end cycle, result) another source
         reports otherwise, and the trials it reports too many or too few."""
         for t, end in zip(trial_log, ends):
@@ -104,8 +116,9 @@ class Tally:
                 self.checks[counter] += 1
         self.checks[counter] += abs(len(ends) - len(trial_log))
 
-    def _choices(self, trial_log: list[logs.Trial],
-                 agents: list[logs.AgentRecord]) -> dict[tuple[int, int], str]:
+    def _choices(
+        self, trial_log: list[logs.Trial], agents: list[logs.AgentRecord]
+    ) -> dict[tuple[int, int], str]:
         """The kicking choices by ``(unum, cycle)``, each agent's episode e
         (n decisions, the last one answered by the terminal status) aligned
         so that its last decision is at cycle end - 1 (its first is then at
@@ -114,8 +127,10 @@ class Tally:
         choice = {}
         for unum, decisions, episodes in agents:
             if len(episodes) < len(trial_log):
-                raise RuntimeError("agent %d saw %d episodes, HFO played %d"
-                                   % (unum, len(episodes), len(trial_log)))
+                raise RuntimeError(
+                    "agent %d saw %d episodes, HFO played %d"
+                    % (unum, len(episodes), len(trial_log))
+                )
             for trial, (t, (steps, status)) in enumerate(zip(trial_log, episodes)):
                 if trial > 0 and t.end - steps != t.start + 2:
                     self.checks["agent_frames_mismatches"] += 1
@@ -131,9 +146,14 @@ class Tally:
                 choice[(unum, trial_log[trial].end - episodes[trial][0] + step)] = code
         return choice
 
-    def _kicks(self, rcg: str, trial_log: list[logs.Trial], offense: set[int],
-               kick_commands: dict[int, list[int]],
-               choices: dict[tuple[int, int], str]) -> list[list[Kick]]:
+    def _kicks(
+        self,
+        rcg: str,
+        trial_log: list[logs.Trial],
+        offense: set[int],
+        kick_commands: dict[int, list[int]],
+        choices: dict[tuple[int, int], str],
+    ) -> list[list[Kick]]:
         """The kicks of each trial, in the order of the game log."""
         trial_of = {}
         for trial, t in enumerate(trial_log):
@@ -225,8 +245,10 @@ class Tally:
             "mean_frames_to_goal": stats.mean(self.frames_goal),
             "outcomes": dict(self.outcomes),
             "decisions": {
-                "shots": [{"from_m": lo, "to_m": hi, "released": r, "goals": g}
-                          for (lo, hi), (r, g) in zip(SHOT_BINS, self.shots)],
+                "shots": [
+                    {"from_m": lo, "to_m": hi, "released": r, "goals": g}
+                    for (lo, hi), (r, g) in zip(SHOT_BINS, self.shots)
+                ],
                 "after_pass": dict(self.after["PASS"]),
                 "after_dribble": dict(self.after["DRIBBLE"]),
                 "possessions_per_episode": stats.mean(self.possessions),
@@ -235,9 +257,11 @@ class Tally:
             "actions": dict(self.actions),
             # Extras (not in the shared schema): standard deviations for the
             # confidence intervals of compare.py, and the log-join checks.
-            "sd": {"frames": stats.sample_sd(self.frames),
-                   "frames_to_goal": stats.sample_sd(self.frames_goal),
-                   "possessions_per_episode": stats.sample_sd(self.possessions)},
+            "sd": {
+                "frames": stats.sample_sd(self.frames),
+                "frames_to_goal": stats.sample_sd(self.frames_goal),
+                "possessions_per_episode": stats.sample_sd(self.possessions),
+            },
             "checks": dict(self.checks),
         }
 

@@ -20,5 +20,6 @@ def greedy_agent(snapshot: str) -> Any:
     except ImportError as e:
         raise ImportError(
             "a learned team needs the adhoc_advising package (pip install ./agent/python) "
-            "in this interpreter") from e
+            "in this interpreter"
+        ) from e
     return GreedyAgent(snapshot)

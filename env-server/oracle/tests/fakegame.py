@@ -18,8 +18,12 @@ OFFENSE = (7, 8, 11)
 # when no one has it.
 POSITION = {7: (40.0, 0.0), 8: (40.0, -8.0), 11: (30.0, 10.0)}
 BALL_AWAY = (0.0, 30.0)
-STATUS_STRINGS = {"GOAL": "Goal", "CAPTURED_BY_DEFENSE": "CapturedByDefense",
-                  "OUT_OF_BOUNDS": "OutOfBounds", "OUT_OF_TIME": "OutOfTime"}
+STATUS_STRINGS = {
+    "GOAL": "Goal",
+    "CAPTURED_BY_DEFENSE": "CapturedByDefense",
+    "OUT_OF_BOUNDS": "OutOfBounds",
+    "OUT_OF_TIME": "OutOfTime",
+}
 
 RCG_HEADER = (
     "ULG5\n"
@@ -60,18 +64,22 @@ def write_logs(logdir: str, schedule: list[dict], name: str = "20260101-base_lef
     with open(os.path.join(logdir, name + ".hfo"), "w") as f:
         f.write("# Trial\tStart\tEnd\tDuration\tStatus\n")
         for i, t in enumerate(schedule):
-            f.write("%d\t%d\t%d\t%d\t%s-7\n"
-                    % (i, t["start"], t["end"], t["end"] - t["start"], t["result"]))
+            f.write(
+                "%d\t%d\t%d\t%d\t%s-7\n"
+                % (i, t["start"], t["end"], t["end"] - t["start"], t["result"])
+            )
     with open(os.path.join(logdir, name + ".rcl"), "w") as f:
         for t in schedule:
-            commands = [(k[0], k[1]) for k in t["kicks"]] + [tuple(c) for c in
-                                                            t.get("commands", [])]
+            commands = [(k[0], k[1]) for k in t["kicks"]] + [
+                tuple(c) for c in t.get("commands", [])
+            ]
             for cycle in range(t["start"], t["end"] + 1):
                 f.write("%d,0\tRecv base_right_1: (catch 0)\n" % cycle)
                 for c, unum in sorted(commands):
                     if c == cycle:
-                        f.write("%d,0\tRecv base_left_%d: (turn_neck 10)(kick 100 0)\n"
-                                % (cycle, unum))
+                        f.write(
+                            "%d,0\tRecv base_left_%d: (turn_neck 10)(kick 100 0)\n" % (cycle, unum)
+                        )
                 f.write("%d,0\tRecv base_left_7: (dash 100 0)\n" % cycle)
             f.write("%d,0\t(referee %s)\n" % (t["end"], t["result"]))
     with open(os.path.join(logdir, name + ".rcg"), "w") as f:
@@ -89,10 +97,13 @@ def show_line(schedule: list[dict], cycle: int) -> str:
     for unum in OFFENSE:
         x, y = POSITION[unum]
         kicks = sum(1 for t in schedule for k in t["kicks"] if k[1] == unum and k[0] < cycle)
-        parts.append("((l %d) 0 0x1 %.4f %.4f 0 0 0 0 (v h 90) (s 8000 1 1 130600) "
-                     "(c %d 12 3 0 1 4 0 0 0 0 0))" % (unum, x, y, kicks))
-    parts.append("((r 1) 1 0x9 50 0 0 0 180 0 (v h 90) (s 8000 1 1 130600) "
-                 "(c 0 0 0 3 0 0 0 0 0 0 0))")
+        parts.append(
+            "((l %d) 0 0x1 %.4f %.4f 0 0 0 0 (v h 90) (s 8000 1 1 130600) "
+            "(c %d 12 3 0 1 4 0 0 0 0 0))" % (unum, x, y, kicks)
+        )
+    parts.append(
+        "((r 1) 1 0x9 50 0 0 0 180 0 (v h 90) (s 8000 1 1 130600) (c 0 0 0 3 0 0 0 0 0 0 0))"
+    )
     return " ".join(parts) + ")\n"
 
 
@@ -145,7 +156,12 @@ def simple_schedule(trials: int) -> list[dict]:
     schedule = []
     for i in range(trials):
         start = 1 + 20 * i
-        schedule.append({"start": start, "end": start + 10,
-                         "result": "GOAL" if i % 2 else "OUT_OF_BOUNDS",
-                         "kicks": [[start + 4, 7, "S", True]]})
+        schedule.append(
+            {
+                "start": start,
+                "end": start + 10,
+                "result": "GOAL" if i % 2 else "OUT_OF_BOUNDS",
+                "kicks": [[start + 4, 7, "S", True]],
+            }
+        )
     return schedule

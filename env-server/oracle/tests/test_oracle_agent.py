@@ -20,11 +20,14 @@ def state_with(me, mates):
     s[0], s[1] = normalise(me[0], *agent.X_RANGE), normalise(me[1], *agent.Y_RANGE)
     for i, mate in enumerate(mates):
         if mate is None:
-            s[16 + 3 * i:19 + 3 * i] = [-2.0, -2.0, -2.0]
+            s[16 + 3 * i : 19 + 3 * i] = [-2.0, -2.0, -2.0]
         else:
             x, y, u = mate
-            s[16 + 3 * i:19 + 3 * i] = [normalise(x, *agent.X_RANGE),
-                                        normalise(y, *agent.Y_RANGE), float(u)]
+            s[16 + 3 * i : 19 + 3 * i] = [
+                normalise(x, *agent.X_RANGE),
+                normalise(y, *agent.Y_RANGE),
+                float(u),
+            ]
     return s
 
 
@@ -57,7 +60,8 @@ def test_paper_state_from_hfo_s_features():
     authors_max = math.hypot(52.5, 34)
     s[6] = normalise(20.0, 0, max_r)  # 20 m from the goal centre
     assert agent.paper_state(s) == pytest.approx(
-        [1.0, 2 * 20.0 / authors_max - 1, 0.25, -0.5, 0.125, -0.75])
+        [1.0, 2 * 20.0 / authors_max - 1, 0.25, -0.5, 0.125, -0.75]
+    )
     s[6] = 1.0  # farther than the authors' range: clamped
     assert agent.paper_state(s)[1] == pytest.approx(1.0)
 

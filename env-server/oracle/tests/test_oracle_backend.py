@@ -20,14 +20,37 @@ def backend(tmp_path, commands, *extra):
     """The backend's lines answering ``commands`` (then the end of its
     input), and its exit status."""
     rundir = tempfile.mkdtemp(dir=str(tmp_path))
-    env = dict(os.environ, FAKE_HFO_RUNDIR=rundir, PYTHONPATH=ORACLE,
-               PYTHONDONTWRITEBYTECODE="1")
+    env = dict(os.environ, FAKE_HFO_RUNDIR=rundir, PYTHONPATH=ORACLE, PYTHONDONTWRITEBYTECODE="1")
     env.pop("HFO_ORACLE_NETNS", None)
-    cmd = [sys.executable, "-m", "hfo_oracle", "backend", "--hfo-dir", FAKE_HFO,
-           "--python", sys.executable, "--offense", "3", "--frames-per-trial", "200",
-           "--untouched-time", "100", "--seed", "5", "--net", "host", *extra]
-    done = subprocess.run(cmd, input="".join(c + "\n" for c in commands), env=env,
-                          capture_output=True, text=True, timeout=60)
+    cmd = [
+        sys.executable,
+        "-m",
+        "hfo_oracle",
+        "backend",
+        "--hfo-dir",
+        FAKE_HFO,
+        "--python",
+        sys.executable,
+        "--offense",
+        "3",
+        "--frames-per-trial",
+        "200",
+        "--untouched-time",
+        "100",
+        "--seed",
+        "5",
+        "--net",
+        "host",
+        *extra,
+    ]
+    done = subprocess.run(
+        cmd,
+        input="".join(c + "\n" for c in commands),
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     return [json.loads(line) for line in done.stdout.splitlines()], done.returncode
 
 
@@ -67,10 +90,30 @@ def test_bad_commands_end_it_with_an_error_line(tmp_path):
 def test_a_missing_hfo_is_named():
     env = dict(os.environ, PYTHONPATH=ORACLE)
     done = subprocess.run(
-        [sys.executable, "-m", "hfo_oracle", "backend", "--hfo-dir", "/nonexistent",
-         "--python", sys.executable, "--offense", "3", "--frames-per-trial", "200",
-         "--untouched-time", "100", "--seed", "1"],
-        input="", env=env, capture_output=True, text=True, timeout=30)
+        [
+            sys.executable,
+            "-m",
+            "hfo_oracle",
+            "backend",
+            "--hfo-dir",
+            "/nonexistent",
+            "--python",
+            sys.executable,
+            "--offense",
+            "3",
+            "--frames-per-trial",
+            "200",
+            "--untouched-time",
+            "100",
+            "--seed",
+            "1",
+        ],
+        input="",
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
     assert done.returncode == 1
     error = json.loads(done.stdout)["error"]
     assert "bin/HFO" in error and "build_hfo.sh" in error

@@ -19,8 +19,13 @@ FAKE_HFO = os.path.join(TESTS, "fake_hfo")
 def namespaces_work():
     """Whether the harness can make a loopback-only network namespace."""
     unshare, ip = shutil.which("unshare"), shutil.which("ip")
-    return bool(unshare and ip) and subprocess.run(
-        [unshare, "-rn", ip, "link", "set", "lo", "up"], capture_output=True).returncode == 0
+    return (
+        bool(unshare and ip)
+        and subprocess.run(
+            [unshare, "-rn", ip, "link", "set", "lo", "up"], capture_output=True
+        ).returncode
+        == 0
+    )
 
 
 def run_harness(tmp_path, *args, net="host"):
@@ -30,10 +35,22 @@ def run_harness(tmp_path, *args, net="host"):
     work.mkdir()
     env = dict(os.environ, FAKE_HFO_RUNDIR=str(rundir), PYTHONDONTWRITEBYTECODE="1")
     env.pop("HFO_ORACLE_NETNS", None)
-    cmd = [sys.executable, os.path.join(ORACLE, "hfo_oracle.py"), "--hfo-dir", FAKE_HFO,
-           "--python", sys.executable, "--net", net, "--tmp", str(work), *args]
-    done = subprocess.run(cmd, env=env, cwd=str(tmp_path), capture_output=True, text=True,
-                          timeout=120)
+    cmd = [
+        sys.executable,
+        os.path.join(ORACLE, "hfo_oracle.py"),
+        "--hfo-dir",
+        FAKE_HFO,
+        "--python",
+        sys.executable,
+        "--net",
+        net,
+        "--tmp",
+        str(work),
+        *args,
+    ]
+    done = subprocess.run(
+        cmd, env=env, cwd=str(tmp_path), capture_output=True, text=True, timeout=120
+    )
     # Nothing is left in the temporary directory.
     assert os.listdir(str(work)) == [], done.stderr
     return done
@@ -41,8 +58,20 @@ def run_harness(tmp_path, *args, net="host"):
 
 def test_a_policy_is_played_in_pipelined_batches(tmp_path):
     out = tmp_path / "hfo-shoot.json"
-    done = run_harness(tmp_path, "--policy", "shoot", "--episodes", "5", "--batch", "2",
-                       "--seed", "3", "--out", str(out), net="auto")
+    done = run_harness(
+        tmp_path,
+        "--policy",
+        "shoot",
+        "--episodes",
+        "5",
+        "--batch",
+        "2",
+        "--seed",
+        "3",
+        "--out",
+        str(out),
+        net="auto",
+    )
     assert done.returncode == 0, done.stderr
     assert "5/5 episodes played" in done.stderr
     r = json.loads(out.read_text())
@@ -85,12 +114,25 @@ def test_bad_command_lines_are_refused(tmp_path):
     missing = str(tmp_path / "missing.qtable")
     second = tmp_path / "second"
     second.mkdir()
-    done = run_harness(second, "--team", missing, missing, missing, "--episodes", "1",
-                       "--out", out)
+    done = run_harness(second, "--team", missing, missing, missing, "--episodes", "1", "--out", out)
     assert done.returncode == 2 and "--team: no such file" in done.stderr
-    done = subprocess.run([sys.executable, os.path.join(ORACLE, "hfo_oracle.py"), "--hfo-dir",
-                           str(tmp_path), "--policy", "shoot", "--episodes", "1", "--out", out],
-                          capture_output=True, text=True, timeout=60)
+    done = subprocess.run(
+        [
+            sys.executable,
+            os.path.join(ORACLE, "hfo_oracle.py"),
+            "--hfo-dir",
+            str(tmp_path),
+            "--policy",
+            "shoot",
+            "--episodes",
+            "1",
+            "--out",
+            out,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert done.returncode == 2 and "must point at a built HFO tree" in done.stderr
     assert not os.path.exists(out)
 
@@ -98,9 +140,15 @@ def test_bad_command_lines_are_refused(tmp_path):
 @pytest.mark.parametrize("entry", [["hfo_oracle.py"], ["-m", "hfo_oracle"]])
 def test_the_script_and_the_package_are_the_same_command(entry):
     args = [os.path.join(ORACLE, entry[0])] if entry[0].endswith(".py") else entry
-    done = subprocess.run([sys.executable, *args, "--help"], cwd=ORACLE, capture_output=True,
-                          text=True, timeout=60)
+    done = subprocess.run(
+        [sys.executable, *args, "--help"], cwd=ORACLE, capture_output=True, text=True, timeout=60
+    )
     assert done.returncode == 0 and "--hfo-dir" in done.stdout
-    done = subprocess.run([sys.executable, *args, "agent", "--help"], cwd=ORACLE,
-                          capture_output=True, text=True, timeout=60)
+    done = subprocess.run(
+        [sys.executable, *args, "agent", "--help"],
+        cwd=ORACLE,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert done.returncode == 0 and "--config-dir" in done.stdout

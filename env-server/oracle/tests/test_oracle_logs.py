@@ -98,9 +98,15 @@ def test_kick_areas_default_to_rcssserver_s_ball():
 
 
 def test_agent_files_read_back_what_the_agent_writes(tmp_path):
-    text = (logs.unum_line(7) + logs.decision_line(0, 3, "S", 0)
-            + logs.decision_line(0, 5, "N", 8) + logs.episode_line(0, 12, "Goal") + "\n"
-            + logs.decision_line(1, 0, "M", 0) + logs.episode_line(1, 1, "ServerDown"))
+    text = (
+        logs.unum_line(7)
+        + logs.decision_line(0, 3, "S", 0)
+        + logs.decision_line(0, 5, "N", 8)
+        + logs.episode_line(0, 12, "Goal")
+        + "\n"
+        + logs.decision_line(1, 0, "M", 0)
+        + logs.episode_line(1, 1, "ServerDown")
+    )
     assert text.splitlines()[:3] == ["U 7", "D 0 3 S 0", "D 0 5 N 8"]
     record = logs.read_agent_file(write(tmp_path, "agent0.txt", text))
     assert record.unum == 7

@@ -14,16 +14,28 @@ from hfo_oracle.tally import CHECKS, Tally
 # at (40, -8), 11 at (30, 10); the ball 0.3 m in front of its kicker).
 SCHEDULE = [
     {"start": 0, "end": 12, "result": "GOAL", "kicks": [[5, 7, "S", True]]},
-    {"start": 20, "end": 40, "result": "GOAL",
-     "kicks": [[24, 7, "D", False],  # a dribble kick keeping the ball,
-               [26, 7, "N", True],  # a pass to 8,
-               [29, 8, "S", False],  # a shot's first kick, not released,
-               [30, 8, "S", True]],  # its second: the goal, from 14.6 m
-     "choices": [[33, 11, "M"], [35, 11, "D"]]},  # a DRIBBLE with no kick
-    {"start": 50, "end": 70, "result": "CAPTURED_BY_DEFENSE",
-     "kicks": [[55, 11, None, True],  # a kick without a choice,
-               [58, 11, "F", True]],  # a pass the keeper takes
-     "commands": [[60, 8]]},  # a kick command out of reach
+    {
+        "start": 20,
+        "end": 40,
+        "result": "GOAL",
+        "kicks": [
+            [24, 7, "D", False],  # a dribble kick keeping the ball,
+            [26, 7, "N", True],  # a pass to 8,
+            [29, 8, "S", False],  # a shot's first kick, not released,
+            [30, 8, "S", True],
+        ],  # its second: the goal, from 14.6 m
+        "choices": [[33, 11, "M"], [35, 11, "D"]],
+    },  # a DRIBBLE with no kick
+    {
+        "start": 50,
+        "end": 70,
+        "result": "CAPTURED_BY_DEFENSE",
+        "kicks": [
+            [55, 11, None, True],  # a kick without a choice,
+            [58, 11, "F", True],
+        ],  # a pass the keeper takes
+        "commands": [[60, 8]],
+    },  # a kick command out of reach
 ]
 
 
@@ -50,21 +62,44 @@ def test_a_run_is_joined_into_the_statistics(tmp_path):
     shots = r["decisions"]["shots"]
     assert [(b["from_m"], b["to_m"]) for b in shots] == list(SHOT_BINS)
     assert [(b["released"], b["goals"]) for b in shots] == [
-        (0, 0), (1, 1), (0, 0), (0, 0), (0, 0), (0, 0)]
+        (0, 0),
+        (1, 1),
+        (0, 0),
+        (0, 0),
+        (0, 0),
+        (0, 0),
+    ]
     assert r["decisions"]["after_pass"] == {
-        "teammate": 1, "same": 0, "captured": 1, "out_of_bounds": 0, "goal": 0,
-        "out_of_time": 0}
+        "teammate": 1,
+        "same": 0,
+        "captured": 1,
+        "out_of_bounds": 0,
+        "goal": 0,
+        "out_of_time": 0,
+    }
     assert r["decisions"]["after_dribble"] == {
-        "teammate": 0, "same": 1, "captured": 0, "out_of_bounds": 0, "goal": 0,
-        "out_of_time": 0}
+        "teammate": 0,
+        "same": 1,
+        "captured": 0,
+        "out_of_bounds": 0,
+        "goal": 0,
+        "out_of_time": 0,
+    }
     # 7 then 8 in the first counted trial, 11 alone in the second.
     assert r["decisions"]["possessions_per_episode"] == 1.5
     assert r["actions"] == {"move": 1, "shoot": 2, "dribble": 2, "pass_near": 1, "pass_far": 1}
-    assert r["sd"] == {"frames": 0.0, "frames_to_goal": None,
-                       "possessions_per_episode": pytest.approx(0.7071067811865476)}
+    assert r["sd"] == {
+        "frames": 0.0,
+        "frames_to_goal": None,
+        "possessions_per_episode": pytest.approx(0.7071067811865476),
+    }
     assert r["checks"] == dict.fromkeys(CHECKS, 0) | {
-        "kicks": 6, "shots_not_released": 1, "kicks_without_choice": 1,
-        "choices_without_kick": 1, "kick_commands_not_kickable": 1}
+        "kicks": 6,
+        "shots_not_released": 1,
+        "kicks_without_choice": 1,
+        "choices_without_kick": 1,
+        "kick_commands_not_kickable": 1,
+    }
     json.dumps(r)  # a JSON object as it stands
 
 
@@ -89,8 +124,7 @@ def test_disagreeing_sources_are_counted(tmp_path):
     trainer = fakegame.trainer_output(SCHEDULE).splitlines(keepends=True)
     trainer[2] = trainer[2].replace("GOAL-7", "OUT_OF_BOUNDS-7")
     agent8 = fakegame.agent_file(SCHEDULE, 8).replace("E 1 18 Goal", "E 1 19 OutOfTime")
-    t = tally_of(tmp_path, SCHEDULE, **{"hfo.out": "".join(trainer[:3]),
-                                        "agent-8.txt": agent8})
+    t = tally_of(tmp_path, SCHEDULE, **{"hfo.out": "".join(trainer[:3]), "agent-8.txt": agent8})
     assert t.checks["trainer_outcome_mismatches"] == 2
     assert t.checks["agent_frames_mismatches"] == 1
     assert t.checks["agent_outcome_mismatches"] == 1

@@ -59,7 +59,8 @@ class BatchEnv:
             or not 1 <= num_envs <= _halffield.MAX_BATCH_ENVS
         ):
             raise ValueError(
-                f"num_envs must be an integer from 1 to {_halffield.MAX_BATCH_ENVS}, got {num_envs!r}"
+                f"num_envs must be an integer from 1 to {_halffield.MAX_BATCH_ENVS}, "
+                f"got {num_envs!r}"
             )
         self.num_envs = int(num_envs)
         if threads is not None and (

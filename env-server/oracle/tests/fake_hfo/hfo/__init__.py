@@ -14,14 +14,19 @@ import fakegame  # noqa: E402
 HIGH_LEVEL_FEATURE_SET = 1
 IN_GAME, GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME, SERVER_DOWN = range(6)
 MOVE, SHOOT, PASS, DRIBBLE, QUIT = 8, 9, 10, 11, 14
-_STATUS = {"GOAL": GOAL, "CAPTURED_BY_DEFENSE": CAPTURED_BY_DEFENSE,
-           "OUT_OF_BOUNDS": OUT_OF_BOUNDS, "OUT_OF_TIME": OUT_OF_TIME}
+_STATUS = {
+    "GOAL": GOAL,
+    "CAPTURED_BY_DEFENSE": CAPTURED_BY_DEFENSE,
+    "OUT_OF_BOUNDS": OUT_OF_BOUNDS,
+    "OUT_OF_TIME": OUT_OF_TIME,
+}
 _STRINGS = ["InGame", "Goal", "CapturedByDefense", "OutOfBounds", "OutOfTime", "ServerDown"]
 
 
 class HFOEnvironment:
     def connectToServer(  # noqa: N802 (HFO's names)
-            self, feature_set, config_dir, port, host, team, play_goalie):
+        self, feature_set, config_dir, port, host, team, play_goalie
+    ):
         rundir = os.environ["FAKE_HFO_RUNDIR"]
         path = os.path.join(rundir, "schedule-%d.json" % port)
         deadline = time.time() + 30
@@ -32,8 +37,12 @@ class HFOEnvironment:
         index = 0
         while True:  # the first free uniform number, taken atomically
             try:
-                os.close(os.open(os.path.join(rundir, "ready-%d-%d" % (port, index)),
-                                 os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+                os.close(
+                    os.open(
+                        os.path.join(rundir, "ready-%d-%d" % (port, index)),
+                        os.O_CREAT | os.O_EXCL | os.O_WRONLY,
+                    )
+                )
                 break
             except FileExistsError:
                 index += 1
@@ -58,7 +67,7 @@ class HFOEnvironment:
             state[5] = -1.0
         mates = [u for u in fakegame.OFFENSE if u != self.unum]
         for i, u in enumerate(mates):  # teammates' x, y and uniform number
-            state[16 + 3 * i:19 + 3 * i] = [0.1 * (i + 1), 0.0, float(u)]
+            state[16 + 3 * i : 19 + 3 * i] = [0.1 * (i + 1), 0.0, float(u)]
         return state
 
     def act(self, action, *args):
