@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::Restart;
+use crate::membership::{Restart, SimulatorRestart};
 
 /// How one episode ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,6 +94,11 @@ pub trait Backend {
 
     /// The agents restarted after a crash so far (none in process).
     fn restarts(&self) -> Vec<Restart> {
+        Vec::new()
+    }
+
+    /// The simulator's restarts after it failed so far (none in process).
+    fn simulator_restarts(&self) -> Vec<SimulatorRestart> {
         Vec::new()
     }
 

@@ -59,6 +59,20 @@ pub struct Restart {
     pub cause: String,
 }
 
+/// A simulator (the real HFO) that failed and was started afresh: the
+/// episode in flight was abandoned and played again.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SimulatorRestart {
+    /// Training episodes played when it failed.
+    pub episode: u64,
+    /// Whether the abandoned episode was an evaluation episode.
+    pub evaluation: bool,
+    /// Wall time from the start of the abandoned episode to its failure (ms).
+    pub lost_ms: u64,
+    /// How it failed.
+    pub cause: String,
+}
+
 impl MembershipEvent {
     /// The agent that joins: the newcomer, or the slot's agent `slot_spec`
     /// fresh (without its snapshot).

@@ -9,7 +9,7 @@ use env_server::Outcome;
 use crate::backend::{AgentStats, Backend};
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::{Join, Restart};
+use crate::membership::{Join, Restart, SimulatorRestart};
 
 /// The measurements of one evaluation.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -105,6 +105,9 @@ pub struct RunResult {
     /// `restart_agents`, or without a crash).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub restarts: Vec<Restart>,
+    /// The simulator's restarts after it failed (only the real HFO fails).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub simulator_restarts: Vec<SimulatorRestart>,
     /// The newcomers that joined, in order (none in a fixed team).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub joins: Vec<Join>,
@@ -204,6 +207,7 @@ pub fn play_run(
         advice_rtt_ms: backend.advice_rtt_ms(),
         advice_matrix,
         restarts: backend.restarts(),
+        simulator_restarts: backend.simulator_restarts(),
         joins,
     })
 }

@@ -444,6 +444,7 @@ mod tests {
         let result = RunResult {
             joins: Vec::new(),
             restarts: Vec::new(),
+            simulator_restarts: Vec::new(),
             advice_matrix: Vec::new(),
             run: 3,
             points: awkward

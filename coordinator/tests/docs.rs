@@ -323,6 +323,7 @@ fn zenoh_record_and_summary() -> (Value, Value) {
         advice_rtt_ms: vec![vec![1.5]; 3],
         joins: Vec::new(),
         restarts: Vec::new(),
+        simulator_restarts: Vec::new(),
         advice_matrix: Vec::new(),
     }];
     let summary = summarize(&record, &results);

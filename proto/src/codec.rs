@@ -235,6 +235,7 @@ mod tests {
                 )))
             ),
             ".{0,40}".prop_map(|e| Body::ControlReply(ControlReply::Error(e))),
+            ".{0,40}".prop_map(|e| Body::ControlReply(ControlReply::SimulatorFailed(e))),
             (
                 any::<u8>(),
                 prop::option::of((prop::array::uniform5(-10.0f64..10.0), 0u8..32, any::<u64>()))

@@ -9,7 +9,7 @@ use crate::action::{Action, State};
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 7;
+pub const PROTOCOL_VERSION: u16 = 8;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -314,6 +314,10 @@ pub enum ControlReply {
     Snapshot(Vec<u8>),
     /// The command failed; the text says why.
     Error(String),
+    /// The simulator (the real HFO, a child process) failed during the
+    /// episode, which was abandoned; env-server starts it afresh for the
+    /// next `PlayEpisode`. The text says why.
+    SimulatorFailed(String),
 }
 
 /// How an episode ended.

@@ -4,8 +4,8 @@
 //! here playing the fake HFO tree of the harness's tests
 //! (`env-server/oracle/tests/fake_hfo`: a launcher and an `hfo` module that
 //! play a scripted game, whatever the agents do, as real processes over
-//! real pipes). Where the real HFO is built ($HFO_DIR), a short run on it
-//! too.
+//! real pipes), and a fake server that goes down. Where the real HFO is
+//! built ($HFO_DIR), a short run on it too.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -32,6 +32,12 @@ fn python() -> Option<PathBuf> {
 /// 1 run of 20 training episodes, 4 evaluation episodes every 10, into
 /// `out`; `rundir` is where the fake HFO's processes meet.
 fn coordinator_run(args: &[&str], out: &Path, rundir: &Path) -> Output {
+    coordinator_run_with(args, out, rundir, "1000")
+}
+
+/// [`coordinator_run`] where the fake HFO's launches play `trials` trials
+/// in turn before their server goes down (`FAKE_HFO_TRIALS`).
+fn coordinator_run_with(args: &[&str], out: &Path, rundir: &Path, trials: &str) -> Output {
     Command::new(bin("coordinator"))
         .args(["run", "--algorithm", "adhoc-td", "--runs", "1"])
         .args([
@@ -46,6 +52,7 @@ fn coordinator_run(args: &[&str], out: &Path, rundir: &Path) -> Output {
         .args(["--quiet", "--out"])
         .arg(out)
         .env("FAKE_HFO_RUNDIR", rundir)
+        .env("FAKE_HFO_TRIALS", trials)
         .env_remove("HFO_DIR")
         .output()
         .expect("start the coordinator")
@@ -134,6 +141,57 @@ fn agents_train_over_zenoh_on_a_simulator_behind_a_pipe() {
     let said = String::from_utf8_lossy(&refused.stderr);
     assert!(
         !refused.status.success() && said.contains("--transport zenoh"),
+        "{said}"
+    );
+}
+
+#[test]
+fn a_simulator_that_goes_down_is_started_again_and_its_episode_replayed() {
+    let Some(python) = python() else {
+        eprintln!("no python3: the real HFO's seam is not tested");
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let hfo = fake_hfo();
+    let real = [
+        "--simulator",
+        "real-hfo",
+        "--hfo-dir",
+        hfo.to_str().unwrap(),
+        "--hfo-python",
+        python.to_str().unwrap(),
+    ];
+    let meet = |name: &str| {
+        let dir = tmp.path().join(name);
+        std::fs::create_dir(&dir).unwrap();
+        dir
+    };
+    // The first server goes down after its warm-up and 11 episodes, within
+    // the first training block; the next one plays on.
+    let out = tmp.path().join("restarted");
+    let done = coordinator_run_with(&real, &out, &meet("once"), "12,1000");
+    assert!(
+        done.status.success(),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    let run = json(&out.join("run-0.json"));
+    let restarts = run["simulator_restarts"].as_array().unwrap();
+    assert_eq!(restarts.len(), 1, "{run}");
+    assert_eq!(restarts[0]["evaluation"], false, "{run}");
+    assert_eq!(restarts[0]["episode"], 7, "{run}");
+    let cause = restarts[0]["cause"].as_str().unwrap();
+    assert!(cause.contains("server went down"), "{cause}");
+    // Every episode was played in full: 20 training episodes of 8 frames.
+    assert_eq!(run["points"].as_array().unwrap().len(), 3, "{run}");
+    assert_eq!(run["timing"]["training_frames"], 160, "{run}");
+
+    // A server that keeps going down ends the run, saying so.
+    let out = tmp.path().join("down");
+    let failed = coordinator_run_with(&real, &out, &meet("always"), "0");
+    let said = String::from_utf8_lossy(&failed.stderr);
+    assert!(
+        !failed.status.success() && said.contains("failed 4 times in a row"),
         "{said}"
     );
 }

@@ -15,7 +15,7 @@ use crate::backend::{AgentStats, Backend, EpisodeEnd};
 use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::Restart;
+use crate::membership::{Restart, SimulatorRestart};
 
 /// How long a process may take to answer a command other than playing.
 const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);
@@ -24,6 +24,9 @@ const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);
 const LOSS_WAIT: Duration = Duration::from_secs(3);
 /// How long one episode may take (200 frames, each at most one step timeout).
 const EPISODE_TIMEOUT: Duration = Duration::from_secs(600);
+/// How many times in a row an episode is played again after its simulator
+/// failed.
+const SIMULATOR_RETRIES: u32 = 3;
 
 /// Run `run` of an experiment, played by remote processes.
 #[derive(Debug)]
@@ -47,6 +50,8 @@ pub struct RemoteBackend<'a> {
     checkpoint: Option<(u64, Vec<Option<Snapshot>>)>,
     /// The agents restarted so far.
     restarts: Mutex<Vec<Restart>>,
+    /// The simulator's restarts so far.
+    simulator_restarts: Vec<SimulatorRestart>,
 }
 
 impl<'a> RemoteBackend<'a> {
@@ -67,6 +72,7 @@ impl<'a> RemoteBackend<'a> {
             trained: 0,
             checkpoint: None,
             restarts: Mutex::new(Vec::new()),
+            simulator_restarts: Vec::new(),
         };
         let env = proto::encode_settings(&config.env).map_err(|e| backend.error(e.to_string()))?;
         backend.expect_ok(
@@ -248,6 +254,34 @@ impl<'a> RemoteBackend<'a> {
         Ok(())
     }
 
+    /// Plays the next episode in `mode` (`seed`: see
+    /// [`Backend::begin_evaluation`]) and returns env-server's answer; an
+    /// agent lost meanwhile comes back under the restart policy, and the
+    /// episode, if abandoned, is played again.
+    fn play_once(&mut self, mode: Mode, seed: Option<u64>) -> Result<ControlReply, Error> {
+        self.recover(false, Instant::now())?;
+        loop {
+            let played = Instant::now();
+            let reply = self.network.control(
+                Role::Server,
+                self.header(self.episode),
+                Control::PlayEpisode { mode, seed },
+                EPISODE_TIMEOUT,
+            );
+            self.episode += 1;
+            if self.restartable().is_none() {
+                return reply
+                    .map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)));
+            }
+            // An agent died during the episode: it comes back, and an
+            // abandoned episode is played again.
+            self.recover(reply.is_err(), played)?;
+            if let Ok(reply) = reply {
+                return Ok(reply);
+            }
+        }
+    }
+
     /// The last played episode, which reports and snapshots wait for.
     fn last_episode(&self) -> u32 {
         self.episode.saturating_sub(1)
@@ -284,31 +318,36 @@ impl Backend for RemoteBackend<'_> {
             Mode::Training => None,
             Mode::Evaluation => self.evaluation_seed.take(),
         };
-        self.recover(false, Instant::now())?;
+        let mut failures = 0;
         let result = loop {
             let played = Instant::now();
-            let reply = self.network.control(
-                Role::Server,
-                self.header(self.episode),
-                Control::PlayEpisode { mode, seed },
-                EPISODE_TIMEOUT,
-            );
-            self.episode += 1;
-            if self.restartable().is_none() {
-                break reply
-                    .map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))?;
+            match self.play_once(mode, seed)? {
+                ControlReply::Episode(result) => break result,
+                // The real HFO went down: env-server starts it afresh and
+                // the episode is played again, a few times in a row at most.
+                ControlReply::SimulatorFailed(cause) if failures < SIMULATOR_RETRIES => {
+                    failures += 1;
+                    let restart = SimulatorRestart {
+                        episode: self.trained,
+                        evaluation: mode == Mode::Evaluation,
+                        lost_ms: played.elapsed().as_millis() as u64,
+                        cause,
+                    };
+                    tracing::warn!(run = self.run, ?restart, "simulator restarted");
+                    self.simulator_restarts.push(restart);
+                }
+                ControlReply::SimulatorFailed(cause) => {
+                    return Err(self.error(format!(
+                        "the simulator failed {} times in a row, the last time: {cause}",
+                        failures + 1
+                    )));
+                }
+                other => {
+                    return Err(self.error(format!(
+                        "env-server answered {other:?} to an episode request"
+                    )));
+                }
             }
-            // An agent died during the episode: it comes back, and an
-            // abandoned episode is played again.
-            self.recover(reply.is_err(), played)?;
-            if let Ok(reply) = reply {
-                break reply;
-            }
-        };
-        let ControlReply::Episode(result) = result else {
-            return Err(self.error(format!(
-                "env-server answered {result:?} to an episode request"
-            )));
         };
         self.check_alive()?;
         if mode == Mode::Training {
@@ -358,6 +397,10 @@ impl Backend for RemoteBackend<'_> {
 
     fn restarts(&self) -> Vec<Restart> {
         lock(&self.restarts).clone()
+    }
+
+    fn simulator_restarts(&self) -> Vec<SimulatorRestart> {
+        self.simulator_restarts.clone()
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {

@@ -23,6 +23,7 @@ pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
         advice_rtt_ms: Vec::new(),
         joins: Vec::new(),
         restarts: Vec::new(),
+        simulator_restarts: Vec::new(),
         advice_matrix: Vec::new(),
     }
 }

@@ -35,6 +35,7 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
         runs.push(RunResult {
             joins: Vec::new(),
             restarts: Vec::new(),
+            simulator_restarts: Vec::new(),
             advice_matrix: Vec::new(),
             run,
             points,

@@ -119,7 +119,7 @@ class Game:
         that disagree or a server that went down are errors."""
         statuses = {line["status"] for line in self.lines}
         if "server-down" in statuses:
-            raise BackendError("the real HFO's server went down")
+            raise BackendError("its server went down")
         if len(statuses) != 1:
             raise BackendError("the players disagree on the game's status: %s" % sorted(statuses))
         return statuses.pop()

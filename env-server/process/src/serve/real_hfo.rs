@@ -115,17 +115,39 @@ impl From<Status> for Outcome {
     }
 }
 
-/// The backend process of one run and its current frame.
+/// The real HFO of one run: its backend process and current frame. A
+/// backend that failed is replaced by a new one at the next episode.
 #[derive(Debug)]
 pub struct RealHfo {
+    backend: Backend,
+    /// What a new backend is started with.
+    launch: Launch,
+    /// Backends started after a failure.
+    restarts: u64,
+    /// Whether the backend failed (its episode was abandoned).
+    failed: bool,
+    frame: Option<Frame>,
+}
+
+/// Where and with what settings a run's backend starts.
+#[derive(Debug)]
+struct Launch {
+    install: RealHfoInstall,
+    offense: usize,
+    frames_per_trial: u32,
+    untouched_time: u32,
+    seed: u64,
+}
+
+/// One backend process, stepped over its standard input and output.
+#[derive(Debug)]
+struct Backend {
     child: Child,
     stdin: Option<ChildStdin>,
-    /// The backend's lines, read by a thread of their own.
+    /// Its lines, read by a thread of their own.
     lines: Receiver<Result<String, String>>,
-    offense: usize,
-    /// Whether the backend has answered once (it has started).
+    /// Whether it has answered once (it has started).
     started: bool,
-    frame: Option<Frame>,
 }
 
 impl RealHfo {
@@ -139,15 +161,68 @@ impl RealHfo {
             ));
         }
         install.check()?;
+        let launch = Launch {
+            install: install.clone(),
+            offense: config.offense,
+            frames_per_trial: config.frames_per_trial,
+            untouched_time: config.untouched_time,
+            seed,
+        };
+        Ok(RealHfo {
+            backend: Backend::spawn(&launch, seed)?,
+            launch,
+            restarts: 0,
+            failed: false,
+            frame: None,
+        })
+    }
+
+    /// Sends `command` and waits for the frame it answers; an error marks
+    /// the backend failed.
+    fn command(&mut self, command: &str, what: &str) -> Result<&Frame, String> {
+        match self.backend.command(command, what, self.launch.offense) {
+            Ok(frame) => Ok(self.frame.insert(frame)),
+            Err(e) => {
+                self.failed = true;
+                Err(e)
+            }
+        }
+    }
+
+    /// Replaces a failed backend by a new one, seeded anew.
+    fn restart(&mut self) -> Result<(), String> {
+        self.restarts += 1;
+        let seed = self.launch.seed.wrapping_add(self.restarts);
+        tracing::warn!(
+            restarts = self.restarts,
+            "the real HFO's backend failed: starting a new one"
+        );
+        self.backend = Backend::spawn(&self.launch, seed)?;
+        self.failed = false;
+        self.frame = None;
+        Ok(())
+    }
+
+    fn current(&self) -> &Frame {
+        self.frame
+            .as_ref()
+            .expect("the server asks for a frame only after reset")
+    }
+}
+
+impl Backend {
+    /// Starts `python -m hfo_oracle backend` as `launch` says, with `seed`.
+    fn spawn(launch: &Launch, seed: u64) -> Result<Self, String> {
+        let install = &launch.install;
         let mut child = Command::new(&install.python)
             .args(["-m", "hfo_oracle", "backend", "--hfo-dir"])
             .arg(&install.hfo_dir)
             .arg("--python")
             .arg(&install.python)
             .args([
-                format!("--offense={}", config.offense),
-                format!("--frames-per-trial={}", config.frames_per_trial),
-                format!("--untouched-time={}", config.untouched_time),
+                format!("--offense={}", launch.offense),
+                format!("--frames-per-trial={}", launch.frames_per_trial),
+                format!("--untouched-time={}", launch.untouched_time),
                 format!("--seed={seed}"),
             ])
             .env("PYTHONPATH", python_path(&install.harness))
@@ -166,18 +241,17 @@ impl RealHfo {
             .name("real-hfo-lines".to_owned())
             .spawn(move || read_lines(stdout, |line| sender.send(line).is_ok()))
             .map_err(|e| format!("cannot start the real HFO's reader thread: {e}"))?;
-        Ok(RealHfo {
+        Ok(Backend {
             child,
             stdin,
             lines,
-            offense: config.offense,
             started: false,
-            frame: None,
         })
     }
 
-    /// Sends `command` and waits for the frame it answers.
-    fn command(&mut self, command: &str, what: &str) -> Result<&Frame, String> {
+    /// Sends `command` and waits for the frame of `offense` players it
+    /// answers.
+    fn command(&mut self, command: &str, what: &str, offense: usize) -> Result<Frame, String> {
         let stdin = self.stdin.as_mut().ok_or("the real HFO was stopped")?;
         if writeln!(stdin, "{command}")
             .and_then(|()| stdin.flush())
@@ -200,7 +274,7 @@ impl RealHfo {
             Err(RecvTimeoutError::Disconnected) => return Err(self.ended(what)),
         };
         self.started = true;
-        let frame = match serde_json::from_str(&text) {
+        let frame: Frame = match serde_json::from_str(&text) {
             Ok(Line::Frame(frame)) => frame,
             Ok(Line::Error { error }) => return Err(format!("the real HFO: {error}")),
             Err(e) => {
@@ -210,14 +284,14 @@ impl RealHfo {
                 ));
             }
         };
-        let n = self.offense;
+        let n = offense;
         if (frame.kick.len(), frame.states.len(), frame.pos.len()) != (n, n, n) {
             return Err(format!(
                 "the real HFO reported a frame of {} players, expected {n}",
                 frame.states.len()
             ));
         }
-        Ok(self.frame.insert(frame))
+        Ok(frame)
     }
 
     /// The backend closed its pipes while `what`: how it ended, once it
@@ -243,20 +317,18 @@ impl RealHfo {
             }
         }
     }
-
-    fn current(&self) -> &Frame {
-        self.frame
-            .as_ref()
-            .expect("the server asks for a frame only after reset")
-    }
 }
 
 impl Simulator for RealHfo {
     fn offense(&self) -> usize {
-        self.offense
+        self.launch.offense
     }
 
+    /// Begins an episode, on a new backend if the last one failed.
     fn reset(&mut self) -> Result<(), String> {
+        if self.failed {
+            self.restart()?;
+        }
         self.command("R", "beginning an episode").map(|_| ())
     }
 
@@ -290,8 +362,9 @@ impl Simulator for RealHfo {
     }
 }
 
-impl Drop for RealHfo {
-    /// Asks the backend to quit (it stops HFO), then kills it if it lingers.
+impl Drop for Backend {
+    /// Asks the backend to quit, then terminates it (either way it stops
+    /// HFO first), and kills it if it lingers still.
     fn drop(&mut self) {
         if let Some(mut stdin) = self.stdin.take() {
             let _ = writeln!(stdin, "Q");
@@ -299,7 +372,17 @@ impl Drop for RealHfo {
         if self.wait_exit(STOP_WAIT).is_some() {
             return;
         }
-        tracing::warn!("the real HFO's backend did not stop within {STOP_WAIT:?}; killing it");
+        tracing::warn!("the real HFO's backend did not stop within {STOP_WAIT:?}; terminating it");
+        if let Ok(pid) = libc::pid_t::try_from(self.child.id()) {
+            // SAFETY: plain kill(2) on our own child, which has not been reaped.
+            unsafe {
+                libc::kill(pid, libc::SIGTERM);
+            }
+        }
+        if self.wait_exit(STOP_WAIT).is_some() {
+            return;
+        }
+        tracing::warn!("the real HFO's backend did not stop on SIGTERM; killing it");
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
@@ -426,6 +509,31 @@ mod tests {
             let error = hfo.unwrap().reset().unwrap_err();
             assert!(error.contains(expected), "{error}");
         }
+    }
+
+    #[test]
+    fn a_failed_backend_is_replaced_at_the_next_episode() {
+        // Each launch notes its seed; the first one ends at its first step.
+        let main = format!(
+            "import os, sys\n\
+             seeds = os.path.join(os.path.dirname(__file__), 'seeds')\n\
+             first = not os.path.exists(seeds)\n\
+             open(seeds, 'a').write(sys.argv[-1] + '\\n')\n\
+             for line in sys.stdin:\n    c = line.strip()\n    \
+             if c == 'Q' or (first and c.startswith('S')):\n        break\n    \
+             print({}, flush=True)\n",
+            frame(0, "in-game", [true, false, false])
+        );
+        let (dir, hfo) = start(&main);
+        let mut hfo = hfo.unwrap();
+        let shoot = [Action::Shoot, Action::Move, Action::Move];
+        hfo.reset().unwrap();
+        let error = hfo.step(&shoot).unwrap_err();
+        assert!(error.contains("backend ended"), "{error}");
+        hfo.reset().unwrap();
+        assert_eq!(hfo.step(&shoot).unwrap(), Outcome::InGame);
+        let seeds = std::fs::read_to_string(dir.path().join("hfo_oracle").join("seeds")).unwrap();
+        assert_eq!(seeds, "--seed=7\n--seed=8\n");
     }
 
     #[test]

@@ -161,7 +161,7 @@ impl Server {
                 Flow::Continue,
             ),
             Control::Stop => {
-                self.abandon("env-server stopped");
+                self.abandon("env-server stopped", ControlReply::Error);
                 (ControlReply::Ok, Flow::Stop)
             }
             other => {
@@ -205,7 +205,7 @@ impl Server {
         self.step_timeout = Duration::from_millis(wait_ms);
         self.stall_limit = Duration::from_millis(stall_ms);
         self.silent_since = [None; MAX_OFFENSE];
-        self.abandon("its run was reset");
+        self.abandon("its run was reset", ControlReply::Error);
         self.link.set_team(envs.offense())?;
         self.run = Some(CurrentRun {
             run: header.run,
@@ -265,7 +265,7 @@ impl Server {
             Ok(episode) => episode,
             Err(text) => {
                 warn!(run = header.run, episode = header.episode, "{text}");
-                self.reply(&query, header, ControlReply::Error(text));
+                self.reply(&query, header, ControlReply::SimulatorFailed(text));
                 return Ok(());
             }
         };
@@ -303,7 +303,7 @@ impl Server {
                 return Ok(());
             }
             if let Err(why) = play.episode.step(env) {
-                self.abandon(&why);
+                self.abandon(&why, ControlReply::SimulatorFailed);
                 return Ok(());
             }
             self.frames += 1;
@@ -325,7 +325,7 @@ impl Server {
         if let Some((play, env)) = playing(&mut self.play, &mut self.run) {
             play.deadline = None;
             if let Err(why) = play.episode.step(env) {
-                self.abandon(&why);
+                self.abandon(&why, ControlReply::SimulatorFailed);
                 return Ok(());
             }
             self.frames += 1;
@@ -344,8 +344,10 @@ impl Server {
         }
     }
 
-    /// Gives up the episode in progress, if any, telling its query why.
-    fn abandon(&mut self, why: &str) {
+    /// Gives up the episode in progress, if any, answering its query with
+    /// `reply` and why: an error, or its simulator failed (the next episode
+    /// gets it started afresh).
+    fn abandon(&mut self, why: &str, reply: fn(String) -> ControlReply) {
         self.batches.clear();
         if let Some(play) = self.play.take() {
             let h = play.episode.header;
@@ -356,7 +358,7 @@ impl Server {
                 "episode abandoned: {why}"
             );
             let text = format!("episode {} of run {} abandoned: {why}", h.episode, h.run);
-            self.reply(&play.query, h, ControlReply::Error(text));
+            self.reply(&play.query, h, reply(text));
         }
     }
 
@@ -433,7 +435,7 @@ impl Server {
                 silent.as_secs_f64(),
                 self.stall_limit
             );
-            self.abandon(&why);
+            self.abandon(&why, ControlReply::Error);
             return Ok(());
         }
         self.proceed()
