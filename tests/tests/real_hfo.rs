@@ -28,6 +28,25 @@ fn python() -> Option<PathBuf> {
     Some(PathBuf::from(path.trim())).filter(|p| p.is_file())
 }
 
+/// The options that have env-server play the fake HFO tree; `None`, said,
+/// without a python3 to run it.
+fn on_fake_hfo() -> Option<Vec<String>> {
+    let Some(python) = python() else {
+        eprintln!("no python3: the real HFO's seam is not tested");
+        return None;
+    };
+    let [hfo, python] = [fake_hfo(), python].map(|p| p.to_string_lossy().into_owned());
+    let options = [
+        "--simulator",
+        "real-hfo",
+        "--hfo-dir",
+        &hfo,
+        "--hfo-python",
+        &python,
+    ];
+    Some(options.map(String::from).to_vec())
+}
+
 /// `coordinator run` of three AdHocTD agents on the simulator `args` name,
 /// 1 run of 20 training episodes, 4 evaluation episodes every 10, into
 /// `out`; `rundir` is where the fake HFO's processes meet.
@@ -64,23 +83,12 @@ fn json(path: &Path) -> Value {
 
 #[test]
 fn agents_train_over_zenoh_on_a_simulator_behind_a_pipe() {
-    let Some(python) = python() else {
-        eprintln!("no python3: the real HFO's seam is not tested");
-        return;
-    };
+    let Some(real) = on_fake_hfo() else { return };
+    let real: Vec<&str> = real.iter().map(String::as_str).collect();
     let tmp = tempfile::tempdir().unwrap();
     let rundir = tmp.path().join("meet");
     std::fs::create_dir(&rundir).unwrap();
     let out = tmp.path().join("fake");
-    let hfo = fake_hfo();
-    let real = [
-        "--simulator",
-        "real-hfo",
-        "--hfo-dir",
-        hfo.to_str().unwrap(),
-        "--hfo-python",
-        python.to_str().unwrap(),
-    ];
     let done = coordinator_run(&real, &out, &rundir);
     let stderr = String::from_utf8_lossy(&done.stderr);
     assert!(done.status.success(), "{stderr}");
@@ -147,20 +155,9 @@ fn agents_train_over_zenoh_on_a_simulator_behind_a_pipe() {
 
 #[test]
 fn a_simulator_that_goes_down_is_started_again_and_its_episode_replayed() {
-    let Some(python) = python() else {
-        eprintln!("no python3: the real HFO's seam is not tested");
-        return;
-    };
+    let Some(real) = on_fake_hfo() else { return };
+    let real: Vec<&str> = real.iter().map(String::as_str).collect();
     let tmp = tempfile::tempdir().unwrap();
-    let hfo = fake_hfo();
-    let real = [
-        "--simulator",
-        "real-hfo",
-        "--hfo-dir",
-        hfo.to_str().unwrap(),
-        "--hfo-python",
-        python.to_str().unwrap(),
-    ];
     let meet = |name: &str| {
         let dir = tmp.path().join(name);
         std::fs::create_dir(&dir).unwrap();
