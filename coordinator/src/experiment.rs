@@ -53,8 +53,11 @@ pub struct Record<'a> {
 /// `advice_requests`, `advice_replies_received`, `messages_dropped`).
 /// 3: the advising traffic (`advising_messages`, `advising_bytes`) in the
 /// runs, and per training episode in the summary's points; agents' network
-/// conditions (`network`) in the configuration.
-pub const RESULTS_FORMAT_VERSION: u32 = 3;
+/// conditions (`network`) in the configuration. 4: what played each run
+/// (`played_with`), and the keys 3 gained without rising (the runs'
+/// `advice_matrix`, `joins`, `restarts`, `simulator_restarts`, the
+/// summary's `advice_matrix`, the configuration's `events`).
+pub const RESULTS_FORMAT_VERSION: u32 = 4;
 
 /// Reads agent `id`'s snapshot, if `spec` loads one, its counters cleared
 /// unless `keep_counters`.

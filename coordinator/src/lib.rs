@@ -56,6 +56,7 @@ pub mod figures;
 pub mod in_process;
 pub mod membership;
 pub mod plugin;
+pub mod provenance;
 #[cfg(feature = "zenoh")]
 pub mod remote;
 pub mod replay;

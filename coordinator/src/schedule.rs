@@ -10,6 +10,7 @@ use crate::backend::{AgentStats, Backend};
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::membership::{Join, Restart, SimulatorRestart};
+use crate::provenance::PlayedWith;
 
 /// The measurements of one evaluation.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -111,6 +112,10 @@ pub struct RunResult {
     /// The newcomers that joined, in order (none in a fixed team).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub joins: Vec<Join>,
+    /// The code and simulator that played it (absent from the files of
+    /// versions before 4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub played_with: Option<PlayedWith>,
 }
 
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
@@ -209,6 +214,7 @@ pub fn play_run(
         restarts: backend.restarts(),
         simulator_restarts: backend.simulator_restarts(),
         joins,
+        played_with: Some(PlayedWith::this_build(config.transport.simulator())),
     })
 }
 

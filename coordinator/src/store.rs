@@ -443,6 +443,7 @@ mod tests {
         ];
         let result = RunResult {
             joins: Vec::new(),
+            played_with: None,
             restarts: Vec::new(),
             simulator_restarts: Vec::new(),
             advice_matrix: Vec::new(),

@@ -213,6 +213,11 @@ impl Transport {
         }
     }
 
+    /// What env-server plays: ours in process.
+    pub fn simulator(&self) -> Simulator {
+        self.zenoh().map_or(Simulator::Ours, |z| z.simulator)
+    }
+
     /// Whether agents are processes whose messages are counted.
     pub fn communicates(&self) -> bool {
         self.zenoh().is_some()

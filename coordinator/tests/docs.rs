@@ -322,6 +322,7 @@ fn zenoh_record_and_summary() -> (Value, Value) {
         timing: Timing::default(),
         advice_rtt_ms: vec![vec![1.5]; 3],
         joins: Vec::new(),
+        played_with: None,
         restarts: Vec::new(),
         simulator_restarts: Vec::new(),
         advice_matrix: Vec::new(),

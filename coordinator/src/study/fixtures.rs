@@ -22,6 +22,7 @@ pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
         timing: Default::default(),
         advice_rtt_ms: Vec::new(),
         joins: Vec::new(),
+        played_with: None,
         restarts: Vec::new(),
         simulator_restarts: Vec::new(),
         advice_matrix: Vec::new(),

@@ -34,6 +34,7 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
         })?;
         runs.push(RunResult {
             joins: Vec::new(),
+            played_with: None,
             restarts: Vec::new(),
             simulator_restarts: Vec::new(),
             advice_matrix: Vec::new(),

@@ -3,6 +3,7 @@
 
 pub mod baseline;
 pub mod decision_stats;
+pub mod fingerprint;
 pub mod rcg;
 pub mod render;
 pub mod rollout;
