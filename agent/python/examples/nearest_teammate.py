@@ -4,9 +4,13 @@ An agent that meets a state it has visited fewer than ``ASK_BELOW`` times
 asks one teammate, the nearest on the field among those whose advice has not
 turned out worse than its own choices, and plays the advice. It answers a
 request when it has visited the state at least ``GIVE_FROM`` times. Each side
-spends at most ``BUDGET`` (the paper's budgets). Trust is the running mean of
-the advantage r + gamma Q(s', a') - Q(s, a) of the decisions made on each
-teammate's advice.
+spends at most ``BUDGET`` (the paper's budgets). A teammate stays trusted
+for its first ``TRIAL`` pieces of advice played, then while the summed
+advantage of the decisions made on its advice is not negative. The advantage
+is the framework's (``Outcome.advantage``): r + gamma V(s') - V(s) under the
+values just learned, V a state's best learned kick action's value where the
+agent chose (its action's where it could only move), V(s') 0 at the
+episode's end.
 
 The agent process runs it as the decisions of algorithm ``external``
 (docs/strategies.md), in a team file::
