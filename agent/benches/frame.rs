@@ -3,7 +3,7 @@
 
 use std::hint::black_box;
 
-use agent::{AdHoc, Agent, AgentConfig, Mode, Observation, Strategy, Team};
+use agent::{Agent, AgentConfig, Mode, Observation, Profile, Team};
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -35,10 +35,7 @@ fn frames(n: usize) -> Vec<[Observation; AGENTS]> {
 }
 
 fn team() -> Team {
-    let config = AgentConfig {
-        strategy: Strategy::AdHoc(AdHoc::td()),
-        ..AgentConfig::default()
-    };
+    let config = AgentConfig::of("adhoc-td".parse().unwrap(), Profile::Paper);
     let agents = (0..AGENTS)
         .map(|i| Agent::new(i, AGENTS, config.clone(), i as u64).unwrap())
         .collect();

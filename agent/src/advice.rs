@@ -4,6 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::config_error::{AgentConfigError, require_non_negative};
+
 /// The reachable set G(s): whom an ad hoc advisee asks.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -22,6 +24,16 @@ pub enum Reachable {
     /// A star around the hub of this id: the hub asks everyone, the others
     /// only the hub.
     Star(usize),
+}
+
+impl Reachable {
+    /// A radio range must be finite and >= 0.
+    pub(crate) fn validate(&self) -> Result<(), AgentConfigError> {
+        match *self {
+            Reachable::WithinDistance(d) => require_non_negative("reachable", d),
+            _ => Ok(()),
+        }
+    }
 }
 
 /// P_ask(s) = (1 + v_a)^(-sqrt(n(s))); 1 for an unvisited state.

@@ -4,7 +4,6 @@
 use proto::{Action, Mode, SharedValues, State};
 use rand::{Rng, SeedableRng};
 
-use crate::advice::shared_prefix;
 use crate::advice_counters::AdviceCounters;
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
@@ -15,7 +14,9 @@ use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
 use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
-use crate::strategy::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
+use crate::strategy::{
+    AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, Replies, Sends,
+};
 use crate::tiles::{Tiling, TilingParams};
 
 /// What an agent sees in one simulator frame.
@@ -82,7 +83,8 @@ pub enum Decision {
 }
 
 /// A learning agent (or the random baseline) with its advising strategy:
-/// the advising framework around a [`Learner`] (SARSA(lambda) by default).
+/// the advising framework around a [`Learner`] (its configuration's
+/// `learner`, SARSA(lambda) by default).
 ///
 /// Drive it per episode: [`begin_episode`](Self::begin_episode), one
 /// [`act`](Self::act) per simulator frame, [`end_episode`](Self::end_episode)
@@ -109,23 +111,23 @@ pub struct Agent {
     advised_by: Vec<u64>,
     reach: Vec<usize>,
     answers: Answers,
-    episode: Vec<Transition>,
-    share_ready: bool,
+    /// What it sends unasked after the episode that just ended.
+    outbox: Sends,
     training_episodes: u64,
     counters: AdviceCounters,
     link: Option<Link>,
 }
 
 impl Agent {
-    /// Agent `id` of a team of `team_size` learning with SARSA(lambda), its
-    /// generator seeded with `seed`.
+    /// Agent `id` of a team of `team_size` learning with its configuration's
+    /// learner, its generator seeded with `seed`.
     pub fn new(
         id: usize,
         team_size: usize,
         config: AgentConfig,
         seed: u64,
     ) -> Result<Self, AgentConfigError> {
-        let learner = config.strategy.learner(&config, seed);
+        let learner = config.learner.build(&config, seed);
         Self::with_learner(id, team_size, config, seed, learner)
     }
 
@@ -146,13 +148,13 @@ impl Agent {
                 format!("agent id {id} is not below the team size {team_size}"),
             ));
         }
-        config.strategy.check_team(team_size)?;
+        config.algorithm.check_team(team_size)?;
         if let Some(network) = &config.network {
             network.validate()?;
         }
         Ok(Self {
             link: config.network.map(|n| Link::new(n, seed)),
-            strategy: config.strategy.build(&config.fidelity),
+            strategy: config.algorithm.build(&config.fidelity),
             id,
             team_size,
             config,
@@ -167,8 +169,7 @@ impl Agent {
             advised_by: vec![0; team_size],
             reach: Vec::with_capacity(team_size),
             answers: Answers::default(),
-            episode: Vec::new(),
-            share_ready: false,
+            outbox: Sends::new(),
             training_episodes: 0,
             counters: AdviceCounters::default(),
         })
@@ -176,7 +177,7 @@ impl Agent {
 
     /// The same agent with its advising decisions made by `strategy`
     /// instead of its configuration's: how a method defined outside this
-    /// crate joins a team ([`AdvisingStrategy`]). `config.strategy` stays
+    /// crate joins a team ([`AdvisingStrategy`]). `config.algorithm` stays
     /// what the results record.
     pub fn with_strategy(mut self, strategy: Box<dyn AdvisingStrategy>) -> Self {
         self.strategy = strategy;
@@ -257,12 +258,12 @@ impl Agent {
     }
 
     /// Starts an episode in `mode`; forgets the previous episode's trace,
-    /// advised states and unshared transitions.
+    /// advised states and unsent shares.
     pub fn begin_episode(&mut self, mode: Mode) {
         self.mode = mode;
         self.reset_episode();
-        self.episode.clear();
-        self.share_ready = false;
+        self.outbox.clear();
+        self.strategy.begin_episode(mode);
     }
 
     fn reset_episode(&mut self) {
@@ -450,17 +451,23 @@ impl Agent {
     }
 
     /// The terminal frame: a training episode learns its last step with
-    /// target `final_reward` alone and counts as finished.
+    /// target `final_reward` alone, counts as finished, and gets ready what
+    /// its strategy sends unasked (one unit of sharing per transition per
+    /// receiver).
     pub fn end_episode(&mut self, final_reward: f64) {
         if self.training() {
             if let Some(prev) = self.pending.take() {
                 self.learn(prev, final_reward, None);
             }
-            // Only a strategy that shares records its episode (see `learn`).
-            self.share_ready = final_reward > 0.0 && !self.episode.is_empty();
-        }
-        if !self.share_ready {
-            self.episode.clear();
+            let end = EndContext {
+                final_reward,
+                me: self.id,
+                team_size: self.team_size,
+                counters: &self.counters,
+            };
+            self.outbox = self.strategy.end_episode(&end);
+            let sent: usize = self.outbox.iter().map(|(_, t)| t.len()).sum();
+            self.counters.shared_sent += sent as u64;
         }
         if self.mode == Mode::Training {
             self.training_episodes += 1;
@@ -468,9 +475,8 @@ impl Agent {
         self.reset_episode();
     }
 
-    /// EpisodeSharing, after [`end_episode`](Self::end_episode) of a goal
-    /// episode: sends its transitions to every other agent, one budget unit
-    /// per transition per receiver, until the budget is spent.
+    /// After [`end_episode`](Self::end_episode): sends what its strategy
+    /// sends unasked (EpisodeSharing's goal episodes).
     pub fn share_episode(&mut self, exchange: &mut dyn AdviceExchange) {
         for (to, transitions) in self.take_shared() {
             exchange.share(self.id, to, &transitions);
@@ -478,25 +484,11 @@ impl Agent {
     }
 
     /// What [`share_episode`](Self::share_episode) sends, as data: the
-    /// transitions for each receiver, in id order (receivers the budget does
-    /// not reach are left out). The budget is spent as if they were sent;
-    /// empty unless an EpisodeSharing goal episode just ended.
-    pub fn take_shared(&mut self) -> Vec<(usize, Vec<Transition>)> {
-        if !std::mem::take(&mut self.share_ready) {
-            return Vec::new();
-        }
-        let budget = self.strategy.sharing_allowance(&self.counters);
-        let receivers = self.team_size - 1;
-        let mut shares = Vec::with_capacity(receivers);
-        for (k, to) in (0..self.team_size).filter(|&j| j != self.id).enumerate() {
-            let n = shared_prefix(self.episode.len(), receivers, k, budget);
-            if n > 0 {
-                shares.push((to, self.episode[..n].to_vec()));
-                self.counters.shared_sent += n as u64;
-            }
-        }
-        self.episode.clear();
-        shares
+    /// transitions for each receiver, in order; counted as shared when the
+    /// episode ended. Empty unless a training episode just ended with
+    /// something to send.
+    pub fn take_shared(&mut self) -> Sends {
+        std::mem::take(&mut self.outbox)
     }
 
     /// Advisor side: its answer to a request about `state`, as its method
@@ -624,8 +616,8 @@ impl Agent {
         self.strategy.reuse(key, &mut values, &mut self.rng)
     }
 
-    /// Whether a training step with the ball asks for advice (Algorithm 1,
-    /// or Torrey's student at every fresh state).
+    /// Whether a training step with the ball asks for advice, as its
+    /// strategy decides.
     fn asks(&mut self, key: u64, index: usize, state: &State) -> bool {
         let uncertainty = if self.strategy.asks_by_uncertainty() {
             self.learner.uncertainty(Seen {
@@ -645,15 +637,16 @@ impl Agent {
         self.strategy.asks(&at, &mut self.rng)
     }
 
-    /// Whom to ask among the `reachable` agents: Torrey's fixed teacher
-    /// `(i + 1) mod n`, else G(s).
+    /// Whom to ask among the `reachable` agents, as its strategy decides
+    /// (e.g. G(s)).
     fn fill_reach(&mut self, positions: &[[f64; 2]], reachable: &dyn Fn(usize) -> bool) {
         (self.strategy).advisors(self.id, self.team_size, positions, &mut self.reach);
         self.reach.retain(|&j| reachable(j));
     }
 
     /// The intended action a Mistake Correcting advisee sends along: its
-    /// learner's choice, or greedy for a Torrey student whose fidelity says so.
+    /// learner's choice, or its greedy action for a strategy that intends
+    /// greedily.
     fn intent(&mut self, index: usize, state: &State) -> Action {
         if self.strategy.intends_greedy() {
             let at = Seen {
@@ -683,15 +676,15 @@ impl Agent {
         }
     }
 
-    /// Learns one step and records it for EpisodeSharing while its budget lasts.
+    /// Learns one step, and tells its strategy when it wants to know.
     fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<OpenStep>) {
         self.learner
             .learn((prev.step(), reward, next.as_ref().map(OpenStep::step)));
         if prev.action.is_kick() && self.strategy.learns_from_outcomes() {
             self.tell_outcome(&prev, reward, next.as_ref());
         }
-        if self.strategy.sharing_allowance(&self.counters) > 0 {
-            self.episode.push(Transition {
+        if self.strategy.records_transitions(&self.counters) {
+            self.strategy.learned(&Transition {
                 state: prev.state,
                 action: prev.action,
                 reward,

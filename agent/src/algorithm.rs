@@ -1,126 +1,107 @@
 //! The one vocabulary of advising algorithms, shared by the command line, team
-//! and study files and `config.json`.
+//! and study files and `config.json`: a name of the list every method is
+//! registered in once (`strategy::ALGORITHMS`).
 
 use std::fmt;
+use std::hash::{Hash, Hasher};
 use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-/// An advising algorithm, named in kebab-case (`adhoc-td`) wherever it is
-/// written or read.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(try_from = "String", into = "&'static str")]
-pub enum Algorithm {
-    /// `no-advice`: SARSA(lambda) alone.
-    #[default]
-    NoAdvice,
-    /// `adhoc-visit`: ad hoc advising with the visit-based confidence.
-    AdHocVisit,
-    /// `adhoc-td`: ad hoc advising with the TD-based confidence.
-    AdHocTd,
-    /// `torrey`: importance advising from a fixed teacher.
-    Torrey,
-    /// `episode-sharing`: Tan's episode sharing after goal episodes.
-    EpisodeSharing,
-    /// `random`: the random-policy baseline.
-    Random,
-    /// `early-advising`: ask at every step until the budget is spent (Ilhan
-    /// et al.'s baseline).
-    EarlyAdvising,
-    /// `random-advising`: ask with a fixed probability while the budget
-    /// lasts (Ilhan et al.'s baseline).
-    RandomAdvising,
-    /// `advice-reuse`: AdHocTD whose advisee reuses stored advice (Zhu et
-    /// al., JAAMAS 2023).
-    AdviceReuse,
-    /// `peer-learning`: follow recommendations by trust learned from
-    /// outcomes (Derstroff et al., AAAI 2024).
-    PeerLearning,
-    /// `rcmp`: ask where an ensemble's heads disagree (da Silva et al.,
-    /// AAAI 2020).
-    Rcmp,
-    /// `psaf`: share values instead of actions (Zhu et al., AAMAS 2019).
-    Psaf,
-    /// `external`: decisions given from outside: a strategy process (a
-    /// team file's `strategy_process`) or, in process,
-    /// [`Agent::with_strategy`](crate::Agent::with_strategy).
-    External,
-}
+use crate::method::{LearnerNeed, Registration};
+use crate::strategy::ALGORITHMS;
 
-/// An algorithm name that is not one of [`Algorithm::ALL`].
+/// An advising algorithm, named in kebab-case (`adhoc-td`) wherever it is
+/// written or read; [`Algorithm::all`] lists them.
+#[derive(Clone, Copy)]
+pub struct Algorithm(&'static Registration);
+
+/// An algorithm name that is not one of [`Algorithm::all`].
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("unknown algorithm `{0}` (expected one of: {names})", names = Algorithm::list())]
 pub struct UnknownAlgorithm(pub String);
 
 impl Algorithm {
     /// Every algorithm: the paper's, in the order it presents them, then
-    /// the field's since.
-    pub const ALL: [Algorithm; 13] = [
-        Algorithm::NoAdvice,
-        Algorithm::AdHocVisit,
-        Algorithm::AdHocTd,
-        Algorithm::Torrey,
-        Algorithm::EpisodeSharing,
-        Algorithm::Random,
-        Algorithm::EarlyAdvising,
-        Algorithm::RandomAdvising,
-        Algorithm::AdviceReuse,
-        Algorithm::PeerLearning,
-        Algorithm::Rcmp,
-        Algorithm::Psaf,
-        Algorithm::External,
-    ];
+    /// the field's since, then `external`.
+    pub fn all() -> impl Iterator<Item = Algorithm> {
+        ALGORITHMS.iter().map(Algorithm)
+    }
 
     /// The name as written on the command line and in files.
     pub fn name(self) -> &'static str {
-        match self {
-            Algorithm::NoAdvice => "no-advice",
-            Algorithm::AdHocVisit => "adhoc-visit",
-            Algorithm::AdHocTd => "adhoc-td",
-            Algorithm::Torrey => "torrey",
-            Algorithm::EpisodeSharing => "episode-sharing",
-            Algorithm::Random => "random",
-            Algorithm::EarlyAdvising => "early-advising",
-            Algorithm::RandomAdvising => "random-advising",
-            Algorithm::AdviceReuse => "advice-reuse",
-            Algorithm::PeerLearning => "peer-learning",
-            Algorithm::Rcmp => "rcmp",
-            Algorithm::Psaf => "psaf",
-            Algorithm::External => "external",
-        }
+        self.0.name
     }
 
     /// Older spellings still accepted when reading (never written).
     pub fn aliases(self) -> &'static [&'static str] {
-        match self {
-            Algorithm::AdHocVisit => &["ad-hoc-visit"],
-            Algorithm::AdHocTd => &["ad-hoc-td"],
-            _ => &[],
-        }
+        self.0.aliases
     }
 
-    /// Whether the algorithm has a Mistake Correcting mode.
-    pub fn supports_mistake_correcting(self) -> bool {
-        matches!(
-            self,
-            Algorithm::AdHocVisit | Algorithm::AdHocTd | Algorithm::Torrey
-        )
+    /// One line on what it does.
+    pub fn about(self) -> &'static str {
+        self.0.about
     }
 
-    /// Whether it is one of the two ad hoc methods.
-    pub fn is_ad_hoc(self) -> bool {
-        matches!(self, Algorithm::AdHocVisit | Algorithm::AdHocTd)
+    /// What it needs of its agents' learner.
+    pub fn learner_need(self) -> LearnerNeed {
+        self.0.learner
     }
 
-    /// Whether its agents communicate (advice or shared episodes).
+    /// Whether its agents communicate (advice, values or shared episodes).
     pub fn communicates(self) -> bool {
-        !matches!(self, Algorithm::NoAdvice | Algorithm::Random)
+        self.0.communicates
+    }
+
+    /// Whether its decisions are given from outside: `external`, made by a
+    /// strategy process (a team file's `strategy_process`) or, in process,
+    /// [`Agent::with_strategy`](crate::Agent::with_strategy).
+    pub fn is_external(self) -> bool {
+        self.0.external
+    }
+
+    /// Whether its settings have `key` (e.g. `mistake_correcting`).
+    pub fn has_setting(self, key: &str) -> bool {
+        (self.0.defaults)(crate::Profile::Paper)
+            .table()
+            .contains_key(key)
     }
 
     /// Every name, comma-separated (for messages).
     pub fn list() -> String {
-        let names: Vec<&str> = Self::ALL.iter().map(|n| n.name()).collect();
+        let names: Vec<&str> = Self::all().map(Algorithm::name).collect();
         names.join(", ")
+    }
+
+    pub(crate) fn registration(self) -> &'static Registration {
+        self.0
+    }
+}
+
+impl Default for Algorithm {
+    /// `no-advice`, the first.
+    fn default() -> Self {
+        Algorithm(&ALGORITHMS[0])
+    }
+}
+
+impl PartialEq for Algorithm {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl Eq for Algorithm {}
+
+impl Hash for Algorithm {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.name().hash(state);
+    }
+}
+
+impl fmt::Debug for Algorithm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -135,24 +116,22 @@ impl FromStr for Algorithm {
 
     /// A name or one of its aliases.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|n| n.name() == s || n.aliases().contains(&s))
+        Self::all()
+            .find(|a| a.name() == s || a.aliases().contains(&s))
             .ok_or_else(|| UnknownAlgorithm(s.to_owned()))
     }
 }
 
-impl TryFrom<String> for Algorithm {
-    type Error = UnknownAlgorithm;
-
-    fn try_from(s: String) -> Result<Self, Self::Error> {
-        s.parse()
+impl Serialize for Algorithm {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
     }
 }
 
-impl From<Algorithm> for &'static str {
-    fn from(name: Algorithm) -> Self {
-        name.name()
+impl<'de> Deserialize<'de> for Algorithm {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
     }
 }
 
@@ -162,14 +141,15 @@ mod tests {
 
     #[test]
     fn names_and_aliases_parse_and_display() {
-        for name in Algorithm::ALL {
-            assert_eq!(name.name().parse::<Algorithm>(), Ok(name));
-            assert_eq!(name.to_string(), name.name());
-            for alias in name.aliases() {
-                assert_eq!(alias.parse::<Algorithm>(), Ok(name));
+        for algorithm in Algorithm::all() {
+            assert_eq!(algorithm.name().parse::<Algorithm>(), Ok(algorithm));
+            assert_eq!(algorithm.to_string(), algorithm.name());
+            for alias in algorithm.aliases() {
+                assert_eq!(alias.parse::<Algorithm>(), Ok(algorithm));
             }
         }
-        assert_eq!("ad-hoc-td".parse::<Algorithm>(), Ok(Algorithm::AdHocTd));
+        let td: Algorithm = "ad-hoc-td".parse().unwrap();
+        assert_eq!(td.name(), "adhoc-td");
         let e = "best".parse::<Algorithm>().unwrap_err().to_string();
         assert_eq!(
             e,
@@ -180,12 +160,31 @@ mod tests {
     }
 
     #[test]
+    fn names_are_unique_and_kebab_case() {
+        let names: Vec<&str> = Algorithm::all()
+            .flat_map(|a| std::iter::once(a.name()).chain(a.aliases().iter().copied()))
+            .collect();
+        for (i, name) in names.iter().enumerate() {
+            assert!(!names[..i].contains(name), "{name} twice");
+            assert!(
+                name.bytes()
+                    .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'-'),
+                "{name}"
+            );
+        }
+        assert_eq!(Algorithm::default().name(), "no-advice");
+    }
+
+    #[test]
     fn serde_writes_the_name_and_reads_aliases() {
-        let json = serde_json::to_string(&Algorithm::AdHocVisit).unwrap();
+        let visit: Algorithm = "adhoc-visit".parse().unwrap();
+        let json = serde_json::to_string(&visit).unwrap();
         assert_eq!(json, r#""adhoc-visit""#);
         let read: Algorithm = serde_json::from_str(r#""ad-hoc-visit""#).unwrap();
-        assert_eq!(read, Algorithm::AdHocVisit);
+        assert_eq!(read, visit);
         let err = serde_json::from_str::<Algorithm>(r#""best""#).unwrap_err();
         assert!(err.to_string().contains("best"), "{err}");
+        let bytes = postcard::to_allocvec(&visit).unwrap();
+        assert_eq!(postcard::from_bytes::<Algorithm>(&bytes).unwrap(), visit);
     }
 }

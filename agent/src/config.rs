@@ -7,10 +7,11 @@ mod table;
 use proto::STATE_FEATURES;
 
 use crate::advises::Advises;
+use crate::algorithm_settings::AlgorithmSettings;
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
+use crate::learner_settings::LearnerSettings;
 use crate::link::NetworkConditions;
-use crate::strategy::Strategy;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
 pub const TILE_ORIGIN: f64 = -1.0;
@@ -18,15 +19,15 @@ pub const TILE_ORIGIN: f64 = -1.0;
 /// Every constant of one agent, with the paper's defaults.
 ///
 /// Human-readable formats (JSON, TOML) see one flat table: the learner's
-/// keys below, `algorithm` (an [`Algorithm`](crate::Algorithm); read as
-/// `strategy` too) and the keys of that algorithm, named as the fields of [`Strategy`]'s variants
-/// (`v_a`, `v_g`, `ask_budget`, `give_budget`, `mistake_correcting`,
-/// `reachable`, `importance_threshold`, `sharing_budget`), then `profile` and
-/// the [`Fidelity`] settings (named as its fields; they apply to every
-/// algorithm). Missing keys take their defaults, the fidelity settings and
-/// AdHocVisit's `v_g` those of `profile`; an unknown key, or a key of another
-/// algorithm, is an error naming it. Binary formats (postcard) see the plain
-/// structure.
+/// shared keys below, `learner` and its own keys when it is not the
+/// algorithm's default, `algorithm` (an [`Algorithm`](crate::Algorithm);
+/// read as `strategy` too) and the keys of that algorithm's settings, then
+/// `profile` and the [`Fidelity`] settings (named as its fields; they apply
+/// to every algorithm), `network` and `advises`. Missing keys take their
+/// defaults, the fidelity settings and AdHocVisit's `v_g` those of
+/// `profile`; an unknown key, or a key of another algorithm or learner, is
+/// an error naming it. Binary formats (postcard) carry the same table as
+/// JSON text.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AgentConfig {
     /// Learning rate alpha, in (0, 1].
@@ -45,8 +46,10 @@ pub struct AgentConfig {
     pub tile_step: f64,
     /// Traces below this value are dropped, in (0, 1).
     pub trace_threshold: f64,
-    /// The advising strategy and its constants.
-    pub strategy: Strategy,
+    /// The learner and its own settings.
+    pub learner: LearnerSettings,
+    /// The advising algorithm and its settings.
+    pub algorithm: AlgorithmSettings,
     /// The rules where the paper and the authors' code differ.
     pub fidelity: Fidelity,
     /// Network conditions of its advice messages; none: every message
@@ -67,7 +70,8 @@ impl Default for AgentConfig {
             tile_width: 0.5,
             tile_step: 0.2,
             trace_threshold: 1e-4,
-            strategy: Strategy::NoAdvice,
+            learner: LearnerSettings::Sarsa,
+            algorithm: AlgorithmSettings::default(),
             fidelity: Fidelity::default(),
             network: None,
             advises: Advises::Honest,
@@ -93,7 +97,29 @@ impl AgentConfig {
         if let Some(network) = &self.network {
             network.validate()?;
         }
-        self.strategy.validate()
+        self.learner.validate()?;
+        let algorithm = self.algorithm.name();
+        if !self.learner.meets(algorithm.learner_need()) {
+            return Err(AgentConfigError::new(
+                "learner",
+                format!(
+                    "algorithm {algorithm} needs a learner that measures its uncertainty                      (ensemble), not {}",
+                    self.learner.name()
+                ),
+            ));
+        }
+        self.algorithm.validate()
+    }
+
+    /// The paper's defaults with `algorithm` (and its learner) under the
+    /// defaults of `profile`.
+    pub fn of(algorithm: crate::Algorithm, profile: crate::Profile) -> Self {
+        Self {
+            learner: LearnerSettings::for_need(algorithm.learner_need()),
+            algorithm: AlgorithmSettings::of(algorithm, profile),
+            fidelity: Fidelity::of(profile),
+            ..Self::default()
+        }
     }
 
     fn validate_tiles(&self) -> Result<(), AgentConfigError> {
@@ -146,11 +172,17 @@ impl AgentConfig {
 mod tests {
     use super::*;
     use crate::advice::Reachable;
-    use crate::algorithm::Algorithm;
     use crate::strategy::AdHoc;
 
-    fn key_of(config: AgentConfig) -> &'static str {
+    fn key_of(config: AgentConfig) -> String {
         config.validate().unwrap_err().key
+    }
+
+    /// `name`'s settings with its `AdHoc` changed by `change`.
+    fn ad_hoc(name: &str, change: impl FnOnce(&mut AdHoc)) -> AlgorithmSettings {
+        let mut settings = AlgorithmSettings::named(name).unwrap();
+        change(settings.get_mut::<AdHoc>().unwrap());
+        settings
     }
 
     #[test]
@@ -165,13 +197,14 @@ mod tests {
             (c.tiles_per_feature, c.tile_width, c.tile_step),
             (10, 0.5, 0.2)
         );
-        assert_eq!(c.strategy, Strategy::NoAdvice);
+        assert_eq!(c.algorithm.name().name(), "no-advice");
+        assert_eq!(c.learner, LearnerSettings::Sarsa);
     }
 
     #[test]
     fn bad_values_name_their_key() {
         type Change = fn(&mut AgentConfig);
-        let cases: [(Change, &str); 12] = [
+        let cases: [(Change, &str); 14] = [
             (|c| c.alpha = 0.0, "alpha"),
             (|c| c.alpha = 1.5, "alpha"),
             (|c| c.gamma = f64::NAN, "gamma"),
@@ -185,23 +218,28 @@ mod tests {
             // 5 tiles of step 0.2: the last ends at -1 + 0.8 + 0.5 = 0.3 < 1.
             (|c| c.tiles_per_feature = 5, "tiles_per_feature"),
             (
-                |c| {
-                    c.strategy = Strategy::AdHoc(AdHoc {
-                        v_g: -1.0,
-                        ..AdHoc::td()
-                    })
-                },
+                |c| c.algorithm = ad_hoc("adhoc-td", |a| a.v_g = -1.0),
                 "v_g",
             ),
             (
                 |c| {
                     let far = Reachable::WithinDistance(f64::INFINITY);
-                    c.strategy = Strategy::AdHoc(AdHoc {
-                        reachable: far,
-                        ..AdHoc::visit()
-                    });
+                    c.algorithm = ad_hoc("adhoc-visit", |a| a.reachable = far);
                 },
                 "reachable",
+            ),
+            (
+                |c| c.algorithm = AlgorithmSettings::named("rcmp").unwrap(),
+                "learner",
+            ),
+            (
+                |c| {
+                    c.learner = LearnerSettings::Ensemble {
+                        heads: 1,
+                        mask_probability: 0.5,
+                    }
+                },
+                "heads",
             ),
         ];
         for (change, key) in cases {
@@ -236,10 +274,8 @@ mod tests {
         let c: AgentConfig =
             serde_json::from_str(r#"{"strategy": "ad-hoc-td", "reachable": {"agents": [1, 2]}}"#)
                 .unwrap();
-        assert_eq!(c.strategy.name(), Algorithm::AdHocTd);
-        let Strategy::AdHoc(a) = &c.strategy else {
-            panic!("ad hoc strategy expected, got {:?}", c.strategy);
-        };
+        assert_eq!(c.algorithm.name().name(), "adhoc-td");
+        let a = c.algorithm.get::<AdHoc>().unwrap();
         assert_eq!(a.reachable, Reachable::Agents(vec![1, 2]));
         assert_eq!((a.v_g, a.ask_budget), (1.5, 1000));
         assert_eq!(c.alpha, 0.1);

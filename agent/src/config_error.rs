@@ -5,15 +5,15 @@
 #[error("invalid agent config `{key}`: {reason}")]
 pub struct AgentConfigError {
     /// The offending key, as spelled in the configuration.
-    pub key: &'static str,
+    pub key: String,
     /// What is wrong with its value.
     pub reason: String,
 }
 
 impl AgentConfigError {
-    pub(crate) fn new(key: &'static str, reason: impl Into<String>) -> Self {
+    pub(crate) fn new(key: impl Into<String>, reason: impl Into<String>) -> Self {
         Self {
-            key,
+            key: key.into(),
             reason: reason.into(),
         }
     }

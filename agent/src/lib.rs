@@ -11,10 +11,10 @@
 //! Driving a [`Team`]: one training episode, then one evaluation episode
 //! (frozen: greedy play, nothing learned, asked or given).
 //! ```
-//! use agent::{AdHoc, Agent, AgentConfig, Mode, Observation, Strategy, Team};
+//! use agent::{Agent, AgentConfig, Mode, Observation, Profile, Team};
 //! use proto::Action;
 //!
-//! let config = AgentConfig { strategy: Strategy::AdHoc(AdHoc::td()), ..AgentConfig::default() };
+//! let config = AgentConfig::of("adhoc-td".parse()?, Profile::Paper);
 //! let agents = (0..3).map(|i| Agent::new(i, 3, config.clone(), 100 + i as u64)).collect::<Result<_, _>>()?;
 //! let mut team = Team::new(agents)?;
 //! let obs = |kicker: bool| Observation { state: [0.0; 6], can_kick: kicker, position: [0.0, 0.0] };
@@ -43,13 +43,16 @@ mod advice_counters;
 mod advises;
 mod agent;
 mod algorithm;
+mod algorithm_settings;
 mod config;
 mod config_error;
 mod ensemble;
 mod exchange;
 mod fidelity;
 mod learner;
+mod learner_settings;
 mod link;
+mod method;
 mod persist;
 mod sarsa;
 mod selection;
@@ -63,6 +66,7 @@ pub use advice_counters::AdviceCounters;
 pub use advises::Advises;
 pub use agent::{Agent, Decision, Observation};
 pub use algorithm::{Algorithm, UnknownAlgorithm};
+pub use algorithm_settings::AlgorithmSettings;
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
 pub use ensemble::EnsembleSarsa;
@@ -71,14 +75,17 @@ pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 pub use learner::{ActionValues, Experience, Learner, Seen, Step};
+pub use learner_settings::LearnerSettings;
 pub use link::{Latency, Leg, Link, Message, NetworkConditions};
+pub use method::LearnerNeed;
 pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapshot_file};
 pub use proto::Mode;
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
-    AdHoc, AdvisingStrategy, AskContext, Budgeted, Confidence, GiveContext, Outcome, PeerLearning,
-    Psaf, Rcmp, Replies, Reuse, ReuseRule, Strategy, Torrey,
+    AdHoc, AdviceReuse, AdvisingStrategy, AskContext, Confidence, EarlyAdvising, EndContext,
+    EpisodeSharing, GiveContext, NoSettings, Outcome, PeerLearning, Psaf, RandomAdvising, Rcmp,
+    Replies, ReuseRule, Sends, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

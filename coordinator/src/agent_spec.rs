@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use agent::{AgentConfig, Algorithm, Fidelity, Profile, Strategy};
+use agent::{AgentConfig, Algorithm, Profile};
 use serde::{Deserialize, Serialize};
 
 use crate::plugin::PluginSpec;
@@ -186,11 +186,7 @@ impl AgentSpec {
     /// fidelity settings of `profile`.
     pub fn of(algorithm: Algorithm, profile: Profile) -> Self {
         Self {
-            config: AgentConfig {
-                strategy: Strategy::of(algorithm, profile),
-                fidelity: Fidelity::of(profile),
-                ..AgentConfig::default()
-            },
+            config: AgentConfig::of(algorithm, profile),
             ..Self::default()
         }
     }

@@ -88,7 +88,7 @@ impl Default for ExperimentConfig {
             seed: 1,
             ci_level: DEFAULT_CI_LEVEL,
             transport: Transport::InProcess,
-            team: vec![AgentSpec::of(Algorithm::NoAdvice, Profile::Paper); env.offense],
+            team: vec![AgentSpec::of(Algorithm::default(), Profile::Paper); env.offense],
             env,
             events: Vec::new(),
         }
@@ -153,7 +153,7 @@ impl ExperimentConfig {
             let key = |key: &str, reason: String| {
                 ConfigError::new(format!("events[{k}].newcomer.{key}"), reason)
             };
-            (spec.config.validate()).map_err(|e| key(e.key, e.reason))?;
+            (spec.config.validate()).map_err(|e| key(&e.key, e.reason))?;
             self.check_children(&spec)
                 .map_err(|e| key(&e.key, e.reason))?;
         }
@@ -179,7 +179,7 @@ impl ExperimentConfig {
             let reason = "an agent has one learner: a process or an object, not both";
             return Err(ConfigError::new("learner", reason));
         }
-        let external = spec.config.strategy.name() == Algorithm::External;
+        let external = spec.config.algorithm.name().is_external();
         let given = spec.strategy_process.is_some() || plugin.strategy.is_some();
         let reason = match (&spec.strategy_process, external) {
             _ if given && !external => {
@@ -320,7 +320,7 @@ impl Team {
 mod tests {
     use super::*;
     use crate::agent_spec::fnv64;
-    use agent::{AdHoc, Strategy};
+    use agent::{AdHoc, AgentConfig};
     use std::path::PathBuf;
 
     fn key_of(config: ExperimentConfig) -> String {
@@ -398,10 +398,8 @@ mod tests {
         c.team[2].config.epsilon = 2.0;
         assert_eq!(key_of(c), "team[2].epsilon");
         let mut c = base();
-        c.team[1].config.strategy = Strategy::AdHoc(AdHoc {
-            v_g: -1.0,
-            ..AdHoc::visit()
-        });
+        c.team[1].config = AgentConfig::of("adhoc-visit".parse().unwrap(), Profile::Paper);
+        c.team[1].config.algorithm.get_mut::<AdHoc>().unwrap().v_g = -1.0;
         let e = c.validate().unwrap_err();
         assert_eq!(e.key, "team[1].v_g");
         assert!(e.to_string().contains(">= 0"), "{e}");
@@ -413,9 +411,10 @@ mod tests {
             "algorithm = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.qtable\"\n",
         )
         .unwrap();
+        assert_eq!(spec.config.algorithm.name().name(), "adhoc-td");
         assert_eq!(
-            spec.config.strategy,
-            Strategy::AdHoc(AdHoc {
+            spec.config.algorithm.get::<AdHoc>(),
+            Some(&AdHoc {
                 ask_budget: 0,
                 ..AdHoc::td()
             })
@@ -448,7 +447,7 @@ mod tests {
         c.team[2] = AgentSpec {
             load: Some("a/b.qtable".into()),
             keep_counters: true,
-            ..AgentSpec::of(Algorithm::Torrey, Profile::Paper)
+            ..AgentSpec::of("torrey".parse().unwrap(), Profile::Paper)
         };
         let json = serde_json::to_string(&c).unwrap();
         assert_eq!(serde_json::from_str::<ExperimentConfig>(&json).unwrap(), c);
@@ -466,12 +465,12 @@ mod tests {
         .unwrap();
         let team = load_team_file(&toml_path).unwrap().agents;
         assert_eq!(team.len(), 3);
-        assert_eq!(team[0].config.strategy, Strategy::AdHoc(AdHoc::td()));
-        let expert = Strategy::AdHoc(AdHoc {
+        assert_eq!(team[0].config.algorithm.get::<AdHoc>(), Some(&AdHoc::td()));
+        let expert = AdHoc {
             ask_budget: 0,
             ..AdHoc::td()
-        });
-        assert_eq!(team[2].config.strategy, expert);
+        };
+        assert_eq!(team[2].config.algorithm.get::<AdHoc>(), Some(&expert));
         assert_eq!(team[2].load, Some(dir.path().join("expert.qtable")));
 
         let json_path = dir.path().join("team.json");
@@ -481,8 +480,8 @@ mod tests {
         )
         .unwrap();
         let team = load_team_file(&json_path).unwrap().agents;
-        assert_eq!(team[0].config.strategy.name(), Algorithm::Torrey);
-        assert_eq!(team[1].config.strategy, Strategy::NoAdvice);
+        assert_eq!(team[0].config.algorithm.name().name(), "torrey");
+        assert_eq!(team[1].config.algorithm.name().name(), "no-advice");
         assert_eq!(team[1].load, Some(PathBuf::from("/abs.qtable")));
 
         std::fs::write(&toml_path, "[[agent]]\nalgorithm = \"best\"\n").unwrap();
@@ -579,18 +578,16 @@ mod tests {
             strategy: Some("mine 1".into()),
         };
         let zenoh = Transport::Zenoh(Default::default());
-        with(learner.clone(), Algorithm::AdHocTd, Transport::InProcess)
+        let (td, external) = ("adhoc-td".parse().unwrap(), "external".parse().unwrap());
+        with(learner.clone(), td, Transport::InProcess)
             .validate()
             .unwrap();
-        with(strategy.clone(), Algorithm::External, Transport::InProcess)
+        with(strategy.clone(), external, Transport::InProcess)
             .validate()
             .unwrap();
         let key = |c: ExperimentConfig| c.validate().unwrap_err().key;
-        assert_eq!(
-            key(with(learner, Algorithm::AdHocTd, zenoh)),
-            "team[2].plugin"
-        );
-        let not_external = with(strategy, Algorithm::AdHocTd, Transport::InProcess);
+        assert_eq!(key(with(learner, td, zenoh)), "team[2].plugin");
+        let not_external = with(strategy, td, Transport::InProcess);
         assert_eq!(key(not_external), "team[2].strategy_process");
     }
 }

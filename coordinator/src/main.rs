@@ -532,7 +532,11 @@ fn run_study(args: StudyArgs) -> Result<()> {
 
 /// `--algorithm`: every algorithm's name, its aliases accepted.
 fn algorithm_names() -> impl TypedValueParser<Value = Algorithm> {
-    let names = Algorithm::ALL.map(|n| PossibleValue::new(n.name()).aliases(n.aliases()));
+    let names = Algorithm::all().map(|n| {
+        PossibleValue::new(n.name())
+            .aliases(n.aliases())
+            .help(n.about())
+    });
     PossibleValuesParser::new(names).try_map(|name| name.parse::<Algorithm>())
 }
 

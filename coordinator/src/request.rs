@@ -113,9 +113,11 @@ impl RunRequest {
                 mistake_correcting,
             } => {
                 let mut spec = AgentSpec::of(algorithm, self.profile);
-                (spec.config.strategy)
-                    .set_mistake_correcting(mistake_correcting)
-                    .map_err(|e| ConfigError::new(e.key, e.reason))?;
+                if mistake_correcting {
+                    (spec.config.algorithm)
+                        .set("mistake_correcting", true)
+                        .map_err(|e| ConfigError::new(e.key, e.reason))?;
+                }
                 Team {
                     agents: vec![spec; self.offense.unwrap_or(3)],
                     events: Vec::new(),

@@ -16,7 +16,9 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use agent::{AdHoc, AgentConfig, Algorithm, NetworkConditions, Profile, Reachable, Strategy};
+use agent::{
+    AdHoc, AgentConfig, Algorithm, LearnerSettings, NetworkConditions, Profile, Reachable,
+};
 use coordinator::config::ChildSpec;
 use coordinator::experiment::Record;
 use coordinator::membership::MembershipEvent;
@@ -255,7 +257,7 @@ expert = true
 
 /// The data names of a study's files: its entries' and the algorithms'.
 fn data_names(entries: &[&str]) -> BTreeMap<String, String> {
-    let algorithms = Algorithm::ALL.iter().map(|a| a.name());
+    let algorithms = Algorithm::all().map(|a| a.name());
     (entries.iter().copied().chain(algorithms))
         .map(|name| (name.to_owned(), "<entry>".to_owned()))
         .chain((entries.iter()).map(|name| (format!("{name}/"), "<entry>/".to_owned())))
@@ -274,13 +276,13 @@ fn zenoh_record_and_summary() -> (Value, Value) {
         transport: Transport::Zenoh(ZenohSettings::default()),
         ..ExperimentConfig::default()
     };
-    let ad_hoc = |reachable| AgentConfig {
-        strategy: Strategy::AdHoc(AdHoc {
-            reachable,
-            ..AdHoc::td()
-        }),
-        network: Some(NetworkConditions::default()),
-        ..AgentConfig::default()
+    let ad_hoc = |reachable| {
+        let mut c = AgentConfig {
+            network: Some(NetworkConditions::default()),
+            ..AgentConfig::of("adhoc-td".parse().unwrap(), Profile::Paper)
+        };
+        c.algorithm.get_mut::<AdHoc>().unwrap().reachable = reachable;
+        c
     };
     config.team[0].config = ad_hoc(Reachable::Agents(vec![1, 2]));
     config.team[0].load = Some("expert.qtable".into());
@@ -480,22 +482,33 @@ fn keys_of(value: &Value, at: &str, into: &mut BTreeMap<String, String>) {
 /// every algorithm's flat table, the optional keys (network conditions,
 /// the reachable sets, `load`, `keep_counters`, `learner`) given.
 fn team_file_keys() -> BTreeMap<String, String> {
-    let mut configs: Vec<AgentConfig> = (Algorithm::ALL.into_iter())
-        .map(|algorithm| AgentConfig {
-            strategy: Strategy::from(algorithm),
-            network: Some(NetworkConditions::default()),
-            ..AgentConfig::default()
+    let mut configs: Vec<AgentConfig> = Algorithm::all()
+        .map(|algorithm| {
+            let mut config = AgentConfig {
+                network: Some(NetworkConditions::default()),
+                ..AgentConfig::of(algorithm, Profile::Paper)
+            };
+            // The keys written only when set, set.
+            for (key, value) in config.algorithm.settings() {
+                let set = match value {
+                    Value::Null => Value::from(0.1),
+                    Value::Bool(false) => Value::Bool(true),
+                    _ => continue,
+                };
+                config.algorithm.set(&key, set).unwrap();
+            }
+            config
         })
         .collect();
     for reachable in [Reachable::Agents(vec![1]), Reachable::WithinDistance(9.0)] {
-        configs.push(AgentConfig {
-            strategy: Strategy::AdHoc(AdHoc {
-                reachable,
-                ..AdHoc::visit()
-            }),
-            ..AgentConfig::default()
-        });
+        let mut config = AgentConfig::of("adhoc-visit".parse().unwrap(), Profile::Paper);
+        config.algorithm.get_mut::<AdHoc>().unwrap().reachable = reachable;
+        configs.push(config);
     }
+    configs.push(AgentConfig {
+        learner: LearnerSettings::named("ensemble").unwrap(),
+        ..AgentConfig::default()
+    });
     let child = ChildSpec {
         command: vec!["python3".into(), "child.py".into()],
         dir: Some("children".into()),
@@ -582,7 +595,7 @@ fn every_setting_is_in_settings_md() {
     keys_of(&serde_json::to_value(env_config).unwrap(), "", &mut env);
     in_section("Simulator settings", "simulator setting", env);
     let mut values = BTreeMap::new();
-    for algorithm in Algorithm::ALL {
+    for algorithm in Algorithm::all() {
         values.insert(algorithm.name().to_owned(), "algorithm".to_owned());
         for alias in algorithm.aliases() {
             values.insert((*alias).to_owned(), "algorithm (old spelling)".to_owned());

@@ -9,7 +9,7 @@ use crate::action::{Action, State};
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 8;
+pub const PROTOCOL_VERSION: u16 = 9;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -17,7 +17,7 @@ use proto::{Body, Control, ControlReply, Envelope, Header, experiment_id};
 use serde_json::Value;
 
 fn adhoc_td_experiment() -> Experiment {
-    let spec = AgentSpec::of(Algorithm::AdHocTd, Profile::Paper);
+    let spec = AgentSpec::of("adhoc-td".parse::<Algorithm>().unwrap(), Profile::Paper);
     Experiment::prepare(ExperimentConfig {
         runs: 1,
         episodes: 20,

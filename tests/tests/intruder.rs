@@ -50,7 +50,7 @@ fn a_peer_without_the_secret_can_neither_join_nor_listen() {
         .collect();
     let processes = start_services(&name, &secret, &endpoints);
     let settings = attached_settings(&name, &secret, &endpoints);
-    let team = vec![AgentSpec::of(Algorithm::AdHocTd, Profile::Paper); 3];
+    let team = vec![AgentSpec::of("adhoc-td".parse::<Algorithm>().unwrap(), Profile::Paper); 3];
     let net = ZenohTeam::start(&settings, &team).expect("the attached processes join");
     let experiment = Experiment::prepare(ExperimentConfig {
         runs: 1,

@@ -2,9 +2,7 @@
 //! run, its position in the observation stream and the shares waiting for
 //! it. Pure state, driven by the tasks that hold it under a lock.
 
-use agent::{
-    Agent, AgentConfig, Algorithm, Answer, Answers, Decision, Observation, Snapshot, Transition,
-};
+use agent::{Agent, AgentConfig, Answer, Answers, Decision, Observation, Snapshot, Transition};
 use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
 
 use crate::child::ChildCommands;
@@ -85,14 +83,14 @@ impl Learning {
             .map_err(|e| format!("agent config does not decode: {e}"))?;
         config.validate().map_err(|e| e.to_string())?;
         let (id, team_size) = (self.id.into(), self.team_size.into());
-        let external = config.strategy.name() == Algorithm::External;
+        let external = config.algorithm.name().is_external();
         match (&self.children.strategy, external) {
             (None, true) => return Err(NO_STRATEGY.into()),
             (Some(_), false) => {
                 return Err(format!(
                     "this agent runs a strategy process, so its algorithm must be \
                      `external`, not `{}`",
-                    config.strategy.name()
+                    config.algorithm.name()
                 ));
             }
             _ => {}
@@ -352,20 +350,17 @@ mod tests {
 
     #[test]
     fn every_strategy_crosses_the_wire() {
-        for name in agent::Algorithm::ALL {
-            let mut strategy = agent::Strategy::from(name);
-            if let agent::Strategy::AdHoc(ad_hoc) = &mut strategy {
-                ad_hoc.reachable = agent::Reachable::Agents(vec![1]);
+        for name in agent::Algorithm::all() {
+            let mut sent = AgentConfig::of(name, agent::Profile::Paper);
+            if sent.algorithm.reachable().is_some() {
+                let one = serde_json::json!({"agents": [1]});
+                sent.algorithm.set("reachable", one).unwrap();
             }
-            let sent = AgentConfig {
-                strategy,
-                ..AgentConfig::default()
-            };
             let bytes = proto::encode_settings(&sent).unwrap();
             assert_eq!(proto::decode_settings::<AgentConfig>(&bytes), Ok(sent));
             let reset = Learning::new(0, 2, ChildCommands::default()).reset(0, 1, &bytes);
             // `external` needs its strategy process.
-            assert_eq!(reset.is_err(), name == agent::Algorithm::External, "{name}");
+            assert_eq!(reset.is_err(), name.is_external(), "{name}");
         }
     }
 

@@ -5,7 +5,7 @@ mod support;
 
 use std::time::{Duration, Instant};
 
-use agent::{AdHoc, Agent, AgentConfig, Algorithm, Isolated, Strategy};
+use agent::{Agent, AgentConfig, Isolated, Profile};
 use node::net::NetConfig;
 use node::net::free_port;
 use node::secret::Secret;
@@ -287,10 +287,7 @@ async fn two_agent_processes_advise_each_other_and_drop_bad_messages() {
         .declare_subscriber(fake.keys.actions())
         .await
         .unwrap();
-    let config = AgentConfig {
-        strategy: Strategy::AdHoc(AdHoc::td()),
-        ..AgentConfig::default()
-    };
+    let config = AgentConfig::of("adhoc-td".parse().unwrap(), Profile::Paper);
     for id in 0..2 {
         fake.reset(id, &config).await;
     }
@@ -459,10 +456,7 @@ async fn episode_sharing_travels_as_published_messages() {
     let fake = Fake::open(&name).await;
     let _agents = [spawn_agent(&name, 0, &fake), spawn_agent(&name, 1, &fake)];
     fake.wait_for_agents(&[0, 1]).await;
-    let config = AgentConfig {
-        strategy: Strategy::from(Algorithm::EpisodeSharing),
-        ..AgentConfig::default()
-    };
+    let config = AgentConfig::of("episode-sharing".parse().unwrap(), Profile::Paper);
     for id in 0..2 {
         fake.reset(id, &config).await;
     }

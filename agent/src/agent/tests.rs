@@ -1,12 +1,14 @@
 use super::*;
 use crate::advice::Reachable;
-use crate::algorithm::Algorithm;
 use crate::exchange::{Advice, Answer, Answers, Isolated, ValuesAdvice};
 use crate::fidelity::{Fidelity, Profile};
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
-use crate::strategy::{AdHoc, Budgeted, Psaf, Rcmp, Reuse, ReuseRule, Strategy, Torrey};
+use crate::strategy::{
+    AdHoc, AdviceReuse, EarlyAdvising, EpisodeSharing, Psaf, RandomAdvising, Rcmp, ReuseRule,
+    Torrey,
+};
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
 
@@ -29,15 +31,20 @@ fn obs(state: State) -> Observation {
     }
 }
 
-fn config(name: Algorithm) -> AgentConfig {
-    with(Strategy::from(name))
+/// Algorithm `name` with the paper's settings.
+fn config(name: &str) -> AgentConfig {
+    AgentConfig::of(name.parse().unwrap(), Profile::Paper)
 }
 
-fn with(strategy: Strategy) -> AgentConfig {
-    AgentConfig {
-        strategy,
-        ..AgentConfig::default()
-    }
+/// Algorithm `name` with its settings (of type `S`) changed by `change`.
+fn with<S: 'static>(name: &str, change: impl FnOnce(&mut S)) -> AgentConfig {
+    let mut c = config(name);
+    change(
+        c.algorithm
+            .get_mut::<S>()
+            .expect("the algorithm's settings type"),
+    );
+    c
 }
 
 fn agent(id: usize, team_size: usize, config: AgentConfig) -> Agent {
@@ -126,10 +133,9 @@ fn advisee_spends_its_ask_budget_only_when_advised() {
     let mut a = agent(
         0,
         3,
-        with(Strategy::AdHoc(AdHoc {
-            ask_budget: 2,
-            ..AdHoc::visit()
-        })),
+        with("adhoc-visit", |a: &mut AdHoc| {
+            a.ask_budget = 2;
+        }),
     );
     finish_one_episode(&mut a);
     // No answer: a request is sent, nothing is spent, the state is not marked.
@@ -160,10 +166,9 @@ fn asks_at_most_once_per_state_per_episode() {
     let mut a = agent(
         1,
         3,
-        with(Strategy::AdHoc(AdHoc {
-            v_a: 0.0,
-            ..AdHoc::td()
-        })),
+        with("adhoc-td", |a: &mut AdHoc| {
+            a.v_a = 0.0;
+        }),
     );
     finish_one_episode(&mut a);
     let mut ex = script(&[Dribble]);
@@ -178,7 +183,7 @@ fn asks_at_most_once_per_state_per_episode() {
 
 #[test]
 fn no_asking_before_a_finished_episode_without_the_ball_or_when_evaluating() {
-    let mut a = agent(0, 3, config(Algorithm::AdHocTd));
+    let mut a = agent(0, 3, config("adhoc-td"));
     let mut ex = script(&[Dribble]);
     a.begin_episode(Mode::Training);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
@@ -197,10 +202,9 @@ fn advisor_needs_visits_and_budget() {
     let mut a = agent(
         0,
         3,
-        with(Strategy::AdHoc(AdHoc {
-            give_budget: 2,
-            ..AdHoc::td()
-        })),
+        with("adhoc-td", |a: &mut AdHoc| {
+            a.give_budget = 2;
+        }),
     );
     // Greedy PassFar; spread over tried kicks = 1 - 0 = 1; Psi = sqrt(10000) * 1 = 100;
     // P_give = 1 - 2.5^-100 = 1.0 in f64.
@@ -228,7 +232,7 @@ fn advisor_needs_visits_and_budget() {
 #[test]
 fn visit_based_advisor_uses_log2_visits() {
     // n = 1: Psi = log2 1 = 0, P_give = 0.
-    let mut a = agent(0, 3, config(Algorithm::AdHocVisit));
+    let mut a = agent(0, 3, config("adhoc-visit"));
     teach(
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
@@ -238,10 +242,9 @@ fn visit_based_advisor_uses_log2_visits() {
     let mut b = agent(
         0,
         3,
-        with(Strategy::AdHoc(AdHoc {
-            v_g: 1e9,
-            ..AdHoc::visit()
-        })),
+        with("adhoc-visit", |a: &mut AdHoc| {
+            a.v_g = 1e9;
+        }),
     );
     teach(
         &mut b,
@@ -253,10 +256,9 @@ fn visit_based_advisor_uses_log2_visits() {
 #[test]
 fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
     // Advisor side: greedy Shoot, P_give = 1 (see advisor_needs_visits_and_budget).
-    let mc = with(Strategy::AdHoc(AdHoc {
-        mistake_correcting: true,
-        ..AdHoc::td()
-    }));
+    let mc = with("adhoc-td", |a: &mut AdHoc| {
+        a.mistake_correcting = true;
+    });
     let mut advisor = agent(1, 3, mc.clone());
     teach(
         &mut advisor,
@@ -286,7 +288,7 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
 #[test]
 fn torrey_students_ask_their_fixed_teacher_at_every_fresh_kick_state() {
     for i in 0..3 {
-        let mut a = agent(i, 3, config(Algorithm::Torrey));
+        let mut a = agent(i, 3, config("torrey"));
         // No finished episode needed, no ask budget.
         a.begin_episode(Mode::Training);
         let mut ex = script(&[]);
@@ -307,10 +309,9 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
     let mut t = agent(
         1,
         3,
-        with(Strategy::Torrey(Torrey {
-            give_budget: 1,
-            ..Torrey::default()
-        })),
+        with("torrey", |t: &mut Torrey| {
+            t.give_budget = 1;
+        }),
     );
     // Spreads: 0.01 (not above t = 0.01) and 0.02; visits play no role.
     teach(
@@ -325,9 +326,7 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
     assert_eq!(t.advise(&kick_state(1), None), None, "budget of 1 spent");
 
     // In a team, agent 0's teacher is agent 1 (agent 2 knows too, but is not asked).
-    let mut agents: Vec<Agent> = (0..3)
-        .map(|i| agent(i, 3, config(Algorithm::Torrey)))
-        .collect();
+    let mut agents: Vec<Agent> = (0..3).map(|i| agent(i, 3, config("torrey"))).collect();
     let q = [0.0, 0.0, 0.0, 0.0, 0.5];
     teach(&mut agents[1], &[(kick_state(0), known(q, 0))]);
     teach(
@@ -348,7 +347,8 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
 
 #[test]
 fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
-    let mut a = agent(0, 3, with(Strategy::EpisodeSharing { sharing_budget: 5 }));
+    let sharing = |s: &mut EpisodeSharing| s.sharing_budget = 5;
+    let mut a = agent(0, 3, with("episode-sharing", sharing));
     let mut ex = script(&[]);
     a.begin_episode(Mode::Training);
     // Frames s0..s3 then the terminal step: transitions t0..t3.
@@ -390,7 +390,7 @@ fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
 
 #[test]
 fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
-    let mut a = agent(2, 3, config(Algorithm::EpisodeSharing));
+    let mut a = agent(2, 3, config("episode-sharing"));
     let mut ex = script(&[]);
     for reward in [-1.0, 0.0, 1.0] {
         a.begin_episode(Mode::Training);
@@ -413,7 +413,7 @@ fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
 
 #[test]
 fn received_episode_is_replayed_with_a_fresh_trace() {
-    let mut a = agent(1, 3, config(Algorithm::EpisodeSharing));
+    let mut a = agent(1, 3, config("episode-sharing"));
     a.begin_episode(Mode::Training);
     // Own pending step in another state, untouched by the replay.
     a.act(&obs(move_state(4)), 0.0, &[], &mut Isolated);
@@ -447,7 +447,7 @@ fn received_episode_is_replayed_with_a_fresh_trace() {
 
 #[test]
 fn learns_move_steps_and_counts_visits() {
-    let mut a = agent(0, 1, config(Algorithm::NoAdvice));
+    let mut a = agent(0, 1, config("no-advice"));
     a.begin_episode(Mode::Training);
     assert_eq!(a.act(&obs(move_state(0)), 0.0, &[], &mut Isolated), Move);
     assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
@@ -463,7 +463,7 @@ fn learns_move_steps_and_counts_visits() {
 
 #[test]
 fn evaluation_plays_greedy_in_tie_order() {
-    let mut a = agent(0, 1, config(Algorithm::NoAdvice));
+    let mut a = agent(0, 1, config("no-advice"));
     teach(
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 0.0, 0.3, 0.3], 0))],
@@ -478,7 +478,7 @@ fn evaluation_plays_greedy_in_tie_order() {
 
 #[test]
 fn random_baseline_never_learns_nor_advises() {
-    let mut a = agent(0, 3, config(Algorithm::Random));
+    let mut a = agent(0, 3, config("random"));
     let mut seen = [false; ACTIONS];
     for mode in [Mode::Training, Mode::Evaluation] {
         a.begin_episode(mode);
@@ -529,7 +529,7 @@ fn play(team: &mut Team, rng: &mut AgentRng, episodes: usize, mode: Mode) -> Vec
     log
 }
 
-fn team(strategy: Algorithm, seed: u64) -> Team {
+fn team(strategy: &str, seed: u64) -> Team {
     let c = config(strategy);
     Team::new(
         (0..3)
@@ -545,11 +545,7 @@ fn digests(team: &Team) -> Vec<u64> {
 
 #[test]
 fn evaluation_changes_no_learned_state() {
-    for strategy in [
-        Algorithm::AdHocTd,
-        Algorithm::Torrey,
-        Algorithm::EpisodeSharing,
-    ] {
+    for strategy in ["adhoc-td", "torrey", "episode-sharing"] {
         let mut t = team(strategy, 7);
         let mut rng = AgentRng::seed_from_u64(1);
         play(&mut t, &mut rng, 40, Mode::Training);
@@ -570,12 +566,7 @@ fn evaluation_changes_no_learned_state() {
 
 #[test]
 fn same_seed_same_run_bit_for_bit() {
-    for strategy in [
-        Algorithm::AdHocVisit,
-        Algorithm::AdHocTd,
-        Algorithm::Torrey,
-        Algorithm::EpisodeSharing,
-    ] {
+    for strategy in ["adhoc-visit", "adhoc-td", "torrey", "episode-sharing"] {
         let run = |seed| {
             let mut t = team(strategy, seed);
             let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
@@ -607,7 +598,7 @@ fn network_conditions_lose_late_and_lost_advice_and_nothing_else() {
         };
         let c = AgentConfig {
             network: Some(network),
-            ..config(Algorithm::AdHocTd)
+            ..config("adhoc-td")
         };
         let agents = (0..3).map(|i| Agent::new(i, 3, c.clone(), 11 + i as u64).unwrap());
         let mut t = Team::new(agents.collect()).unwrap();
@@ -621,7 +612,7 @@ fn network_conditions_lose_late_and_lost_advice_and_nothing_else() {
         (log, digests(&t), counts)
     };
     let free = {
-        let mut t = team(Algorithm::AdHocTd, 11);
+        let mut t = team("adhoc-td", 11);
         let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 60, Mode::Training);
         (log, digests(&t))
     };
@@ -652,11 +643,10 @@ fn network_conditions_lose_late_and_lost_advice_and_nothing_else() {
 #[test]
 fn reachable_within_distance_filters_advisors() {
     // v_a = 0: P_ask = 1 on every visit.
-    let c = with(Strategy::AdHoc(AdHoc {
-        v_a: 0.0,
-        reachable: Reachable::WithinDistance(5.0),
-        ..AdHoc::td()
-    }));
+    let c = with("adhoc-td", |a: &mut AdHoc| {
+        a.v_a = 0.0;
+        a.reachable = Reachable::WithinDistance(5.0);
+    });
     let mut agents: Vec<Agent> = (0..3).map(|i| agent(i, 3, c.clone())).collect();
     finish_one_episode(&mut agents[0]);
     // Only agent 2 could answer (greedy Dribble, P_give = 1).
@@ -700,11 +690,11 @@ fn reachable_within_distance_filters_advisors() {
 
 #[test]
 fn snapshot_restores_into_a_fresh_agent_of_the_same_tiling() {
-    let mut t = team(Algorithm::AdHocTd, 5);
+    let mut t = team("adhoc-td", 5);
     play(&mut t, &mut AgentRng::seed_from_u64(9), 30, Mode::Training);
     let trained = &t.agents()[2];
     let bytes = trained.snapshot().encode().unwrap();
-    let mut fresh = agent(2, 3, config(Algorithm::AdHocTd));
+    let mut fresh = agent(2, 3, config("adhoc-td"));
     fresh.restore(Snapshot::decode(&bytes).unwrap()).unwrap();
     assert_eq!(fresh.digest(), trained.digest());
     assert_eq!(fresh.snapshot().entries, trained.snapshot().entries);
@@ -735,10 +725,9 @@ fn bad_construction_and_frames_are_errors() {
         Agent::new(3, 3, AgentConfig::default(), 0).unwrap_err().key,
         "team_size"
     );
-    let dup = with(Strategy::AdHoc(AdHoc {
-        reachable: Reachable::Agents(vec![1, 1]),
-        ..AdHoc::td()
-    }));
+    let dup = with("adhoc-td", |a: &mut AdHoc| {
+        a.reachable = Reachable::Agents(vec![1, 1]);
+    });
     assert_eq!(Agent::new(0, 3, dup, 0).unwrap_err().key, "reachable");
     let c = AgentConfig::default();
     let swapped = vec![agent(1, 2, c.clone()), agent(0, 2, c.clone())];
@@ -860,20 +849,17 @@ fn play_team(
 #[test]
 fn two_phase_frames_equal_act_for_the_same_seed() {
     for strategy in [
-        Algorithm::AdHocVisit,
-        Algorithm::AdHocTd,
-        Algorithm::Torrey,
-        Algorithm::EpisodeSharing,
-        Algorithm::Random,
+        "adhoc-visit",
+        "adhoc-td",
+        "torrey",
+        "episode-sharing",
+        "random",
     ] {
         for mistake_correcting in [false, true] {
-            if mistake_correcting && !strategy.supports_mistake_correcting() {
+            let mut c = config(strategy);
+            if mistake_correcting && c.algorithm.set("mistake_correcting", true).is_err() {
                 continue;
             }
-            let mut c = config(strategy);
-            c.strategy
-                .set_mistake_correcting(mistake_correcting)
-                .unwrap();
             let build = || -> Vec<Agent> {
                 (0..3)
                     .map(|i| Agent::new(i, 3, c.clone(), 21 + i as u64).unwrap())
@@ -907,7 +893,7 @@ fn two_phase_frames_equal_act_for_the_same_seed() {
 
 #[test]
 fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
-    let mut a = agent(0, 3, config(Algorithm::AdHocTd));
+    let mut a = agent(0, 3, config("adhoc-td"));
     finish_one_episode(&mut a);
     // Unvisited state: P_ask = 1.
     let decision = a.act_begin(&obs(kick_state(0)), 0.0, &[], &|j| j != 1);
@@ -933,7 +919,7 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
 
 #[test]
 fn an_abandoned_ask_completes_to_nothing() {
-    let mut a = agent(0, 3, config(Algorithm::AdHocTd));
+    let mut a = agent(0, 3, config("adhoc-td"));
     finish_one_episode(&mut a);
     let before = a.digest();
     assert!(matches!(
@@ -953,23 +939,23 @@ fn an_abandoned_ask_completes_to_nothing() {
     assert_ne!(before, after_end, "the episode count moved on");
 }
 
-/// `strategy` under the authors' profile.
-fn authors(strategy: Strategy) -> AgentConfig {
+/// `config` under the authors' fidelity rules.
+fn authors(config: AgentConfig) -> AgentConfig {
     AgentConfig {
         fidelity: Fidelity::of(Profile::Authors),
-        ..with(strategy)
+        ..config
     }
 }
 
 #[test]
 fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
-    let paper = with(Strategy::Torrey(Torrey::default()));
+    let paper = config("torrey");
     let mut t = agent(1, 3, paper.clone());
     teach(&mut t, &[]);
     assert_eq!(t.advise(&kick_state(0), None), None);
     // The authors': unseen states and states without a kick entry are
     // advised, each answer a uniformly random kick, one budget unit each.
-    let mut t = agent(1, 3, authors(Strategy::Torrey(Torrey::default())));
+    let mut t = agent(1, 3, authors(config("torrey")));
     let only_move = Entry {
         tried: 0b00001,
         ..Entry::default()
@@ -1000,9 +986,8 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
 
 #[test]
 fn an_authors_torrey_student_intends_its_greedy_action() {
-    let torrey = Strategy::Torrey(Torrey {
-        mistake_correcting: true,
-        ..Torrey::default()
+    let torrey = with("torrey", |t: &mut Torrey| {
+        t.mistake_correcting = true;
     });
     // epsilon 1: an epsilon-greedy intent would be a random draw; the greedy
     // one is always the best value, Dribble.
@@ -1031,11 +1016,10 @@ fn an_authors_torrey_student_intends_its_greedy_action() {
         intents
     };
     assert_eq!(intents(authors(torrey.clone())), vec![Dribble; 50]);
-    assert!(intents(with(torrey)).iter().any(|&a| a != Dribble));
+    assert!(intents(torrey).iter().any(|&a| a != Dribble));
     // The ad hoc advisees keep their epsilon-greedy intent.
-    let ad_hoc = Strategy::AdHoc(AdHoc {
-        mistake_correcting: true,
-        ..AdHoc::td()
+    let ad_hoc = with("adhoc-td", |a: &mut AdHoc| {
+        a.mistake_correcting = true;
     });
     let intents: Vec<Action> = (0..50)
         .map(|seed| {
@@ -1067,8 +1051,8 @@ fn an_authors_advisor_breaks_ties_at_random() {
             .map(|_| t.advise(&kick_state(0), None).expect("advised"))
             .collect::<Vec<_>>()
     };
-    let torrey = Strategy::Torrey(Torrey::default());
-    assert_eq!(answers(with(torrey.clone())), vec![Shoot; 100]);
+    let torrey = config("torrey");
+    assert_eq!(answers(torrey.clone()), vec![Shoot; 100]);
     let random = answers(authors(torrey));
     assert!(random.contains(&Shoot) && random.contains(&PassNear));
     assert!(random.iter().all(|a| [Shoot, PassNear].contains(a)));
@@ -1085,7 +1069,7 @@ fn an_authors_advisee_breaks_vote_ties_in_their_order() {
         assert_eq!(ex.asked.len(), 1);
         played
     };
-    let visit = Strategy::AdHoc(AdHoc::visit());
+    let visit = config("adhoc-visit");
     let fixed = authors(visit.clone());
     for seed in 0..10 {
         assert_eq!(vote(&fixed, seed, &[Shoot, PassFar]), PassFar);
@@ -1093,7 +1077,7 @@ fn an_authors_advisee_breaks_vote_ties_in_their_order() {
         assert_eq!(vote(&fixed, seed, &[PassNear, Dribble]), Dribble);
     }
     // The paper's rule: at random, both sides of a tie come up.
-    let random = with(visit);
+    let random = visit;
     let winners: Vec<Action> = (0..40)
         .map(|seed| vote(&random, seed, &[PassNear, Shoot]))
         .collect();
@@ -1115,9 +1099,9 @@ fn an_authors_episode_sharing_receiver_bootstraps_on_move() {
         }]);
         a.entry(&s0).unwrap().q[Shoot.index()]
     };
-    let sharing = Strategy::from(Algorithm::EpisodeSharing);
+    let sharing = config("episode-sharing");
     // delta = 0 + 0.9 * Q(s1, next) - 0, times alpha 0.1 and trace 1.
-    assert!((replay(with(sharing.clone())) - 0.09).abs() < 1e-12);
+    assert!((replay(sharing.clone()) - 0.09).abs() < 1e-12);
     assert_eq!(replay(authors(sharing)), 0.0);
 }
 
@@ -1159,8 +1143,8 @@ impl crate::AdvisingStrategy for AskAlways {
 
 #[test]
 fn a_method_defined_outside_the_core_makes_every_decision() {
-    let mut a = agent(0, 3, config(Algorithm::NoAdvice))
-        .with_strategy(Box::new(AskAlways { ask_budget: 2 }));
+    let mut a =
+        agent(0, 3, config("no-advice")).with_strategy(Box::new(AskAlways { ask_budget: 2 }));
     // It asks even the same state twice and before any finished episode
     // (no ad hoc rule applies), follows the first advice, and stops when
     // its own budget is spent.
@@ -1180,11 +1164,10 @@ fn a_method_defined_outside_the_core_makes_every_decision() {
 
 #[test]
 fn early_advising_asks_at_every_step_until_its_budget_is_spent() {
-    let early = Strategy::EarlyAdvising(Budgeted {
-        ask_budget: 3,
-        ..Budgeted::new(1.0)
+    let early = with("early-advising", |b: &mut EarlyAdvising| {
+        b.ask_budget = 3;
     });
-    let mut a = agent(0, 3, with(early));
+    let mut a = agent(0, 3, early);
     // From the first episode on, the same state again and again.
     let mut ex = script(&[Dribble]);
     for _ in 0..5 {
@@ -1197,7 +1180,7 @@ fn early_advising_asks_at_every_step_until_its_budget_is_spent() {
     );
     assert_eq!(a.counters().ask_spent, 3);
     // Unanswered requests spend nothing: it keeps asking.
-    let mut b = agent(0, 3, with(Strategy::from(Algorithm::EarlyAdvising)));
+    let mut b = agent(0, 3, config("early-advising"));
     let mut silent = script(&[]);
     for _ in 0..5 {
         b.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
@@ -1208,13 +1191,12 @@ fn early_advising_asks_at_every_step_until_its_budget_is_spent() {
 #[test]
 fn random_advising_asks_with_its_probability() {
     let random = |p| {
-        Strategy::RandomAdvising(Budgeted {
-            ask_probability: p,
-            ..Budgeted::new(0.5)
+        with("random-advising", |b: &mut RandomAdvising| {
+            b.ask_probability = p;
         })
     };
     let asked = |p| {
-        let mut a = agent(0, 3, with(random(p)));
+        let mut a = agent(0, 3, random(p));
         let mut silent = script(&[]);
         for k in 0..2000 {
             a.act(&obs(kick_state(k % 5)), 0.0, &[], &mut silent);
@@ -1226,7 +1208,7 @@ fn random_advising_asks_with_its_probability() {
     let half = asked(0.5);
     // Binomial(2000, 0.5): 1000 +- 4.5 standard deviations.
     assert!((900..=1100).contains(&half), "{half}");
-    let e = with(random(1.5)).validate().unwrap_err();
+    let e = random(1.5).validate().unwrap_err();
     assert_eq!(e.key, "ask_probability");
 }
 
@@ -1235,10 +1217,9 @@ fn budgeted_advisors_answer_about_visited_states_within_their_budget() {
     let mut a = agent(
         1,
         3,
-        with(Strategy::EarlyAdvising(Budgeted {
-            give_budget: 1,
-            ..Budgeted::new(1.0)
-        })),
+        with("early-advising", |b: &mut EarlyAdvising| {
+            b.give_budget = 1;
+        }),
     );
     teach(
         &mut a,
@@ -1255,11 +1236,10 @@ fn backing_off_saves_requests_nobody_answers() {
         let mut a = agent(
             0,
             3,
-            with(Strategy::AdHoc(AdHoc {
-                backoff,
-                v_a: 0.0,
-                ..AdHoc::td()
-            })),
+            with("adhoc-td", |a: &mut AdHoc| {
+                a.backoff = backoff;
+                a.v_a = 0.0;
+            }),
         );
         finish_one_episode(&mut a);
         let mut silent = script(&[]);
@@ -1280,11 +1260,10 @@ fn backing_off_ends_when_advice_comes() {
     let mut a = agent(
         0,
         3,
-        with(Strategy::AdHoc(AdHoc {
-            backoff: true,
-            v_a: 0.0,
-            ..AdHoc::td()
-        })),
+        with("adhoc-td", |a: &mut AdHoc| {
+            a.backoff = true;
+            a.v_a = 0.0;
+        }),
     );
     finish_one_episode(&mut a);
     let mut silent = script(&[]);
@@ -1303,17 +1282,13 @@ fn backing_off_ends_when_advice_comes() {
 #[test]
 fn reused_advice_saves_requests() {
     let reuse = |rule| {
-        Strategy::AdviceReuse(
-            AdHoc::td(),
-            Reuse {
-                reuse_rule: rule,
-                reuse_decay: 0.5,
-                ..Reuse::default()
-            },
-        )
+        with("advice-reuse", |r: &mut AdviceReuse| {
+            r.reuse_rule = rule;
+            r.reuse_decay = 0.5;
+        })
     };
     for rule in [ReuseRule::QChange, ReuseRule::Decay] {
-        let mut a = agent(0, 3, with(reuse(rule)));
+        let mut a = agent(0, 3, reuse(rule));
         finish_one_episode(&mut a);
         let mut ex = script(&[PassFar, PassFar]);
         // Advised once in the state; later visits replay the advice
@@ -1325,7 +1300,7 @@ fn reused_advice_saves_requests() {
         assert_eq!(a.counters().ask_spent, 1);
     }
     // q-change: once its values stop moving, it forgets and may ask again.
-    let mut a = agent(0, 3, with(reuse(ReuseRule::QChange)));
+    let mut a = agent(0, 3, reuse(ReuseRule::QChange));
     finish_one_episode(&mut a);
     let mut ex = script(&[PassFar]);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
@@ -1340,7 +1315,7 @@ fn reused_advice_saves_requests() {
     assert!(reused >= 1, "reused at least once");
     assert!(ex.asked.len() > 1, "asked again once its values settled");
     // decay: the reuse probability halves at every reuse, so reuses stop.
-    let mut a = agent(0, 3, with(reuse(ReuseRule::Decay)));
+    let mut a = agent(0, 3, reuse(ReuseRule::Decay));
     finish_one_episode(&mut a);
     let mut ex = script(&[PassFar]);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
@@ -1354,11 +1329,10 @@ fn reused_advice_saves_requests() {
 
 #[test]
 fn rcmp_asks_while_its_heads_disagree() {
-    let rcmp = Strategy::Rcmp(Rcmp {
-        ask_budget: 10_000,
-        ..Rcmp::default()
+    let rcmp = with("rcmp", |r: &mut Rcmp| {
+        r.ask_budget = 10_000;
     });
-    let mut a = agent(0, 3, with(rcmp));
+    let mut a = agent(0, 3, rcmp);
     // Nobody answers: the agent learns alone, one kick per episode that
     // always scores, and asks while its heads disagree about the state.
     let mut silent = script(&[]);
@@ -1379,10 +1353,9 @@ fn rcmp_asks_while_its_heads_disagree() {
 #[test]
 fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
     let sharing = |v_g| {
-        with(Strategy::Psaf(Psaf {
-            v_g,
-            ..Psaf::default()
-        }))
+        with("psaf", |p: &mut Psaf| {
+            p.v_g = v_g;
+        })
     };
     let q = [0.0, 0.2, 0.9, 0.1, 0.0];
     let mut partaker = agent(0, 3, sharing(0.5));

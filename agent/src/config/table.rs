@@ -1,564 +1,271 @@
-//! The two serde forms of [`AgentConfig`]: one flat table for human-readable
-//! formats (JSON, TOML), the plain structure for binary ones (postcard, which
-//! is not self-describing).
+//! [`AgentConfig`] as one flat table, the form of every file: the learner's
+//! shared keys, the learner's own, the algorithm's, the fidelity rules, the
+//! network conditions. Binary formats (postcard) carry the same table as
+//! JSON text, so there is one form to keep right.
 
-use serde::de::Error as _;
+use serde::de::{DeserializeOwned, Error as _};
+use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde_json::Value;
 
 use super::AgentConfig;
-use crate::advice::Reachable;
 use crate::advises::Advises;
 use crate::algorithm::Algorithm;
-use crate::fidelity::{
-    AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
-};
-use crate::link::NetworkConditions;
-use crate::strategy::{
-    AdHoc, Budgeted, PeerLearning, Psaf, Rcmp, Reuse, ReuseRule, Strategy, Torrey,
-};
+use crate::algorithm_settings::{AlgorithmSettings, not_a_setting};
+use crate::config_error::AgentConfigError;
+use crate::fidelity::{Fidelity, Profile};
+use crate::learner_settings::LearnerSettings;
+use crate::method::Table;
 
 impl Serialize for AgentConfig {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        if serializer.is_human_readable() {
-            Table::from(self).serialize(serializer)
-        } else {
-            Plain::serialize(self, serializer)
+        if !serializer.is_human_readable() {
+            let json = serde_json::to_string(self).map_err(serde::ser::Error::custom)?;
+            return serializer.serialize_str(&json);
         }
+        let table = self.table();
+        let mut map = serializer.serialize_map(Some(table.len()))?;
+        for (key, value) in &table {
+            map.serialize_entry(key, value)?;
+        }
+        map.end()
     }
 }
 
 impl<'de> Deserialize<'de> for AgentConfig {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        if deserializer.is_human_readable() {
+        let table = if deserializer.is_human_readable() {
             Table::deserialize(deserializer)?
-                .into_config()
-                .map_err(D::Error::custom)
         } else {
-            Plain::deserialize(deserializer)
-        }
+            let json = String::deserialize(deserializer)?;
+            serde_json::from_str(&json).map_err(D::Error::custom)?
+        };
+        AgentConfig::from_table(table).map_err(D::Error::custom)
     }
 }
 
-/// The binary form: every field in order, the strategy as an enum.
-#[derive(Serialize, Deserialize)]
-#[serde(remote = "AgentConfig")]
-struct Plain {
-    alpha: f64,
-    gamma: f64,
-    lambda: f64,
-    epsilon: f64,
-    tiles_per_feature: u32,
-    tile_width: f64,
-    tile_step: f64,
-    trace_threshold: f64,
-    strategy: Strategy,
-    fidelity: Fidelity,
-    network: Option<NetworkConditions>,
-    advises: Advises,
-}
+/// The learner's keys every agent has.
+const SHARED_KEYS: [&str; 8] = [
+    "alpha",
+    "gamma",
+    "lambda",
+    "epsilon",
+    "tiles_per_feature",
+    "tile_width",
+    "tile_step",
+    "trace_threshold",
+];
 
-/// The flat table: the learner's keys, `algorithm`, and the keys of that
-/// algorithm (named as the fields of its variant); the others are absent.
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-struct Table {
-    alpha: f64,
-    gamma: f64,
-    lambda: f64,
-    epsilon: f64,
-    tiles_per_feature: u32,
-    tile_width: f64,
-    tile_step: f64,
-    trace_threshold: f64,
-    /// Read as `strategy` too, its spelling before 0.2.
-    #[serde(alias = "strategy")]
-    algorithm: Algorithm,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    v_a: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    v_g: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    ask_budget: Option<u64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    give_budget: Option<u64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    mistake_correcting: Option<bool>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    importance_threshold: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    sharing_budget: Option<u64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    reachable: Option<Reachable>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    ask_probability: Option<f64>,
-    /// Written only when on, so that results from before it keep their identity.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    backoff: Option<bool>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    reuse_rule: Option<ReuseRule>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    q_change_threshold: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    reuse_decay: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    temperature: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    trust_lr: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    follow_steps: Option<u32>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    heads: Option<u32>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    mask_probability: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    uncertainty_threshold: Option<f64>,
-    profile: Profile,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    torrey_unknown_state: Option<TorreyUnknownState>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    torrey_intent: Option<TorreyIntent>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    advisor_ties: Option<AdvisorTies>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    vote_ties: Option<VoteTies>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    shared_bootstrap: Option<SharedBootstrap>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    network: Option<NetworkConditions>,
-    /// Written only when not honest, so that results from before it keep
-    /// their identity.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    advises: Option<Advises>,
-}
-
-impl Default for Table {
-    /// The learner's defaults; no strategy or fidelity key given.
-    fn default() -> Self {
-        Table {
-            torrey_unknown_state: None,
-            torrey_intent: None,
-            advisor_ties: None,
-            vote_ties: None,
-            shared_bootstrap: None,
-            ..Table::from(&AgentConfig::default())
+impl AgentConfig {
+    /// The flat table, in the order files show it: the shared keys, the
+    /// learner's, the algorithm's, the fidelity rules, then the network
+    /// conditions and what it advises when given.
+    fn table(&self) -> Vec<(String, Value)> {
+        let shared = [
+            Value::from(self.alpha),
+            Value::from(self.gamma),
+            Value::from(self.lambda),
+            Value::from(self.epsilon),
+            Value::from(self.tiles_per_feature),
+            Value::from(self.tile_width),
+            Value::from(self.tile_step),
+            Value::from(self.trace_threshold),
+        ];
+        let mut table: Vec<(String, Value)> = SHARED_KEYS
+            .iter()
+            .map(|k| (*k).to_owned())
+            .zip(shared)
+            .collect();
+        let default_learner = LearnerSettings::for_need(self.algorithm.name().learner_need());
+        if self.learner != LearnerSettings::Sarsa || self.learner != default_learner {
+            table.extend(object(&self.learner));
         }
-    }
-}
-
-impl From<&AgentConfig> for Table {
-    fn from(c: &AgentConfig) -> Self {
-        let mut table = Table {
-            alpha: c.alpha,
-            gamma: c.gamma,
-            lambda: c.lambda,
-            epsilon: c.epsilon,
-            tiles_per_feature: c.tiles_per_feature,
-            tile_width: c.tile_width,
-            tile_step: c.tile_step,
-            trace_threshold: c.trace_threshold,
-            algorithm: c.strategy.name(),
-            v_a: None,
-            v_g: None,
-            ask_budget: None,
-            give_budget: None,
-            mistake_correcting: None,
-            importance_threshold: None,
-            sharing_budget: None,
-            reachable: None,
-            ask_probability: None,
-            backoff: None,
-            reuse_rule: None,
-            q_change_threshold: None,
-            reuse_decay: None,
-            temperature: None,
-            trust_lr: None,
-            follow_steps: None,
-            heads: None,
-            mask_probability: None,
-            uncertainty_threshold: None,
-            profile: c.fidelity.profile,
-            torrey_unknown_state: Some(c.fidelity.torrey_unknown_state),
-            torrey_intent: Some(c.fidelity.torrey_intent),
-            advisor_ties: Some(c.fidelity.advisor_ties),
-            vote_ties: Some(c.fidelity.vote_ties),
-            shared_bootstrap: Some(c.fidelity.shared_bootstrap),
-            network: c.network,
-            advises: (c.advises != Advises::Honest).then_some(c.advises),
-        };
-        let ad_hoc = |table: &mut Table, a: &AdHoc| {
-            table.v_a = Some(a.v_a);
-            table.v_g = Some(a.v_g);
-            table.ask_budget = Some(a.ask_budget);
-            table.give_budget = Some(a.give_budget);
-            table.reachable = Some(a.reachable.clone());
-            table.backoff = a.backoff.then_some(true);
-            table.trust_lr = a.trust_lr;
-        };
-        match &c.strategy {
-            Strategy::AdHoc(a) => {
-                ad_hoc(&mut table, a);
-                table.mistake_correcting = Some(a.mistake_correcting);
-            }
-            Strategy::Psaf(p) => {
-                table.v_a = Some(p.v_a);
-                table.v_g = Some(p.v_g);
-                table.ask_budget = Some(p.ask_budget);
-                table.give_budget = Some(p.give_budget);
-                table.reachable = Some(p.reachable.clone());
-            }
-            Strategy::Rcmp(r) => {
-                table.heads = Some(r.heads);
-                table.mask_probability = Some(r.mask_probability);
-                table.uncertainty_threshold = Some(r.uncertainty_threshold);
-                table.ask_budget = Some(r.ask_budget);
-                table.give_budget = Some(r.give_budget);
-                table.reachable = Some(r.reachable.clone());
-            }
-            Strategy::PeerLearning(p) => {
-                table.ask_budget = Some(p.ask_budget);
-                table.give_budget = Some(p.give_budget);
-                table.reachable = Some(p.reachable.clone());
-                table.temperature = Some(p.temperature);
-                table.trust_lr = Some(p.trust_lr);
-                table.follow_steps = Some(p.follow_steps);
-            }
-            Strategy::AdviceReuse(a, r) => {
-                ad_hoc(&mut table, a);
-                table.reuse_rule = Some(r.reuse_rule);
-                table.q_change_threshold = Some(r.q_change_threshold);
-                table.reuse_decay = Some(r.reuse_decay);
-            }
-            Strategy::Torrey(t) => {
-                table.importance_threshold = Some(t.importance_threshold);
-                table.give_budget = Some(t.give_budget);
-                table.mistake_correcting = Some(t.mistake_correcting);
-            }
-            Strategy::EpisodeSharing { sharing_budget } => {
-                table.sharing_budget = Some(*sharing_budget);
-            }
-            Strategy::EarlyAdvising(b) | Strategy::RandomAdvising(b) => {
-                table.ask_budget = Some(b.ask_budget);
-                table.give_budget = Some(b.give_budget);
-                table.reachable = Some(b.reachable.clone());
-                // Early advising asks at every step: its probability is no setting.
-                if matches!(c.strategy, Strategy::RandomAdvising(_)) {
-                    table.ask_probability = Some(b.ask_probability);
-                }
-            }
-            Strategy::NoAdvice | Strategy::Random | Strategy::External => {}
+        table.push(("algorithm".into(), self.algorithm.name().name().into()));
+        table.extend(self.algorithm.written());
+        table.extend(object(&self.fidelity));
+        if let Some(network) = &self.network {
+            table.push(("network".into(), to_value(network)));
+        }
+        if self.advises != Advises::Honest {
+            table.push(("advises".into(), to_value(&self.advises)));
         }
         table
     }
-}
 
-/// Moves a key's value, when given, into its field.
-fn take<T>(key: &mut Option<T>, field: &mut T) {
-    if let Some(value) = key.take() {
-        *field = value;
+    /// The configuration of a flat table, with the defaults of its
+    /// `profile` (the paper's without one) for the keys left out; a key of
+    /// no setting of this agent is an error naming it.
+    fn from_table(mut table: Table) -> Result<Self, AgentConfigError> {
+        let d = AgentConfig::default();
+        let profile: Profile = take(&mut table, "profile")?.unwrap_or_default();
+        let algorithm: Algorithm = match take(&mut table, "algorithm")? {
+            Some(a) => a,
+            // Its spelling before 0.2.
+            None => take(&mut table, "strategy")?.unwrap_or_default(),
+        };
+        let learner = match take::<String>(&mut table, "learner")? {
+            Some(name) => LearnerSettings::named(&name)?,
+            None => LearnerSettings::for_need(algorithm.learner_need()),
+        };
+        let config = AgentConfig {
+            alpha: take(&mut table, "alpha")?.unwrap_or(d.alpha),
+            gamma: take(&mut table, "gamma")?.unwrap_or(d.gamma),
+            lambda: take(&mut table, "lambda")?.unwrap_or(d.lambda),
+            epsilon: take(&mut table, "epsilon")?.unwrap_or(d.epsilon),
+            tiles_per_feature: take(&mut table, "tiles_per_feature")?
+                .unwrap_or(d.tiles_per_feature),
+            tile_width: take(&mut table, "tile_width")?.unwrap_or(d.tile_width),
+            tile_step: take(&mut table, "tile_step")?.unwrap_or(d.tile_step),
+            trace_threshold: take(&mut table, "trace_threshold")?.unwrap_or(d.trace_threshold),
+            learner: overlay(learner, &mut table, &["learner"])?,
+            fidelity: overlay(Fidelity::of(profile), &mut table, &["profile"])?,
+            network: take(&mut table, "network")?,
+            advises: take(&mut table, "advises")?.unwrap_or_default(),
+            algorithm: AlgorithmSettings::from_table(algorithm, profile, &mut table)?,
+        };
+        match table.keys().next() {
+            None => Ok(config),
+            Some(key) => Err(foreign_key(&config, key)),
+        }
     }
 }
 
-impl Table {
-    /// The configuration, with the profile's constants for the strategy and
-    /// fidelity keys left out; a key the strategy does not have is an error
-    /// naming it.
-    fn into_config(mut self) -> Result<AgentConfig, String> {
-        let mut strategy = Strategy::of(self.algorithm, self.profile);
-        let mut fidelity = Fidelity::of(self.profile);
-        take(
-            &mut self.torrey_unknown_state,
-            &mut fidelity.torrey_unknown_state,
-        );
-        take(&mut self.torrey_intent, &mut fidelity.torrey_intent);
-        take(&mut self.advisor_ties, &mut fidelity.advisor_ties);
-        take(&mut self.vote_ties, &mut fidelity.vote_ties);
-        take(&mut self.shared_bootstrap, &mut fidelity.shared_bootstrap);
-        match &mut strategy {
-            Strategy::AdHoc(a) => {
-                self.take_ad_hoc(a);
-                take(&mut self.mistake_correcting, &mut a.mistake_correcting);
-            }
-            Strategy::Psaf(Psaf {
-                v_a,
-                v_g,
-                ask_budget,
-                give_budget,
-                reachable,
-            }) => {
-                take(&mut self.v_a, v_a);
-                take(&mut self.v_g, v_g);
-                take(&mut self.ask_budget, ask_budget);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.reachable, reachable);
-            }
-            Strategy::Rcmp(Rcmp {
-                heads,
-                mask_probability,
-                uncertainty_threshold,
-                ask_budget,
-                give_budget,
-                reachable,
-            }) => {
-                take(&mut self.heads, heads);
-                take(&mut self.mask_probability, mask_probability);
-                take(&mut self.uncertainty_threshold, uncertainty_threshold);
-                take(&mut self.ask_budget, ask_budget);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.reachable, reachable);
-            }
-            Strategy::PeerLearning(PeerLearning {
-                ask_budget,
-                give_budget,
-                reachable,
-                temperature,
-                trust_lr,
-                follow_steps,
-            }) => {
-                take(&mut self.ask_budget, ask_budget);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.reachable, reachable);
-                take(&mut self.temperature, temperature);
-                take(&mut self.trust_lr, trust_lr);
-                take(&mut self.follow_steps, follow_steps);
-            }
-            Strategy::AdviceReuse(a, r) => {
-                self.take_ad_hoc(a);
-                let Reuse {
-                    reuse_rule,
-                    q_change_threshold,
-                    reuse_decay,
-                } = r;
-                take(&mut self.reuse_rule, reuse_rule);
-                take(&mut self.q_change_threshold, q_change_threshold);
-                take(&mut self.reuse_decay, reuse_decay);
-            }
-            Strategy::Torrey(Torrey {
-                importance_threshold,
-                give_budget,
-                mistake_correcting,
-            }) => {
-                take(&mut self.importance_threshold, importance_threshold);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.mistake_correcting, mistake_correcting);
-            }
-            Strategy::EpisodeSharing { sharing_budget } => {
-                take(&mut self.sharing_budget, sharing_budget);
-            }
-            Strategy::EarlyAdvising(Budgeted {
-                ask_budget,
-                give_budget,
-                reachable,
-                ..
-            }) => {
-                take(&mut self.ask_budget, ask_budget);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.reachable, reachable);
-            }
-            Strategy::RandomAdvising(Budgeted {
-                ask_probability,
-                ask_budget,
-                give_budget,
-                reachable,
-            }) => {
-                take(&mut self.ask_probability, ask_probability);
-                take(&mut self.ask_budget, ask_budget);
-                take(&mut self.give_budget, give_budget);
-                take(&mut self.reachable, reachable);
-            }
-            Strategy::NoAdvice | Strategy::Random | Strategy::External => {}
-        }
-        if let Some(key) = self
-            .strategy_keys()
-            .find_map(|(key, given)| given.then_some(key))
-        {
-            let owners: Vec<&str> = Algorithm::ALL
-                .into_iter()
-                .filter(|&name| has_key(name, key))
-                .map(Algorithm::name)
-                .collect();
-            return Err(format!(
-                "key `{key}` does not apply to algorithm {}; it belongs to {}",
-                self.algorithm,
-                owners.join(", ")
-            ));
-        }
-        Ok(AgentConfig {
-            alpha: self.alpha,
-            gamma: self.gamma,
-            lambda: self.lambda,
-            epsilon: self.epsilon,
-            tiles_per_feature: self.tiles_per_feature,
-            tile_width: self.tile_width,
-            tile_step: self.tile_step,
-            trace_threshold: self.trace_threshold,
-            strategy,
-            fidelity,
-            network: self.network,
-            advises: self.advises.unwrap_or_default(),
+/// The error for `key`, a setting of no part of `config`: of another
+/// learner, of other algorithms, or of nothing.
+fn foreign_key(config: &AgentConfig, key: &str) -> AgentConfigError {
+    let learners: Vec<&str> = (LearnerSettings::NAMES.iter())
+        .filter(|name| {
+            let learner = LearnerSettings::named(name).expect("a learner of NAMES");
+            object(&learner).iter().any(|(k, _)| k == key)
         })
+        .copied()
+        .collect();
+    if learners.is_empty() {
+        return not_a_setting(config.algorithm.name(), key);
     }
+    AgentConfigError::new(
+        key,
+        format!(
+            "does not apply to learner {}; it belongs to learner {}",
+            config.learner.name(),
+            learners.join(", ")
+        ),
+    )
+}
 
-    /// Moves the keys every ad hoc method has into `a`.
-    fn take_ad_hoc(&mut self, a: &mut AdHoc) {
-        let AdHoc {
-            confidence: _,
-            v_a,
-            v_g,
-            ask_budget,
-            give_budget,
-            mistake_correcting: _,
-            reachable,
-            backoff,
-            trust_lr,
-        } = a;
-        take(&mut self.v_a, v_a);
-        take(&mut self.v_g, v_g);
-        take(&mut self.ask_budget, ask_budget);
-        take(&mut self.give_budget, give_budget);
-        take(&mut self.reachable, reachable);
-        take(&mut self.backoff, backoff);
-        if let Some(lr) = self.trust_lr.take() {
-            *trust_lr = Some(lr);
-        }
-    }
+/// `value` as JSON.
+fn to_value(value: &impl Serialize) -> Value {
+    serde_json::to_value(value).expect("settings serialise to JSON")
+}
 
-    /// Every strategy key and whether it is present.
-    fn strategy_keys(&self) -> impl Iterator<Item = (&'static str, bool)> {
-        [
-            ("v_a", self.v_a.is_some()),
-            ("v_g", self.v_g.is_some()),
-            ("ask_budget", self.ask_budget.is_some()),
-            ("give_budget", self.give_budget.is_some()),
-            ("mistake_correcting", self.mistake_correcting.is_some()),
-            ("importance_threshold", self.importance_threshold.is_some()),
-            ("sharing_budget", self.sharing_budget.is_some()),
-            ("reachable", self.reachable.is_some()),
-            ("ask_probability", self.ask_probability.is_some()),
-            ("backoff", self.backoff.is_some()),
-            ("reuse_rule", self.reuse_rule.is_some()),
-            ("q_change_threshold", self.q_change_threshold.is_some()),
-            ("reuse_decay", self.reuse_decay.is_some()),
-            ("temperature", self.temperature.is_some()),
-            ("trust_lr", self.trust_lr.is_some()),
-            ("follow_steps", self.follow_steps.is_some()),
-            ("heads", self.heads.is_some()),
-            ("mask_probability", self.mask_probability.is_some()),
-            (
-                "uncertainty_threshold",
-                self.uncertainty_threshold.is_some(),
-            ),
-        ]
-        .into_iter()
+/// The keys of `value`, which serialises as an object, in its order.
+fn object(value: &impl Serialize) -> Vec<(String, Value)> {
+    match to_value(value) {
+        Value::Object(map) => map.into_iter().collect(),
+        other => unreachable!("an object expected, not {other}"),
     }
 }
 
-/// Whether strategy `name` has the strategy key `key`.
-fn has_key(name: Algorithm, key: &str) -> bool {
-    let mut strategy = Strategy::from(name);
-    // `backoff` and `trust_lr` are written only when on: count them as the
-    // ad hoc methods' keys.
-    if let Strategy::AdHoc(a) | Strategy::AdviceReuse(a, _) = &mut strategy {
-        a.backoff = true;
-        a.trust_lr = Some(0.1);
+/// Takes `key` out of `table` as a `T`; the error names it.
+fn take<T: DeserializeOwned>(table: &mut Table, key: &str) -> Result<Option<T>, AgentConfigError> {
+    table
+        .remove(key)
+        .map(|v| serde_json::from_value(v).map_err(|e| AgentConfigError::new(key, e.to_string())))
+        .transpose()
+}
+
+/// `defaults` with the keys of `table` it has (but `kept`, which stay its
+/// own), which are taken out of `table`.
+fn overlay<T: Serialize + DeserializeOwned>(
+    defaults: T,
+    table: &mut Table,
+    kept: &[&str],
+) -> Result<T, AgentConfigError> {
+    let mut own: Table = object(&defaults).into_iter().collect();
+    let keys: Vec<String> = (own.keys())
+        .filter(|k| !kept.contains(&k.as_str()) && table.contains_key(*k))
+        .cloned()
+        .collect();
+    for key in keys {
+        let value = table.remove(&key).expect("a key of the table");
+        own.insert(key.clone(), value);
+        serde_json::from_value::<T>(Value::Object(own.clone()))
+            .map_err(|e| AgentConfigError::new(key, e.to_string()))?;
     }
-    let config = AgentConfig {
-        strategy,
-        ..AgentConfig::default()
-    };
-    Table::from(&config)
-        .strategy_keys()
-        .any(|(k, given)| given && k == key)
+    Ok(serde_json::from_value(Value::Object(own)).expect("checked key by key"))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::advice::Reachable;
+    use crate::fidelity::{AdvisorTies, VoteTies};
     use crate::link::Latency;
-    use crate::strategy::Confidence;
+    use crate::strategy::{AdHoc, AdviceReuse, ReuseRule, Torrey};
 
-    /// One configuration of every strategy, none with only its defaults.
-    fn every_strategy() -> Vec<AgentConfig> {
-        let with = |strategy| AgentConfig {
+    /// `name`'s paper settings changed key by key.
+    fn with(name: &str, keys: &[(&str, Value)]) -> AgentConfig {
+        let mut config = AgentConfig {
             alpha: 0.2,
             epsilon: 0.05,
-            strategy,
-            ..AgentConfig::default()
+            ..AgentConfig::of(name.parse().unwrap(), Profile::Paper)
         };
-        vec![
-            with(Strategy::NoAdvice),
-            with(Strategy::AdHoc(AdHoc {
-                v_a: 0.25,
-                ask_budget: 7,
-                reachable: Reachable::Agents(vec![2, 0]),
-                ..AdHoc::visit()
-            })),
-            with(Strategy::AdHoc(AdHoc {
-                v_g: 3.0,
-                give_budget: 0,
-                mistake_correcting: true,
-                reachable: Reachable::WithinDistance(12.5),
-                ..AdHoc::new(Confidence::Td)
-            })),
-            with(Strategy::Torrey(Torrey {
-                importance_threshold: 0.5,
-                give_budget: 3,
-                mistake_correcting: true,
-            })),
-            with(Strategy::EpisodeSharing { sharing_budget: 9 }),
-            with(Strategy::Random),
-            with(Strategy::External),
-            with(Strategy::EarlyAdvising(Budgeted {
-                ask_budget: 5,
-                ..Budgeted::new(1.0)
-            })),
-            with(Strategy::AdHoc(AdHoc {
-                backoff: true,
-                ..AdHoc::visit()
-            })),
-            with(Strategy::AdviceReuse(
-                AdHoc {
-                    give_budget: 4,
-                    ..AdHoc::td()
+        for (key, value) in keys {
+            config.algorithm.set(key, value.clone()).unwrap();
+        }
+        config
+    }
+
+    /// One configuration of every algorithm, most not with only their
+    /// defaults.
+    fn every_algorithm() -> Vec<AgentConfig> {
+        let mut configs: Vec<AgentConfig> = Algorithm::all().map(|a| with(a.name(), &[])).collect();
+        configs.extend([
+            with(
+                "adhoc-visit",
+                &[
+                    ("v_a", 0.25.into()),
+                    ("ask_budget", 7.into()),
+                    ("reachable", serde_json::json!({"agents": [2, 0]})),
+                    ("backoff", true.into()),
+                ],
+            ),
+            with(
+                "adhoc-td",
+                &[
+                    ("mistake_correcting", true.into()),
+                    ("reachable", serde_json::json!({"within-distance": 12.5})),
+                    ("trust_lr", 0.05.into()),
+                ],
+            ),
+            with("torrey", &[("importance_threshold", 0.5.into())]),
+            with("episode-sharing", &[("sharing_budget", 9.into())]),
+            with("advice-reuse", &[("reuse_rule", "decay".into())]),
+            with("peer-learning", &[("follow_steps", 3.into())]),
+            with("random-advising", &[("ask_probability", 0.3.into())]),
+            AgentConfig {
+                learner: LearnerSettings::Ensemble {
+                    heads: 3,
+                    mask_probability: 0.25,
                 },
-                Reuse {
-                    reuse_rule: ReuseRule::Decay,
-                    reuse_decay: 0.5,
-                    ..Reuse::default()
-                },
-            )),
-            with(Strategy::PeerLearning(PeerLearning {
-                temperature: 0.5,
-                follow_steps: 3,
-                ..PeerLearning::default()
-            })),
-            with(Strategy::Rcmp(Rcmp {
-                heads: 3,
-                uncertainty_threshold: 0.2,
-                ..Rcmp::default()
-            })),
-            with(Strategy::Psaf(Psaf {
-                v_g: 0.25,
-                ..Psaf::default()
-            })),
-            with(Strategy::RandomAdvising(Budgeted {
-                ask_probability: 0.3,
-                reachable: Reachable::Agents(vec![2]),
-                ..Budgeted::new(0.5)
-            })),
+                ..with("rcmp", &[("uncertainty_threshold", 0.2.into())])
+            },
             AgentConfig {
                 fidelity: Fidelity {
                     vote_ties: VoteTies::Random,
                     ..Fidelity::of(Profile::Authors)
                 },
-                ..with(Strategy::of(Algorithm::AdHocVisit, Profile::Authors))
+                ..AgentConfig::of("adhoc-visit".parse().unwrap(), Profile::Authors)
             },
-        ]
+        ]);
+        configs
     }
 
     #[test]
-    fn every_strategy_round_trips_through_postcard_json_and_toml() {
-        for config in every_strategy() {
-            let name = config.strategy.name();
+    fn every_algorithm_round_trips_through_postcard_json_and_toml() {
+        for config in every_algorithm() {
+            let name = config.algorithm.name();
+            config.validate().unwrap();
             let bytes = postcard::to_allocvec(&config).unwrap();
             let back: AgentConfig = postcard::from_bytes(&bytes).unwrap();
             assert_eq!(back, config, "postcard, {name}");
@@ -574,44 +281,31 @@ mod tests {
         }
     }
 
-    #[test]
-    fn the_table_shows_only_the_strategys_keys() {
-        let keys = |name: Algorithm| {
-            let config = AgentConfig {
-                strategy: Strategy::from(name),
-                ..AgentConfig::default()
-            };
-            let serde_json::Value::Object(map) = serde_json::to_value(&config).unwrap() else {
-                panic!("a table expected");
-            };
-            let learner = [
-                "alpha",
-                "gamma",
-                "lambda",
-                "epsilon",
-                "tiles_per_feature",
-                "tile_width",
-                "tile_step",
-                "trace_threshold",
-                "algorithm",
-                "profile",
-                "torrey_unknown_state",
-                "torrey_intent",
-                "advisor_ties",
-                "vote_ties",
-                "shared_bootstrap",
-            ];
-            let mut own: Vec<String> = map
-                .keys()
-                .filter(|k| !learner.contains(&k.as_str()))
-                .cloned()
-                .collect();
-            own.sort();
-            assert_eq!(map["algorithm"], name.name());
-            own
+    /// The keys of `name`'s table that are not every agent's.
+    fn own_keys(config: &AgentConfig) -> Vec<String> {
+        let Value::Object(map) = serde_json::to_value(config).unwrap() else {
+            panic!("a table expected");
         };
-        assert!(keys(Algorithm::NoAdvice).is_empty());
-        assert!(keys(Algorithm::Random).is_empty());
+        let common = [
+            "algorithm",
+            "profile",
+            "torrey_unknown_state",
+            "torrey_intent",
+            "advisor_ties",
+            "vote_ties",
+            "shared_bootstrap",
+        ];
+        map.keys()
+            .filter(|k| !SHARED_KEYS.contains(&k.as_str()) && !common.contains(&k.as_str()))
+            .cloned()
+            .collect()
+    }
+
+    #[test]
+    fn the_table_shows_only_the_algorithms_keys() {
+        let keys = |name: &str| own_keys(&with(name, &[]));
+        assert!(keys("no-advice").is_empty());
+        assert!(keys("random").is_empty());
         let ad_hoc = [
             "ask_budget",
             "give_budget",
@@ -620,21 +314,46 @@ mod tests {
             "v_a",
             "v_g",
         ];
-        assert_eq!(keys(Algorithm::AdHocVisit), ad_hoc);
-        assert_eq!(keys(Algorithm::AdHocTd), ad_hoc);
+        assert_eq!(keys("adhoc-visit"), ad_hoc);
+        assert_eq!(keys("adhoc-td"), ad_hoc);
         assert_eq!(
-            keys(Algorithm::Torrey),
+            keys("torrey"),
             ["give_budget", "importance_threshold", "mistake_correcting"]
         );
-        assert_eq!(keys(Algorithm::EpisodeSharing), ["sharing_budget"]);
+        assert_eq!(keys("episode-sharing"), ["sharing_budget"]);
+        // RCMP's learner, not the default one, is written with its keys.
+        assert_eq!(
+            keys("rcmp"),
+            [
+                "ask_budget",
+                "give_budget",
+                "heads",
+                "learner",
+                "mask_probability",
+                "reachable",
+                "uncertainty_threshold"
+            ]
+        );
+    }
+
+    #[test]
+    fn the_table_is_in_the_order_of_the_files() {
+        let config = with("adhoc-td", &[]);
+        let json = serde_json::to_string(&config).unwrap();
+        let at = |key: &str| json.find(&format!("\"{key}\"")).unwrap();
+        assert!(at("alpha") < at("trace_threshold"));
+        assert!(at("trace_threshold") < at("algorithm"));
+        assert!(at("algorithm") < at("v_a"));
+        assert!(at("v_a") < at("profile"));
+        assert!(at("profile") < at("shared_bootstrap"));
     }
 
     #[test]
     fn missing_keys_take_the_papers_constants() {
         let c: AgentConfig = toml::from_str("algorithm = \"adhoc-visit\"\nv_a = 0\n").unwrap();
         assert_eq!(
-            c.strategy,
-            Strategy::AdHoc(AdHoc {
+            c.algorithm.get::<AdHoc>(),
+            Some(&AdHoc {
                 v_a: 0.0,
                 ..AdHoc::visit()
             })
@@ -647,6 +366,37 @@ mod tests {
                 ..AgentConfig::default()
             }
         );
+        let c: AgentConfig = toml::from_str("algorithm = \"advice-reuse\"\n").unwrap();
+        let reuse = c.algorithm.get::<AdviceReuse>().unwrap();
+        assert_eq!((reuse.reuse_rule, reuse.v_g), (ReuseRule::QChange, 1.5));
+        let c: AgentConfig = toml::from_str("algorithm = \"torrey\"\n").unwrap();
+        assert_eq!(c.algorithm.get::<Torrey>(), Some(&Torrey::default()));
+    }
+
+    #[test]
+    fn the_learner_is_the_agents_setting() {
+        let c: AgentConfig = toml::from_str("algorithm = \"rcmp\"\nheads = 3\n").unwrap();
+        assert_eq!(
+            c.learner,
+            LearnerSettings::Ensemble {
+                heads: 3,
+                mask_probability: 0.5
+            }
+        );
+        let c: AgentConfig =
+            toml::from_str("algorithm = \"adhoc-td\"\nlearner = \"ensemble\"\n").unwrap();
+        assert_eq!(c.learner.name(), "ensemble");
+        let err = |text: &str| toml::from_str::<AgentConfig>(text).unwrap_err().to_string();
+        let e = err("heads = 3\n");
+        assert!(
+            e.contains("`heads`: does not apply to learner sarsa; it belongs to learner ensemble"),
+            "{e}"
+        );
+        let e = err("learner = \"deep\"\n");
+        assert!(e.contains("unknown learner `deep`"), "{e}");
+        let rcmp_sarsa: AgentConfig =
+            toml::from_str("algorithm = \"rcmp\"\nlearner = \"sarsa\"\n").unwrap();
+        assert_eq!(rcmp_sarsa.validate().unwrap_err().key, "learner");
     }
 
     #[test]
@@ -680,16 +430,13 @@ mod tests {
         let c: AgentConfig =
             toml::from_str("algorithm = \"adhoc-visit\"\nprofile = \"authors\"\n").unwrap();
         assert_eq!(c.fidelity, Fidelity::of(Profile::Authors));
-        let Strategy::AdHoc(a) = &c.strategy else {
-            panic!("ad hoc expected");
-        };
-        assert_eq!(a.v_g, 0.2);
+        assert_eq!(c.algorithm.get::<AdHoc>().unwrap().v_g, 0.2);
         let text = "algorithm = \"adhoc-visit\"\nprofile = \"authors\"\nv_g = 0.5\n\
                     advisor_ties = \"first\"\n";
         let c: AgentConfig = toml::from_str(text).unwrap();
         assert_eq!(c.fidelity.advisor_ties, AdvisorTies::First);
         assert_eq!(c.fidelity.vote_ties, VoteTies::Fixed);
-        assert_eq!(c.strategy, Strategy::AdHoc(AdHoc::visit()));
+        assert_eq!(c.algorithm.get::<AdHoc>(), Some(&AdHoc::visit()));
         // Without a profile: the paper's.
         let c: AgentConfig = toml::from_str("algorithm = \"adhoc-visit\"\n").unwrap();
         assert_eq!(c.fidelity, Fidelity::of(Profile::Paper));
@@ -700,12 +447,12 @@ mod tests {
     }
 
     #[test]
-    fn a_key_of_another_strategy_is_an_error_naming_it_and_its_strategies() {
+    fn a_key_of_another_algorithm_is_an_error_naming_it_and_its_algorithms() {
         let err = |text: &str| toml::from_str::<AgentConfig>(text).unwrap_err().to_string();
         let e = err("mistake_correcting = true\n");
         assert!(
             e.contains(
-                "key `mistake_correcting` does not apply to algorithm no-advice; \
+                "`mistake_correcting`: does not apply to algorithm no-advice; \
                  it belongs to adhoc-visit, adhoc-td, torrey"
             ),
             "{e}"
@@ -713,20 +460,46 @@ mod tests {
         let e = err("algorithm = \"torrey\"\nsharing_budget = 3\n");
         assert!(
             e.contains(
-                "`sharing_budget` does not apply to algorithm torrey; it belongs to episode-sharing"
+                "`sharing_budget`: does not apply to algorithm torrey; it belongs to episode-sharing"
             ),
             "{e}"
         );
         let e = err("algorithm = \"episode-sharing\"\nv_g = 1\n");
-        assert!(e.contains("it belongs to adhoc-visit, adhoc-td"), "{e}");
+        assert!(
+            e.contains("it belongs to adhoc-visit, adhoc-td, advice-reuse, psaf"),
+            "{e}"
+        );
         let e = err("algorithm = \"best\"\n");
         assert!(e.contains("unknown algorithm `best`"), "{e}");
+        let e = err("alhpa = 0.2\n");
+        assert!(e.contains("`alhpa`: not a setting"), "{e}");
+        let e = err("algorithm = \"adhoc-td\"\nv_a = \"high\"\n");
+        assert!(e.contains("`v_a`: invalid type"), "{e}");
         let e = serde_json::from_str::<AgentConfig>(r#"{"strategy": "random", "v_a": 1}"#)
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("`v_a` does not apply to algorithm random"),
+            e.contains("`v_a`: does not apply to algorithm random"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn an_algorithms_setting_is_set_by_its_key() {
+        let mut s = AlgorithmSettings::named("adhoc-td").unwrap();
+        s.set("ask_budget", 0).unwrap();
+        assert_eq!(s.get::<AdHoc>().unwrap().ask_budget, 0);
+        assert!(s.set("ask_budget", -1).is_err());
+        assert_eq!(s.set("heads", 3).unwrap_err().key, "heads");
+        assert!(!s.mistake_correcting());
+        s.set("mistake_correcting", true).unwrap();
+        assert!(s.mistake_correcting());
+        assert_eq!(s.reachable(), Some(Reachable::Everyone));
+        let e = AlgorithmSettings::named("no-advice")
+            .unwrap()
+            .set("mistake_correcting", true)
+            .unwrap_err();
+        assert_eq!(e.key, "mistake_correcting");
+        assert!(e.reason.contains("no-advice"), "{e}");
     }
 }

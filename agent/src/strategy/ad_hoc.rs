@@ -6,14 +6,141 @@
 //! with `trust_lr` (section 8), it follows the advice, or its own choice, it
 //! learned to trust most.
 
+use serde::{Deserialize, Serialize};
+
+use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
-use super::settings::{AdHoc, Confidence};
 use super::trust::Trust;
-use crate::advice::{p_ask, p_give, psi_td, psi_visit, reachable_set};
+use crate::advice::{Reachable, p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
+use crate::config_error::{AgentConfigError, require, require_non_negative};
 use crate::exchange::Advice;
-use crate::fidelity::VoteTies;
+use crate::fidelity::{Fidelity, Profile, VoteTies};
+use crate::method::Method;
 use crate::selection::{AgentRng, chance, majority};
+
+/// The confidence function Psi of an ad hoc advisor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Confidence {
+    /// Visit-based: `Psi = log2 n(s)` (AdHocVisit).
+    Visit,
+    /// TD-based: `Psi = sqrt(n(s)) * spread of Q(s, .)` (AdHocTD).
+    Td,
+}
+
+/// The settings of ad hoc advising (Algorithms 1 and 2), those of
+/// `adhoc-visit` and `adhoc-td`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdHoc {
+    /// Scaling v_a of P_ask, finite and >= 0 (default 0.5).
+    pub v_a: f64,
+    /// Scaling v_g of P_give, finite and >= 0 (default 0.5 for `adhoc-visit`,
+    /// 0.2 under the authors' profile, 1.5 for `adhoc-td`).
+    pub v_g: f64,
+    /// Advisee budget b_ask: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget b_give: answers given (default 1000).
+    pub give_budget: u64,
+    /// Mistake Correcting: the advisee sends its own epsilon-greedy choice
+    /// along and plays it when no advice comes; advisors answer only when
+    /// they disagree (default off).
+    pub mistake_correcting: bool,
+    /// The reachable set G: whom the advisee asks (default everyone).
+    pub reachable: Reachable,
+    /// Back off after unanswered requests (the paper's section 7): after
+    /// k requests in a row that brought no advice, the advisee lets its
+    /// next 2^k - 1 chances to ask pass (k at most 10); advice resets k
+    /// (default off).
+    pub backoff: bool,
+    /// Trust in advisors (docs/algorithms.md section 8), learned at this
+    /// rate in (0, 1] from the outcomes of the advice followed; the
+    /// advisee then follows the advice, or its own choice, of most trust
+    /// (default none: the majority vote).
+    pub trust_lr: Option<f64>,
+}
+
+impl AdHoc {
+    /// The paper's constants with giving scale `v_g`.
+    pub fn with_v_g(v_g: f64) -> Self {
+        Self {
+            v_a: 0.5,
+            v_g,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            mistake_correcting: false,
+            reachable: Reachable::Everyone,
+            backoff: false,
+            trust_lr: None,
+        }
+    }
+
+    /// AdHocVisit with the paper's constants.
+    pub fn visit() -> Self {
+        Self::with_v_g(0.5)
+    }
+
+    /// AdHocTD with the paper's constants.
+    pub fn td() -> Self {
+        Self::with_v_g(1.5)
+    }
+
+    /// The first invalid setting, naming its key.
+    pub(super) fn validate(&self) -> Result<(), AgentConfigError> {
+        require_non_negative("v_a", self.v_a)?;
+        require_non_negative("v_g", self.v_g)?;
+        self.reachable.validate()?;
+        if let Some(lr) = self.trust_lr {
+            require("trust_lr", lr, "in (0, 1]", lr > 0.0 && lr <= 1.0)?;
+        }
+        Ok(())
+    }
+}
+
+/// `adhoc-visit`: ad hoc advising with the visit-based confidence.
+pub(crate) struct AdHocVisit;
+
+impl Method for AdHocVisit {
+    type Settings = AdHoc;
+    const NAME: &'static str = "adhoc-visit";
+    const ALIASES: &'static [&'static str] = &["ad-hoc-visit"];
+    const ABOUT: &'static str = "ad hoc advising with the visit-based confidence (the paper's)";
+    const WRITTEN_WHEN_TRUE: &'static [&'static str] = &["backoff"];
+
+    fn defaults(profile: Profile) -> AdHoc {
+        AdHoc::with_v_g(profile.visit_v_g())
+    }
+
+    fn validate(settings: &AdHoc) -> Result<(), AgentConfigError> {
+        settings.validate()
+    }
+
+    fn strategy(settings: &AdHoc, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(AdHocAdvising::new(Confidence::Visit, settings.clone()))
+    }
+}
+
+/// `adhoc-td`: ad hoc advising with the TD-based confidence.
+pub(crate) struct AdHocTd;
+
+impl Method for AdHocTd {
+    type Settings = AdHoc;
+    const NAME: &'static str = "adhoc-td";
+    const ALIASES: &'static [&'static str] = &["ad-hoc-td"];
+    const ABOUT: &'static str = "ad hoc advising with the TD-based confidence (the paper's)";
+    const WRITTEN_WHEN_TRUE: &'static [&'static str] = &["backoff"];
+
+    fn defaults(_: Profile) -> AdHoc {
+        AdHoc::td()
+    }
+
+    fn validate(settings: &AdHoc) -> Result<(), AgentConfigError> {
+        settings.validate()
+    }
+
+    fn strategy(settings: &AdHoc, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(AdHocAdvising::new(Confidence::Td, settings.clone()))
+    }
+}
 
 /// The most requests in a row without advice that lengthen the back-off.
 const MAX_BACKOFF_DOUBLINGS: u32 = 10;
@@ -21,7 +148,8 @@ const MAX_BACKOFF_DOUBLINGS: u32 = 10;
 /// Ad hoc advising for one agent: its constants, its back-off and its trust.
 #[derive(Clone, Debug)]
 pub(super) struct AdHocAdvising {
-    pub settings: AdHoc,
+    confidence: Confidence,
+    settings: AdHoc,
     /// Requests in a row that brought no advice.
     unanswered: u32,
     /// Chances to ask still to let pass.
@@ -31,8 +159,9 @@ pub(super) struct AdHocAdvising {
 }
 
 impl AdHocAdvising {
-    pub fn new(settings: AdHoc) -> Self {
+    pub fn new(confidence: Confidence, settings: AdHoc) -> Self {
         Self {
+            confidence,
             settings,
             unanswered: 0,
             skips: 0,
@@ -95,7 +224,7 @@ impl AdvisingStrategy for AdHocAdvising {
     /// Give budget left, a visited state, and P_give(Psi).
     fn gives(&mut self, at: &GiveContext<'_>, rng: &mut AgentRng) -> bool {
         let a = &self.settings;
-        let psi = match a.confidence {
+        let psi = match self.confidence {
             Confidence::Visit => psi_visit(at.visits),
             Confidence::Td => psi_td(at.visits, at.values.kick_spread()),
         };
@@ -154,7 +283,7 @@ mod tests {
             trust_lr: Some(0.1),
             ..AdHoc::td()
         };
-        let mut ad_hoc = AdHocAdvising::new(settings);
+        let mut ad_hoc = AdHocAdvising::new(Confidence::Td, settings);
         assert!(ad_hoc.learns_from_outcomes());
         let good = Advice {
             advisor: 1,

@@ -5,11 +5,127 @@
 //! action. Which states an advisor answers about is not part of those
 //! baselines; the reading taken here: any state it has visited.
 
+use serde::{Deserialize, Serialize};
+
+use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext};
-use super::settings::Budgeted;
-use crate::advice::reachable_set;
+use crate::advice::{Reachable, reachable_set};
 use crate::advice_counters::AdviceCounters;
+use crate::config_error::{AgentConfigError, require_unit};
+use crate::fidelity::{Fidelity, Profile};
+use crate::method::Method;
 use crate::selection::{AgentRng, chance};
+
+/// The settings of early advising: the budgets and whom to ask.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EarlyAdvising {
+    /// Advisee budget: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// The reachable set G: whom the advisee asks (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Default for EarlyAdvising {
+    fn default() -> Self {
+        Self {
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
+/// The settings of random advising: early advising's, and the probability
+/// of asking at a step.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RandomAdvising {
+    /// The probability of asking at a step, in [0, 1] (default 0.5).
+    pub ask_probability: f64,
+    /// Advisee budget: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// The reachable set G: whom the advisee asks (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Default for RandomAdvising {
+    fn default() -> Self {
+        Self {
+            ask_probability: 0.5,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
+/// `early-advising`: ask at every step until the budget is spent.
+pub(crate) struct EarlyAdvisingMethod;
+
+impl Method for EarlyAdvisingMethod {
+    type Settings = EarlyAdvising;
+    const NAME: &'static str = "early-advising";
+    const ABOUT: &'static str =
+        "ask at every step until the budget is spent (Ilhan et al.'s baseline)";
+
+    fn defaults(_: Profile) -> EarlyAdvising {
+        EarlyAdvising::default()
+    }
+
+    fn validate(settings: &EarlyAdvising) -> Result<(), AgentConfigError> {
+        settings.reachable.validate()
+    }
+
+    fn strategy(s: &EarlyAdvising, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(Budgeted {
+            ask_probability: 1.0,
+            ask_budget: s.ask_budget,
+            give_budget: s.give_budget,
+            reachable: s.reachable.clone(),
+        })
+    }
+}
+
+/// `random-advising`: ask with a fixed probability while the budget lasts.
+pub(crate) struct RandomAdvisingMethod;
+
+impl Method for RandomAdvisingMethod {
+    type Settings = RandomAdvising;
+    const NAME: &'static str = "random-advising";
+    const ABOUT: &'static str =
+        "ask with a fixed probability while the budget lasts (Ilhan et al.'s baseline)";
+
+    fn defaults(_: Profile) -> RandomAdvising {
+        RandomAdvising::default()
+    }
+
+    fn validate(settings: &RandomAdvising) -> Result<(), AgentConfigError> {
+        require_unit("ask_probability", settings.ask_probability)?;
+        settings.reachable.validate()
+    }
+
+    fn strategy(s: &RandomAdvising, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(Budgeted {
+            ask_probability: s.ask_probability,
+            ask_budget: s.ask_budget,
+            give_budget: s.give_budget,
+            reachable: s.reachable.clone(),
+        })
+    }
+}
+
+/// Asking with a probability while a budget lasts: early advising's and
+/// random advising's decisions.
+#[derive(Clone, Debug)]
+struct Budgeted {
+    ask_probability: f64,
+    ask_budget: u64,
+    give_budget: u64,
+    reachable: Reachable,
+}
 
 impl AdvisingStrategy for Budgeted {
     /// Ask budget left, then `ask_probability` (no draw at 1).

@@ -5,15 +5,84 @@
 //! included) by a softmax over its trust in each, follows that peer for a
 //! few decisions, and learns its trust from the advantage of what it played.
 
-use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
-use super::settings::PeerLearning;
-use super::trust::Trust;
-use crate::advice::reachable_set;
-use crate::advice_counters::AdviceCounters;
-use crate::exchange::Advice;
-use crate::fidelity::VoteTies;
-use crate::selection::AgentRng;
 use rand::Rng;
+use serde::{Deserialize, Serialize};
+
+use super::PAPER_BUDGET;
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
+use super::trust::Trust;
+use crate::advice::{Reachable, reachable_set};
+use crate::advice_counters::AdviceCounters;
+use crate::config_error::{AgentConfigError, require, require_unit};
+use crate::exchange::Advice;
+use crate::fidelity::{Fidelity, Profile, VoteTies};
+use crate::method::Method;
+use crate::selection::AgentRng;
+
+/// The settings of peer learning (Derstroff et al., AAAI 2024): whom to
+/// follow by trust learned from outcomes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PeerLearning {
+    /// Advisee budget: steps acted on a peer's recommendation (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: recommendations given (default 1000).
+    pub give_budget: u64,
+    /// The peers asked (default everyone).
+    pub reachable: Reachable,
+    /// The softmax temperature T of the choice among recommendations,
+    /// finite and > 0 (default 1, the paper's).
+    pub temperature: f64,
+    /// The learning rate of trust, in [0, 1] (default 0.001, the paper's).
+    pub trust_lr: f64,
+    /// Decisions a chosen peer (or its own choice) is followed for, at
+    /// least 1 (default 10, the paper's).
+    pub follow_steps: u32,
+}
+
+impl Default for PeerLearning {
+    fn default() -> Self {
+        Self {
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+            temperature: 1.0,
+            trust_lr: 0.001,
+            follow_steps: 10,
+        }
+    }
+}
+
+/// `peer-learning`: follow recommendations by trust learned from outcomes.
+pub(crate) struct PeerLearningMethod;
+
+impl Method for PeerLearningMethod {
+    type Settings = PeerLearning;
+    const NAME: &'static str = "peer-learning";
+    const ABOUT: &'static str =
+        "follow recommendations by trust learned from outcomes (Derstroff et al., AAAI 2024)";
+
+    fn defaults(_: Profile) -> PeerLearning {
+        PeerLearning::default()
+    }
+
+    fn validate(p: &PeerLearning) -> Result<(), AgentConfigError> {
+        require(
+            "temperature",
+            p.temperature,
+            "finite and > 0",
+            p.temperature > 0.0,
+        )?;
+        require_unit("trust_lr", p.trust_lr)?;
+        if p.follow_steps == 0 {
+            return Err(AgentConfigError::new("follow_steps", "must be at least 1"));
+        }
+        p.reachable.validate()
+    }
+
+    fn strategy(settings: &PeerLearning, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(Peers::new(settings.clone()))
+    }
+}
 
 /// Whom the agent follows, and for how many more decisions.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,7 +97,7 @@ enum Following {
 
 /// Peer learning for one agent: its settings, trust and current choice.
 #[derive(Clone, Debug)]
-pub(super) struct Peers {
+struct Peers {
     settings: PeerLearning,
     trust: Trust,
     following: Following,

@@ -7,13 +7,72 @@
 
 use proto::SharedValues;
 
+use serde::{Deserialize, Serialize};
+
+use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
-use super::settings::Psaf;
-use crate::advice::{p_ask, p_give, psi_visit, reachable_set};
+use crate::advice::{Reachable, p_ask, p_give, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
+use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::exchange::Advice;
 use crate::fidelity::VoteTies;
+use crate::fidelity::{Fidelity, Profile};
+use crate::method::Method;
 use crate::selection::{AgentRng, chance};
+
+/// The settings of the Partaker-Sharer Advising Framework (Zhu et al.,
+/// AAMAS 2019): a partaker asks with P_ask, sharers answer with their
+/// values with P_give of their visits; separate budgets.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Psaf {
+    /// Scaling v_a of the partaker's P_ask = (1 + v_a)^(-sqrt n(s)),
+    /// finite and >= 0 (default 0.5).
+    pub v_a: f64,
+    /// Scaling v_g of the sharer's P_give = 1 - (1 + v_g)^(-log2 n(s)),
+    /// finite and >= 0 (default 0.5).
+    pub v_g: f64,
+    /// Partaker budget: states whose shared values it took (default 1000).
+    pub ask_budget: u64,
+    /// Sharer budget: values shared (default 1000).
+    pub give_budget: u64,
+    /// The sharers asked (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Default for Psaf {
+    fn default() -> Self {
+        Self {
+            v_a: 0.5,
+            v_g: 0.5,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
+/// `psaf`: share values instead of actions.
+pub(crate) struct PsafMethod;
+
+impl Method for PsafMethod {
+    type Settings = Psaf;
+    const NAME: &'static str = "psaf";
+    const ABOUT: &'static str = "share values instead of actions (Zhu et al., AAMAS 2019)";
+
+    fn defaults(_: Profile) -> Psaf {
+        Psaf::default()
+    }
+
+    fn validate(p: &Psaf) -> Result<(), AgentConfigError> {
+        require_non_negative("v_a", p.v_a)?;
+        require_non_negative("v_g", p.v_g)?;
+        p.reachable.validate()
+    }
+
+    fn strategy(settings: &Psaf, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(settings.clone())
+    }
+}
 
 impl AdvisingStrategy for Psaf {
     /// A fresh state, ask budget left, after the first episode, with

@@ -4,11 +4,66 @@
 //! uncertainty, the disagreement of its ensemble's heads
 //! ([`EnsembleSarsa`](crate::EnsembleSarsa)), is above a threshold.
 
+use serde::{Deserialize, Serialize};
+
+use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext};
-use super::settings::Rcmp;
-use crate::advice::reachable_set;
+use crate::advice::{Reachable, reachable_set};
 use crate::advice_counters::AdviceCounters;
+use crate::config_error::{AgentConfigError, require_non_negative};
+use crate::fidelity::{Fidelity, Profile};
+use crate::method::{LearnerNeed, Method};
 use crate::selection::AgentRng;
+
+/// The settings of RCMP (da Silva et al., AAAI 2020): ask where the
+/// learner's uncertainty (an ensemble's, `learner = "ensemble"`) is high.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Rcmp {
+    /// Ask where the heads' variance exceeds it, finite and >= 0 (default
+    /// 0.001: a first update of a head, alpha 0.1, leaves 0.0025).
+    pub uncertainty_threshold: f64,
+    /// Advisee budget: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// The reachable set G (default everyone).
+    pub reachable: Reachable,
+}
+
+impl Default for Rcmp {
+    fn default() -> Self {
+        Self {
+            uncertainty_threshold: 0.001,
+            ask_budget: PAPER_BUDGET,
+            give_budget: PAPER_BUDGET,
+            reachable: Reachable::Everyone,
+        }
+    }
+}
+
+/// `rcmp`: ask by the uncertainty of an ensemble.
+pub(crate) struct RcmpMethod;
+
+impl Method for RcmpMethod {
+    type Settings = Rcmp;
+    const NAME: &'static str = "rcmp";
+    const ABOUT: &'static str =
+        "ask where an ensemble's heads disagree (da Silva et al., AAAI 2020)";
+    const LEARNER: LearnerNeed = LearnerNeed::Uncertainty;
+
+    fn defaults(_: Profile) -> Rcmp {
+        Rcmp::default()
+    }
+
+    fn validate(r: &Rcmp) -> Result<(), AgentConfigError> {
+        require_non_negative("uncertainty_threshold", r.uncertainty_threshold)?;
+        r.reachable.validate()
+    }
+
+    fn strategy(settings: &Rcmp, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(settings.clone())
+    }
+}
 
 impl AdvisingStrategy for Rcmp {
     fn asks_by_uncertainty(&self) -> bool {

@@ -7,14 +7,117 @@
 use fnv::FnvHashMap;
 use proto::Action;
 
-use super::ad_hoc::AdHocAdvising;
+use serde::{Deserialize, Serialize};
+
+use super::ad_hoc::{AdHoc, AdHocAdvising, Confidence};
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
-use super::settings::{AdHoc, Reuse, ReuseRule};
+use crate::advice::Reachable;
 use crate::advice_counters::AdviceCounters;
+use crate::config_error::{AgentConfigError, require_non_negative, require_unit};
 use crate::exchange::Advice;
-use crate::fidelity::VoteTies;
+use crate::fidelity::{Fidelity, Profile, VoteTies};
 use crate::learner::ActionValues;
+use crate::method::Method;
 use crate::selection::{ACTIONS, AgentRng, chance};
+
+/// How an advice-reuse student decides to reuse the advice it stored for a
+/// state (Zhu et al., JAAMAS 2023).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ReuseRule {
+    /// "Q-change per step": reuse while its own values in the state still
+    /// change, between visits, by more than `q_change_threshold`.
+    QChange,
+    /// "Decay reusing probability": reuse with a probability that starts at
+    /// 1 and is multiplied by `reuse_decay` at each reuse.
+    Decay,
+}
+
+/// The settings of advice reuse (Zhu et al., "Learning by reusing previous
+/// advice: a memory-based teacher-student framework", JAAMAS 2023): AdHocTD's
+/// (without Mistake Correcting) and the reuse rule's.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdviceReuse {
+    /// AdHocTD's v_a (default 0.5).
+    pub v_a: f64,
+    /// AdHocTD's v_g (default 1.5).
+    pub v_g: f64,
+    /// Advisee budget: steps acted on advice (default 1000).
+    pub ask_budget: u64,
+    /// Advisor budget: answers given (default 1000).
+    pub give_budget: u64,
+    /// The reachable set G (default everyone).
+    pub reachable: Reachable,
+    /// AdHocTD's back-off (default off).
+    pub backoff: bool,
+    /// AdHocTD's trust in advisors (default none).
+    pub trust_lr: Option<f64>,
+    /// Which rule decides a reuse (default `q-change`).
+    pub reuse_rule: ReuseRule,
+    /// `q-change`: the change of its values (largest over the actions)
+    /// above which it still reuses, finite and >= 0 (default 0.01).
+    pub q_change_threshold: f64,
+    /// `decay`: the factor of the reuse probability after each reuse, in
+    /// [0, 1] (default 0.9).
+    pub reuse_decay: f64,
+}
+
+impl AdviceReuse {
+    /// AdHocTD's part.
+    fn ad_hoc(&self) -> AdHoc {
+        AdHoc {
+            v_a: self.v_a,
+            v_g: self.v_g,
+            ask_budget: self.ask_budget,
+            give_budget: self.give_budget,
+            reachable: self.reachable.clone(),
+            backoff: self.backoff,
+            trust_lr: self.trust_lr,
+            ..AdHoc::td()
+        }
+    }
+}
+
+/// `advice-reuse`: AdHocTD whose advisee reuses stored advice.
+pub(crate) struct AdviceReuseMethod;
+
+impl Method for AdviceReuseMethod {
+    type Settings = AdviceReuse;
+    const NAME: &'static str = "advice-reuse";
+    const ABOUT: &'static str =
+        "AdHocTD whose advisee reuses the advice it stored (Zhu et al., JAAMAS 2023)";
+    const WRITTEN_WHEN_TRUE: &'static [&'static str] = &["backoff"];
+
+    fn defaults(_: Profile) -> AdviceReuse {
+        let td = AdHoc::td();
+        AdviceReuse {
+            v_a: td.v_a,
+            v_g: td.v_g,
+            ask_budget: td.ask_budget,
+            give_budget: td.give_budget,
+            reachable: td.reachable,
+            backoff: td.backoff,
+            trust_lr: td.trust_lr,
+            reuse_rule: ReuseRule::QChange,
+            q_change_threshold: 0.01,
+            reuse_decay: 0.9,
+        }
+    }
+
+    fn validate(settings: &AdviceReuse) -> Result<(), AgentConfigError> {
+        settings.ad_hoc().validate()?;
+        require_non_negative("q_change_threshold", settings.q_change_threshold)?;
+        require_unit("reuse_decay", settings.reuse_decay)
+    }
+
+    fn strategy(settings: &AdviceReuse, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(ReusingAdvice {
+            ad_hoc: AdHocAdvising::new(Confidence::Td, settings.ad_hoc()),
+            rule: settings.clone(),
+            kept: FnvHashMap::default(),
+        })
+    }
+}
 
 /// The advice kept for one state.
 #[derive(Clone, Copy, Debug)]
@@ -28,20 +131,10 @@ struct Kept {
 
 /// Ad hoc advising with a memory of the advice followed.
 #[derive(Clone, Debug)]
-pub(super) struct ReusingAdvice {
+struct ReusingAdvice {
     ad_hoc: AdHocAdvising,
-    rule: Reuse,
+    rule: AdviceReuse,
     kept: FnvHashMap<u64, Kept>,
-}
-
-impl ReusingAdvice {
-    pub fn new(settings: AdHoc, rule: Reuse) -> Self {
-        Self {
-            ad_hoc: AdHocAdvising::new(settings),
-            rule,
-            kept: FnvHashMap::default(),
-        }
-    }
 }
 
 /// The largest change of any action's value.

@@ -3,10 +3,10 @@
 
 use std::fmt;
 
-use proto::{Action, SharedValues};
+use proto::{Action, Mode, SharedValues};
 
 use crate::advice_counters::AdviceCounters;
-use crate::exchange::{Advice, ValuesAdvice};
+use crate::exchange::{Advice, Transition, ValuesAdvice};
 use crate::fidelity::{AdvisorTies, VoteTies};
 use crate::learner::ActionValues;
 use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
@@ -38,6 +38,24 @@ pub struct GiveContext<'a> {
     /// Its counters.
     pub counters: &'a AdviceCounters,
 }
+
+/// What an agent knows when a training episode ends.
+#[derive(Clone, Copy, Debug)]
+pub struct EndContext<'a> {
+    /// The reward of its terminal step (+1 goal, -1 captured or out, 0
+    /// time-out).
+    pub final_reward: f64,
+    /// The agent's id.
+    pub me: usize,
+    /// Its team's size.
+    pub team_size: usize,
+    /// Its counters.
+    pub counters: &'a AdviceCounters,
+}
+
+/// What an agent sends its teammates unasked at an episode's end: for each
+/// receiver, in order, the transitions it sends.
+pub type Sends = Vec<(usize, Vec<Transition>)>;
 
 /// What arrived for one request: the advice (any number, possibly none,
 /// in the order of the advisors asked) about the state of key `key`.
@@ -183,9 +201,23 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// The budget the paper plots (advice given, or transitions shared).
     fn spent_budget(&self, counters: &AdviceCounters) -> u64;
 
-    /// Transitions still to share after a goal episode (episode sharing's
-    /// budget left); the agent records its episode while it is not 0.
-    fn sharing_allowance(&self, _counters: &AdviceCounters) -> u64 {
-        0
+    /// An episode in `mode` begins (the previous one may have been
+    /// abandoned).
+    fn begin_episode(&mut self, _mode: Mode) {}
+
+    /// Whether it wants the transitions its agent learns now (then
+    /// [`learned`](Self::learned) receives each). No, by default.
+    fn records_transitions(&self, _counters: &AdviceCounters) -> bool {
+        false
+    }
+
+    /// A training transition its agent just learned.
+    fn learned(&mut self, _transition: &Transition) {}
+
+    /// A training episode ended, its last step learned: what the agent
+    /// sends its teammates unasked (e.g. shared episodes), counted as
+    /// transitions shared. Nothing, by default.
+    fn end_episode(&mut self, _end: &EndContext<'_>) -> Sends {
+        Sends::new()
     }
 }

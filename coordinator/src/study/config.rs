@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use agent::{
-    Advises, AdvisorTies, Algorithm, Fidelity, NetworkConditions, Profile, SharedBootstrap,
-    Strategy, TorreyIntent, TorreyUnknownState, VoteTies,
+    Advises, AdvisorTies, Algorithm, AlgorithmSettings, Fidelity, NetworkConditions, Profile,
+    SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 use env_server::EvaluationMemory;
 use serde::{Deserialize, Serialize};
@@ -235,7 +235,7 @@ impl StudyConfig {
                     "use letters, digits, '-' and '_'",
                 ));
             }
-            e.strategy(self.profile)
+            e.settings(self.profile)
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
             if !e.advises.is_empty() && e.advises.len() != TEAM {
                 return Err(ConfigError::new(
@@ -277,8 +277,8 @@ impl StudyConfig {
     pub fn experiment(&self, entry: &StudyEntry, expert: Option<&Path>) -> ExperimentConfig {
         let mut spec = AgentSpec::of(entry.algorithm, self.profile);
         // `validate` rejects the keys the strategy does not have.
-        if let Ok(strategy) = entry.strategy(self.profile) {
-            spec.config.strategy = strategy;
+        if let Ok(settings) = entry.settings(self.profile) {
+            spec.config.algorithm = settings;
         }
         spec.config.fidelity = entry.fidelity(self.profile);
         spec.config.network = entry.network;
@@ -288,8 +288,11 @@ impl StudyConfig {
         }
         if let (true, Some(p)) = (entry.expert, &self.pretrain) {
             let agent = &mut team[p.expert];
-            if let Strategy::AdHoc(a) = &mut agent.config.strategy {
-                a.ask_budget = 0;
+            // The expert never asks: an algorithm that asks has an ask budget.
+            if agent.config.algorithm.setting("ask_budget").is_some() {
+                (agent.config.algorithm)
+                    .set("ask_budget", 0)
+                    .expect("an ask budget takes 0");
             }
             agent.load = expert
                 .map(Path::to_path_buf)
@@ -330,24 +333,23 @@ impl StudyConfig {
 }
 
 impl StudyEntry {
-    /// The team's strategy: the constants of `profile`, with Mistake
-    /// Correcting and v_g when asked for (an error for a strategy without
-    /// that mode or constant).
-    pub fn strategy(&self, profile: Profile) -> Result<Strategy, agent::AgentConfigError> {
-        let mut strategy = Strategy::of(self.algorithm, profile);
-        strategy.set_mistake_correcting(self.mistake_correcting)?;
-        strategy.set_backoff(self.backoff)?;
-        strategy.set_trust(self.trust_lr)?;
-        if let Some(v_g) = self.v_g {
-            let Strategy::AdHoc(a) = &mut strategy else {
-                return Err(agent::AgentConfigError {
-                    key: "v_g",
-                    reason: format!("only for adhoc-visit and adhoc-td, not {}", self.algorithm),
-                });
-            };
-            a.v_g = v_g;
+    /// The team's algorithm settings: those of `profile`, with the entry's
+    /// own (an error naming a key the algorithm does not have).
+    pub fn settings(&self, profile: Profile) -> Result<AlgorithmSettings, agent::AgentConfigError> {
+        let mut settings = AlgorithmSettings::of(self.algorithm, profile);
+        if self.mistake_correcting {
+            settings.set("mistake_correcting", true)?;
         }
-        Ok(strategy)
+        if self.backoff {
+            settings.set("backoff", true)?;
+        }
+        if let Some(lr) = self.trust_lr {
+            settings.set("trust_lr", lr)?;
+        }
+        if let Some(v_g) = self.v_g {
+            settings.set("v_g", v_g)?;
+        }
+        Ok(settings)
     }
 
     /// The team's fidelity settings: those of `profile`, with the entry's own.
@@ -409,11 +411,11 @@ mod tests {
                 ..Fidelity::of(Profile::Authors)
             }
         );
-        let v_g = |name: &str| match &team(name)[1].config.strategy {
-            Strategy::AdHoc(a) => a.v_g,
-            other => panic!("ad hoc expected, got {other:?}"),
-        };
-        assert_eq!((v_g("adhoc-visit"), v_g("adhoc-visit-vg-0-5")), (0.2, 0.5));
+        let v_g = |name: &str| team(name)[1].config.algorithm.setting("v_g").unwrap();
+        assert_eq!(
+            (v_g("adhoc-visit"), v_g("adhoc-visit-vg-0-5")),
+            (0.2.into(), 0.5.into())
+        );
         // The paper presets follow the authors; the quick one the paper.
         for name in ["paper-scratch", "paper-mistake-correcting", "paper-expert"] {
             assert_eq!(StudyConfig::preset(name).unwrap().profile, Profile::Authors);

@@ -570,7 +570,8 @@ fn significance_between_advising(
     let advising = |name: &str| {
         Some(name) != study.baseline.as_deref() && kind(name).is_some_and(Algorithm::communicates)
     };
-    let ad_hoc = |name: &str| kind(name).is_some_and(Algorithm::is_ad_hoc);
+    // The paper's methods, `adhoc-visit` and `adhoc-td`.
+    let ad_hoc = |name: &str| kind(name).is_some_and(|a| a.name().starts_with("adhoc-"));
     let between: Vec<&Comparison> = comparisons
         .iter()
         .filter(|c| advising(&c.a) && advising(&c.b) && (ad_hoc(&c.a) || ad_hoc(&c.b)))

@@ -3,7 +3,7 @@
 //! it acted on, against the loss probability or the median latency of its
 //! advice messages.
 
-use agent::{Algorithm, NetworkConditions};
+use agent::NetworkConditions;
 
 use crate::figures::{Condition, ConditionPoint, ConditionSet, Figure, FigureError, draw_sweep};
 use crate::schedule::EvalPoint;
@@ -85,8 +85,7 @@ pub fn sweep_figures(
 /// One set per advising method along `condition`, if the study sweeps it:
 /// some method has points at two values of it.
 fn condition_sets(entries: &[EntryResults], condition: Condition, level: f64) -> Vec<ConditionSet> {
-    let advising =
-        |e: &&EntryResults| !matches!(e.entry.algorithm, Algorithm::NoAdvice | Algorithm::Random);
+    let advising = |e: &&EntryResults| e.entry.algorithm.communicates();
     let mut sets: Vec<ConditionSet> = Vec::new();
     for e in entries.iter().filter(advising) {
         let Some(x) = x_of(condition, conditions(e)) else {
@@ -124,7 +123,8 @@ mod tests {
     #[test]
     fn the_presets_entries_lie_on_both_axes() {
         let study = StudyConfig::preset("advice-network").unwrap();
-        for algorithm in [Algorithm::AdHocTd, Algorithm::AdHocVisit] {
+        for algorithm in ["adhoc-td", "adhoc-visit"].map(|a| a.parse::<agent::Algorithm>().unwrap())
+        {
             let xs = |condition| -> Vec<f64> {
                 (study.entries.iter())
                     .filter(|e| e.algorithm == algorithm)
