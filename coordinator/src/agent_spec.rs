@@ -19,7 +19,7 @@ use crate::plugin::PluginSpec;
 #[serde(try_from = "serde_json::Map<String, serde_json::Value>")]
 #[serde(into = "serde_json::Map<String, serde_json::Value>")]
 pub struct AgentSpec {
-    /// The learner's constants and strategy.
+    /// Its settings: learner, algorithm, fidelity rules, network conditions.
     pub config: AgentConfig,
     /// A snapshot (see `agent::Snapshot`) the agent starts every run from.
     pub load: Option<PathBuf>,
@@ -27,7 +27,8 @@ pub struct AgentSpec {
     /// they start at zero: the loaded agent brings its Q-table, visit counts
     /// and finished-episode count, with fresh budgets.
     pub keep_counters: bool,
-    /// A learner process in place of SARSA(lambda) (docs/learners.md).
+    /// A learner process in place of the agent's own learner
+    /// (docs/learners.md).
     pub learner: Option<ChildSpec>,
     /// A strategy process making algorithm `external`'s decisions
     /// (docs/strategies.md).
@@ -100,6 +101,9 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
             Some(serde_json::Value::Bool(b)) => b,
             Some(other) => return Err(format!("`keep_counters` must be a boolean, got {other}")),
         };
+        // `learner` names a learner of the agent's own (its settings), or
+        // is a table: a learner process.
+        let named = matches!(map.get("learner"), Some(serde_json::Value::String(_)));
         let mut child = |key: &str| match map.remove(key) {
             None | Some(serde_json::Value::Null) => Ok(None),
             Some(value) => serde_json::from_value(value).map(Some).map_err(|e| {
@@ -108,7 +112,7 @@ impl TryFrom<serde_json::Map<String, serde_json::Value>> for AgentSpec {
                 )
             }),
         };
-        let learner = child("learner")?;
+        let learner = if named { None } else { child("learner")? };
         let strategy_process = child("strategy_process")?;
         let plugin =
             match map.remove("plugin") {
@@ -149,6 +153,7 @@ impl From<AgentSpec> for serde_json::Map<String, serde_json::Value> {
             ("learner", spec.learner),
             ("strategy_process", spec.strategy_process),
         ] {
+            // A learner process stands in for the learner the settings name.
             if let Some(child) = child {
                 let child = serde_json::to_value(child).expect("a child spec serialises");
                 map.insert(key.into(), child);

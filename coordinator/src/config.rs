@@ -430,7 +430,16 @@ mod tests {
         assert!(err.to_string().contains("alhpa"), "{err}");
         let err = serde_json::from_str::<AgentSpec>(r#"{"load": 3}"#).unwrap_err();
         assert!(err.to_string().contains("load"), "{err}");
-        // So is a key of another strategy, with the strategies it belongs to.
+        // `learner` names the agent's own learner, or is a learner process.
+        let named: AgentSpec = toml::from_str("learner = \"ensemble\"\nheads = 3\n").unwrap();
+        assert_eq!(
+            (named.config.learner.name(), named.learner),
+            ("ensemble", None)
+        );
+        let process: AgentSpec =
+            toml::from_str("learner = { command = [\"python3\", \"l.py\"] }\n").unwrap();
+        assert_eq!(process.learner.unwrap().command, ["python3", "l.py"]);
+        // So is a key of another algorithm, with the algorithms it belongs to.
         let err = toml::from_str::<AgentSpec>(
             "mistake_correcting = true
 ",
