@@ -26,6 +26,9 @@ pub enum Reachable {
     Star(usize),
 }
 
+/// The paper's budget of every advising and sharing side.
+pub(crate) const PAPER_BUDGET: u64 = 1000;
+
 impl Reachable {
     /// A radio range must be finite and >= 0.
     pub(crate) fn validate(&self) -> Result<(), AgentConfigError> {

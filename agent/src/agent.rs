@@ -10,6 +10,7 @@ use crate::config_error::AgentConfigError;
 use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
 use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
+use crate::learners::learner_of;
 use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
 use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
@@ -127,7 +128,7 @@ impl Agent {
         config: AgentConfig,
         seed: u64,
     ) -> Result<Self, AgentConfigError> {
-        let learner = config.learner.build(&config, seed);
+        let learner = learner_of(&config, seed);
         Self::with_learner(id, team_size, config, seed, learner)
     }
 

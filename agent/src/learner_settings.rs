@@ -4,15 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::AgentConfig;
 use crate::config_error::{AgentConfigError, require};
-use crate::ensemble::EnsembleSarsa;
-use crate::learner::Learner;
 use crate::method::LearnerNeed;
-use crate::sarsa::TabularSarsa;
-
-/// Mixed into an agent's seed for its ensemble's masks.
-const ENSEMBLE_STREAM: u64 = 0x5243_4d50_6865_6164;
 
 /// A learner and its own settings. In team files, `learner = "<name>"` and
 /// its keys beside it (`heads`, `mask_probability`); the learner's shared
@@ -22,11 +15,11 @@ const ENSEMBLE_STREAM: u64 = 0x5243_4d50_6865_6164;
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "learner", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum LearnerSettings {
-    /// `sarsa`: SARSA(lambda) over the tile-coded state ([`TabularSarsa`]).
+    /// `sarsa`: SARSA(lambda) over the tile-coded state ([`TabularSarsa`](crate::TabularSarsa)).
     #[default]
     Sarsa,
     /// `ensemble`: `heads` SARSA(lambda) heads, each learning a transition
-    /// with probability `mask_probability` ([`EnsembleSarsa`]); its
+    /// with probability `mask_probability` ([`EnsembleSarsa`](crate::EnsembleSarsa)); its
     /// uncertainty is the heads' variance.
     Ensemble {
         /// Heads K, 2 to 64 (default 5).
@@ -100,21 +93,5 @@ impl LearnerSettings {
             require("mask_probability", p, "in (0, 1]", p > 0.0 && p <= 1.0)?;
         }
         Ok(())
-    }
-
-    /// The learner of an agent of `config` seeded with `seed`.
-    pub fn build(&self, config: &AgentConfig, seed: u64) -> Box<dyn Learner> {
-        match *self {
-            LearnerSettings::Sarsa => Box::new(TabularSarsa::new(config)),
-            LearnerSettings::Ensemble {
-                heads,
-                mask_probability,
-            } => Box::new(EnsembleSarsa::new(
-                config,
-                heads as usize,
-                mask_probability,
-                seed ^ ENSEMBLE_STREAM,
-            )),
-        }
     }
 }

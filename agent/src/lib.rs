@@ -51,6 +51,7 @@ mod exchange;
 mod fidelity;
 mod learner;
 mod learner_settings;
+mod learners;
 mod link;
 mod method;
 mod persist;

@@ -35,9 +35,6 @@ pub use reuse::{AdviceReuse, ReuseRule};
 pub use seam::{AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, Replies, Sends};
 pub use torrey::Torrey;
 
-/// The paper's budget of every advising and sharing side.
-const PAPER_BUDGET: u64 = 1000;
-
 /// Every algorithm, registered once: the paper's, in the order it
 /// presents them, then the field's since, then `external`. The first is
 /// the default.

@@ -1,13 +1,12 @@
 //! The seam between the schedule and where agents and simulator live: the
 //! schedule drives a [`Backend`] episode by episode, whatever the transport.
 
-use agent::{AdvisingTraffic, Agent, Mode, Snapshot};
+use agent::{Mode, Snapshot};
 use env_server::Outcome;
-use serde::Serialize;
 
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::{Restart, SimulatorRestart};
+use analysis::{AgentStats, Restart, SimulatorRestart};
 
 /// How one episode ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -19,55 +18,6 @@ pub struct EpisodeEnd {
     /// Awaited actions that did not reach the simulator in time and were
     /// played as Move (always 0 in process).
     pub actions_timed_out: u32,
-}
-
-/// One agent's budgets and communication so far.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
-#[serde(default)]
-pub struct AgentStats {
-    /// The give budget the paper plots: advice given, or transitions shared.
-    pub give_spent: u64,
-    /// The ask budget spent: steps acted on advice.
-    pub ask_spent: u64,
-    /// Advice requests sent.
-    pub advice_requests: u64,
-    /// Replies received to those requests (advice or not).
-    pub advice_replies_received: u64,
-    /// Answers given.
-    pub advice_given: u64,
-    /// Messages sent (0 in process).
-    pub messages_sent: u64,
-    /// Bytes sent (0 in process).
-    pub bytes_sent: u64,
-    /// Messages received (0 in process).
-    pub messages_received: u64,
-    /// Bytes received (0 in process).
-    pub bytes_received: u64,
-    /// Received messages dropped as malformed, foreign, stale, duplicate or
-    /// unrequested advice.
-    pub messages_dropped: u64,
-    /// Advising messages sent: advice requests, replies and shared episodes
-    /// (in process, those the zenoh transport would send).
-    pub advising_messages: u64,
-    /// Their encoded bytes.
-    pub advising_bytes: u64,
-}
-
-impl AgentStats {
-    /// The statistics of a local agent that sent `traffic`.
-    pub fn of(agent: &Agent, traffic: &AdvisingTraffic) -> Self {
-        let c = agent.counters();
-        Self {
-            advising_messages: traffic.messages,
-            advising_bytes: traffic.bytes,
-            give_spent: agent.spent_budget(),
-            ask_spent: c.ask_spent,
-            advice_requests: c.advice_requests,
-            advice_replies_received: c.advice_replies_received,
-            advice_given: c.advice_given,
-            ..Self::default()
-        }
-    }
 }
 
 /// Agents and simulator of one run, driven episode by episode.

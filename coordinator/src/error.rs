@@ -66,9 +66,9 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
-    /// A figure could not be drawn.
+    /// The analysis of a study could not be made.
     #[error(transparent)]
-    Figure(#[from] crate::figures::FigureError),
+    Analysis(#[from] analysis::Error),
     /// A run failed while playing (a lost peer, a process that did not answer).
     #[error("run {run}: {message}")]
     Run {

@@ -3,10 +3,11 @@
 
 use std::sync::Arc;
 
-use agent::{Agent, Mode, Observation, Snapshot, Team};
+use agent::{AdvisingTraffic, Agent, Mode, Observation, Snapshot, Team};
+use analysis::AgentStats;
 use env_server::{Env, Outcome, RunEnvs};
 
-use crate::backend::{AgentStats, Backend, EpisodeEnd};
+use crate::backend::{Backend, EpisodeEnd};
 use crate::error::{ConfigError, Error};
 use crate::experiment::{Experiment, RunSeeds};
 use crate::plugin::Plugin;
@@ -68,7 +69,7 @@ impl Backend for InProcess {
         let agents = self.team.agents().iter();
         Ok(agents
             .zip(self.team.traffic())
-            .map(|(a, t)| AgentStats::of(a, t))
+            .map(|(a, t)| stats_of(a, t))
             .collect())
     }
 
@@ -144,5 +145,20 @@ fn check(plugins: &[Arc<dyn Plugin>], run: u64) -> Result<(), Error> {
     match plugins.iter().find_map(|p| p.failure()) {
         Some(failure) => Err(Error::run(run, failure)),
         None => Ok(()),
+    }
+}
+
+/// The statistics of a local agent that sent `traffic`.
+fn stats_of(agent: &Agent, traffic: &AdvisingTraffic) -> AgentStats {
+    let c = agent.counters();
+    AgentStats {
+        advising_messages: traffic.messages,
+        advising_bytes: traffic.bytes,
+        give_spent: agent.spent_budget(),
+        ask_spent: c.ask_spent,
+        advice_requests: c.advice_requests,
+        advice_replies_received: c.advice_replies_received,
+        advice_given: c.advice_given,
+        ..AgentStats::default()
     }
 }

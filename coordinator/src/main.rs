@@ -6,12 +6,14 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use agent::{Algorithm, Latency, Profile};
+use analysis::published::published_gains;
+use analysis::report::gains_table;
+use analysis::stats::aggregates::score_aggregates;
 use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use coordinator::request::{Agents, RunRequest};
-use coordinator::stats::aggregates::score_aggregates;
-use coordinator::study::{StudyConfig, StudyOptions, gains_table, published_gains};
+use coordinator::study::{StudyConfig, StudyOptions};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
     Endpoints, Estimate, Experiment, ExperimentDir, RunOptions, Transport, ZenohSettings,

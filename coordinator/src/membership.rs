@@ -24,55 +24,6 @@ pub struct MembershipEvent {
     pub newcomer: Option<AgentSpec>,
 }
 
-/// A newcomer that joined a run: who played which episodes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Join {
-    /// Training episodes played before it joined.
-    pub episode: u64,
-    /// Its slot.
-    pub slot: usize,
-    /// The index of its event in the configuration.
-    pub event: usize,
-    /// Wall time from asking the leaver to stop to the newcomer reset and
-    /// ready (ms; 0 in process).
-    pub wait_ms: u64,
-}
-
-/// An agent process that died and was restarted from its latest
-/// checkpoint: the gap in its learning.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Restart {
-    /// Its slot.
-    pub slot: usize,
-    /// Training episodes played when it was found lost.
-    pub episode: u64,
-    /// The training episodes of the checkpoint it restarted from; `None`:
-    /// none yet (or a learner process without snapshot hooks), it
-    /// restarted fresh.
-    pub checkpoint: Option<u64>,
-    /// Whether the episode in flight was abandoned and played again.
-    pub replayed: bool,
-    /// Wall time from the start of the episode (or call) that found it
-    /// lost to the restarted agent ready (ms).
-    pub wait_ms: u64,
-    /// How it was lost.
-    pub cause: String,
-}
-
-/// A simulator (the real HFO) that failed and was started afresh: the
-/// episode in flight was abandoned and played again.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct SimulatorRestart {
-    /// Training episodes played when it failed.
-    pub episode: u64,
-    /// Whether the abandoned episode was an evaluation episode.
-    pub evaluation: bool,
-    /// Wall time from the start of the abandoned episode to its failure (ms).
-    pub lost_ms: u64,
-    /// How it failed.
-    pub cause: String,
-}
-
 impl MembershipEvent {
     /// The agent that joins: the newcomer, or the slot's agent `slot_spec`
     /// fresh (without its snapshot).

@@ -15,9 +15,11 @@ use rayon::prelude::*;
 use crate::driver::{self, Driver};
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::schedule::{self, RunResult, Timing};
-use crate::stats::summary::{Summary, summarize};
+use analysis::{RunResult, Timing};
+
+use crate::schedule;
 use crate::store::{self, ExperimentDir};
+use crate::summary::{Summary, summarize};
 
 /// How to run an experiment (none of it changes the results).
 #[derive(Clone, Debug)]

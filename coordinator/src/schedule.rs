@@ -6,117 +6,12 @@ use std::time::Instant;
 use agent::Mode;
 use env_server::Outcome;
 
-use crate::backend::{AgentStats, Backend};
+use analysis::{EvalPoint, Join, RunResult, Timing};
+
+use crate::backend::Backend;
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::{Join, Restart, SimulatorRestart};
-use crate::provenance::PlayedWith;
-
-/// The measurements of one evaluation.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct EvalPoint {
-    /// Training episodes played before it.
-    pub episode: u64,
-    /// Evaluation episodes played (M).
-    pub episodes: u64,
-    /// Evaluation episodes ending in a goal.
-    pub goals: u64,
-    /// Goal percentage, `100 * goals / episodes`.
-    pub goal_pct: f64,
-    /// Mean frames of the goal episodes; `None` without a goal.
-    pub time_to_goal: Option<f64>,
-    /// Every agent's budgets and communication so far, by id.
-    pub agents: Vec<AgentStats>,
-    /// The paper's spent budget: give budget spent, averaged over agents.
-    pub spent_budget: f64,
-    /// Awaited actions played as Move because they missed the step timeout,
-    /// over the run so far (training and evaluation; 0 in process).
-    #[serde(default)]
-    pub actions_timed_out: u64,
-}
-
-/// What a run cost: the frames it played and the wall time they took. Saved
-/// with the run; the times vary from one machine and moment to another.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Timing {
-    /// Agent decisions in training episodes.
-    pub training_frames: u64,
-    /// Wall time of the training episodes (s).
-    pub training_s: f64,
-    /// Agent decisions in evaluation episodes.
-    pub evaluation_frames: u64,
-    /// Wall time of the evaluations (s).
-    pub evaluation_s: f64,
-}
-
-impl Timing {
-    /// Adds another run's timing.
-    pub fn add(&mut self, other: &Timing) {
-        self.training_frames += other.training_frames;
-        self.training_s += other.training_s;
-        self.evaluation_frames += other.evaluation_frames;
-        self.evaluation_s += other.evaluation_s;
-    }
-
-    /// Training decisions per second of one thread's time.
-    pub fn training_frames_per_sec(&self) -> f64 {
-        rate(self.training_frames, self.training_s)
-    }
-
-    /// Evaluation decisions per second of one thread's time.
-    pub fn evaluation_frames_per_sec(&self) -> f64 {
-        rate(self.evaluation_frames, self.evaluation_s)
-    }
-
-    /// Decisions per second of one thread's time, training and evaluation.
-    pub fn frames_per_sec(&self) -> f64 {
-        rate(
-            self.training_frames + self.evaluation_frames,
-            self.training_s + self.evaluation_s,
-        )
-    }
-}
-
-fn rate(frames: u64, secs: f64) -> f64 {
-    if secs > 0.0 {
-        frames as f64 / secs
-    } else {
-        0.0
-    }
-}
-
-/// The results of one run (saved as `run-<k>.json` once it is complete).
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct RunResult {
-    /// The run's index.
-    pub run: u64,
-    /// Its evaluations, in order.
-    pub points: Vec<EvalPoint>,
-    /// What it cost (absent from the files of older versions).
-    #[serde(default)]
-    pub timing: Timing,
-    /// Every agent's advice round-trip times (ms) over the run; empty in process.
-    pub advice_rtt_ms: Vec<Vec<f32>>,
-    /// Who advised whom over the run: row i, column j, the decisions agent
-    /// i (its slot's agents) acted on agent j's advice; absent when no
-    /// advice was acted on.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub advice_matrix: Vec<Vec<u64>>,
-    /// Agents restarted after their process died (none without
-    /// `restart_agents`, or without a crash).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub restarts: Vec<Restart>,
-    /// The simulator's restarts after it failed (only the real HFO fails).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub simulator_restarts: Vec<SimulatorRestart>,
-    /// The newcomers that joined, in order (none in a fixed team).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub joins: Vec<Join>,
-    /// The code and simulator that played it (absent from the files of
-    /// versions before 4).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub played_with: Option<PlayedWith>,
-}
+use crate::provenance::played_with;
 
 /// Plays run `run` of `experiment` on `backend`: `on_point` receives every
 /// evaluation as soon as it is measured, `progress` the frames of every
@@ -214,7 +109,7 @@ pub fn play_run(
         restarts: backend.restarts(),
         simulator_restarts: backend.simulator_restarts(),
         joins,
-        played_with: Some(PlayedWith::this_build(config.transport.simulator())),
+        played_with: Some(played_with(config.transport.simulator())),
     })
 }
 

@@ -17,9 +17,8 @@ use node::files::TEMP_PREFIX;
 use serde::Serialize;
 use serde_json::Value;
 
-use crate::backend::AgentStats;
 use crate::error::Error;
-use crate::schedule::{EvalPoint, RunResult};
+use analysis::{AgentStats, EvalPoint, RunResult};
 
 /// Name of an experiment directory's identity file.
 pub const CONFIG_FILE: &str = "config.json";
@@ -342,7 +341,7 @@ impl RunWriter {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schedule::Timing;
+    use analysis::Timing;
     use serde_json::json;
 
     #[test]

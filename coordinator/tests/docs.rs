@@ -19,15 +19,13 @@ use std::process::{Command, Output};
 use agent::{
     AdHoc, AgentConfig, Algorithm, LearnerSettings, NetworkConditions, Profile, Reachable,
 };
+use analysis::{AgentStats, EvalPoint, RunResult, Timing};
 use coordinator::config::ChildSpec;
 use coordinator::experiment::Record;
 use coordinator::membership::MembershipEvent;
 use coordinator::plugin::PluginSpec;
 use coordinator::study::{PRESETS, StudyConfig};
-use coordinator::{
-    AgentSpec, AgentStats, EvalPoint, ExperimentConfig, RunResult, Timing, Transport,
-    ZenohSettings, summarize,
-};
+use coordinator::{AgentSpec, ExperimentConfig, Transport, ZenohSettings, summarize};
 use serde_json::Value;
 
 fn coordinator<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {

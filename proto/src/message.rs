@@ -69,6 +69,16 @@ pub enum Simulator {
     RealHfo,
 }
 
+impl Simulator {
+    /// The name as files and the command line write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Simulator::Ours => "ours",
+            Simulator::RealHfo => "real-hfo",
+        }
+    }
+}
+
 /// One message: a header and its body.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Envelope {

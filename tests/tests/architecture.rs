@@ -179,6 +179,27 @@ fn the_pure_libraries_use_neither_network_nor_files() {
 }
 
 #[test]
+fn the_analysis_needs_no_transport_and_no_runner() {
+    let tree = normal_dependencies("analysis");
+    for forbidden in ["zenoh", "tokio", "coordinator", "rayon", "env-server"] {
+        let found = tree
+            .lines()
+            .find(|l| l.starts_with(&format!("{forbidden} ")));
+        assert!(found.is_none(), "analysis depends on {found:?}");
+    }
+    // Its files are read and written in one module.
+    let root = workspace().join("coordinator/analysis/src/lib.rs");
+    let graph = ModuleGraph::read(&root).unwrap_or_else(|e| panic!("{e}"));
+    for (file, path) in graph.external_paths() {
+        let io = ["fs", "net", "process"]
+            .iter()
+            .any(|m| path.starts_with(&format!("std::{m}")));
+        let files = file.ends_with("coordinator/analysis/src/files.rs");
+        assert!(!io || files, "{} uses {path}", file.display());
+    }
+}
+
+#[test]
 fn files_are_written_in_one_place() {
     // What creates or writes files and directories, outside test code.
     let writes = [
@@ -196,11 +217,13 @@ fn files_are_written_in_one_place() {
         "fs::OpenOptions",
         "fs::create_dir",
     ];
-    // node's atomic write and secret file, and the coordinator's results.
+    // node's atomic write and secret file, the coordinator's results and
+    // the analysis's report.
     let allowed = [
         "proto/node/src/files.rs",
         "proto/node/src/secret.rs",
         "coordinator/src/store.rs",
+        "coordinator/analysis/src/files.rs",
     ];
     let workspace = workspace().canonicalize().unwrap();
     for root in target_roots() {

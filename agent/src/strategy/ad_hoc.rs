@@ -8,10 +8,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::trust::Trust;
-use crate::advice::{Reachable, p_ask, p_give, psi_td, psi_visit, reachable_set};
+use crate::advice::{PAPER_BUDGET, Reachable, p_ask, p_give, psi_td, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require, require_non_negative};
 use crate::exchange::Advice;

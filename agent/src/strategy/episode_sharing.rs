@@ -5,9 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, EndContext, Sends};
-use crate::advice::shared_prefix;
+use crate::advice::{PAPER_BUDGET, shared_prefix};
 use crate::advice_counters::AdviceCounters;
 use crate::exchange::Transition;
 use crate::fidelity::{Fidelity, Profile};

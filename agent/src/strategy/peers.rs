@@ -8,10 +8,9 @@
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::trust::Trust;
-use crate::advice::{Reachable, reachable_set};
+use crate::advice::{PAPER_BUDGET, Reachable, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::exchange::Advice;

@@ -9,9 +9,8 @@ use proto::SharedValues;
 
 use serde::{Deserialize, Serialize};
 
-use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
-use crate::advice::{Reachable, p_ask, p_give, psi_visit, reachable_set};
+use crate::advice::{PAPER_BUDGET, Reachable, p_ask, p_give, psi_visit, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::exchange::Advice;

@@ -6,9 +6,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext};
-use crate::advice::{Reachable, reachable_set};
+use crate::advice::{PAPER_BUDGET, Reachable, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::fidelity::{Fidelity, Profile};

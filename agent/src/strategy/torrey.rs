@@ -4,8 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::PAPER_BUDGET;
 use super::seam::{AdvisingStrategy, AskContext, GiveContext};
+use crate::advice::PAPER_BUDGET;
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::fidelity::{Fidelity, Profile, TorreyIntent, TorreyUnknownState};

@@ -11,11 +11,11 @@ use proto::keys::Role;
 use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
 use super::ZenohTeam;
-use crate::backend::{AgentStats, Backend, EpisodeEnd};
+use crate::backend::{Backend, EpisodeEnd};
 use crate::config::AgentSpec;
 use crate::error::Error;
 use crate::experiment::Experiment;
-use crate::membership::{Restart, SimulatorRestart};
+use analysis::{AgentStats, Restart, SimulatorRestart};
 
 /// How long a process may take to answer a command other than playing.
 const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);

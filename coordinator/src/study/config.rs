@@ -193,6 +193,16 @@ impl StudyConfig {
         Ok(config)
     }
 
+    /// The study as `study.json` records it.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::to_value(self).expect("a study serialises")
+    }
+
+    /// The study as the analysis reads it from `study.json`.
+    pub fn record(&self) -> analysis::Study {
+        serde_json::from_value(self.json()).expect("the analysis reads every study's record")
+    }
+
     /// The confidence level: as given, else the profile's.
     pub fn ci_level(&self) -> f64 {
         self.ci_level.unwrap_or(self.profile.ci_level())

@@ -1,5 +1,6 @@
 //! Studies: the paper's experiments in one command. A study runs several
-//! experiments (one per algorithm, optionally after a pretraining stage),
+//! experiments (one per algorithm, optionally after a pretraining stage)
+//! and hands their runs to the analysis (`analysis::report`), which
 //! compares them run by run, draws figures and writes `REPORT.md`; started
 //! again on the same directory it continues from the runs already finished.
 //! Split into shards (`--shard K/N`), several processes, on one host or
@@ -7,18 +8,9 @@
 //! same time; an invocation without a shard then completes it.
 
 mod config;
-mod difference;
-#[cfg(test)]
-pub(crate) mod fixtures;
-mod newcomers;
-mod published;
-mod report;
 mod run;
 mod shard;
-mod sweep;
 
 pub use config::{PRESETS, Pretrain, StudyConfig, StudyEntry};
-pub use published::published_gains;
-pub use report::gains_table;
 pub use run::{StudyOptions, StudyOutcome, run_study};
 pub use shard::{MAX_SHARDS, Shard};

@@ -3,16 +3,16 @@
 use std::path::{Component, Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use analysis::EntryResults;
+use analysis::report::write_report;
 use indicatif::ProgressBar;
 
 use super::config::{Pretrain, StudyConfig};
-use super::report::write_report;
 use super::shard::Shard;
 use crate::config::ExperimentConfig;
 use crate::error::Error;
 use crate::experiment::Experiment;
 use crate::runner::{RunOptions, new_bar, run_experiment, run_share};
-use crate::stats::analysis::{EntryResults, compare_all};
 use crate::store::{self, ExperimentDir, agent_file_name};
 
 /// How to run a study (none of it changes the results in process).
@@ -82,10 +82,7 @@ pub fn run_study(
     invocation.bar.finish_and_clear();
     let report = match options.shard {
         Some(_) => None,
-        None => {
-            let comparisons = compare_all(study, &entries);
-            Some(write_report(out, study, &entries, &comparisons)?)
-        }
+        None => Some(write_report(out, &study.record(), &entries)?),
     };
     Ok(StudyOutcome {
         report,
@@ -165,6 +162,7 @@ impl Invocation<'_> {
     /// entry's results (none for a shard) and the runs a shard played.
     fn entries(&self) -> Result<(Vec<EntryResults>, usize), Error> {
         let (study, expert) = (self.study, self.expert());
+        let record = study.record();
         let mut entries = Vec::with_capacity(study.entries.len());
         let mut runs_played = 0;
         for (i, entry) in study.entries.iter().enumerate() {
@@ -184,11 +182,12 @@ impl Invocation<'_> {
                 }
                 None => {
                     let report = run_experiment(&experiment, &output, &self.run_options(None))?;
-                    entries.push(EntryResults {
-                        entry: entry.clone(),
-                        results: report.results,
-                        summary: report.summary,
-                    });
+                    entries.push(EntryResults::new(
+                        record.entries[i].clone(),
+                        serde_json::to_value(experiment.record()).expect("a record serialises"),
+                        report.results,
+                        study.ci_level(),
+                    ));
                 }
             }
         }
@@ -198,7 +197,7 @@ impl Invocation<'_> {
 
 /// Refuses a directory holding another study; records this one in it.
 fn claim_directory(out: &Path, study: &StudyConfig) -> Result<(), Error> {
-    let ours = serde_json::to_value(study).expect("a study serialises");
+    let ours = study.json();
     store::check_claim(out, STUDY_FILE, &ours)?;
     store::claim(out, STUDY_FILE, &ours)
 }

@@ -6,8 +6,9 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::stats::analysis::{EntryResults, point_tests};
+use crate::stats::analysis::point_tests;
 use crate::stats::wilcoxon::{Interval, better_intervals};
+use crate::study::EntryResults;
 
 /// Where one method is significantly better or worse than the baseline,
 /// on Holm-adjusted p-values.

@@ -1,12 +1,10 @@
-//! The experiment's summary: at every evaluation point, the mean and
-//! confidence interval over runs of each metric.
+//! An experiment's summary (its `summary.json` but the configuration): at
+//! every evaluation point, the mean and confidence interval over runs of
+//! each metric; the communication and the cost of the runs.
 
 use serde::Serialize;
 
-use crate::backend::AgentStats;
-use crate::config::ExperimentConfig;
-use crate::experiment::Record;
-use crate::schedule::{EvalPoint, RunResult, Timing};
+use crate::results::{AgentStats, EvalPoint, RunResult, Timing};
 use crate::stats::{Estimate, estimate};
 
 /// One evaluation point over all runs.
@@ -25,36 +23,6 @@ pub struct SummaryPoint {
     pub advising_messages: Estimate,
     /// Their bytes per training episode.
     pub advising_bytes: Estimate,
-}
-
-/// What `summary.json` holds. It depends only on the configuration, the
-/// loaded snapshots and the seed, never on threads or timing, except for the
-/// measured times in `cost` (`wall_s`, `frames_per_sec`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Summary {
-    /// Version of the output formats.
-    pub format: u32,
-    /// The experiment seed.
-    pub seed: u64,
-    /// Runs summarised.
-    pub runs: u64,
-    /// Confidence level of the intervals.
-    pub ci_level: f64,
-    /// The configuration.
-    pub config: ExperimentConfig,
-    /// Per agent, the digest of the snapshot it starts from (hex), or null.
-    pub snapshot_digests: Vec<Option<String>>,
-    /// Every evaluation point, in order.
-    pub eval_points: Vec<SummaryPoint>,
-    /// Who advised whom, per run (each as `RunResult::advice_matrix`, zeros
-    /// where no advice was acted on); absent when no run acted on advice.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub advice_matrix: Vec<Vec<Vec<u64>>>,
-    /// Communication costs, for runs whose agents are processes.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub comm: Option<CommSummary>,
-    /// What the runs cost in frames and time.
-    pub cost: Cost,
 }
 
 /// What an experiment's runs cost, summed over runs.
@@ -192,13 +160,13 @@ impl CommSummary {
     }
 }
 
-/// Summarises `results`, which must be every run of the experiment
-/// recorded in `record`, sorted by run index. Over a transport that
-/// communicates, the summary also holds the communication costs.
-pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
-    debug_assert!(results.windows(2).all(|w| w[0].run < w[1].run));
-    let config = record.config;
-    let level = config.ci_level;
+/// The mean and interval over `results` of each metric at every
+/// evaluation point (those of the run with the most), at level `level`.
+pub fn summary_points(results: &[RunResult], level: f64) -> Vec<SummaryPoint> {
+    let episodes: Vec<u64> = (results.iter())
+        .max_by_key(|r| r.points.len())
+        .map(|r| r.points.iter().map(|p| p.episode).collect())
+        .unwrap_or_default();
     let column = |p: usize, f: &dyn Fn(&EvalPoint) -> Option<f64>| {
         results
             .iter()
@@ -217,10 +185,7 @@ pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
             })
             .collect::<Vec<f64>>()
     };
-    let eval_points = config
-        .eval_points()
-        .into_iter()
-        .enumerate()
+    (episodes.into_iter().enumerate())
         .map(|(p, episode)| SummaryPoint {
             episode,
             goal_pct: estimate(&column(p, &|e| Some(e.goal_pct)), level),
@@ -229,27 +194,12 @@ pub fn summarize(record: &Record<'_>, results: &[RunResult]) -> Summary {
             advising_messages: estimate(&rates(p, |a| a.advising_messages), level),
             advising_bytes: estimate(&rates(p, |a| a.advising_bytes), level),
         })
-        .collect();
-    Summary {
-        format: record.format,
-        seed: config.seed,
-        runs: results.len() as u64,
-        ci_level: level,
-        config: config.clone(),
-        snapshot_digests: record.snapshot_digests.clone(),
-        eval_points,
-        advice_matrix: advice_matrices(results, config.team.len()),
-        comm: config
-            .transport
-            .communicates()
-            .then(|| CommSummary::of(results, config.team.len())),
-        cost: Cost::of(results),
-    }
+        .collect()
 }
 
 /// Every run's advice matrix (n x n zeros for a run without advice), or
 /// none when no run acted on advice.
-fn advice_matrices(results: &[RunResult], n: usize) -> Vec<Vec<Vec<u64>>> {
+pub fn advice_matrices(results: &[RunResult], n: usize) -> Vec<Vec<Vec<u64>>> {
     if results.iter().all(|r| r.advice_matrix.is_empty()) {
         return Vec::new();
     }

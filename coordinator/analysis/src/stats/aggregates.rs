@@ -8,10 +8,10 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::schedule::RunResult;
-use crate::stats::analysis::EntryResults;
+use crate::results::RunResult;
 use crate::stats::bootstrap::{Aggregate, Improvement, RESAMPLES, SEED, aggregate, improvement};
 use crate::stats::gains::{area, last_ten};
+use crate::study::EntryResults;
 
 /// One score's statistics over a method's runs.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

@@ -3,34 +3,9 @@
 
 use serde::Serialize;
 
-use crate::schedule::{EvalPoint, RunResult};
-use crate::stats::summary::Summary;
+use crate::results::RunResult;
 use crate::stats::wilcoxon::{Interval, better_intervals, signed_rank};
-use crate::stats::{Estimate, estimate};
-use crate::study::{StudyConfig, StudyEntry};
-
-/// One experiment's results.
-#[derive(Clone, Debug)]
-pub struct EntryResults {
-    /// The experiment.
-    pub entry: StudyEntry,
-    /// Every run, sorted by run.
-    pub results: Vec<RunResult>,
-    /// Their summary.
-    pub summary: Summary,
-}
-
-impl EntryResults {
-    /// The metric over runs at the last evaluation point.
-    pub fn last(&self, level: f64, metric: fn(&EvalPoint) -> Option<f64>) -> Estimate {
-        let samples: Vec<f64> = self
-            .results
-            .iter()
-            .filter_map(|r| r.points.last().and_then(metric))
-            .collect();
-        estimate(&samples, level)
-    }
-}
+use crate::study::{EntryResults, Study};
 
 /// Where one experiment is significantly better than another.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -85,7 +60,7 @@ pub fn compare(a: &EntryResults, b: &EntryResults, alpha: f64) -> Comparison {
 }
 
 /// Every pair of the study's experiments, in entry order.
-pub fn compare_all(study: &StudyConfig, entries: &[EntryResults]) -> Vec<Comparison> {
+pub fn compare_all(study: &Study, entries: &[EntryResults]) -> Vec<Comparison> {
     let alpha = 1.0 - study.ci_level();
     let mut out = Vec::new();
     for (i, a) in entries.iter().enumerate() {

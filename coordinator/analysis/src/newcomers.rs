@@ -3,8 +3,8 @@
 //! after it and at its lowest since, and the training episodes until the
 //! team is back at its level before the join.
 
-use crate::stats::analysis::EntryResults;
 use crate::stats::gains::LAST_POINTS;
+use crate::study::EntryResults;
 
 /// One join, over the runs of its entry.
 #[derive(Clone, Debug, PartialEq)]

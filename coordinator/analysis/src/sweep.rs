@@ -6,9 +6,9 @@
 use agent::NetworkConditions;
 
 use crate::figures::{Condition, ConditionPoint, ConditionSet, Figure, FigureError, draw_sweep};
-use crate::schedule::EvalPoint;
+use crate::results::EvalPoint;
 use crate::stats::Estimate;
-use crate::stats::analysis::EntryResults;
+use crate::study::EntryResults;
 
 /// The training episodes at which the goal percentage is read.
 pub const EPISODES: [u64; 3] = [1000, 2000, 5000];
@@ -34,7 +34,7 @@ pub fn conditions(e: &EntryResults) -> Option<&NetworkConditions> {
 
 /// The entry's goal percentage at `episode` (unknown if never evaluated there).
 pub fn goal_at(e: &EntryResults, episode: u64) -> Estimate {
-    (e.summary.eval_points.iter())
+    (e.points.iter())
         .find(|p| p.episode == episode)
         .map_or_else(Estimate::default, |p| p.goal_pct)
 }
@@ -102,7 +102,7 @@ fn condition_sets(entries: &[EntryResults], condition: Condition, level: f64) ->
             Some(_) => {}
             None => sets.push(ConditionSet {
                 label: label.to_owned(),
-                runs: e.summary.runs,
+                runs: e.runs(),
                 ci_level: level,
                 points: vec![point],
             }),
@@ -118,11 +118,12 @@ fn condition_sets(entries: &[EntryResults], condition: Condition, level: f64) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::StudyConfig;
+    use crate::study::Study;
 
     #[test]
     fn the_presets_entries_lie_on_both_axes() {
-        let study = StudyConfig::preset("advice-network").unwrap();
+        let preset = include_str!("../../presets/advice-network.toml");
+        let study: Study = toml::from_str(preset).unwrap();
         for algorithm in ["adhoc-td", "adhoc-visit"].map(|a| a.parse::<agent::Algorithm>().unwrap())
         {
             let xs = |condition| -> Vec<f64> {

@@ -16,8 +16,8 @@
 //! bounds leave gaps in the bands.
 //!
 //! ```
-//! use coordinator::Estimate;
-//! use coordinator::figures::{Point, SeriesSet, draw_figures};
+//! use analysis::Estimate;
+//! use analysis::figures::{Point, SeriesSet, draw_figures};
 //!
 //! let goal = |mean| Estimate { n: 1, mean: Some(mean), ci_low: None, ci_high: None };
 //! let point = |episode, pct| Point {
@@ -34,7 +34,7 @@
 //!         println!("{file}: {} bytes", bytes.len());
 //!     }
 //! }
-//! # Ok::<(), coordinator::figures::FigureError>(())
+//! # Ok::<(), analysis::figures::FigureError>(())
 //! ```
 
 mod catalogue;

@@ -5,9 +5,9 @@
 
 use serde::Serialize;
 
-use crate::schedule::RunResult;
-use crate::stats::analysis::EntryResults;
+use crate::results::RunResult;
 use crate::stats::{Estimate, estimate};
+use crate::study::EntryResults;
 
 /// How many of the last evaluation points the "last ten" mean averages.
 pub const LAST_POINTS: usize = 10;
@@ -104,7 +104,7 @@ pub fn gains(entries: &[EntryResults], baseline: &str, level: f64) -> Vec<Gain> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::fixtures::run_with_goals;
+    use crate::fixtures::run_with_goals;
 
     /// Run `run` with goal percentages `goals` every 20 episodes.
     fn run(run: u64, goals: &[f64]) -> RunResult {

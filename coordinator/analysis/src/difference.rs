@@ -3,7 +3,7 @@
 //! against the baseline: the input of the difference figure.
 
 use crate::figures::{DifferencePoint, DifferenceSet};
-use crate::schedule::RunResult;
+use crate::results::RunResult;
 use crate::stats::analysis::point_tests;
 use crate::stats::estimate;
 use crate::stats::wilcoxon::better_side;
@@ -66,7 +66,7 @@ fn differences(runs: &[RunResult], base: &[RunResult], level: f64) -> Vec<Differ
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::fixtures::run_with_goals;
+    use crate::fixtures::run_with_goals;
 
     /// Run `run` with goal percentages `goals` every 50 episodes.
     fn run(run: u64, goals: &[f64]) -> RunResult {

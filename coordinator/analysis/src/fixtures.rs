@@ -1,6 +1,6 @@
 //! Test inputs shared by the study's and the statistics' modules.
 
-use crate::schedule::{EvalPoint, RunResult};
+use crate::results::{EvalPoint, RunResult};
 
 /// Run `run` with goal percentages `goals` at episodes 0, `every`, 2 `every`, ...
 pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {

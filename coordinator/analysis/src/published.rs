@@ -5,8 +5,9 @@
 
 use std::path::Path;
 
-use crate::error::{ConfigError, Error};
-use crate::schedule::{EvalPoint, RunResult};
+use crate::error::Error;
+use crate::files;
+use crate::results::{EvalPoint, RunResult};
 use crate::stats::gains::{Gain, area, last_ten};
 use crate::stats::{difference_of_means, estimate};
 
@@ -14,10 +15,8 @@ use crate::stats::{difference_of_means, estimate};
 /// file (the team's outcomes; the other agents' files repeat them), with
 /// its evaluation points (`trial,goal_percentage,...` rows), sorted by run.
 pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::io("read", dir, e))?;
     let mut runs = Vec::new();
-    for entry in entries {
-        let path = entry.map_err(|e| Error::io("read", dir, e))?.path();
+    for (path, text) in files::read_matching(dir, |name| name.ends_with("_AGENT_1_RESULTS_eval"))? {
         let name = path
             .file_name()
             .and_then(|n| n.to_str())
@@ -28,10 +27,7 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
         else {
             continue;
         };
-        let text = std::fs::read_to_string(&path).map_err(|e| Error::io("read", &path, e))?;
-        let points = parse_points(&text).map_err(|problem| {
-            ConfigError::new("results", format!("{}: {problem}", path.display()))
-        })?;
+        let points = parse_points(&text).map_err(|problem| Error::invalid(&path, problem))?;
         runs.push(RunResult {
             joins: Vec::new(),
             played_with: None,
@@ -45,8 +41,7 @@ pub fn read_runs(dir: &Path) -> Result<Vec<RunResult>, Error> {
         });
     }
     if runs.is_empty() {
-        let found = format!("no _0_<run>_AGENT_1_RESULTS_eval file in {}", dir.display());
-        return Err(ConfigError::new("results", found).into());
+        return Err(Error::invalid(dir, "no _0_<run>_AGENT_1_RESULTS_eval file"));
     }
     runs.sort_by_key(|r| r.run);
     Ok(runs)

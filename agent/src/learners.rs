@@ -1,0 +1,26 @@
+//! The learner an agent's settings name, made.
+
+use crate::config::AgentConfig;
+use crate::ensemble::EnsembleSarsa;
+use crate::learner::Learner;
+use crate::learner_settings::LearnerSettings;
+use crate::sarsa::TabularSarsa;
+
+/// Mixed into an agent's seed for its ensemble's masks.
+const ENSEMBLE_STREAM: u64 = 0x5243_4d50_6865_6164;
+
+/// The learner of an agent of `config` seeded with `seed`.
+pub(crate) fn learner_of(config: &AgentConfig, seed: u64) -> Box<dyn Learner> {
+    match config.learner {
+        LearnerSettings::Sarsa => Box::new(TabularSarsa::new(config)),
+        LearnerSettings::Ensemble {
+            heads,
+            mask_probability,
+        } => Box::new(EnsembleSarsa::new(
+            config,
+            heads as usize,
+            mask_probability,
+            seed ^ ENSEMBLE_STREAM,
+        )),
+    }
+}

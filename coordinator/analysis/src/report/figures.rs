@@ -1,0 +1,106 @@
+//! The study's figures, drawn and linked.
+
+use std::path::Path;
+
+use super::markdown::{Markdown, mean_at_end, per_agent};
+use crate::difference::difference_sets;
+use crate::error::Error;
+use crate::figures::{
+    DIFFERENCE, Figure, Point, SeriesSet, TradeoffPoint, draw_difference, draw_figures,
+    draw_tradeoff,
+};
+use crate::files;
+use crate::results::EvalPoint;
+use crate::stats::gains::{Gain, LAST_POINTS};
+use crate::study::{EntryResults, Study};
+use crate::sweep::sweep_figures;
+
+/// Draws the figures of every entry into `out/figures`, with a baseline
+/// the difference from it after the goal percentage and, last, each
+/// method's `gains` against the messages it sent.
+pub(super) fn write_figures(
+    out: &Path,
+    study: &Study,
+    entries: &[EntryResults],
+    gains: &[Gain],
+) -> Result<Vec<Figure>, Error> {
+    let sets: Vec<SeriesSet> = entries
+        .iter()
+        .map(|e| series_set(e, study.ci_level()))
+        .collect();
+    let mut figures = draw_figures(&sets)?;
+    let runs: Vec<_> = (entries.iter())
+        .map(|e| (e.entry.name.as_str(), &e.results[..]))
+        .collect();
+    let differences = difference_sets(&runs, study.baseline.as_deref(), study.ci_level());
+    if let (Some(baseline), false) = (&study.baseline, differences.is_empty()) {
+        figures.insert(1, draw_difference(baseline, &differences)?);
+    }
+    let baseline = study.baseline.as_deref();
+    figures.extend(sweep_figures(entries, baseline, study.ci_level())?);
+    if let (Some(baseline), false) = (baseline, gains.is_empty()) {
+        let runs = entries
+            .iter()
+            .map(|e| e.results.len() as u64)
+            .max()
+            .unwrap_or(0);
+        let points = tradeoff_points(entries, gains);
+        let level = (runs, study.ci_level());
+        figures.push(draw_tradeoff(baseline, LAST_POINTS, level, &points)?);
+    }
+    let dir = out.join("figures");
+    files::create_dir(&dir)?;
+    for figure in &figures {
+        for (file, bytes) in figure.files() {
+            files::write(&dir.join(file), bytes)?;
+        }
+    }
+    Ok(figures)
+}
+
+/// Every figure, as an image; the difference from the baseline with what
+/// it shows.
+pub(super) fn figure_links(md: &mut Markdown, study: &Study, figures: &[Figure]) {
+    md.heading(2, "Figures");
+    for f in figures {
+        if let (DIFFERENCE, Some(baseline)) = (f.name, &study.baseline) {
+            md.paragraph(&format!(
+                "Each method's goal percentage minus `{baseline}`'s, paired by run (mean and interval over runs); \
+                 triangles mark where the signed-rank test against `{baseline}` above finds it better (up) or worse (down)."
+            ));
+        }
+        md.paragraph(&format!("![{name}.svg](figures/{name}.svg)", name = f.name));
+    }
+}
+
+/// Each method's dot of the gain-against-messages figure.
+pub(super) fn tradeoff_points(entries: &[EntryResults], gains: &[Gain]) -> Vec<TradeoffPoint> {
+    (entries.iter())
+        .filter_map(|e| {
+            let gain = gains.iter().find(|g| g.entry == e.entry.name)?;
+            let messages = |p: &EvalPoint| per_agent(p, |a| a.advising_messages, true);
+            Some(TradeoffPoint {
+                label: e.entry.name.clone(),
+                messages: mean_at_end(e, &messages)?,
+                gain: gain.last_ten_gain,
+            })
+        })
+        .collect()
+}
+
+/// The figures' input: an experiment's summary, from memory.
+pub(super) fn series_set(e: &EntryResults, level: f64) -> SeriesSet {
+    let points = e
+        .points
+        .iter()
+        .map(|p| Point {
+            episode: p.episode,
+            goal_pct: p.goal_pct,
+            time_to_goal: p.time_to_goal,
+            spent_budget: p.spent_budget,
+            advising_messages: p.advising_messages,
+            advising_bytes: p.advising_bytes,
+        })
+        .collect();
+    SeriesSet::new(&e.entry.name, e.runs(), level, points)
+}

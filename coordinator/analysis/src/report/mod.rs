@@ -1,0 +1,95 @@
+//! A study's `REPORT.md`, `significance.json` and figures, from its
+//! entries' runs: one module per section of the report.
+
+mod costs;
+mod figures;
+mod introduction;
+mod markdown;
+mod network;
+mod performance;
+mod significance;
+mod teams;
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::error::Error;
+use crate::files;
+use crate::stats::aggregates::{Aggregates, aggregates};
+use crate::stats::analysis::{Comparison, compare_all};
+use crate::stats::gains::{Gain, gains};
+use crate::stats::holm::{HolmComparison, holm_against};
+use crate::study::{EntryResults, Study};
+use costs::{communication, cost, restarts};
+use figures::{figure_links, write_figures};
+use introduction::{introduction, settings};
+use markdown::Markdown;
+use network::network_conditions;
+pub use performance::gains_table;
+use performance::{aggregate_table, at_a_glance, final_performance, gains_over};
+use significance::{holm_table, significance_against, significance_between_advising};
+use teams::{newcomers, who_advised_whom};
+
+/// What `significance.json` holds.
+#[derive(Serialize)]
+struct Significance<'a> {
+    /// Every pair of entries, point by point.
+    comparisons: &'a [Comparison],
+    /// Every entry's gain over the baseline (none without one).
+    gains: &'a [Gain],
+    /// Every entry's mean, IQM and probability of improvement over the
+    /// baseline, with bootstrap intervals.
+    aggregate: &'a Aggregates,
+    /// Every entry's tests against the baseline, Holm-corrected across
+    /// entries (none without a baseline).
+    holm: &'a [HolmComparison],
+}
+
+/// Writes `significance.json`, the figures and `REPORT.md` into `out`.
+pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Result<PathBuf, Error> {
+    let comparisons = &compare_all(study, entries);
+    let level = study.ci_level();
+    let gains = (study.baseline.as_deref()).map_or_else(Vec::new, |b| gains(entries, b, level));
+    let aggregate = aggregates(entries, study.baseline.as_deref(), level);
+    let holm = (study.baseline.as_deref())
+        .map_or_else(Vec::new, |b| holm_against(entries, b, 1.0 - level));
+    let significance = Significance {
+        comparisons,
+        gains: &gains,
+        aggregate: &aggregate,
+        holm: &holm,
+    };
+    files::write_json(&out.join("significance.json"), &significance)?;
+    let figures = write_figures(out, study, entries, &gains)?;
+    let mut md = Markdown::default();
+    introduction(&mut md, study, entries);
+    if let Some(baseline) = &study.baseline {
+        at_a_glance(&mut md, baseline, entries, &gains, &aggregate);
+    }
+    final_performance(&mut md, study, entries);
+    if let Some(baseline) = &study.baseline {
+        gains_over(&mut md, baseline, &gains);
+        aggregate_table(&mut md, baseline, &aggregate);
+        significance_against(&mut md, baseline, comparisons);
+        holm_table(&mut md, baseline, &holm);
+    }
+    newcomers(&mut md, entries);
+    who_advised_whom(&mut md, entries);
+    significance_between_advising(&mut md, study, entries, comparisons);
+    network_conditions(&mut md, study, entries);
+    md.paragraph("Every pair, with the same intervals: `significance.json`.");
+    figure_links(&mut md, study, &figures);
+    if study.communicates() {
+        communication(&mut md, entries);
+    }
+    cost(&mut md, entries);
+    restarts(&mut md, entries);
+    settings(&mut md, entries);
+    md.paragraph(
+        "Data: `<algorithm>/summary.json` (every point, mean and interval), `<algorithm>/run-<k>.csv` (every run).",
+    );
+    let path = out.join("REPORT.md");
+    files::write(&path, md.finish().as_bytes())?;
+    Ok(path)
+}

@@ -1,0 +1,169 @@
+//! What each method achieved: at a glance, at the end, its gains and
+//! their aggregate statistics.
+
+use super::markdown::{Markdown, interval, label, mean_at_end, per_agent};
+use crate::results::{AgentStats, EvalPoint};
+use crate::stats::Estimate;
+use crate::stats::aggregates::{Aggregates, Scores};
+use crate::stats::gains::{Gain, LAST_POINTS};
+use crate::study::{EntryResults, Study};
+
+/// The table a report leads with: each method's gain over the baseline and
+/// what it cost, side by side.
+pub(super) fn at_a_glance(
+    md: &mut Markdown,
+    baseline: &str,
+    entries: &[EntryResults],
+    gains: &[Gain],
+    aggregate: &Aggregates,
+) {
+    md.heading(2, "At a glance");
+    md.paragraph(&format!(
+        "Each method against `{baseline}`: its gain in goal % over the last {LAST_POINTS} \
+         evaluations and over the whole curve (the area under it, divided by the episodes it \
+         spans), paired by run; P(> `{baseline}`) on the last {LAST_POINTS}; the budget spent \
+         and the steps acted on advice per agent at the end; and the advising messages and \
+         bytes each agent sent per training episode. Means over runs."
+    ));
+    let rows = entries.iter().map(|e| {
+        let name = &e.entry.name;
+        let gain = gains.iter().find(|g| &g.entry == name);
+        let show = |x: Option<&Estimate>| x.map_or("-".into(), |x| format!("{x:.1}"));
+        let improvement = (aggregate.entries.iter())
+            .find(|a| &a.entry == name)
+            .and_then(|a| a.last_ten?.p_improvement)
+            .map_or("-".into(), |p| interval(p.estimate, p.ci, 2));
+        let at_end = |f: &dyn Fn(&EvalPoint) -> f64, digits: usize| {
+            mean_at_end(e, f).map_or("-".into(), |mean| format!("{mean:.digits$}"))
+        };
+        let per_agent = |f: fn(&AgentStats) -> u64, per_episode: bool| {
+            at_end(&move |p: &EvalPoint| per_agent(p, f, per_episode), 2)
+        };
+        [
+            label(&e.entry),
+            show(gain.map(|g| &g.last_ten_gain)),
+            show(gain.map(|g| &g.area_gain)),
+            improvement,
+            at_end(&|p: &EvalPoint| p.spent_budget, 0),
+            per_agent(|a| a.ask_spent, false),
+            per_agent(|a| a.advising_messages, true),
+            per_agent(|a| a.advising_bytes, true),
+        ]
+    });
+    md.table(
+        [
+            "algorithm",
+            "gain: last ten",
+            "gain: whole curve",
+            "P(> baseline)",
+            "budget spent",
+            "advice acted on",
+            "messages / agent / episode",
+            "bytes / agent / episode",
+        ],
+        rows,
+    );
+}
+
+/// Goal percentage, time to goal and spent budget at the last point.
+pub(super) fn final_performance(md: &mut Markdown, study: &Study, entries: &[EntryResults]) {
+    let level = study.ci_level();
+    md.heading(
+        2,
+        &format!("Final performance (episode {})", study.episodes),
+    );
+    md.table(
+        [
+            "algorithm",
+            "goal %",
+            "time to goal (frames)",
+            "spent budget (advice given per agent)",
+        ],
+        entries.iter().map(|e| {
+            [
+                label(&e.entry),
+                format!("{:.1}", e.last(level, |p| Some(p.goal_pct))),
+                format!("{:.1}", e.last(level, |p| p.time_to_goal)),
+                format!("{:.1}", e.last(level, |p| Some(p.spent_budget))),
+            ]
+        }),
+    );
+}
+
+/// Every algorithm's gain over `baseline` on the last ten evaluations and
+/// on the area under the curve, paired by run.
+pub(super) fn gains_over(md: &mut Markdown, baseline: &str, gains: &[Gain]) {
+    md.heading(2, &format!("Gains over `{baseline}`"));
+    md.paragraph(&format!(
+        "Goal percentage averaged over the last {LAST_POINTS} evaluations, and over the whole \
+         curve (its area divided by the episodes it spans), each with the algorithm's gain over \
+         `{baseline}`: the mean over runs of the per-run difference, with its interval."
+    ));
+    md.0.push_str(&gains_table(gains));
+}
+
+/// A Markdown table of `gains`: each algorithm's goal % on the last ten
+/// evaluations and on the whole curve, with its gain over the baseline.
+pub fn gains_table(gains: &[Gain]) -> String {
+    let mut md = Markdown::default();
+    md.table(
+        [
+            "algorithm",
+            "last ten: goal %",
+            "gain",
+            "whole curve: goal %",
+            "gain",
+        ],
+        gains.iter().map(|g| {
+            [
+                g.entry.clone(),
+                format!("{:.1}", g.last_ten),
+                format!("{:.1}", g.last_ten_gain),
+                format!("{:.1}", g.area),
+                format!("{:.1}", g.area_gain),
+            ]
+        }),
+    );
+    md.0
+}
+
+/// Every algorithm's mean, IQM and probability of improvement over
+/// `baseline`, on the last ten evaluations and on the whole curve.
+pub(super) fn aggregate_table(md: &mut Markdown, baseline: &str, a: &Aggregates) {
+    md.heading(2, "Aggregate statistics (Agarwal et al. 2021)");
+    md.paragraph(&format!(
+        "The same per-run scores (last {LAST_POINTS} evaluations; whole curve): their mean, their \
+         interquartile mean (IQM), and P(> `{baseline}`), the probability that a run of the \
+         algorithm scores more than a run of `{baseline}` (ties count half). Intervals: {}% \
+         stratified bootstrap percentile intervals over runs ({} resamples, seed {}), as rliable \
+         computes them.",
+        100.0 * a.level,
+        a.resamples,
+        a.seed,
+    ));
+    let cells = |s: &Option<Scores>| match s {
+        Some(s) => [
+            interval(s.aggregate.mean, s.aggregate.mean_ci, 1),
+            interval(s.aggregate.iqm, s.aggregate.iqm_ci, 1),
+            s.p_improvement
+                .map_or("-".into(), |p| interval(p.estimate, p.ci, 2)),
+        ],
+        None => ["-".into(), "-".into(), "-".into()],
+    };
+    md.table(
+        [
+            "algorithm",
+            "last ten: mean",
+            "IQM",
+            "P(> baseline)",
+            "whole curve: mean",
+            "IQM",
+            "P(> baseline)",
+        ],
+        a.entries.iter().map(|e| {
+            let [m, i, p] = cells(&e.last_ten);
+            let [am, ai, ap] = cells(&e.area);
+            [e.entry.clone(), m, i, p, am, ai, ap]
+        }),
+    );
+}
