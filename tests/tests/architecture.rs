@@ -115,7 +115,7 @@ const LAYERS: [(&str, &[&str]); 4] = [
     ("proto", &["env-server", "agent", "coordinator"]),
     ("env-server", &["agent", "coordinator"]),
     ("agent", &["env-server", "coordinator"]),
-    ("agent/python", &[]),
+    ("coordinator/python", &[]),
 ];
 
 #[test]

@@ -13,13 +13,13 @@ def greedy_agent(snapshot: str) -> Any:
     index of its greedy action (:data:`hfo_oracle.schema.ACTIONS`).
 
     The class is ``GreedyAgent`` of ``adhoc_advising``, the Python package
-    that binds our agents (``pip install ./agent/python``).
+    that binds our agents (``pip install ./coordinator/python``).
     """
     try:
         from adhoc_advising import GreedyAgent
     except ImportError as e:
         raise ImportError(
-            "a learned team needs the adhoc_advising package (pip install ./agent/python) "
+            "a learned team needs the adhoc_advising package (pip install ./coordinator/python) "
             "in this interpreter"
         ) from e
     return GreedyAgent(snapshot)
