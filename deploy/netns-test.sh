@@ -28,7 +28,7 @@
 # without replies, actions played as Move) and which processes are still
 # running after the coordinator has finished.
 #
-# With --tls, the deploy profile of deploy/tls/ on top: every process has its
+# With --tls, the TLS setup of deploy/tls/ on top: every process has its
 # own certificate (deploy/tls/make-credentials.sh), links are QUIC (TLS 1.3)
 # with mutual authentication and every process enforces zenoh's access
 # control (QUIC, not zenoh's tls/ link, whose reader and writer race on one
@@ -252,7 +252,7 @@ for exe in env-server agent coordinator; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe missing: cargo build --release --workspace"
 done
 if [ "$zenohd" = 1 ]; then
-    [ "$tls" = 0 ] || fail "--zenohd goes without --tls (the TLS profile configures coordinator router)"
+    [ "$tls" = 0 ] || fail "--zenohd goes without --tls (the TLS setup configures coordinator router)"
     ZENOHD=${ZENOHD:-$(command -v zenohd || true)}
     [ -x "$ZENOHD" ] || fail "zenohd not found: cargo install zenohd --version 1.10.2, or set ZENOHD"
 fi

@@ -242,7 +242,7 @@ struct TeamFile {
 
 /// What a team file describes: the agents by id and the membership events.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Team {
+pub struct TeamSpec {
     /// One agent per slot.
     pub agents: Vec<AgentSpec>,
     /// Newcomers taking slots during training.
@@ -252,7 +252,7 @@ pub struct Team {
 /// Reads a team file (TOML, or JSON when the name ends in `.json`): one
 /// `agent` entry per agent, by id, and its `event`s. Relative `load` paths
 /// are taken from the file's directory.
-pub fn load_team_file(path: &Path) -> Result<Team, ConfigError> {
+pub fn load_team_file(path: &Path) -> Result<TeamSpec, ConfigError> {
     let key = "team";
     let text = std::fs::read_to_string(path)
         .map_err(|e| ConfigError::new(key, format!("cannot read {}: {e}", path.display())))?;
@@ -275,10 +275,10 @@ pub fn load_team_file(path: &Path) -> Result<Team, ConfigError> {
         ConfigError::new(key, format!("{}: {e}", path.display()))
     })?;
     let base = path.parent().unwrap_or(Path::new(""));
-    Team::from_file(file, base, &path.display().to_string())
+    TeamSpec::from_file(file, base, &path.display().to_string())
 }
 
-impl Team {
+impl TeamSpec {
     /// The team of a team file's tables as JSON, `{"agent": [...], "event":
     /// [...]}`; relative paths are taken from `base`, and errors start with
     /// `origin` (what gave the tables).
@@ -286,16 +286,16 @@ impl Team {
         tables: serde_json::Value,
         base: &Path,
         origin: &str,
-    ) -> Result<Team, ConfigError> {
+    ) -> Result<TeamSpec, ConfigError> {
         let file: TeamFile = serde_json::from_value(tables)
             .map_err(|e| ConfigError::new("team", format!("{origin}: {e}")))?;
-        Team::from_file(file, base, origin)
+        TeamSpec::from_file(file, base, origin)
     }
 
-    fn from_file(file: TeamFile, base: &Path, origin: &str) -> Result<Team, ConfigError> {
+    fn from_file(file: TeamFile, base: &Path, origin: &str) -> Result<TeamSpec, ConfigError> {
         let in_file =
             |key: String, reason: String| ConfigError::new(key, format!("{origin}: {reason}"));
-        let mut team = Team::default();
+        let mut team = TeamSpec::default();
         for (i, table) in file.agent.into_iter().enumerate() {
             let mut spec =
                 AgentSpec::try_from(table).map_err(|r| in_file(format!("team[{i}]"), r))?;
@@ -408,7 +408,7 @@ mod tests {
     #[test]
     fn agent_specs_are_flat_tables() {
         let spec: AgentSpec = toml::from_str(
-            "algorithm = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.qtable\"\n",
+            "algorithm = \"ad-hoc-td\"\nask_budget = 0\nepsilon = 0\nload = \"expert.snapshot\"\n",
         )
         .unwrap();
         assert_eq!(spec.config.algorithm.name().name(), "adhoc-td");
@@ -420,7 +420,7 @@ mod tests {
             })
         );
         assert_eq!(spec.config.epsilon, 0.0);
-        assert_eq!(spec.load, Some(PathBuf::from("expert.qtable")));
+        assert_eq!(spec.load, Some(PathBuf::from("expert.snapshot")));
         assert!(!spec.keep_counters);
         // Round trip through JSON, as config.json stores it.
         let json = serde_json::to_string(&spec).unwrap();
@@ -454,7 +454,7 @@ mod tests {
     fn experiment_config_round_trips_through_json() {
         let mut c = ExperimentConfig::default();
         c.team[2] = AgentSpec {
-            load: Some("a/b.qtable".into()),
+            load: Some("a/b.snapshot".into()),
             keep_counters: true,
             ..AgentSpec::of("torrey".parse().unwrap(), Profile::Paper)
         };
@@ -469,7 +469,7 @@ mod tests {
         std::fs::write(
             &toml_path,
             "[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n\
-             [[agent]]\nalgorithm = \"adhoc-td\"\nask_budget = 0\nload = \"expert.qtable\"\n",
+             [[agent]]\nalgorithm = \"adhoc-td\"\nask_budget = 0\nload = \"expert.snapshot\"\n",
         )
         .unwrap();
         let team = load_team_file(&toml_path).unwrap().agents;
@@ -480,18 +480,18 @@ mod tests {
             ..AdHoc::td()
         };
         assert_eq!(team[2].config.algorithm.get::<AdHoc>(), Some(&expert));
-        assert_eq!(team[2].load, Some(dir.path().join("expert.qtable")));
+        assert_eq!(team[2].load, Some(dir.path().join("expert.snapshot")));
 
         let json_path = dir.path().join("team.json");
         std::fs::write(
             &json_path,
-            r#"{"agent": [{"strategy": "torrey"}, {"load": "/abs.qtable"}]}"#,
+            r#"{"agent": [{"strategy": "torrey"}, {"load": "/abs.snapshot"}]}"#,
         )
         .unwrap();
         let team = load_team_file(&json_path).unwrap().agents;
         assert_eq!(team[0].config.algorithm.name().name(), "torrey");
         assert_eq!(team[1].config.algorithm.name().name(), "no-advice");
-        assert_eq!(team[1].load, Some(PathBuf::from("/abs.qtable")));
+        assert_eq!(team[1].load, Some(PathBuf::from("/abs.snapshot")));
 
         std::fs::write(&toml_path, "[[agent]]\nalgorithm = \"best\"\n").unwrap();
         let e = load_team_file(&toml_path).unwrap_err();
@@ -546,7 +546,7 @@ mod tests {
         let zenoh = || Transport::Zenoh(Default::default());
         config(zenoh(), None).validate().unwrap();
         // A learner with snapshot hooks loads its own state.
-        config(zenoh(), Some("a.qtable")).validate().unwrap();
+        config(zenoh(), Some("a.snapshot")).validate().unwrap();
         let bad = config(Transport::InProcess, None);
         assert_eq!(bad.validate().unwrap_err().key, "team[2].learner");
         for (text, says) in [

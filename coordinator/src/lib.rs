@@ -70,7 +70,7 @@ pub mod transport;
 
 pub use analysis::{Estimate, EvalPoint, RunResult, Timing};
 pub use backend::{Backend, EpisodeEnd};
-pub use config::{AgentSpec, ExperimentConfig, Team, load_team_file};
+pub use config::{AgentSpec, ExperimentConfig, TeamSpec, load_team_file};
 pub use error::{ConfigError, Error};
 pub use experiment::{Experiment, RunSeeds};
 pub use in_process::InProcess;

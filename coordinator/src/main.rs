@@ -248,7 +248,7 @@ struct RunArgs {
     /// Output directory: config.json, run-<k>.csv, summary.json.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-    /// Also save every agent at the end of each run, as run-<k>-agent-<i>.qtable.
+    /// Also save every agent at the end of each run, as run-<k>-agent-<i>.snapshot.
     #[arg(long, value_name = "DIR")]
     save_agents: Option<PathBuf>,
     /// No progress bar.

@@ -5,7 +5,7 @@
 use agent::{Algorithm, Latency, NetworkConditions, Profile};
 use env_server::EvaluationMemory;
 
-use crate::config::{AgentSpec, ExperimentConfig, Team};
+use crate::config::{AgentSpec, ExperimentConfig, TeamSpec};
 use crate::error::ConfigError;
 use crate::transport::Transport;
 
@@ -20,7 +20,7 @@ pub enum Agents {
         mistake_correcting: bool,
     },
     /// A team file's agents and events.
-    Team(Team),
+    Team(TeamSpec),
 }
 
 /// One experiment as `coordinator run`'s arguments describe it.
@@ -103,7 +103,7 @@ impl RunRequest {
     /// The experiment's configuration (validated later, by
     /// [`crate::Experiment::prepare`]).
     pub fn config(self) -> Result<ExperimentConfig, ConfigError> {
-        let Team {
+        let TeamSpec {
             agents: mut team,
             events,
         } = match self.agents {
@@ -118,7 +118,7 @@ impl RunRequest {
                         .set("mistake_correcting", true)
                         .map_err(|e| ConfigError::new(e.key, e.reason))?;
                 }
-                Team {
+                TeamSpec {
                     agents: vec![spec; self.offense.unwrap_or(3)],
                     events: Vec::new(),
                 }

@@ -27,7 +27,7 @@ pub struct RunOptions {
     /// Worker threads (at least 1; more than the runs is pointless).
     pub threads: usize,
     /// Save every agent's snapshot at the end of each run into this
-    /// directory, as `run-<k>-agent-<i>.qtable`.
+    /// directory, as `run-<k>-agent-<i>.snapshot`.
     pub save_agents: Option<PathBuf>,
     /// Show a progress bar on stderr.
     pub progress: bool,

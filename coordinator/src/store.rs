@@ -37,7 +37,7 @@ pub fn run_result_name(run: u64) -> String {
 
 /// The snapshot file of agent `agent` at the end of run `run`.
 pub fn agent_file_name(run: u64, agent: usize) -> String {
-    format!("run-{run}-agent-{agent}.qtable")
+    format!("run-{run}-agent-{agent}.snapshot")
 }
 
 /// Writes `bytes` to `path` atomically and durably (see

@@ -228,7 +228,7 @@ fn a_saved_team_replays_as_a_game_log_that_reads_back() {
     let tables: Vec<String> = (0..3)
         .map(|i| {
             format!(
-                "[[agent]]\nalgorithm = \"adhoc-td\"\nload = \"agents/run-0-agent-{i}.qtable\"\n"
+                "[[agent]]\nalgorithm = \"adhoc-td\"\nload = \"agents/run-0-agent-{i}.snapshot\"\n"
             )
         })
         .collect();
@@ -325,7 +325,7 @@ fn saved_agents_start_a_mixed_team() {
         for agent in 0..3 {
             assert!(
                 agents
-                    .join(format!("run-{run}-agent-{agent}.qtable"))
+                    .join(format!("run-{run}-agent-{agent}.snapshot"))
                     .is_file()
             );
         }
@@ -336,7 +336,7 @@ fn saved_agents_start_a_mixed_team() {
     fs::write(
         &team,
         "[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n[[agent]]\nalgorithm = \"ad-hoc-td\"\n\n\
-         [[agent]]\nalgorithm = \"ad-hoc-td\"\nask_budget = 0\nload = \"agents/run-0-agent-2.qtable\"\n",
+         [[agent]]\nalgorithm = \"ad-hoc-td\"\nask_budget = 0\nload = \"agents/run-0-agent-2.snapshot\"\n",
     )
     .unwrap();
     let out = tmp.path().join("expert");
@@ -391,7 +391,7 @@ fn bad_input_is_refused_with_exit_code_2() {
 
     // A missing and a corrupt agent file.
     let team = tmp.path().join("team.toml");
-    let missing = tmp.path().join("missing.qtable");
+    let missing = tmp.path().join("missing.snapshot");
     fs::write(
         &team,
         format!(
@@ -410,7 +410,7 @@ fn bad_input_is_refused_with_exit_code_2() {
         args.extend(["--transport", "in-process", "--quiet", "--out", o].map(String::from));
         args
     };
-    refused(&coordinator(&team_args(&team)), "missing.qtable");
+    refused(&coordinator(&team_args(&team)), "missing.snapshot");
     fs::write(&missing, b"ADVQTAB\0 not really a snapshot").unwrap();
     refused(&coordinator(&team_args(&team)), "agent 2");
     fs::write(&missing, b"garbage").unwrap();

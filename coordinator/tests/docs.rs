@@ -7,7 +7,7 @@
 //! (`` `name` ``), or as one component of a dotted path in inline code
 //! (`` `cost.wall_s` `` names `cost` and `wall_s`). Names that are data
 //! become patterns first: the digits of `run-3.csv`, `give_spent_2` and
-//! `run-3-agent-2.qtable` become `<k>` (a run) and `<i>` (an agent), an
+//! `run-3-agent-2.snapshot` become `<k>` (a run) and `<i>` (an agent), an
 //! entry's directory `<entry>/`. The keys come from what the binaries write
 //! and from the code's own types, never from a list kept here.
 
@@ -100,7 +100,7 @@ fn section(markdown: &str, title: &str) -> Option<String> {
 
 /// `name` with its data made a pattern: a whole number that is a
 /// `-`/`_`/`.`-separated part becomes `<k>` after `run-`, `<i>` elsewhere
-/// (`give_spent_2`, `run-3-agent-2.qtable`); `p99` stays.
+/// (`give_spent_2`, `run-3-agent-2.snapshot`); `p99` stays.
 fn pattern(name: &str) -> String {
     let mut out = String::new();
     let mut rest = name;
@@ -283,7 +283,7 @@ fn zenoh_record_and_summary() -> (Value, Value) {
         c
     };
     config.team[0].config = ad_hoc(Reachable::Agents(vec![1, 2]));
-    config.team[0].load = Some("expert.qtable".into());
+    config.team[0].load = Some("expert.snapshot".into());
     config.team[0].keep_counters = true;
     config.team[1].config = ad_hoc(Reachable::WithinDistance(20.0));
     config.team[2].learner = Some(ChildSpec {
@@ -517,7 +517,7 @@ fn team_file_keys() -> BTreeMap<String, String> {
     for config in configs {
         let spec = AgentSpec {
             config,
-            load: Some("expert.qtable".into()),
+            load: Some("expert.snapshot".into()),
             keep_counters: true,
             learner: Some(child.clone()),
             strategy_process: Some(child.clone()),
@@ -591,7 +591,7 @@ fn every_setting_is_in_settings_md() {
     let mut env = BTreeMap::new();
     let env_config = env_server::EnvConfig::default();
     keys_of(&serde_json::to_value(env_config).unwrap(), "", &mut env);
-    in_section("Simulator settings", "simulator setting", env);
+    in_section("Env settings", "env setting", env);
     let mut values = BTreeMap::new();
     for algorithm in Algorithm::all() {
         values.insert(algorithm.name().to_owned(), "algorithm".to_owned());
@@ -615,7 +615,10 @@ fn every_setting_is_in_settings_md() {
 #[test]
 fn patterns_and_sections_read_as_meant() {
     assert_eq!(pattern("give_spent_12"), "give_spent_<i>");
-    assert_eq!(pattern("run-3-agent-2.qtable"), "run-<k>-agent-<i>.qtable");
+    assert_eq!(
+        pattern("run-3-agent-2.snapshot"),
+        "run-<k>-agent-<i>.snapshot"
+    );
     assert_eq!(pattern("run-10.csv"), "run-<k>.csv");
     assert_eq!(pattern("p99"), "p99");
     assert_eq!(pattern("7"), "<i>");

@@ -1,8 +1,8 @@
 //! Simulator speed: frames (agent decisions) per second under the paper's random policy.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use env_server::tools::baseline::policy_rng;
-use env_server::{BaselinePolicy, Env, EnvConfig};
+use env_server::tools::scripted::policy_rng;
+use env_server::{Env, EnvConfig, ScriptedPolicy};
 use proto::Action;
 use std::hint::black_box;
 
@@ -12,7 +12,7 @@ const FRAMES: u64 = 10_000;
 fn frames(c: &mut Criterion) {
     let mut group = c.benchmark_group("simulator");
     group.throughput(Throughput::Elements(FRAMES));
-    for policy in [BaselinePolicy::Random, BaselinePolicy::Shoot] {
+    for policy in [ScriptedPolicy::Random, ScriptedPolicy::Shoot] {
         group.bench_function(format!("{policy}-policy-frames"), |b| {
             let mut env = Env::new(EnvConfig::default(), 1).expect("default config");
             let mut rng = policy_rng(1);

@@ -1,5 +1,5 @@
 //! A fingerprint of the simulator's exact trajectories
-//! (`env_server::tools::fingerprint`): one hash per baseline policy and one
+//! (`env_server::tools::fingerprint`): one hash per scripted policy and one
 //! of them all. A speed change must leave it unchanged (docs/speed.md).
 //!
 //! `cargo run --release -p env-server --example fingerprint -- [EPISODES] [SEED]`

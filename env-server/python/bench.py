@@ -58,7 +58,7 @@ def single_fps(episodes: int) -> tuple[float, int]:
     """The PettingZoo environment's frames per second under the rollout's
     policy and seed, and its frames (the rollout's)."""
     env = halffield.parallel_env()
-    policy = halffield.BaselinePolicy("random", 1)
+    policy = halffield.ScriptedPolicy("random", 1)
     frames = 0
     start = time.perf_counter()
     env.reset(seed=1)
@@ -123,7 +123,7 @@ def main() -> None:
     print(f"{os.cpu_count()} cores, rayon's pool of {threads} threads; best of {args.repeat}")
     print(f"{'what':<44} {'frames/s':>10} {'per core':>10} {'vs rollout':>10}")
     row("env-server rollout (Rust, 1 thread)", rust_fps, rust_fps)
-    row("ParallelEnv + BaselinePolicy (1 thread)", single_best, single_best)
+    row("ParallelEnv + ScriptedPolicy (1 thread)", single_best, single_best)
     for n in args.batch:
         row(f"BatchEnv({n}, threads=1), numpy policy", max(per_core[n]), max(per_core[n]))
         best = max(all_cores[n])

@@ -6,7 +6,7 @@
 //! [`Action`](proto::Action) per agent each step and offers a read-only
 //! view of the [`World`], the [`Outcome`], the paper's state and HFO's
 //! [`features`]. The simulation core is private (`src/sim/`); the
-//! [`tools`] built on it (baseline policies, rollouts, pictures) are
+//! [`tools`] built on it (scripted policies, rollouts, pictures) are
 //! public.
 
 #![warn(missing_docs, unreachable_pub)]
@@ -23,6 +23,6 @@ pub use sim::physics::Command;
 pub use sim::referee::Outcome;
 pub use sim::view::Sight;
 pub use sim::world::{Ball, Player, World};
-pub use tools::baseline::BaselinePolicy;
 pub use tools::rollout::{RolloutSummary, rollout};
 pub use tools::run_envs::RunEnvs;
+pub use tools::scripted::ScriptedPolicy;

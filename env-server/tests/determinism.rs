@@ -1,7 +1,7 @@
 //! The same seed and the same actions give the same trajectory, bit for bit.
 
-use env_server::tools::baseline::{play_episode, policy_rng};
-use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
+use env_server::tools::scripted::{play_episode, policy_rng};
+use env_server::{Env, EnvConfig, Outcome, ScriptedPolicy};
 
 /// Outcomes and every agent's full feature stream of a few episodes.
 fn trace(seed: u64) -> (Vec<(Outcome, u32)>, Vec<Vec<f64>>) {
@@ -10,7 +10,7 @@ fn trace(seed: u64) -> (Vec<(Outcome, u32)>, Vec<Vec<f64>>) {
     let mut outcomes = Vec::new();
     let mut features = Vec::new();
     for _ in 0..20 {
-        let result = play_episode(&mut env, BaselinePolicy::Random, &mut rng, |env, _| {
+        let result = play_episode(&mut env, ScriptedPolicy::Random, &mut rng, |env, _| {
             for agent in 0..env.offense() {
                 features.push(env.features(agent));
             }

@@ -3,8 +3,8 @@
 use env_server::Command;
 use env_server::features::{current_unum_feature_indices, unum_feature_indices};
 use env_server::params::*;
-use env_server::tools::baseline::{play_episode, policy_rng};
-use env_server::{BaselinePolicy, Env, EnvConfig, Outcome};
+use env_server::tools::scripted::{play_episode, policy_rng};
+use env_server::{Env, EnvConfig, Outcome, ScriptedPolicy};
 use glam::DVec2;
 use proptest::prelude::*;
 
@@ -31,7 +31,7 @@ proptest! {
         let current_raw: Vec<usize> = current_unum_feature_indices(offense).collect();
         let mut bad = None;
         for _ in 0..3 {
-            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
+            play_episode(&mut env, ScriptedPolicy::ALL[policy], &mut rng, |env, _| {
                 for agent in 0..env.offense() {
                     for (i, f) in env.features(agent).into_iter().enumerate() {
                         if !raw.contains(&i) && !(-1.0..=1.0).contains(&f) {
@@ -60,7 +60,7 @@ proptest! {
         let mut fastest_ball: f64 = 0.0;
         let mut fastest_player: f64 = 0.0;
         for _ in 0..3 {
-            let (outcome, frames) = play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
+            let (outcome, frames) = play_episode(&mut env, ScriptedPolicy::ALL[policy], &mut rng, |env, _| {
                 let w = env.world();
                 fastest_ball = fastest_ball.max(w.ball.vel.length());
                 for p in w.players() {
@@ -83,7 +83,7 @@ proptest! {
         let mut bad = None;
         for _ in 0..5 {
             let mut before: Option<Vec<u32>> = None;
-            play_episode(&mut env, BaselinePolicy::ALL[policy], &mut rng, |env, _| {
+            play_episode(&mut env, ScriptedPolicy::ALL[policy], &mut rng, |env, _| {
                 let now: Vec<u32> = env.world().players().map(|p| p.tackle_freeze).collect();
                 if let Some(before) = &before {
                     for (i, command) in env.last_commands().iter().enumerate() {
@@ -115,7 +115,7 @@ proptest! {
         let mut rng = policy_rng(seed);
         for _ in 0..10 {
             let mut path: Vec<DVec2> = Vec::new();
-            let (outcome, _) = play_episode(&mut env, BaselinePolicy::Random, &mut rng, |env, _| {
+            let (outcome, _) = play_episode(&mut env, ScriptedPolicy::Random, &mut rng, |env, _| {
                 path.push(env.world().ball.pos);
             });
             if outcome == Outcome::Goal {

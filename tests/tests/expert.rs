@@ -56,7 +56,7 @@ fn an_expert_keeps_its_spent_budget_only_with_keep_counters_over_both_transports
         std::fs::write(
             &team,
             format!(
-                "{adhoc}{adhoc}{adhoc}load = \"agents/run-0-agent-2.qtable\"\nkeep_counters = {keep_counters}\n"
+                "{adhoc}{adhoc}{adhoc}load = \"agents/run-0-agent-2.snapshot\"\nkeep_counters = {keep_counters}\n"
             ),
         )
         .unwrap();

@@ -200,7 +200,7 @@ pub struct PlayedWith {
     /// The simulator: `ours` or `real-hfo`.
     pub simulator: Simulator,
     /// Ours: the fingerprint of its trajectories over
-    /// [`RECORDED_EPISODES`] episodes of each baseline policy from seed 1
+    /// [`RECORDED_EPISODES`] episodes of each scripted policy from seed 1
     /// (`cargo run --release -p env-server --example fingerprint --
     /// 10`'s `all`); none for the real HFO.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -10,7 +10,7 @@ Costa, AAMAS 2017), from Python.
 - :func:`run` and :func:`study` (:mod:`adhoc_advising.experiments`):
   experiments and studies in this process, as `coordinator run` and
   `coordinator study`, with Python learners as objects (docs/python.md);
-  :func:`replay`: one evaluation episode of a saved team, animated.
+  :func:`replay`: one evaluation episode of a team of snapshots, animated.
 - :func:`load` (:mod:`adhoc_advising.results`): what `run`/`study` and the
   command line wrote, as pandas DataFrames.
 - :mod:`adhoc_advising.strategy`: an advising strategy written in Python:

@@ -57,8 +57,8 @@ class LearnerAdapter:
         self.learner.restore(state)
 
 
-def _counters(raw: Sequence[int]) -> strategies.Counters:
-    return strategies.Counters(*raw)
+def _counters(raw: Sequence[int]) -> strategies.AdviceCounters:
+    return strategies.AdviceCounters(*raw)
 
 
 def _replies(key: int, advice: Sequence[tuple], shared: Sequence[tuple]) -> strategies.Replies:

@@ -31,14 +31,16 @@ from adhoc_advising import _adhoc_advising
 from adhoc_advising._objects import Made, made
 
 #: A team: a team file's path, the agents' tables (each as a team file's
-#: ``[[agent]]`` table, where ``learner`` and ``strategy`` may be Python
-#: objects), or both ``{"agent": [...], "event": [...]}``.
+#: ``[[agent]]`` table, where ``learner`` may be a Python learner and
+#: ``algorithm`` a Python strategy), or both ``{"agent": [...], "event": [...]}``.
 TeamSpec = Union[str, "os.PathLike[str]", Sequence[Mapping[str, Any]], Mapping[str, Any]]
 
 
 def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]:
     """The team's tables as JSON and, per agent, its Python learner and
-    strategy (``learner``/``strategy`` given as objects)."""
+    strategy: ``learner`` given as an object, ``algorithm`` given as a
+    strategy (recorded as algorithm ``external``; ``strategy`` with
+    ``algorithm = "external"`` is its spelling before 0.3)."""
     tables = {"agent": team} if not isinstance(team, Mapping) else dict(team)
     agents = []
     objects: list[tuple[Made | None, Made | None]] = []
@@ -47,8 +49,13 @@ def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]
             kind = type(table).__name__
             raise TypeError(f"team[{i}] must be a dict of an agent's keys, got {kind}")
         table = dict(table)
-        # What a file could say (a learner process, the old spelling of
-        # `algorithm`) stays in the table; anything else is an object.
+        algorithm = table.get("algorithm")
+        if algorithm is not None and not isinstance(algorithm, str):
+            table["algorithm"] = "external"
+            table["strategy"] = algorithm
+        # What a file could say (a learner's name or process, the old
+        # spelling of `algorithm`) stays in the table; anything else is an
+        # object.
         given = {
             role: table.pop(role)
             for role in ("learner", "strategy")

@@ -48,7 +48,7 @@ class Start:
 
 
 @dataclass(frozen=True)
-class Counters:
+class AdviceCounters:
     """The agent's communication and budget counters (docs/results.md)."""
 
     advice_requests: int
@@ -61,6 +61,10 @@ class Counters:
     shared_received: int
 
 
+#: The name of :class:`AdviceCounters` before 0.3, still importable.
+Counters = AdviceCounters
+
+
 @dataclass(frozen=True)
 class AskContext:
     """What an advisee knows when it decides whether to ask."""
@@ -70,7 +74,7 @@ class AskContext:
     #: Its visits n(s) of the state.
     visits: int
     training_episodes: int
-    counters: Counters
+    counters: AdviceCounters
     #: Its learner's uncertainty there, if the strategy asks by it and the
     #: learner can tell.
     uncertainty: float | None
@@ -84,7 +88,7 @@ class GiveContext:
     visits: int
     #: Its learner's values there.
     values: Values
-    counters: Counters
+    counters: AdviceCounters
 
 
 @dataclass(frozen=True)
@@ -199,13 +203,13 @@ class AdvisingStrategy:
         """What it learns about its advisors from a decision's outcome. Only
         sent if overridden."""
 
-    def spent_budget(self, counters: Counters) -> int:
+    def spent_budget(self, counters: AdviceCounters) -> int:
         """The budget the results plot: by default the answers given."""
         return counters.advice_given
 
 
 def _counters(raw: dict) -> Counters:
-    return Counters(**{name: int(raw[name]) for name in Counters.__dataclass_fields__})
+    return AdviceCounters(**{name: int(raw[name]) for name in AdviceCounters.__dataclass_fields__})
 
 
 def _values(raw: Sequence[float | None]) -> Values:

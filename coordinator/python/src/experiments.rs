@@ -19,7 +19,7 @@ use coordinator::plugin::{Plugin, PluginSpec};
 use coordinator::replay::record_evaluation;
 use coordinator::request::{Agents, RunRequest};
 use coordinator::study::{StudyConfig, StudyOptions};
-use coordinator::{Error, Experiment, ExperimentDir, RunOptions, Team, load_team_file};
+use coordinator::{Error, Experiment, ExperimentDir, RunOptions, TeamSpec, load_team_file};
 use env_server::tools::rcg;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -110,7 +110,7 @@ fn agents(
     team_tables: Option<&str>,
     mistake_correcting: bool,
 ) -> PyResult<Agents> {
-    let team = |t: Result<Team, coordinator::ConfigError>| t.map_err(|e| to_python(e.into()));
+    let team = |t: Result<TeamSpec, coordinator::ConfigError>| t.map_err(|e| to_python(e.into()));
     Ok(match (algorithm, team_file, team_tables) {
         (Some(name), None, None) => Agents::Algorithm {
             algorithm: parse::<Algorithm>("algorithm", name)?,
@@ -120,7 +120,7 @@ fn agents(
         (None, None, Some(json)) => {
             let tables = serde_json::from_str(json)
                 .map_err(|e| PyValueError::new_err(format!("team: {e}")))?;
-            Agents::Team(team(Team::from_json(tables, Path::new(""), "team"))?)
+            Agents::Team(team(TeamSpec::from_json(tables, Path::new(""), "team"))?)
         }
         _ => return Err(PyValueError::new_err("give one of algorithm= and team=")),
     })

@@ -171,7 +171,7 @@ def test_a_python_learner_is_saved_and_loaded(tmp_path: Path) -> None:
         save_agents=saved,
         **{**SMALL, "runs": 1},
     )
-    snapshot = saved / "run-0-agent-2.qtable"
+    snapshot = saved / "run-0-agent-2.snapshot"
     assert snapshot.stat().st_size > 0
 
     restored: list[bytes] = []
@@ -228,7 +228,7 @@ def test_a_saved_team_replays_as_an_animation_and_a_game_log(tmp_path: Path) -> 
         out=tmp_path / "train", algorithm="adhoc-td", save_agents=saved, **{**SMALL, "runs": 1}
     )
     team = [
-        {"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.qtable")} for i in range(3)
+        {"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.snapshot")} for i in range(3)
     ]
     replay = adhoc_advising.replay(team=team, seed=4)
     assert replay == adhoc_advising.replay(team=team, seed=4)

@@ -25,7 +25,7 @@ def _trained_team(out: Path) -> list[Path]:
         + ["--save-agents", str(out / "agents"), "--out", str(out / "run")],
         check=True,
     )
-    return [out / "agents" / f"run-0-agent-{i}.qtable" for i in range(3)]
+    return [out / "agents" / f"run-0-agent-{i}.snapshot" for i in range(3)]
 
 
 def test_a_trained_team_plays_the_papers_actions(tmp_path: Path) -> None:
@@ -52,8 +52,8 @@ def test_a_trained_team_plays_the_papers_actions(tmp_path: Path) -> None:
 
 def test_bad_snapshots_and_states_are_refused(tmp_path: Path) -> None:
     with pytest.raises(OSError, match="cannot read"):
-        adhoc_advising.GreedyAgent(tmp_path / "missing.qtable")
-    junk = tmp_path / "junk.qtable"
+        adhoc_advising.GreedyAgent(tmp_path / "missing.snapshot")
+    junk = tmp_path / "junk.snapshot"
     junk.write_bytes(b"not a snapshot")
     with pytest.raises(ValueError, match="not a usable snapshot"):
         adhoc_advising.GreedyAgent(junk)

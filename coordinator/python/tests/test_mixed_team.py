@@ -131,9 +131,9 @@ def test_a_python_learner_is_saved_and_loaded_with_its_own_state(tmp_path: Path)
         timeout=900,
     )
     assert first.returncode == 0, first.stderr
-    saved = (agents / "run-0-agent-2.qtable").read_bytes()
+    saved = (agents / "run-0-agent-2.snapshot").read_bytes()
     assert saved[:8] == b"ADVQTAB\0" and int.from_bytes(saved[8:10], "little") == 2
-    snapshot = agents / "run-0-agent-2.qtable"
+    snapshot = agents / "run-0-agent-2.snapshot"
     team.write_text(team.read_text().replace("learner = ", f'load = "{snapshot}"\nlearner = ', 1))
     second = run(team, tmp_path / "second", 20)
     assert second.returncode == 0, second.stderr

@@ -111,7 +111,9 @@ pub struct Pretrain {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StudyEntry {
-    /// Name: the experiment's directory and its label in figures.
+    /// Name: the experiment's directory and its label in figures (default:
+    /// its algorithm's name, unless another entry has that name).
+    #[serde(default)]
     pub name: String,
     /// The team's algorithm.
     pub algorithm: Algorithm,
@@ -190,7 +192,33 @@ impl StudyConfig {
         let mut config: Self = toml::from_str(text)
             .map_err(|e| ConfigError::new("config", format!("{origin}: {}", e.message())))?;
         config.ci_level = Some(config.ci_level());
+        config.name_entries()?;
         Ok(config)
+    }
+
+    /// Names each entry without a name after its algorithm, unless another
+    /// entry has or would take that name.
+    fn name_entries(&mut self) -> Result<(), ConfigError> {
+        for i in 0..self.entries.len() {
+            if !self.entries[i].name.is_empty() {
+                continue;
+            }
+            let name = self.entries[i].algorithm.name();
+            let taken = (self.entries.iter().enumerate()).find(|(j, e)| {
+                *j != i && (e.name == name || e.name.is_empty() && e.algorithm.name() == name)
+            });
+            if let Some((j, _)) = taken {
+                return Err(ConfigError::new(
+                    format!("entry[{i}].name"),
+                    format!(
+                        "missing, and its algorithm's name `{name}` would be entry[{j}]'s too: \
+                         give each a name"
+                    ),
+                ));
+            }
+            self.entries[i].name = name.to_owned();
+        }
+        Ok(())
     }
 
     /// The study as `study.json` records it.
@@ -306,7 +334,7 @@ impl StudyConfig {
             }
             agent.load = expert
                 .map(Path::to_path_buf)
-                .or_else(|| Some("expert.qtable".into()));
+                .or_else(|| Some("expert.snapshot".into()));
         }
         let mut config = ExperimentConfig {
             runs: self.runs,
@@ -484,6 +512,22 @@ mod tests {
             ))
             .contains("appears twice"),
             "the old spelling still reads"
+        );
+        // An entry without a name takes its algorithm's, unless two would.
+        let named = StudyConfig::parse(
+            &format!(
+                "{base}[[entry]]\nalgorithm = \"adhoc-td\"\n[[entry]]\nalgorithm = \"torrey\"\n"
+            ),
+            "t",
+        )
+        .unwrap();
+        assert_eq!(named.entries[0].name, "adhoc-td");
+        let twice = err(&format!(
+            "{base}[[entry]]\nalgorithm = \"adhoc-td\"\n[[entry]]\nalgorithm = \"adhoc-td\"\n"
+        ));
+        assert!(
+            twice.contains("entry[0].name") && twice.contains("adhoc-td"),
+            "{twice}"
         );
         assert!(
             StudyConfig::preset("paper-everything")

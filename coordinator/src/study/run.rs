@@ -129,9 +129,16 @@ impl Invocation<'_> {
         }
     }
 
-    /// Where the pretrained expert is saved.
+    /// Where the pretrained expert is saved: `expert.snapshot`, or
+    /// `expert.qtable` in a study directory of a version before 0.3.
     fn expert(&self) -> PathBuf {
-        self.out.join("pretrain").join("expert.qtable")
+        let dir = self.out.join("pretrain");
+        let old = dir.join("expert.qtable");
+        if old.is_file() {
+            old
+        } else {
+            dir.join("expert.snapshot")
+        }
     }
 
     /// Pretrains the team of `p` and saves its expert, unless the expert

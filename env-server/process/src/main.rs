@@ -6,7 +6,7 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use env_server::tools::render;
 use env_server::tools::rollout::{EnvReuse, rollout_on};
-use env_server::{BaselinePolicy, EnvConfig};
+use env_server::{EnvConfig, ScriptedPolicy};
 use node::cli::{ConnectionArgs, exit_with_error, init_tracing, parse_or_exit};
 use std::path::PathBuf;
 
@@ -25,11 +25,11 @@ struct EnvServerCli {
 
 #[derive(Subcommand)]
 enum EnvServerCommand {
-    /// Play episodes under a baseline policy and summarise them.
+    /// Play episodes under a scripted policy and summarise them.
     Rollout {
         /// Policy: random, shoot, dribble, pass or uniform.
         #[arg(long, default_value = "random")]
-        policy: BaselinePolicy,
+        policy: ScriptedPolicy,
         /// Number of episodes (at least 1).
         #[arg(long, default_value_t = 1000, value_parser = at_least_one)]
         episodes: u64,
@@ -54,7 +54,7 @@ enum EnvServerCommand {
     Render {
         /// Policy: random, shoot, dribble, pass or uniform.
         #[arg(long, default_value = "random")]
-        policy: BaselinePolicy,
+        policy: ScriptedPolicy,
         /// Seed of the rollout the episode belongs to.
         #[arg(long, default_value_t = 1)]
         seed: u64,

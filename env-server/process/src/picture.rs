@@ -54,10 +54,10 @@ pub fn write_picture(trace: &Trace, path: &Path) -> Result<()> {
 mod tests {
     use super::*;
     use env_server::tools::render::record_episode;
-    use env_server::{BaselinePolicy, EnvConfig};
+    use env_server::{EnvConfig, ScriptedPolicy};
 
     fn trace(seed: u64) -> Trace {
-        record_episode(EnvConfig::default(), BaselinePolicy::Random, seed, 1).unwrap()
+        record_episode(EnvConfig::default(), ScriptedPolicy::Random, seed, 1).unwrap()
     }
 
     #[test]

@@ -105,7 +105,7 @@ def train(episodes: int, seed: int, block: int = 250) -> list[float]:
 def random_goal_rate(episodes: int, seed: int) -> float:
     """The goal rate of the paper's random policy over ``episodes`` episodes."""
     env = halffield.parallel_env(observation="paper")
-    policy = halffield.BaselinePolicy("random", seed)
+    policy = halffield.ScriptedPolicy("random", seed)
     env.reset(seed=seed)
     goals = 0
     for episode in range(episodes):

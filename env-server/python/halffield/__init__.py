@@ -4,9 +4,9 @@ against HFO's goalkeeper.
 
 - :func:`parallel_env` / :class:`HalfFieldOffenseParallelEnv`: every attacker an agent (PettingZoo).
 - ``gymnasium.make("halffield/HalfFieldOffense-v0", teammates=...)`` /
-  :class:`HalfFieldOffenseEnv`: one learner among baseline or scripted teammates.
+  :class:`HalfFieldOffenseEnv`: one learner among scripted teammates.
 - :class:`BatchEnv`: many environments stepped in one call.
-- :class:`BaselinePolicy`: the simulator's baseline policies.
+- :class:`ScriptedPolicy`: the simulator's scripted policies.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from halffield._core import DRIBBLE, MOVE, PASS, SHOOT, STATUS_NAMES
 from halffield.batch import BatchEnv
 from halffield.gym_env import HalfFieldOffenseEnv
 from halffield.parallel import HalfFieldOffenseParallelEnv, parallel_env
-from halffield.policy import BaselinePolicy
+from halffield.policy import ScriptedPolicy
 
 __all__ = [
     "DRIBBLE",
@@ -26,7 +26,7 @@ __all__ = [
     "PASS",
     "SHOOT",
     "STATUS_NAMES",
-    "BaselinePolicy",
+    "ScriptedPolicy",
     "BatchEnv",
     "HalfFieldOffenseEnv",
     "HalfFieldOffenseParallelEnv",
@@ -35,6 +35,9 @@ __all__ = [
 
 #: The Gymnasium id of :class:`HalfFieldOffenseEnv`.
 GYM_ID = "halffield/HalfFieldOffense-v0"
+
+#: The name of :class:`ScriptedPolicy` before 0.3, still importable.
+BaselinePolicy = ScriptedPolicy
 
 if GYM_ID not in gymnasium.registry:
     gymnasium.register(id=GYM_ID, entry_point="halffield.gym_env:HalfFieldOffenseEnv")

@@ -1,5 +1,5 @@
 """The Gymnasium environment: one learning attacker among teammates that
-follow a baseline policy or a Python function."""
+follow a scripted policy or a Python function."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ TeammatePolicy = Callable[[np.ndarray, np.ndarray], int]
 
 class HalfFieldOffenseEnv(gymnasium.Env):
     """HFO's task for one learner, ``offense_0``, whose ``offense - 1``
-    teammates follow ``teammates``: a baseline policy's name (``"random"``,
+    teammates follow ``teammates``: a scripted policy's name (``"random"``,
     the paper's random agent; ``"shoot"``, ``"dribble"``, ``"pass"``,
     ``"uniform"``), drawing from the reset's seed, or a function of a
     teammate's observation and action mask returning its action.
@@ -50,17 +50,17 @@ class HalfFieldOffenseEnv(gymnasium.Env):
             pass_to_named_receiver,
         )
         if isinstance(teammates, str):
-            _halffield.BaselinePolicy(teammates, 0)  # checks the name now
+            _halffield.ScriptedPolicy(teammates, 0)  # checks the name now
         elif not callable(teammates):
             raise TypeError(
-                f"teammates must be a baseline policy's name or a function, got {teammates!r}"
+                f"teammates must be a scripted policy's name or a function, got {teammates!r}"
             )
         self.teammates = teammates
         self.simulator = _halffield.Env(self.settings)
         self.observation_space = _core.observation_box(self.settings)
         self.action_space = spaces.Discrete(self.settings.action_count)
         self._agents: list[str] = list(self.settings.agents)
-        self._policy: _halffield.BaselinePolicy | None = None
+        self._policy: _halffield.ScriptedPolicy | None = None
         self._last: tuple[np.ndarray, np.ndarray] | None = None
         self._ended: str | None = None
 
@@ -74,7 +74,7 @@ class HalfFieldOffenseEnv(gymnasium.Env):
         sim_seed = _core.first_seed(seed, self._last is not None)
         observations, masks = self.simulator.reset(sim_seed)
         if sim_seed is not None and isinstance(self.teammates, str):
-            self._policy = _halffield.BaselinePolicy(self.teammates, sim_seed)
+            self._policy = _halffield.ScriptedPolicy(self.teammates, sim_seed)
         self._last, self._ended = (observations, masks), None
         return observations[0], {"status": "IN_GAME", "frame": 0, "action_mask": masks[0]}
 
@@ -103,7 +103,7 @@ class HalfFieldOffenseEnv(gymnasium.Env):
     def _teammate_actions(self) -> list[int]:
         """Every agent's action under ``teammates`` (the learner's is replaced)."""
         if self._policy is not None:
-            return list(self.simulator.baseline_actions(self._policy))
+            return list(self.simulator.scripted_actions(self._policy))
         observations, masks = self._last
         actions = [_core.MOVE]
         for agent, obs, mask in zip(self._agents[1:], observations[1:], masks[1:]):

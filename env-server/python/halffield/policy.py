@@ -1,4 +1,4 @@
-"""The simulator's baseline policies, for teams and comparisons."""
+"""The simulator's scripted policies, for teams and comparisons."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ from halffield import _core, _halffield
 from halffield.parallel import HalfFieldOffenseParallelEnv
 
 
-class BaselinePolicy:
-    """A baseline policy with its own random stream: ``"random"`` (the
+class ScriptedPolicy:
+    """A scripted policy with its own random stream: ``"random"`` (the
     paper's random agent), ``"shoot"``, ``"dribble"``, ``"pass"`` or
     ``"uniform"``. An agent that cannot kick MOVEs. Given the same seed, it
     chooses as ``env-server rollout --policy NAME --seed SEED`` does, so a
@@ -15,7 +15,7 @@ class BaselinePolicy:
     played with it repeats the rollout's episodes."""
 
     def __init__(self, name: str, seed: int) -> None:
-        self._native = _halffield.BaselinePolicy(name, _core.check_seed(seed))
+        self._native = _halffield.ScriptedPolicy(name, _core.check_seed(seed))
 
     @property
     def name(self) -> str:
@@ -26,5 +26,5 @@ class BaselinePolicy:
         """Every playing agent's action in ``env`` as it stands."""
         if not env.agents:
             raise RuntimeError("the episode has ended: call env.reset() first")
-        actions = env.simulator.baseline_actions(self._native)
+        actions = env.simulator.scripted_actions(self._native)
         return dict(zip(env.possible_agents, actions))

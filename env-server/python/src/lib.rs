@@ -5,11 +5,11 @@
 
 mod actions;
 mod arrays;
-mod baseline;
 mod batch;
 mod checked_env;
 mod errors;
 mod observation;
+mod scripted;
 mod settings;
 mod single;
 mod status;
@@ -22,7 +22,7 @@ fn _halffield(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<settings::TaskSettings>()?;
     m.add_class::<single::Env>()?;
     m.add_class::<batch::BatchEnv>()?;
-    m.add_class::<baseline::BaselinePolicy>()?;
+    m.add_class::<scripted::ScriptedPolicy>()?;
     m.add("STATUS_NAMES", status::NAMES.to_vec())?;
     m.add("MAX_BATCH_ENVS", batch::MAX_ENVS)?;
     Ok(())

@@ -1,12 +1,12 @@
 //! One environment for the Python environments (PettingZoo's and
-//! Gymnasium's): reset, step, the global state, baseline actions and
+//! Gymnasium's): reset, step, the global state, scripted actions and
 //! pictures.
 
 use crate::arrays::array;
-use crate::baseline::BaselinePolicy;
 use crate::checked_env::CheckedEnv;
 use crate::errors::{not_started, step_error, value_error};
 use crate::observation::global_state;
+use crate::scripted::ScriptedPolicy;
 use crate::settings::TaskSettings;
 use crate::status;
 use env_server::tools::render::frame_svg;
@@ -81,7 +81,7 @@ impl Env {
     }
 
     /// Every agent's action under `policy` as the simulator stands.
-    fn baseline_actions(&self, mut policy: PyRefMut<'_, BaselinePolicy>) -> PyResult<Vec<usize>> {
+    fn scripted_actions(&self, mut policy: PyRefMut<'_, ScriptedPolicy>) -> PyResult<Vec<usize>> {
         let game = self.game.as_ref().ok_or_else(not_started)?;
         policy.actions(game)
     }

@@ -207,10 +207,10 @@ def test_bad_seeds_and_policies() -> None:
         ValueError,
         match=r"unknown policy 'best' \(expected one of: random, shoot, dribble, pass, uniform\)",
     ):
-        halffield.BaselinePolicy("best", 1)
+        halffield.ScriptedPolicy("best", 1)
     with pytest.raises(ValueError, match="unknown policy"):
         halffield.HalfFieldOffenseEnv(teammates="best")
-    with pytest.raises(TypeError, match="teammates must be a baseline policy's name or a function"):
+    with pytest.raises(TypeError, match="teammates must be a scripted policy's name or a function"):
         halffield.HalfFieldOffenseEnv(teammates=3)
     with pytest.raises(ValueError, match="num_envs must be an integer from 1 to 1048576, got 0"):
         halffield.BatchEnv(0)
@@ -220,7 +220,7 @@ def test_bad_seeds_and_policies() -> None:
         halffield.BatchEnv(2, threads=0)
     lone = halffield.parallel_env(offense=1)
     lone.reset(seed=1)
-    policy = halffield.BaselinePolicy("pass", 1)
+    policy = halffield.ScriptedPolicy("pass", 1)
     with pytest.raises(ValueError, match="passed, which a lone attacker cannot do"):
         for _ in range(10_000):
             if not lone.agents:

@@ -1,5 +1,5 @@
 """Determinism: the same seed gives the same trajectory in another
-process, and the same seed and baseline policy give the same episodes as
+process, and the same seed and scripted policy give the same episodes as
 `env-server rollout`."""
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ def test_same_seed_same_trajectory_in_two_processes() -> None:
 
 def _python_rollout(policy: str, seed: int, episodes: int) -> tuple[Counter, int]:
     env = halffield.parallel_env()
-    baseline = halffield.BaselinePolicy(policy, seed)
+    scripted = halffield.ScriptedPolicy(policy, seed)
     outcomes: Counter = Counter()
     frames = 0
     env.reset(seed=seed)
@@ -68,13 +68,13 @@ def _python_rollout(policy: str, seed: int, episodes: int) -> tuple[Counter, int
         if episode:
             env.reset()
         while env.agents:
-            _, _, _, _, infos = env.step(baseline(env))
+            _, _, _, _, infos = env.step(scripted(env))
         outcomes[infos["offense_0"]["status"]] += 1
         frames += infos["offense_0"]["frame"]
     return outcomes, frames
 
 
-def test_baseline_episodes_match_env_server_rollout() -> None:
+def test_scripted_episodes_match_env_server_rollout() -> None:
     binary = env_server_binary()
     names = {
         "goal": "GOAL",

@@ -224,9 +224,9 @@ impl DecisionRecorder {
 mod tests {
     use super::*;
     use crate::sim::config::EnvConfig;
-    use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
+    use crate::tools::scripted::{ScriptedPolicy, play_episode, policy_rng};
 
-    fn recorded(policy: BaselinePolicy, episodes: u32) -> (DecisionStats, Vec<Outcome>) {
+    fn recorded(policy: ScriptedPolicy, episodes: u32) -> (DecisionStats, Vec<Outcome>) {
         let mut env = Env::new(EnvConfig::default(), 3).unwrap();
         let mut rng = policy_rng(3);
         let mut recorder = DecisionRecorder::default();
@@ -238,7 +238,7 @@ mod tests {
 
     #[test]
     fn shot_goals_are_at_most_the_goals_and_the_releases() {
-        let (stats, outcomes) = recorded(BaselinePolicy::Shoot, 300);
+        let (stats, outcomes) = recorded(ScriptedPolicy::Shoot, 300);
         let goals = outcomes.iter().filter(|o| **o == Outcome::Goal).count() as u64;
         let released: u64 = stats.shots.iter().map(|b| b.released).sum();
         let scored: u64 = stats.shots.iter().map(|b| b.goals).sum();
@@ -254,7 +254,7 @@ mod tests {
 
     #[test]
     fn every_pass_and_dribble_has_one_aftermath() {
-        let (stats, _) = recorded(BaselinePolicy::Random, 300);
+        let (stats, _) = recorded(ScriptedPolicy::Random, 300);
         let total = |a: &Aftermath| {
             let e = &a.ended;
             a.teammate + a.same + e.captured + e.out_of_bounds + e.goal + e.out_of_time
@@ -264,7 +264,7 @@ mod tests {
         assert!(stats.after_dribble.same > 0);
         assert!(stats.possessions_per_episode >= 1.0);
         // Only dribble-only play: no pass ever.
-        let (dribbles, _) = recorded(BaselinePolicy::Dribble, 100);
+        let (dribbles, _) = recorded(ScriptedPolicy::Dribble, 100);
         assert_eq!(total(&dribbles.after_pass), 0);
         assert_eq!(dribbles.shots.iter().map(|b| b.released).sum::<u64>(), 0);
     }

@@ -1,24 +1,24 @@
 //! A fingerprint of the simulator's exact trajectories: a hash of every
 //! world state, the agents' memories, commands and outcome over a rollout of
-//! each baseline policy. A speed change must leave it unchanged
+//! each scripted policy. A speed change must leave it unchanged
 //! (docs/speed.md); a study records it with every run it plays.
 
 use std::fmt;
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
+use crate::tools::scripted::{ScriptedPolicy, play_episode, policy_rng};
 use crate::{Env, EnvConfig};
 
 /// Episodes of each policy in the fingerprint a study records with its
 /// runs (the full check of docs/speed.md plays 2000).
 pub const RECORDED_EPISODES: u64 = 10;
 
-/// The fingerprint of `episodes` episodes of each baseline policy from
-/// `seed`: one hash per policy, in [`BaselinePolicy::ALL`]'s order, and
+/// The fingerprint of `episodes` episodes of each scripted policy from
+/// `seed`: one hash per policy, in [`ScriptedPolicy::ALL`]'s order, and
 /// the hash of them all.
-pub fn fingerprint(episodes: u64, seed: u64) -> (Vec<(BaselinePolicy, u64)>, u64) {
+pub fn fingerprint(episodes: u64, seed: u64) -> (Vec<(ScriptedPolicy, u64)>, u64) {
     let mut all = DefaultHasher::new();
-    let policies = BaselinePolicy::ALL.map(|policy| {
+    let policies = ScriptedPolicy::ALL.map(|policy| {
         let mut env = Env::new(EnvConfig::default(), seed).expect("the default config is valid");
         let mut rng = policy_rng(seed);
         let mut hasher = DefaultHasher::new();

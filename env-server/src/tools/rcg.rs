@@ -140,12 +140,12 @@ fn xy<'a>(mut fields: impl Iterator<Item = &'a str>) -> Option<DVec2> {
 mod tests {
     use super::*;
     use crate::sim::config::EnvConfig;
-    use crate::tools::baseline::BaselinePolicy;
     use crate::tools::render::record_episode;
+    use crate::tools::scripted::ScriptedPolicy;
 
     #[test]
     fn an_episode_reads_back_from_its_log() {
-        let trace = record_episode(EnvConfig::default(), BaselinePolicy::Random, 3, 2).unwrap();
+        let trace = record_episode(EnvConfig::default(), ScriptedPolicy::Random, 3, 2).unwrap();
         let log = to_rcg(&trace);
         let shows = read_shows(&log).unwrap();
         assert_eq!(shows.len(), trace.ball.len());

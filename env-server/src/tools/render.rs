@@ -16,7 +16,7 @@ use crate::sim::formation::offense_unums;
 use crate::sim::params::*;
 use crate::sim::physics::Command;
 use crate::sim::referee::Outcome;
-use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
+use crate::tools::scripted::{ScriptedPolicy, play_episode, policy_rng};
 use glam::DVec2;
 use svg::node::element::path::Data;
 use svg::node::element::{AnimateTransform, Circle, Group, Line, Path, Polyline, Rectangle, Text};
@@ -276,7 +276,7 @@ impl Trace {
 /// --seed seed` would play with `config` and `policy`, and records it.
 pub fn record_episode(
     config: EnvConfig,
-    policy: BaselinePolicy,
+    policy: ScriptedPolicy,
     seed: u64,
     episode: u64,
 ) -> Result<Trace, RenderError> {
@@ -780,7 +780,7 @@ mod tests {
     use svg::parser::Event;
 
     fn trace(seed: u64, episode: u64) -> Trace {
-        record_episode(EnvConfig::default(), BaselinePolicy::Random, seed, episode).unwrap()
+        record_episode(EnvConfig::default(), ScriptedPolicy::Random, seed, episode).unwrap()
     }
 
     /// An element of a picture as read back: its name, attributes and text.
@@ -1003,7 +1003,7 @@ mod tests {
         let mut actions = [Action::Move; 3];
         while !env.step(&actions).is_terminal() {
             for (i, a) in actions.iter_mut().enumerate() {
-                *a = BaselinePolicy::Shoot.choose(env.can_kick(i), &mut rng);
+                *a = ScriptedPolicy::Shoot.choose(env.can_kick(i), &mut rng);
             }
         }
         let end = read(&frame_svg(&env));
@@ -1016,18 +1016,18 @@ mod tests {
     fn follows_the_rollout_sequence() {
         let config = EnvConfig::default();
         let summary =
-            crate::tools::rollout::rollout(config.clone(), BaselinePolicy::Random, 4, 7).unwrap();
+            crate::tools::rollout::rollout(config.clone(), ScriptedPolicy::Random, 4, 7).unwrap();
         let mut counts = crate::tools::tally::OutcomeCounts::default();
         let mut frames = 0;
         for k in 1..=4 {
-            let t = record_episode(config.clone(), BaselinePolicy::Random, 7, k).unwrap();
+            let t = record_episode(config.clone(), ScriptedPolicy::Random, 7, k).unwrap();
             counts.add(t.outcome);
             frames += u64::from(t.frames);
         }
         assert_eq!(counts, summary.outcomes);
         assert_eq!(frames, summary.frames);
         assert!(matches!(
-            record_episode(config, BaselinePolicy::Random, 7, 0),
+            record_episode(config, ScriptedPolicy::Random, 7, 0),
             Err(RenderError::EpisodeZero)
         ));
     }

@@ -1,11 +1,11 @@
-//! Rollouts: episodes played under a baseline policy from one seed, on one
+//! Rollouts: episodes played under a scripted policy from one seed, on one
 //! long-lived simulator or each on a new one, and their summary.
 
 use crate::sim::config::{EnvConfig, EnvConfigError};
 use crate::sim::env::Env;
 use crate::sim::referee::Outcome;
-use crate::tools::baseline::{BaselinePolicy, play_episode, policy_rng};
 use crate::tools::decision_stats::{DecisionRecorder, DecisionStats};
+use crate::tools::scripted::{ScriptedPolicy, play_episode, policy_rng};
 use crate::tools::tally::{Moments, OutcomeCounts};
 use rand::{RngCore, SeedableRng};
 use rand_xoshiro::SplitMix64;
@@ -71,7 +71,7 @@ pub enum EnvReuse {
 /// Plays `episodes` episodes under `policy` with `seed` on one simulator.
 pub fn rollout(
     config: EnvConfig,
-    policy: BaselinePolicy,
+    policy: ScriptedPolicy,
     episodes: u64,
     seed: u64,
 ) -> Result<RolloutSummary, EnvConfigError> {
@@ -82,7 +82,7 @@ pub fn rollout(
 /// the policy draws from one stream throughout.
 pub fn rollout_on(
     config: EnvConfig,
-    policy: BaselinePolicy,
+    policy: ScriptedPolicy,
     episodes: u64,
     seed: u64,
     simulators: EnvReuse,

@@ -9,11 +9,11 @@ use env_server::MAX_OFFENSE;
 use env_server::{EnvConfig, Outcome, RunEnvs};
 use proto::{
     Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode,
-    Simulator as SimulatorKind,
+    Simulator,
 };
 
 use super::real_hfo::{RealHfo, RealHfoInstall};
-use super::simulator::Simulator;
+use super::simulator::ServedSimulator;
 
 /// The simulators of one run.
 #[derive(Debug)]
@@ -38,7 +38,7 @@ impl ServedRun {
     pub fn new(
         config: &[u8],
         seed: u64,
-        kind: SimulatorKind,
+        kind: Simulator,
         real_hfo: Option<&RealHfoInstall>,
     ) -> Result<Self, String> {
         let config: EnvConfig =
@@ -47,19 +47,19 @@ impl ServedRun {
             .validate()
             .map_err(|e| format!("invalid env config: {e}"))?;
         match (kind, real_hfo) {
-            (SimulatorKind::Ours, None) => RunEnvs::new(config, seed)
+            (Simulator::Ours, None) => RunEnvs::new(config, seed)
                 .map(ServedRun::Ours)
                 .map_err(|e| format!("invalid env config: {e}")),
-            (SimulatorKind::RealHfo, Some(install)) => {
+            (Simulator::RealHfo, Some(install)) => {
                 let hfo = RealHfo::start(install, &config, seed)?;
                 Ok(ServedRun::RealHfo(hfo, false))
             }
-            (SimulatorKind::RealHfo, None) => Err(
+            (Simulator::RealHfo, None) => Err(
                 "the experiment plays the real HFO, this env-server our simulator: \
                  start it with --real-hfo DIR"
                     .to_owned(),
             ),
-            (SimulatorKind::Ours, Some(_)) => Err(
+            (Simulator::Ours, Some(_)) => Err(
                 "the experiment plays our simulator, this env-server the real HFO \
                  (--real-hfo): start it without"
                     .to_owned(),
@@ -78,7 +78,11 @@ impl ServedRun {
     /// The simulator of an episode in `mode`: `seed` first begins a new
     /// evaluation block (the real HFO plays on, unseeded); evaluation needs
     /// one.
-    pub fn prepare(&mut self, mode: Mode, seed: Option<u64>) -> Result<&mut dyn Simulator, String> {
+    pub fn prepare(
+        &mut self,
+        mode: Mode,
+        seed: Option<u64>,
+    ) -> Result<&mut dyn ServedSimulator, String> {
         if let Some(seed) = seed {
             match self {
                 ServedRun::Ours(envs) => envs.begin_evaluation(seed),
@@ -90,9 +94,9 @@ impl ServedRun {
     }
 
     /// The simulator of `mode`, if there is one (see [`ServedRun::prepare`]).
-    pub fn env(&mut self, mode: Mode) -> Option<&mut dyn Simulator> {
+    pub fn env(&mut self, mode: Mode) -> Option<&mut dyn ServedSimulator> {
         match self {
-            ServedRun::Ours(envs) => envs.env(mode).map(|env| env as &mut dyn Simulator),
+            ServedRun::Ours(envs) => envs.env(mode).map(|env| env as &mut dyn ServedSimulator),
             ServedRun::RealHfo(hfo, evaluating) => match mode {
                 Mode::Training => Some(hfo),
                 Mode::Evaluation if *evaluating => Some(hfo),
@@ -138,7 +142,11 @@ pub struct Episode {
 
 impl Episode {
     /// Starts an episode on `env` (which resets it) at frame 0 of `header`.
-    pub fn start(env: &mut dyn Simulator, header: Header, mode: Mode) -> Result<Self, String> {
+    pub fn start(
+        env: &mut dyn ServedSimulator,
+        header: Header,
+        mode: Mode,
+    ) -> Result<Self, String> {
         env.reset()?;
         let mut episode = Episode {
             header: Header { frame: 0, ..header },
@@ -178,7 +186,7 @@ impl Episode {
     }
 
     /// Agent `agent`'s observation of the current frame. The terminal frame carries the final reward and no decision.
-    pub fn observe(&self, env: &dyn Simulator, agent: usize) -> AgentFrame {
+    pub fn observe(&self, env: &dyn ServedSimulator, agent: usize) -> AgentFrame {
         AgentFrame {
             agent: agent as u8,
             mode: self.mode,
@@ -210,7 +218,7 @@ impl Episode {
 
     /// Steps `env` with the actions received, Move for every agent whose
     /// action is missing or who could not kick, and moves to the next frame.
-    pub fn step(&mut self, env: &mut dyn Simulator) -> Result<(), String> {
+    pub fn step(&mut self, env: &mut dyn ServedSimulator) -> Result<(), String> {
         let outcome = env.step(&self.actions[..self.offense])?;
         self.outcome = outcome;
         self.reward = outcome.reward();
@@ -241,7 +249,7 @@ impl Episode {
         })
     }
 
-    fn await_kickers(&mut self, env: &dyn Simulator) {
+    fn await_kickers(&mut self, env: &dyn ServedSimulator) {
         self.kickers = (0..self.offense)
             .filter(|&i| env.can_kick(i))
             .fold(0, |m, i| m | 1 << i);
@@ -261,7 +269,7 @@ pub struct Batches {
 
 impl Batches {
     /// Adds every agent's observation of `episode`'s current frame on `env`.
-    pub fn push(&mut self, episode: &Episode, env: &dyn Simulator) {
+    pub fn push(&mut self, episode: &Episode, env: &dyn ServedSimulator) {
         self.first.get_or_insert(episode.header);
         self.frames.resize_with(env.offense(), Vec::new);
         for (agent, frames) in self.frames.iter_mut().enumerate() {
@@ -437,7 +445,7 @@ mod tests {
     }
 
     fn ours(config: &[u8]) -> Result<ServedRun, String> {
-        ServedRun::new(config, 1, SimulatorKind::Ours, None)
+        ServedRun::new(config, 1, Simulator::Ours, None)
     }
 
     fn settings(config: &EnvConfig) -> Vec<u8> {

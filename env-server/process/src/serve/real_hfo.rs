@@ -15,7 +15,7 @@ use env_server::{EnvConfig, Outcome};
 use proto::{Action, State};
 use serde::Deserialize;
 
-use super::simulator::Simulator;
+use super::simulator::ServedSimulator;
 
 /// How long the real HFO may take to start and play out its warm-up trial.
 const STARTUP_WAIT: Duration = Duration::from_secs(120);
@@ -319,7 +319,7 @@ impl Backend {
     }
 }
 
-impl Simulator for RealHfo {
+impl ServedSimulator for RealHfo {
     fn offense(&self) -> usize {
         self.launch.offense
     }

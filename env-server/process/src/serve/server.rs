@@ -15,13 +15,13 @@
 use super::episode::{Batches, Episode, Offer, ServedRun};
 use super::link::{Inbox, Link};
 use super::real_hfo::RealHfoInstall;
-use super::simulator::Simulator;
+use super::simulator::ServedSimulator;
 use anyhow::{Result, bail};
 use env_server::MAX_OFFENSE;
 use node::sync::lock;
 use proto::{
     Body, Control, ControlReply, DecodeError, Direction, DropReason, Envelope, Header,
-    MessageCounters, MessageKind, Mode, ServerReport, Simulator as SimulatorKind,
+    MessageCounters, MessageKind, Mode, ServerReport, Simulator,
 };
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -184,7 +184,7 @@ impl Server {
         seed: u64,
         config: &[u8],
         (wait_ms, stall_ms): (u64, u64),
-        simulator: SimulatorKind,
+        simulator: Simulator,
     ) -> Result<ControlReply> {
         if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
             return Ok(ControlReply::Error(format!(
@@ -531,7 +531,7 @@ pub async fn run(link: Link, mut inbox: Inbox, real_hfo: Option<RealHfoInstall>)
 fn playing<'a>(
     play: &'a mut Option<Play>,
     run: &'a mut Option<CurrentRun>,
-) -> Option<(&'a mut Play, &'a mut dyn Simulator)> {
+) -> Option<(&'a mut Play, &'a mut dyn ServedSimulator)> {
     let play = play.as_mut()?;
     let env = run.as_mut()?.envs.env(play.episode.mode)?;
     Some((play, env))

@@ -7,7 +7,7 @@ use proto::{Action, State};
 
 /// A simulator as the server steps it. Ours cannot fail; the real HFO, a
 /// child process, can, and says why in one line.
-pub trait Simulator {
+pub trait ServedSimulator {
     /// Number of offense agents.
     fn offense(&self) -> usize;
     /// Begins an episode.
@@ -24,7 +24,7 @@ pub trait Simulator {
     fn positions(&self) -> Vec<[f64; 2]>;
 }
 
-impl Simulator for Env {
+impl ServedSimulator for Env {
     fn offense(&self) -> usize {
         Env::offense(self)
     }

@@ -1,4 +1,4 @@
-//! Fixed baseline policies for rollouts and calibration (spec 9.2), and
+//! Fixed scripted policies for rollouts and calibration (spec 9.2), and
 //! episodes played with them.
 
 use crate::sim::config::MAX_OFFENSE;
@@ -12,7 +12,7 @@ use std::str::FromStr;
 
 /// A policy that ignores the state except whether the agent can kick.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BaselinePolicy {
+pub enum ScriptedPolicy {
     /// The paper's random agent: with the ball Dribble, Dribble, Shoot, Shoot, PassFar, PassNear uniformly.
     Random,
     /// Shoot whenever able to kick.
@@ -35,14 +35,14 @@ const RANDOM_KICKS: [Action; 6] = [
     Action::PassNear,
 ];
 
-impl BaselinePolicy {
-    /// Every policy, in the order of [`BaselinePolicy::NAMES`].
-    pub const ALL: [BaselinePolicy; 5] = [
-        BaselinePolicy::Random,
-        BaselinePolicy::Shoot,
-        BaselinePolicy::Dribble,
-        BaselinePolicy::Pass,
-        BaselinePolicy::Uniform,
+impl ScriptedPolicy {
+    /// Every policy, in the order of [`ScriptedPolicy::NAMES`].
+    pub const ALL: [ScriptedPolicy; 5] = [
+        ScriptedPolicy::Random,
+        ScriptedPolicy::Shoot,
+        ScriptedPolicy::Dribble,
+        ScriptedPolicy::Pass,
+        ScriptedPolicy::Uniform,
     ];
     /// Accepted names.
     pub const NAMES: [&'static str; 5] = ["random", "shoot", "dribble", "pass", "uniform"];
@@ -53,11 +53,11 @@ impl BaselinePolicy {
             return Action::Move;
         }
         match self {
-            BaselinePolicy::Random => RANDOM_KICKS[rng.random_range(0..RANDOM_KICKS.len())],
-            BaselinePolicy::Shoot => Action::Shoot,
-            BaselinePolicy::Dribble => Action::Dribble,
-            BaselinePolicy::Pass => Action::PassNear,
-            BaselinePolicy::Uniform => Action::KICK_TIE_ORDER[rng.random_range(0..4)],
+            ScriptedPolicy::Random => RANDOM_KICKS[rng.random_range(0..RANDOM_KICKS.len())],
+            ScriptedPolicy::Shoot => Action::Shoot,
+            ScriptedPolicy::Dribble => Action::Dribble,
+            ScriptedPolicy::Pass => Action::PassNear,
+            ScriptedPolicy::Uniform => Action::KICK_TIE_ORDER[rng.random_range(0..4)],
         }
     }
 
@@ -67,7 +67,7 @@ impl BaselinePolicy {
     }
 }
 
-impl fmt::Display for BaselinePolicy {
+impl fmt::Display for ScriptedPolicy {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
@@ -78,7 +78,7 @@ impl fmt::Display for BaselinePolicy {
 #[error("unknown policy '{0}' (expected one of: random, shoot, dribble, pass, uniform)")]
 pub struct UnknownPolicy(String);
 
-impl FromStr for BaselinePolicy {
+impl FromStr for ScriptedPolicy {
     type Err = UnknownPolicy;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
@@ -99,7 +99,7 @@ pub fn policy_rng(seed: u64) -> Xoshiro256PlusPlus {
 /// applied). Returns the outcome and frame count.
 pub fn play_episode(
     env: &mut Env,
-    policy: BaselinePolicy,
+    policy: ScriptedPolicy,
     rng: &mut Xoshiro256PlusPlus,
     mut observe: impl FnMut(&Env, &[Action]),
 ) -> (Outcome, u32) {
