@@ -5,9 +5,10 @@ reads back as DataFrames.
 
 The Rust learners are the command line's, bit for bit. A team may also give
 an agent a Python learner (``learner=``, an
-:class:`adhoc_advising.learner.Learner`) or a Python strategy
-(``strategy=``, an :class:`adhoc_advising.strategy.AdvisingStrategy`, with
-``algorithm = "external"``): as a class, made for every run with its
+:class:`adhoc_advising.learner.Learner`) or a Python strategy as its
+algorithm (``algorithm=``, an
+:class:`adhoc_advising.strategy.AdvisingStrategy`, recorded as algorithm
+``external``): as a class, made for every run with its
 ``Start`` (whose ``seed`` is the agent's), or as an instance, copied for
 every run. It is called directly, in this process. Its exceptions end the
 run and are raised again as the cause of a ``RuntimeError`` naming the agent

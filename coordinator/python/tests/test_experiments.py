@@ -191,11 +191,15 @@ def test_a_python_strategy_decides_in_process(tmp_path: Path) -> None:
     team = [
         {"algorithm": "adhoc-td"},
         {"algorithm": "adhoc-td"},
-        {"algorithm": "external", "strategy": NearestTeammate},
+        {"algorithm": NearestTeammate},
     ]
     for out in ("a", "b"):
         adhoc_advising.run(out=tmp_path / out, team=team, seed=5, **SMALL)
     assert_same_results(tmp_path / "a", tmp_path / "b")
+    # The spelling before 0.3 plays the same.
+    old = [*team[:2], {"algorithm": "external", "strategy": NearestTeammate}]
+    adhoc_advising.run(out=tmp_path / "old", team=old, seed=5, **SMALL)
+    assert_same_results(tmp_path / "a", tmp_path / "old")
     config = json.loads((tmp_path / "a" / "config.json").read_text())
     recorded = config["config"]["team"][2]["plugin"]["strategy"]
     assert recorded == "nearest-teammate 1 (nearest_teammate.NearestTeammate)"
@@ -216,13 +220,13 @@ def test_a_strategy_answering_wrongly_is_named(tmp_path: Path) -> None:
     team = [
         {"algorithm": "adhoc-td"},
         {"algorithm": "adhoc-td"},
-        {"algorithm": "external", "strategy": Unreachable},
+        {"algorithm": Unreachable},
     ]
     with pytest.raises(RuntimeError, match=r"agent 2's strategy `nearest-teammate.*`advisors`"):
         adhoc_advising.run(out=tmp_path / "out", team=team, **SMALL)
 
 
-def test_a_saved_team_replays_as_an_animation_and_a_game_log(tmp_path: Path) -> None:
+def test_a_team_of_snapshots_replays_as_an_animation_and_a_game_log(tmp_path: Path) -> None:
     saved = tmp_path / "saved"
     adhoc_advising.run(
         out=tmp_path / "train", algorithm="adhoc-td", save_agents=saved, **{**SMALL, "runs": 1}
