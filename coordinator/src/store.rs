@@ -74,7 +74,7 @@ pub fn check_claim(dir: &Path, name: &str, identity: &Value) -> Result<(), Error
         let mut theirs: Value = serde_json::from_slice(&bytes)
             .map_err(|e| other(format!("its {name} is unreadable: {e}")))?;
         todays_spellings(&mut theirs);
-        match first_difference(&without_runs(identity), &without_runs(&theirs), "") {
+        match first_difference(&comparable(identity), &comparable(&theirs), "") {
             Some(diff) => Err(other(format!("{name} differs at {diff}"))),
             None => Ok(()),
         }
@@ -117,6 +117,25 @@ fn without_runs(identity: &Value) -> Value {
             config.remove("runs");
         }
     }
+    identity
+}
+
+/// An identity as compared: without its count of runs, and without the
+/// keys that say nothing (null, or false), which versions before 0.3 wrote
+/// and later ones leave out.
+fn comparable(identity: &Value) -> Value {
+    fn strip(value: &mut Value) {
+        match value {
+            Value::Object(map) => {
+                map.retain(|_, v| !(v.is_null() || *v == Value::Bool(false)));
+                map.values_mut().for_each(strip);
+            }
+            Value::Array(items) => items.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    let mut identity = without_runs(identity);
+    strip(&mut identity);
     identity
 }
 

@@ -532,11 +532,15 @@ fn team_file_keys() -> BTreeMap<String, String> {
 }
 
 /// Every key of a study file, as the code writes them: every preset's, and
-/// the zenoh transport's table.
+/// the zenoh transport's table; an entry's team-file keys are the Team
+/// files section's.
 fn study_file_keys() -> BTreeMap<String, String> {
     let mut keys = BTreeMap::new();
     for (name, _) in PRESETS {
         let mut study = StudyConfig::preset(name).unwrap();
+        for entry in &mut study.entries {
+            entry.settings.clear();
+        }
         keys_of(&serde_json::to_value(&study).unwrap(), "", &mut keys);
         study.transport = Transport::Zenoh(ZenohSettings::default());
         keys_of(&serde_json::to_value(&study).unwrap(), "", &mut keys);

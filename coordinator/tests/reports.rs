@@ -115,5 +115,7 @@ fn a_note_on_other_settings_is_read_where_it_stands() {
     assert!(says_its_settings_differ(note));
     let late = format!("{}> Played with v_g 0.4.\n", "line\n".repeat(FIRST_LINES));
     assert!(!says_its_settings_differ(&late));
-    assert!(!says_its_settings_differ("# Study\n\nPlayed with commit `abc`.\n"));
+    assert!(!says_its_settings_differ(
+        "# Study\n\nPlayed with commit `abc`.\n"
+    ));
 }

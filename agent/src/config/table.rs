@@ -92,10 +92,11 @@ impl AgentConfig {
         table
     }
 
-    /// The configuration of a flat table, with the defaults of its
-    /// `profile` (the paper's without one) for the keys left out; a key of
-    /// no setting of this agent is an error naming it.
-    fn from_table(mut table: Table) -> Result<Self, AgentConfigError> {
+    /// The configuration of a flat table (a team file's `[[agent]]`
+    /// table), with the defaults of its `profile` (the paper's without one)
+    /// for the keys left out; a key of no setting of this agent is an error
+    /// naming it.
+    pub fn from_table(mut table: Table) -> Result<Self, AgentConfigError> {
         let d = AgentConfig::default();
         let profile: Profile = take(&mut table, "profile")?.unwrap_or_default();
         let algorithm: Algorithm = match take(&mut table, "algorithm")? {

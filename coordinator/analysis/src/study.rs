@@ -71,6 +71,10 @@ pub struct Entry {
     pub name: String,
     /// Its team's algorithm.
     pub algorithm: Algorithm,
+    /// The method it belongs to in the frontier: the entry it was swept
+    /// from (none: its own name).
+    #[serde(default)]
+    pub group: Option<String>,
     /// Whether an expert replaces one of its agents.
     #[serde(default)]
     pub expert: bool,

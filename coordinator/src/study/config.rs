@@ -1,13 +1,12 @@
 //! A study: several experiments of one protocol, from a preset or a TOML file.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
-use agent::{
-    Advises, AdvisorTies, Algorithm, AlgorithmSettings, Fidelity, NetworkConditions, Profile,
-    SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
-};
+use agent::{Advises, AgentConfig, Algorithm, Profile};
 use env_server::EvaluationMemory;
 use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
 
 use crate::config::{AgentSpec, EPISODES, ExperimentConfig, check_range};
 use crate::error::ConfigError;
@@ -109,7 +108,6 @@ pub struct Pretrain {
 
 /// One experiment of the study.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct StudyEntry {
     /// Name: the experiment's directory and its label in figures (default:
     /// its algorithm's name, unless another entry has that name).
@@ -117,48 +115,31 @@ pub struct StudyEntry {
     pub name: String,
     /// The team's algorithm.
     pub algorithm: Algorithm,
-    /// Advisees send their intended action along.
-    #[serde(default)]
-    pub mistake_correcting: bool,
     /// The pretraining's expert replaces agent `pretrain.expert`: it starts
-    /// from the expert's tables and never asks.
-    #[serde(default)]
-    pub expert: bool,
-    /// AdHocVisit's or AdHocTD's v_g, instead of the profile's.
-    #[serde(default)]
-    pub v_g: Option<f64>,
-    /// Single fidelity settings, instead of the study profile's.
-    #[serde(default)]
-    pub torrey_unknown_state: Option<TorreyUnknownState>,
-    /// See [`Fidelity::torrey_intent`].
-    #[serde(default)]
-    pub torrey_intent: Option<TorreyIntent>,
-    /// See [`Fidelity::advisor_ties`].
-    #[serde(default)]
-    pub advisor_ties: Option<AdvisorTies>,
-    /// See [`Fidelity::vote_ties`].
-    #[serde(default)]
-    pub vote_ties: Option<VoteTies>,
-    /// See [`Fidelity::shared_bootstrap`].
-    #[serde(default)]
-    pub shared_bootstrap: Option<SharedBootstrap>,
-    /// Network conditions of every agent's advice messages.
-    #[serde(default)]
-    pub network: Option<NetworkConditions>,
-    /// The ad hoc methods' back-off after unanswered requests (written only
-    /// when on, so that studies from before it keep their identity).
+    /// from the expert's snapshot and never asks.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub backoff: bool,
+    pub expert: bool,
     /// Newcomers taking slots during training (`[[entry.event]]`, as a
     /// team file's `[[event]]`).
     #[serde(default, rename = "event", skip_serializing_if = "Vec::is_empty")]
     pub events: Vec<MembershipEvent>,
-    /// The ad hoc methods' trust in advisors, learned at this rate.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub trust_lr: Option<f64>,
     /// What each agent answers as an advisor, by slot (none: all honest).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub advises: Vec<Advises>,
+    /// Settings swept: each key (a team file's, `network.loss` for a key
+    /// of a table) with its values; the entry stands for one entry per
+    /// value, all keys' `k`-th values together (read, then expanded).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub sweep: BTreeMap<String, Vec<Value>>,
+    /// The entry a swept entry was expanded from: its group in the
+    /// frontier (default: its own name).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
+    /// The agents' settings beyond the study profile's defaults: any key of
+    /// a team file's `[[agent]]` table (`v_g`, `mistake_correcting`,
+    /// `network`, `ask_budget`, a fidelity rule...).
+    #[serde(flatten)]
+    pub settings: Map<String, Value>,
 }
 
 /// Team size of every study (the paper's 3 offense agents).
@@ -192,6 +173,10 @@ impl StudyConfig {
         let mut config: Self = toml::from_str(text)
             .map_err(|e| ConfigError::new("config", format!("{origin}: {}", e.message())))?;
         config.ci_level = Some(config.ci_level());
+        let entries = std::mem::take(&mut config.entries);
+        for (i, entry) in entries.into_iter().enumerate() {
+            config.entries.extend(entry.expand(i)?);
+        }
         config.name_entries()?;
         Ok(config)
     }
@@ -264,16 +249,15 @@ impl StudyConfig {
                 ));
             }
             let ok = !e.name.is_empty()
-                && e.name
-                    .bytes()
-                    .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'_');
+                && !e.name.starts_with('.')
+                && (e.name.bytes()).all(|b| b.is_ascii_alphanumeric() || b"-_.".contains(&b));
             if !ok {
                 return Err(ConfigError::new(
                     format!("entry[{i}].name"),
-                    "use letters, digits, '-' and '_'",
+                    "use letters, digits, '-', '_' and '.' (not first)",
                 ));
             }
-            e.settings(self.profile)
+            e.config(self.profile)
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
             if !e.advises.is_empty() && e.advises.len() != TEAM {
                 return Err(ConfigError::new(
@@ -314,12 +298,10 @@ impl StudyConfig {
     /// The experiment of `entry`; `expert` is the pretrained snapshot when it has one.
     pub fn experiment(&self, entry: &StudyEntry, expert: Option<&Path>) -> ExperimentConfig {
         let mut spec = AgentSpec::of(entry.algorithm, self.profile);
-        // `validate` rejects the keys the strategy does not have.
-        if let Ok(settings) = entry.settings(self.profile) {
-            spec.config.algorithm = settings;
+        // `validate` rejects the keys the algorithm does not have.
+        if let Ok(config) = entry.config(self.profile) {
+            spec.config = config;
         }
-        spec.config.fidelity = entry.fidelity(self.profile);
-        spec.config.network = entry.network;
         let mut team = vec![spec; TEAM];
         for (agent, &advises) in team.iter_mut().zip(&entry.advises) {
             agent.config.advises = advises;
@@ -371,45 +353,120 @@ impl StudyConfig {
 }
 
 impl StudyEntry {
-    /// The team's algorithm settings: those of `profile`, with the entry's
-    /// own (an error naming a key the algorithm does not have).
-    pub fn settings(&self, profile: Profile) -> Result<AlgorithmSettings, agent::AgentConfigError> {
-        let mut settings = AlgorithmSettings::of(self.algorithm, profile);
-        if self.mistake_correcting {
-            settings.set("mistake_correcting", true)?;
+    /// Its agents' configuration: the defaults of `profile` for its
+    /// algorithm, with the entry's own keys (an error naming a key the
+    /// algorithm does not have). A key whose value is null is not given.
+    pub fn config(&self, profile: Profile) -> Result<AgentConfig, agent::AgentConfigError> {
+        let mut table = Map::new();
+        table.insert("algorithm".into(), self.algorithm.name().into());
+        table.insert("profile".into(), profile.name().into());
+        for (key, value) in self.settings.iter().filter(|(_, v)| !v.is_null()) {
+            table.insert(key.clone(), value.clone());
         }
-        if self.backoff {
-            settings.set("backoff", true)?;
-        }
-        if let Some(lr) = self.trust_lr {
-            settings.set("trust_lr", lr)?;
-        }
-        if let Some(v_g) = self.v_g {
-            settings.set("v_g", v_g)?;
-        }
-        Ok(settings)
+        AgentConfig::from_table(table)
     }
 
-    /// The team's fidelity settings: those of `profile`, with the entry's own.
-    pub fn fidelity(&self, profile: Profile) -> Fidelity {
-        fn set<T: Copy>(field: &mut T, value: Option<T>) {
-            if let Some(v) = value {
-                *field = v;
+    /// The entries this one stands for: itself, or one per swept value.
+    fn expand(self, i: usize) -> Result<Vec<StudyEntry>, ConfigError> {
+        if self.sweep.is_empty() {
+            return Ok(vec![self]);
+        }
+        let bad =
+            |key: &str, reason: String| ConfigError::new(format!("entry[{i}].sweep.{key}"), reason);
+        let count = self.sweep.values().map(Vec::len).max().unwrap_or(0);
+        for (key, values) in &self.sweep {
+            if values.is_empty() {
+                return Err(bad(
+                    key,
+                    "an empty list of values: give at least one".into(),
+                ));
+            }
+            if values.len() != count {
+                return Err(bad(
+                    key,
+                    format!(
+                        "{} values, where another swept key has {count}: keys swept together need as many",
+                        values.len()
+                    ),
+                ));
+            }
+            if let Some(v) = values.iter().find(|v| v.is_null() || v.is_array()) {
+                return Err(bad(
+                    key,
+                    format!("{v} is not a value (a finite number, a string, a table)"),
+                ));
             }
         }
-        let mut f = Fidelity::of(profile);
-        set(&mut f.torrey_unknown_state, self.torrey_unknown_state);
-        set(&mut f.torrey_intent, self.torrey_intent);
-        set(&mut f.advisor_ties, self.advisor_ties);
-        set(&mut f.vote_ties, self.vote_ties);
-        set(&mut f.shared_bootstrap, self.shared_bootstrap);
-        f
+        let base = if self.name.is_empty() {
+            self.algorithm.name().to_owned()
+        } else {
+            self.name.clone()
+        };
+        (0..count)
+            .map(|k| {
+                let mut entry = StudyEntry {
+                    sweep: BTreeMap::new(),
+                    group: Some(self.group.clone().unwrap_or_else(|| base.clone())),
+                    ..self.clone()
+                };
+                let mut name = base.clone();
+                for (key, values) in &self.sweep {
+                    set_path(&mut entry.settings, key, values[k].clone());
+                    name.push_str(&format!(
+                        "-{}-{}",
+                        key.replace('.', "_"),
+                        value_name(&values[k])
+                    ));
+                }
+                entry.name = name;
+                Ok(entry)
+            })
+            .collect()
     }
+}
+
+/// Sets `key` (a dotted path into tables) of `settings` to `value`.
+fn set_path(settings: &mut Map<String, Value>, key: &str, value: Value) {
+    match key.split_once('.') {
+        None => {
+            settings.insert(key.to_owned(), value);
+        }
+        Some((first, rest)) => {
+            let inner = settings
+                .entry(first.to_owned())
+                .or_insert_with(|| Value::Object(Map::new()));
+            if !inner.is_object() {
+                *inner = Value::Object(Map::new());
+            }
+            if let Value::Object(map) = inner {
+                set_path(map, rest, value);
+            }
+        }
+    }
+}
+
+/// A swept value as part of an entry's name: its text, without what a
+/// directory name should not hold.
+fn value_name(value: &Value) -> String {
+    let text = match value {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    };
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use agent::{Fidelity, TorreyUnknownState};
 
     #[test]
     fn presets_parse_and_validate() {
@@ -460,6 +517,64 @@ mod tests {
         }
         let quick = StudyConfig::preset("quick").unwrap();
         assert_eq!((quick.profile, quick.ci_level()), (Profile::Paper, 0.95));
+    }
+
+    #[test]
+    fn a_sweep_stands_for_one_entry_per_value() {
+        let base = "name = \"t\"\nruns = 2\nepisodes = 100\neval_every = 20\neval_episodes = 10\n";
+        let text = format!(
+            "{base}[[entry]]\nalgorithm = \"early-advising\"\nsweep = {{ ask_budget = [10, 100], give_budget = [10, 100] }}\n\
+             [[entry]]\nname = \"lossy\"\nalgorithm = \"adhoc-td\"\nsweep = {{ \"network.loss\" = [0.25] }}\n"
+        );
+        let study = StudyConfig::parse(&text, "t").unwrap();
+        study.validate().unwrap();
+        let names: Vec<&str> = study.entries.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "early-advising-ask_budget-10-give_budget-10",
+                "early-advising-ask_budget-100-give_budget-100",
+                "lossy-network_loss-0.25"
+            ]
+        );
+        let budget = |i: usize| {
+            let config = study.entries[i].config(Profile::Paper).unwrap();
+            (
+                config.algorithm.setting("ask_budget"),
+                config.algorithm.setting("give_budget"),
+            )
+        };
+        assert_eq!(budget(1), (Some(100.into()), Some(100.into())));
+        assert_eq!(study.entries[0].group.as_deref(), Some("early-advising"));
+        let lossy = study.entries[2].config(Profile::Paper).unwrap();
+        assert_eq!(lossy.network.unwrap().loss, 0.25);
+        // What study.json records reads back as the same study, not swept again.
+        let again: StudyConfig = serde_json::from_value(study.json()).unwrap();
+        assert_eq!(again.entries, study.entries);
+
+        let err = |sweep: &str| {
+            let text = format!("{base}[[entry]]\nalgorithm = \"torrey\"\nsweep = {sweep}\n");
+            StudyConfig::parse(&text, "t")
+                .and_then(|s| s.validate())
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err("{ ask_budget = [1, 2] }");
+        assert!(
+            e.contains("entry[0].ask_budget") && e.contains("does not apply to algorithm torrey"),
+            "{e}"
+        );
+        let e = err("{ give_budget = [] }");
+        assert!(
+            e.contains("entry[0].sweep.give_budget") && e.contains("empty"),
+            "{e}"
+        );
+        let e = err("{ importance_threshold = [nan] }");
+        assert!(e.contains("entry[0].sweep.importance_threshold"), "{e}");
+        let e = err("{ give_budget = [1, 2], importance_threshold = [0.1] }");
+        assert!(e.contains("as many"), "{e}");
+        let e = err("{ give_budget = [1, 1] }");
+        assert!(e.contains("appears twice"), "{e}");
     }
 
     #[test]
