@@ -18,3 +18,36 @@ pub struct AdviceCounters {
     /// Transitions received and replayed.
     pub shared_received: u64,
 }
+
+/// What became of the advice requests an agent sent, each counted once:
+/// by what arrived, the first that applies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RequestOutcomes {
+    /// Advice (or values) arrived.
+    pub answered: u64,
+    /// Replies arrived, and some advisor declined: it could have advised.
+    pub declined: u64,
+    /// Every advisor asked replied that its give budget is spent: the
+    /// request could not be answered.
+    pub futile: u64,
+    /// Some reply was lost or late (network conditions, the timeout) and
+    /// none arrived with advice or a decline.
+    pub lost: u64,
+}
+
+impl RequestOutcomes {
+    /// Counts a request to `asked` advisors of which `replies` replied,
+    /// with `answers`.
+    pub(crate) fn count(&mut self, asked: u64, replies: u64, answers: &crate::Answers) {
+        let outcome = if !answers.advice.is_empty() || !answers.values.is_empty() {
+            &mut self.answered
+        } else if answers.declined > 0 {
+            &mut self.declined
+        } else if replies == asked && u64::from(answers.exhausted) == asked {
+            &mut self.futile
+        } else {
+            &mut self.lost
+        };
+        *outcome += 1;
+    }
+}

@@ -1,10 +1,10 @@
 //! One learning agent: its per-frame API (advisee side), its advisor side and
 //! its learned state.
 
-use proto::{Action, Mode, SharedValues, State};
+use proto::{Action, AdviceAnswer, Mode, SharedValues, State, ValuesAnswer};
 use rand::{Rng, SeedableRng};
 
-use crate::advice_counters::AdviceCounters;
+use crate::advice_counters::{AdviceCounters, RequestOutcomes};
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
 use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
@@ -63,6 +63,8 @@ struct InFlight {
     state: State,
     reward: f64,
     intended: Option<Action>,
+    /// Advisors asked.
+    asked: u64,
 }
 
 /// The first half of a frame (see [`Agent::act_begin`]).
@@ -116,6 +118,14 @@ pub struct Agent {
     outbox: Sends,
     training_episodes: u64,
     counters: AdviceCounters,
+    /// What became of its requests.
+    outcomes: RequestOutcomes,
+    /// Whether it told everyone that its give budget is spent.
+    announced: bool,
+    /// An announcement to send.
+    announcement: bool,
+    /// The advisors that announced their give budget spent, by id.
+    exhausted_peers: Vec<bool>,
     link: Option<Link>,
 }
 
@@ -173,6 +183,10 @@ impl Agent {
             outbox: Sends::new(),
             training_episodes: 0,
             counters: AdviceCounters::default(),
+            outcomes: RequestOutcomes::default(),
+            announced: false,
+            announcement: false,
+            exhausted_peers: vec![false; team_size],
         })
     }
 
@@ -220,6 +234,32 @@ impl Agent {
     /// Communication and budget counters.
     pub fn counters(&self) -> &AdviceCounters {
         &self.counters
+    }
+
+    /// What became of its advice requests.
+    pub fn request_outcomes(&self) -> &RequestOutcomes {
+        &self.outcomes
+    }
+
+    /// Whether it has an announcement to send: its give budget is spent
+    /// and its settings say `announce_exhausted` (taken once).
+    pub fn take_announcement(&mut self) -> bool {
+        std::mem::take(&mut self.announcement)
+    }
+
+    /// Agent `peer` announced its give budget spent: it is asked no more.
+    pub fn hear_exhausted(&mut self, peer: usize) {
+        if let Some(e) = self.exhausted_peers.get_mut(peer) {
+            *e = true;
+        }
+    }
+
+    /// Agent `peer` joined afresh (a newcomer, a restart): it is asked
+    /// again until it announces otherwise.
+    pub fn peer_joined(&mut self, peer: usize) {
+        if let Some(e) = self.exhausted_peers.get_mut(peer) {
+            *e = false;
+        }
     }
 
     /// Training episodes finished so far.
@@ -365,6 +405,7 @@ impl Agent {
                     state: obs.state,
                     reward,
                     intended,
+                    asked: self.reach.len() as u64,
                 });
                 return Decision::Ask {
                     to: self.reach.clone(),
@@ -390,6 +431,7 @@ impl Agent {
             return Action::Move;
         };
         self.counters.advice_replies_received += replies;
+        self.outcomes.count(f.asked, replies, answers);
         let ties = self.config.fidelity.vote_ties;
         let replies = Replies {
             key: f.key,
@@ -494,12 +536,40 @@ impl Agent {
 
     /// Advisor side: its answer to a request about `state`, as its method
     /// answers: an action ([`advise`](Self::advise)) or, for a value-sharing
-    /// method, its values ([`share_values`](Self::share_values)).
+    /// method, its values ([`share_values`](Self::share_values)); none, and
+    /// why, otherwise.
     pub fn answer(&mut self, state: &State, intended: Option<Action>) -> Answer {
-        if self.strategy.shares_values() {
-            Answer::Values(self.share_values(state))
-        } else {
-            Answer::Action(self.advise(state, intended))
+        let exhausted = self.training() && self.strategy.exhausted(&self.counters);
+        match (self.strategy.shares_values(), exhausted) {
+            (true, true) => Answer::Values(ValuesAnswer::Exhausted),
+            (false, true) => Answer::Action(AdviceAnswer::Exhausted),
+            (true, false) => Answer::Values(
+                self.share_values(state)
+                    .map_or(ValuesAnswer::Declined, ValuesAnswer::Values),
+            ),
+            (false, false) => Answer::Action(
+                self.advise(state, intended)
+                    .map_or(AdviceAnswer::Declined, AdviceAnswer::Advice),
+            ),
+        }
+    }
+
+    /// Counts one answer given; with `announce_exhausted`, the first that
+    /// spends the give budget has everyone told.
+    fn gave(&mut self) {
+        self.counters.advice_given += 1;
+        self.note_exhaustion();
+    }
+
+    /// Readies the announcement when the give budget is spent and it has
+    /// not announced yet.
+    fn note_exhaustion(&mut self) {
+        if self.config.announce_exhausted
+            && !self.announced
+            && self.strategy.exhausted(&self.counters)
+        {
+            self.announced = true;
+            self.announcement = true;
         }
     }
 
@@ -543,7 +613,7 @@ impl Agent {
         if intended == Some(answer) {
             return None;
         }
-        self.counters.advice_given += 1;
+        self.gave();
         Some(answer)
     }
 
@@ -551,7 +621,7 @@ impl Agent {
     /// advisee's `state`, or `None`; one unit of its give budget.
     pub fn share_values(&mut self, state: &State) -> Option<SharedValues> {
         let (visits, values) = self.willing(state)?;
-        self.counters.advice_given += 1;
+        self.gave();
         Some(SharedValues {
             q: values.q,
             learned: values.learned,
@@ -642,7 +712,9 @@ impl Agent {
     /// (e.g. G(s)).
     fn fill_reach(&mut self, positions: &[[f64; 2]], reachable: &dyn Fn(usize) -> bool) {
         (self.strategy).advisors(self.id, self.team_size, positions, &mut self.reach);
-        self.reach.retain(|&j| reachable(j));
+        let exhausted = &self.exhausted_peers;
+        self.reach
+            .retain(|&j| reachable(j) && !exhausted.get(j).copied().unwrap_or(false));
     }
 
     /// The intended action a Mistake Correcting advisee sends along: its
@@ -790,6 +862,8 @@ impl Agent {
         self.states = states;
         self.counters = snapshot.counters;
         self.training_episodes = snapshot.training_episodes;
+        self.announced = false;
+        self.note_exhaustion();
         self.begin_episode(self.mode);
         Ok(())
     }

@@ -57,6 +57,9 @@ pub struct AgentConfig {
     pub network: Option<NetworkConditions>,
     /// What it answers as an advisor: honest advice, or wrong advice.
     pub advises: Advises,
+    /// Tell every agent once when its give budget is spent, so that they
+    /// ask it no more (default off: the paper's agents keep asking).
+    pub announce_exhausted: bool,
 }
 
 impl Default for AgentConfig {
@@ -75,6 +78,7 @@ impl Default for AgentConfig {
             fidelity: Fidelity::default(),
             network: None,
             advises: Advises::Honest,
+            announce_exhausted: false,
         }
     }
 }

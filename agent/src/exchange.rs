@@ -3,7 +3,7 @@
 //! Budgets, probabilities and votes live in the agent ([`crate::Agent::advise`],
 //! [`crate::Agent::receive_shared`]); an exchange only carries messages.
 
-use proto::{Action, SharedValues, State};
+use proto::{Action, AdviceAnswer, SharedValues, State, ValuesAnswer};
 
 /// One step of a shared episode, `(s, a, r, s', a')`: the wire type itself,
 /// so that a transport ships shared episodes as they are.
@@ -30,19 +30,34 @@ pub struct ValuesAdvice {
 /// An advisor's answer to one request, as its method answers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Answer {
-    /// An action, or none.
-    Action(Option<Action>),
+    /// An action, or none (and why).
+    Action(AdviceAnswer),
     /// Its values of the state, or none (a value-sharing method).
-    Values(Option<SharedValues>),
+    Values(ValuesAnswer),
 }
 
-/// What arrived for one request: actions advised and values shared.
+impl Answer {
+    /// Whether it says the advisor's give budget is spent.
+    pub fn exhausted(&self) -> bool {
+        matches!(
+            self,
+            Answer::Action(AdviceAnswer::Exhausted) | Answer::Values(ValuesAnswer::Exhausted)
+        )
+    }
+}
+
+/// What arrived for one request: actions advised and values shared, and
+/// how many replies brought neither.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Answers {
     /// The actions advised, with who advised them.
     pub advice: Vec<Advice>,
     /// The values shared, with who shared them.
     pub values: Vec<ValuesAdvice>,
+    /// Replies without advice from advisors that could have given some.
+    pub declined: u32,
+    /// Replies without advice from advisors whose give budget is spent.
+    pub exhausted: u32,
 }
 
 impl Answers {
@@ -50,6 +65,26 @@ impl Answers {
     pub fn clear(&mut self) {
         self.advice.clear();
         self.values.clear();
+        self.declined = 0;
+        self.exhausted = 0;
+    }
+
+    /// Takes advisor `advisor`'s answer.
+    pub fn take(&mut self, advisor: usize, answer: Answer) {
+        match answer {
+            Answer::Action(AdviceAnswer::Advice(action)) => {
+                self.advice.push(Advice { advisor, action })
+            }
+            Answer::Values(ValuesAnswer::Values(values)) => {
+                self.values.push(ValuesAdvice { advisor, values })
+            }
+            Answer::Action(AdviceAnswer::Declined) | Answer::Values(ValuesAnswer::Declined) => {
+                self.declined += 1
+            }
+            Answer::Action(AdviceAnswer::Exhausted) | Answer::Values(ValuesAnswer::Exhausted) => {
+                self.exhausted += 1
+            }
+        }
     }
 }
 

@@ -63,7 +63,7 @@ mod team;
 mod tiles;
 
 pub use advice::{Reachable, p_ask, p_give, psi_td, psi_visit};
-pub use advice_counters::AdviceCounters;
+pub use advice_counters::{AdviceCounters, RequestOutcomes};
 pub use advises::Advises;
 pub use agent::{Agent, Decision, Observation};
 pub use algorithm::{Algorithm, UnknownAlgorithm};

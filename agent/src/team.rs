@@ -2,12 +2,12 @@
 //! in a fixed order, so a run is bit-for-bit deterministic.
 
 use proto::{
-    Action, AdviceReply, AdviceRequest, Body, Envelope, Header, Mode, SharedEpisode, State,
-    ValuesReply,
+    Action, AdviceReply, AdviceRequest, Body, Envelope, Exhausted, Header, Mode, SharedEpisode,
+    State, ValuesReply,
 };
 
 use crate::agent::{Agent, Observation};
-use crate::exchange::{Advice, AdviceExchange, Answer, Answers, Transition, ValuesAdvice};
+use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
 use crate::link::{Leg, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
@@ -120,7 +120,11 @@ impl Team {
             .get_mut(id)
             .ok_or(TeamError::Id { index: size, id })?;
         self.traffic[id] = AdvisingTraffic::default();
-        Ok(std::mem::replace(slot, newcomer))
+        let left = std::mem::replace(slot, newcomer);
+        for a in &mut self.agents {
+            a.peer_joined(id);
+        }
+        Ok(left)
     }
 
     /// The agents, by id.
@@ -165,9 +169,28 @@ impl Team {
             peers.clock = (episode, frame);
             peers.link = me.link().copied();
             self.actions[i] = me.act(obs, reward, &self.positions, &mut peers);
+            self.announce((episode, frame));
         }
         self.frame += 1;
         Ok(&self.actions)
+    }
+
+    /// Delivers the announcements of the advisors whose give budget was
+    /// just spent to every other agent, one message each.
+    fn announce(&mut self, (episode, frame): (u32, u32)) {
+        for j in 0..self.agents.len() {
+            if !self.agents[j].take_announcement() {
+                continue;
+            }
+            let header = Header::new(proto::experiment_id("in-process"), 0, episode, frame);
+            let announcement = Body::Exhausted(Exhausted { from: j as u8 });
+            self.traffic[j].count(header, announcement);
+            for (k, a) in self.agents.iter_mut().enumerate() {
+                if k != j {
+                    a.hear_exhausted(j);
+                }
+            }
+        }
     }
 
     /// The terminal frame: every agent learns its last step, then the agents
@@ -278,20 +301,13 @@ impl AdviceExchange for Peers<'_> {
                 .is_some_and(|b| asker.is_none_or(|l| sent + b <= l.timeout_ms()));
             let from = j as u8;
             let reply = match answer {
-                Answer::Action(advice) => Body::AdviceReply(AdviceReply { from, advice }),
-                Answer::Values(values) => Body::ValuesReply(ValuesReply { from, values }),
+                Answer::Action(answer) => Body::AdviceReply(AdviceReply { from, answer }),
+                Answer::Values(answer) => Body::ValuesReply(ValuesReply { from, answer }),
             };
             self.traffic[j].count(header, reply);
             replies += u64::from(arrives);
-            if !arrives {
-                continue;
-            }
-            match answer {
-                Answer::Action(Some(action)) => answers.advice.push(Advice { advisor: j, action }),
-                Answer::Values(Some(values)) => {
-                    (answers.values).push(ValuesAdvice { advisor: j, values })
-                }
-                Answer::Action(None) | Answer::Values(None) => {}
+            if arrives {
+                answers.take(j, answer);
             }
         }
         replies

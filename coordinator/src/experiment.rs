@@ -56,8 +56,11 @@ pub struct Record<'a> {
 /// conditions (`network`) in the configuration. 4: what played each run
 /// (`played_with`), and the keys 3 gained without rising (the runs'
 /// `advice_matrix`, `joins`, `restarts`, `simulator_restarts`, the
-/// summary's `advice_matrix`, the configuration's `events`).
-pub const RESULTS_FORMAT_VERSION: u32 = 4;
+/// summary's `advice_matrix`, the configuration's `events`). 5: what
+/// became of the requests (`answered_requests`, `declined_requests`,
+/// `futile_requests`, `lost_requests`) in the runs, and the agents'
+/// `announce_exhausted`.
+pub const RESULTS_FORMAT_VERSION: u32 = 5;
 
 /// Reads agent `id`'s snapshot, if `spec` loads one, its counters cleared
 /// unless `keep_counters`.

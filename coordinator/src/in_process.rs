@@ -159,6 +159,10 @@ fn stats_of(agent: &Agent, traffic: &AdvisingTraffic) -> AgentStats {
         advice_requests: c.advice_requests,
         advice_replies_received: c.advice_replies_received,
         advice_given: c.advice_given,
+        answered_requests: agent.request_outcomes().answered,
+        declined_requests: agent.request_outcomes().declined,
+        futile_requests: agent.request_outcomes().futile,
+        lost_requests: agent.request_outcomes().lost,
         ..AgentStats::default()
     }
 }

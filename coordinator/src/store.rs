@@ -294,6 +294,11 @@ const COLUMNS: &[Column] = &[
     // the zenoh transport would encode them).
     Column::Team("advising_messages", |a| a.advising_messages),
     Column::Team("advising_bytes", |a| a.advising_bytes),
+    // What became of the requests (format 5).
+    Column::Team("answered_requests", |a| a.answered_requests),
+    Column::Team("declined_requests", |a| a.declined_requests),
+    Column::Team("futile_requests", |a| a.futile_requests),
+    Column::Team("lost_requests", |a| a.lost_requests),
 ];
 
 impl Column {

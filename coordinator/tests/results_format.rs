@@ -80,6 +80,7 @@ fn every_agent() -> Vec<AgentSpec> {
         config: AgentConfig {
             learner: LearnerSettings::named("ensemble").unwrap(),
             advises: "worst".parse().unwrap(),
+            announce_exhausted: true,
             ..AgentConfig::default()
         },
         load: Some("expert.snapshot".into()),

@@ -171,8 +171,17 @@ mod tests {
                     intended
                 })
             ),
-            (any::<u8>(), prop::option::of(action()))
-                .prop_map(|(from, advice)| Body::AdviceReply(AdviceReply { from, advice })),
+            (any::<u8>(), prop::option::of(action()), any::<bool>()).prop_map(
+                |(from, advice, exhausted)| Body::AdviceReply(AdviceReply {
+                    from,
+                    answer: match (advice, exhausted) {
+                        (Some(a), _) => AdviceAnswer::Advice(a),
+                        (None, false) => AdviceAnswer::Declined,
+                        (None, true) => AdviceAnswer::Exhausted,
+                    },
+                })
+            ),
+            any::<u8>().prop_map(|from| Body::Exhausted(Exhausted { from })),
             (
                 any::<u8>(),
                 any::<u8>(),
@@ -242,7 +251,12 @@ mod tests {
             )
                 .prop_map(|(from, values)| Body::ValuesReply(ValuesReply {
                     from,
-                    values: values.map(|(q, learned, visits)| SharedValues { q, learned, visits }),
+                    answer: match values {
+                        Some((q, learned, visits)) => {
+                            ValuesAnswer::Values(SharedValues { q, learned, visits })
+                        }
+                        None => ValuesAnswer::Declined,
+                    },
                 })),
         ]
     }
@@ -315,5 +329,25 @@ mod tests {
         });
         bytes.push(0);
         assert!(matches!(decode(&bytes, 1), Err(DecodeError::Malformed(_))));
+    }
+
+    #[test]
+    fn answers_are_encoded_as_the_options_they_replace() {
+        let old = |a: Option<Action>| postcard::to_allocvec(&a).unwrap();
+        let new = |a: AdviceAnswer| postcard::to_allocvec(&a).unwrap();
+        assert_eq!(new(AdviceAnswer::Declined), old(None));
+        assert_eq!(
+            new(AdviceAnswer::Advice(Action::Shoot)),
+            old(Some(Action::Shoot))
+        );
+        assert_eq!(new(AdviceAnswer::Exhausted).len(), 1);
+        let values = SharedValues {
+            q: [0.5; 5],
+            learned: 3,
+            visits: 9,
+        };
+        let old = postcard::to_allocvec(&Some(values)).unwrap();
+        let new = postcard::to_allocvec(&ValuesAnswer::Values(values)).unwrap();
+        assert_eq!(new, old);
     }
 }

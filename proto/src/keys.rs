@@ -80,6 +80,17 @@ impl Keys {
         format!("{}/share/{id}", self.prefix)
     }
 
+    /// Announcements of agents whose give budget is spent (each agent
+    /// publishes on its own, every agent subscribes to all).
+    pub fn exhausted(&self, id: u8) -> String {
+        format!("{}/exhausted/{id}", self.prefix)
+    }
+
+    /// Every agent's announcements.
+    pub fn exhausted_all(&self) -> String {
+        format!("{}/exhausted/*", self.prefix)
+    }
+
     /// The control queryable of a process.
     pub fn control(&self, role: Role) -> String {
         format!("{}/ctl/{role}", self.prefix)

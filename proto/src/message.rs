@@ -9,7 +9,7 @@ use crate::action::{Action, State};
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 9;
+pub const PROTOCOL_VERSION: u16 = 10;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -111,6 +111,9 @@ pub enum Body {
     /// advisor -> advisee: the reply of a method that shares values instead
     /// of actions (query reply).
     ValuesReply(ValuesReply),
+    /// advisor -> every agent: its give budget is spent; it will answer no
+    /// more requests (with `announce_exhausted`).
+    Exhausted(Exhausted),
 }
 
 /// One agent's observation of a frame.
@@ -155,13 +158,26 @@ pub struct AdviceRequest {
     pub intended: Option<Action>,
 }
 
-/// An advisor's answer: its action, or `None` when it gives no advice.
+/// What an advisor answers to a request: advice, none, or none because its
+/// give budget is spent. (Encoded as `Option<Action>` was, plus one value.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum AdviceAnswer {
+    /// No advice: the advisor is not confident, or agrees (Mistake
+    /// Correcting), or does not advise now.
+    Declined,
+    /// The advised action.
+    Advice(Action),
+    /// No advice: its give budget is spent.
+    Exhausted,
+}
+
+/// An advisor's answer to a request.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct AdviceReply {
     /// The answering agent.
     pub from: u8,
-    /// The advised action.
-    pub advice: Option<Action>,
+    /// Its answer.
+    pub answer: AdviceAnswer,
 }
 
 /// A sharer's values of a state: what a value-sharing advisor answers.
@@ -183,13 +199,33 @@ impl SharedValues {
     }
 }
 
-/// A value-sharing advisor's answer: its values, or `None` when it shares none.
+/// What a value-sharing advisor answers: its values, none, or none because
+/// its give budget is spent. (Encoded as `Option<SharedValues>` was, plus
+/// one value.)
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ValuesAnswer {
+    /// No values: the sharer is not confident.
+    Declined,
+    /// Its values of the state.
+    Values(SharedValues),
+    /// No values: its give budget is spent.
+    Exhausted,
+}
+
+/// A value-sharing advisor's answer to a request.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ValuesReply {
     /// The answering agent.
     pub from: u8,
-    /// Its values of the state.
-    pub values: Option<SharedValues>,
+    /// Its answer.
+    pub answer: ValuesAnswer,
+}
+
+/// An advisor's announcement that its give budget is spent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Exhausted {
+    /// The announcing agent.
+    pub from: u8,
 }
 
 /// One transition of a shared episode.
@@ -372,6 +408,9 @@ pub struct AgentReport {
     pub advice_replies_received: u64,
     /// Advice given to others.
     pub advice_given: u64,
+    /// What became of its requests: answered, declined, futile, lost
+    /// (`agent::RequestOutcomes`).
+    pub request_outcomes: [u64; 4],
     /// Messages and bytes by kind and direction.
     pub messages: MessageCounters,
     /// Round-trip times of advice requests (ms), one per request with a reply.
@@ -402,6 +441,7 @@ impl MessageKind {
             Body::AdviceRequest(_) => MessageKind::AdviceRequest,
             Body::AdviceReply(_) => MessageKind::AdviceReply,
             Body::ValuesReply(_) => MessageKind::ValuesReply,
+            Body::Exhausted(_) => MessageKind::Exhausted,
             Body::SharedEpisode(_) => MessageKind::SharedEpisode,
             Body::Control(_) => MessageKind::Control,
             Body::ControlReply(_) => MessageKind::ControlReply,

@@ -21,11 +21,13 @@ pub enum MessageKind {
     ControlReply,
     /// Values replies (value-sharing methods).
     ValuesReply,
+    /// Announcements of a spent give budget.
+    Exhausted,
 }
 
 impl MessageKind {
     /// Every kind, in counter order.
-    pub const ALL: [MessageKind; 8] = [
+    pub const ALL: [MessageKind; 9] = [
         MessageKind::Observation,
         MessageKind::Action,
         MessageKind::AdviceRequest,
@@ -34,6 +36,17 @@ impl MessageKind {
         MessageKind::Control,
         MessageKind::ControlReply,
         MessageKind::ValuesReply,
+        MessageKind::Exhausted,
+    ];
+
+    /// The kinds an advising method's traffic is made of: requests,
+    /// replies, shared episodes and announcements.
+    pub const ADVISING: [MessageKind; 5] = [
+        MessageKind::AdviceRequest,
+        MessageKind::AdviceReply,
+        MessageKind::ValuesReply,
+        MessageKind::SharedEpisode,
+        MessageKind::Exhausted,
     ];
 
     /// Snake-case name used in reports.
@@ -47,6 +60,7 @@ impl MessageKind {
             MessageKind::Control => "control",
             MessageKind::ControlReply => "control_reply",
             MessageKind::ValuesReply => "values_reply",
+            MessageKind::Exhausted => "exhausted",
         }
     }
 }

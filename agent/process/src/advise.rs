@@ -2,7 +2,10 @@
 //! callback, concurrently with the agent's own decisions (docs/protocol.md §6).
 
 use agent::{Answer, Leg};
-use proto::{AdviceReply, Body, DropReason, Envelope, MessageKind, ValuesReply};
+use proto::{
+    AdviceAnswer, AdviceReply, Body, DropReason, Envelope, Exhausted, Header, MessageKind,
+    ValuesReply,
+};
 use zenoh::Wait;
 use zenoh::query::Query;
 
@@ -30,14 +33,17 @@ pub fn answer(ctx: &Context, query: Query, runtime: &tokio::runtime::Handle) {
         // Another run's asker still gets its answer: no advice.
         Err(reason) => {
             ctx.dropped(reason, Some(&header));
-            Answer::Action(None)
+            Answer::Action(AdviceAnswer::Declined)
         }
     };
     let from = ctx.id;
     let reply = match answer {
-        Answer::Action(advice) => Body::AdviceReply(AdviceReply { from, advice }),
-        Answer::Values(values) => Body::ValuesReply(ValuesReply { from, values }),
+        Answer::Action(answer) => Body::AdviceReply(AdviceReply { from, answer }),
+        Answer::Values(answer) => Body::ValuesReply(ValuesReply { from, answer }),
     };
+    if ctx.learner().take_announcement() {
+        announce(ctx, header, runtime);
+    }
     let bytes = ctx.encode(header, reply);
     let key = ctx.keys.advice(ctx.id);
     match conditions::fate(ctx.advice().1, &header, ctx.id, request.from, Leg::Reply) {
@@ -55,5 +61,37 @@ pub fn answer(ctx: &Context, query: Query, runtime: &tokio::runtime::Handle) {
                 tracing::warn!(error = %e, "cannot answer an advice request");
             }
         }
+    }
+}
+
+/// Tells every agent once that this agent's give budget is spent
+/// (`announce_exhausted`): one message on its announcement key, sent from
+/// `runtime` (a callback sends only small messages itself).
+fn announce(ctx: &Context, header: Header, runtime: &tokio::runtime::Handle) {
+    let bytes = ctx.encode(header, Body::Exhausted(Exhausted { from: ctx.id }));
+    let (session, key) = (ctx.session.clone(), ctx.keys.exhausted(ctx.id));
+    runtime.spawn(async move {
+        if let Err(e) = session.put(key, bytes).await {
+            tracing::warn!(error = %e, "cannot announce the spent give budget");
+        }
+    });
+}
+
+/// Takes another agent's announcement that its give budget is spent: it
+/// is asked no more in this run (until its process joins again).
+pub fn on_exhausted(ctx: &Context, bytes: &[u8]) {
+    let Some(Envelope { header, body }) = ctx.decode(bytes) else {
+        return;
+    };
+    let Body::Exhausted(Exhausted { from }) = body else {
+        return ctx.dropped(DropReason::Malformed, Some(&header));
+    };
+    if from == ctx.id {
+        // Its own, heard back.
+        return;
+    }
+    match ctx.learner().hear_exhausted(&header, from) {
+        Ok(()) => ctx.accepted(MessageKind::Exhausted, bytes.len()),
+        Err(reason) => ctx.dropped(reason, Some(&header)),
     }
 }

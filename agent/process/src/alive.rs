@@ -26,7 +26,12 @@ pub async fn track(
         let role = ctx.keys.role_of_alive(sample.key_expr().as_str());
         tracing::debug!(?role, present, "liveliness");
         match role {
-            Some(Role::Agent(j)) => ctx.set_alive(j, present),
+            Some(Role::Agent(j)) => {
+                ctx.set_alive(j, present);
+                if present {
+                    ctx.learner().peer_joined(j);
+                }
+            }
             Some(Role::Coordinator) if coordinator.left(present) && exit_with_coordinator => {
                 ctx.stop(Exit::CoordinatorGone)
             }

@@ -4,8 +4,8 @@
 
 use std::time::{Duration, Instant};
 
-use agent::{Advice, Answer, Answers, Leg, ValuesAdvice};
-use proto::{Body, DropReason, Header, MessageKind};
+use agent::{Answer, Answers, Leg};
+use proto::{AdviceAnswer, Body, DropReason, Header, MessageKind, ValuesAnswer};
 use tokio::sync::mpsc;
 use zenoh::query::{ConsolidationMode, QueryTarget};
 
@@ -43,7 +43,7 @@ impl Collector {
     /// from an advisor that was not asked is refused as unrequested, a
     /// second one as a duplicate.
     pub fn take(&mut self, from: u8, answer: Answer, rtt: Duration) -> Result<(), DropReason> {
-        if let Answer::Values(Some(values)) = answer
+        if let Answer::Values(ValuesAnswer::Values(values)) = answer
             && !values.is_valid()
         {
             return Err(DropReason::Malformed);
@@ -58,16 +58,14 @@ impl Collector {
         self.answered.push(from);
         self.waiting.swap_remove(k);
         self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
-        let advisor = usize::from(from);
-        match answer {
-            Answer::Action(Some(action)) if action.is_kick() => {
-                self.answers.advice.push(Advice { advisor, action });
+        // Only kick actions count as advice.
+        let answer = match answer {
+            Answer::Action(AdviceAnswer::Advice(action)) if !action.is_kick() => {
+                Answer::Action(AdviceAnswer::Declined)
             }
-            Answer::Values(Some(values)) => {
-                self.answers.values.push(ValuesAdvice { advisor, values });
-            }
-            _ => {}
-        }
+            answer => answer,
+        };
+        self.answers.take(usize::from(from), answer);
         Ok(())
     }
 
@@ -192,8 +190,8 @@ fn take_reply(
         return;
     };
     let (kind, from, answer) = match envelope.body {
-        Body::AdviceReply(r) => (MessageKind::AdviceReply, r.from, Answer::Action(r.advice)),
-        Body::ValuesReply(r) => (MessageKind::ValuesReply, r.from, Answer::Values(r.values)),
+        Body::AdviceReply(r) => (MessageKind::AdviceReply, r.from, Answer::Action(r.answer)),
+        Body::ValuesReply(r) => (MessageKind::ValuesReply, r.from, Answer::Values(r.answer)),
         _ => return ctx.dropped(DropReason::Malformed, Some(&envelope.header)),
     };
     let result = if envelope.header != header {
@@ -213,12 +211,13 @@ fn take_reply(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use agent::{Advice, ValuesAdvice};
     use proto::Action::{Dribble, Move, Shoot};
 
     #[test]
     fn collects_until_every_advisor_answered() {
         let ms = Duration::from_millis;
-        let act = |a| Answer::Action(Some(a));
+        let act = |a| Answer::Action(AdviceAnswer::Advice(a));
         let mut c = Collector::new(&[2, 0]);
         assert!(!c.done());
         c.take(0, act(Shoot), ms(3)).unwrap();
@@ -230,13 +229,15 @@ mod tests {
         );
         assert!(!c.done());
         // No advice, or a non-kick one: a reply, but no advice.
-        c.take(2, Answer::Action(None), ms(1)).unwrap();
+        c.take(2, Answer::Action(AdviceAnswer::Declined), ms(1))
+            .unwrap();
         assert!(c.done());
         let shoot = Advice {
             advisor: 0,
             action: Shoot,
         };
         assert_eq!(c.answers.advice, vec![shoot]);
+        assert_eq!((c.answers.declined, c.answers.exhausted), (1, 0));
         assert_eq!(c.replies(), 2);
         assert_eq!(c.rtt_ms, vec![3.0, 1.0]);
         let mut d = Collector::new(&[1]);
@@ -254,10 +255,11 @@ mod tests {
         };
         let mut c = Collector::new(&[1, 2]);
         let bad = values([f64::NAN, 0.0, 0.0, 0.0, 0.0]);
-        let refused = c.take(1, Answer::Values(Some(bad)), ms(1));
+        let refused = c.take(1, Answer::Values(ValuesAnswer::Values(bad)), ms(1));
         assert_eq!(refused, Err(DropReason::Malformed));
         let good = values([0.0, 0.5, 0.0, 0.0, 0.0]);
-        c.take(2, Answer::Values(Some(good)), ms(2)).unwrap();
+        c.take(2, Answer::Values(ValuesAnswer::Values(good)), ms(2))
+            .unwrap();
         let shared = ValuesAdvice {
             advisor: 2,
             values: good,

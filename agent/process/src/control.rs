@@ -159,6 +159,10 @@ fn report(ctx: &Context) -> Result<AgentReport, String> {
             advice_requests: c.advice_requests,
             advice_replies_received: c.advice_replies_received,
             advice_given: c.advice_given,
+            request_outcomes: {
+                let o = agent.request_outcomes();
+                [o.answered, o.declined, o.futile, o.lost]
+            },
             advised_by: agent.advised_by().to_vec(),
             ..AgentReport::default()
         }

@@ -241,7 +241,34 @@ impl Learning {
         Ok(())
     }
 
-    /// The advice for a request of the current run (`None`: no advice).
+    /// Whether the agent has its spent give budget to announce (once).
+    pub fn take_announcement(&mut self) -> bool {
+        self.agent.as_mut().is_some_and(Agent::take_announcement)
+    }
+
+    /// Agent `from` announced its give budget spent in the run of `header`.
+    pub fn hear_exhausted(&mut self, header: &Header, from: u8) -> Result<(), DropReason> {
+        if from >= self.team_size {
+            return Err(DropReason::Malformed);
+        }
+        match self.agent.as_mut() {
+            Some(a) if header.run == self.run => {
+                a.hear_exhausted(usize::from(from));
+                Ok(())
+            }
+            _ => Err(DropReason::Stale),
+        }
+    }
+
+    /// Agent `j`'s process joined (again): it is asked until it announces
+    /// its budget spent.
+    pub fn peer_joined(&mut self, j: u8) {
+        if let Some(a) = self.agent.as_mut() {
+            a.peer_joined(usize::from(j));
+        }
+    }
+
+    /// The answer to a request of the current run.
     pub fn advise(
         &mut self,
         header: &Header,
@@ -476,7 +503,7 @@ mod tests {
         };
         assert_eq!(
             l.advise(&header(3, 0, 0), &request(1)),
-            Ok(Answer::Action(None))
+            Ok(Answer::Action(proto::AdviceAnswer::Declined))
         );
         assert_eq!(
             l.advise(&header(2, 0, 0), &request(1)),
@@ -523,7 +550,7 @@ mod tests {
     fn advice(advisor: usize, action: Action) -> Answers {
         Answers {
             advice: vec![agent::Advice { advisor, action }],
-            values: Vec::new(),
+            ..Answers::default()
         }
     }
 }

@@ -80,6 +80,14 @@ pub async fn run(settings: Settings) -> Result<Exit> {
             .await
             .map_err(|e| declare("the share subscriber", e))?
     };
+    let _exhausted = {
+        let ctx = ctx.clone();
+        session
+            .declare_subscriber(ctx.keys.exhausted_all())
+            .callback(move |s| advise::on_exhausted(&ctx, &s.payload().to_bytes()))
+            .await
+            .map_err(|e| declare("the announcement subscriber", e))?
+    };
     let _advice = {
         let ctx = ctx.clone();
         let runtime = tokio::runtime::Handle::current();

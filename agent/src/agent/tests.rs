@@ -11,6 +11,7 @@ use crate::strategy::{
 };
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
+use proto::ValuesAnswer;
 
 /// Kick state number `k` (0..5): distinct keys through feature 2.
 fn kick_state(k: usize) -> State {
@@ -118,7 +119,7 @@ fn script(answers: &[Action]) -> Script {
 fn only(advice: Advice) -> Answers {
     Answers {
         advice: vec![advice],
-        values: Vec::new(),
+        ..Answers::default()
     }
 }
 
@@ -811,7 +812,7 @@ fn play_two_phase(
                             .collect();
                         let answers = Answers {
                             advice,
-                            values: Vec::new(),
+                            ..Answers::default()
                         };
                         agents[i].act_complete(&answers, to.len() as u64)
                     }
@@ -1371,15 +1372,15 @@ fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
     };
     let mut values = Vec::new();
     for (advisor, a) in [(1, &mut sharer), (2, &mut novice)] {
-        let Answer::Values(Some(v)) = a.answer(&state, None) else {
+        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(&state, None) else {
             panic!("a sharer answers with its values");
         };
         values.push(ValuesAdvice { advisor, values: v });
     }
     assert_eq!((values[0].values.q, values[0].values.visits), (q, 40));
     let answers = Answers {
-        advice: Vec::new(),
         values,
+        ..Answers::default()
     };
     partaker.act_complete(&answers, 2);
     // It took the values of the sharer with the most visits as its own.
@@ -1394,4 +1395,103 @@ fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
         values: &answers.values,
     };
     assert_eq!(strategy.adopt(&replies, 100), None);
+}
+
+/// A team of three early-advising agents whose give budget is `give`,
+/// announcing when it is spent if `announce`, after `episodes` episodes.
+fn early_team(give: u64, announce: bool, episodes: usize) -> Team {
+    let mut c = with("early-advising", |b: &mut EarlyAdvising| {
+        b.give_budget = give;
+        b.ask_budget = 100_000;
+    });
+    c.announce_exhausted = announce;
+    let agents = (0..3).map(|i| Agent::new(i, 3, c.clone(), 30 + i as u64).unwrap());
+    let mut t = Team::new(agents.collect()).unwrap();
+    play(
+        &mut t,
+        &mut AgentRng::seed_from_u64(6),
+        episodes,
+        Mode::Training,
+    );
+    t
+}
+
+#[test]
+fn every_request_is_counted_once_by_what_became_of_it() {
+    let t = early_team(5, false, 200);
+    for a in t.agents() {
+        let o = a.request_outcomes();
+        let c = a.counters();
+        assert_eq!(
+            o.answered + o.declined + o.futile + o.lost,
+            c.advice_requests
+        );
+        // Advisors answer states they visited while their budget lasts;
+        // then every request is futile.
+        assert!(o.answered > 0 && o.declined > 0, "{o:?}");
+        assert!(o.futile > o.answered, "{o:?}");
+        assert_eq!(o.lost, 0, "no network conditions: nothing is lost");
+    }
+    // Lost replies are lost.
+    let mut c = config("early-advising");
+    c.network = Some(NetworkConditions {
+        latency: "fixed:0".parse().unwrap(),
+        loss: 0.5,
+        timeout_ms: 5.0,
+    });
+    let agents = (0..3).map(|i| Agent::new(i, 3, c.clone(), 30 + i as u64).unwrap());
+    let mut t = Team::new(agents.collect()).unwrap();
+    play(&mut t, &mut AgentRng::seed_from_u64(6), 50, Mode::Training);
+    let lost: u64 = t.agents().iter().map(|a| a.request_outcomes().lost).sum();
+    assert!(lost > 0);
+}
+
+#[test]
+fn an_exhausted_advisor_announces_once_and_is_asked_no_more() {
+    let (quiet, told) = (early_team(5, false, 200), early_team(5, true, 200));
+    let sum = |t: &Team, f: fn(&Agent) -> u64| t.agents().iter().map(f).sum::<u64>();
+    // The same answers while budgets last; then the told team stops asking.
+    assert_eq!(
+        sum(&quiet, |a| a.counters().advice_given),
+        sum(&told, |a| a.counters().advice_given)
+    );
+    assert_eq!(sum(&told, |a| a.request_outcomes().futile), 0);
+    assert!(sum(&quiet, |a| a.request_outcomes().futile) > 0);
+    let messages = |t: &Team| t.traffic().iter().map(|m| m.messages).sum::<u64>();
+    assert!(messages(&told) < messages(&quiet));
+    // A newcomer in a slot is asked again.
+    let mut told = told;
+    let c = told.agents()[1].config().clone();
+    told.replace(Agent::new(1, 3, c, 99).unwrap()).unwrap();
+    play(
+        &mut told,
+        &mut AgentRng::seed_from_u64(7),
+        30,
+        Mode::Training,
+    );
+    assert!(
+        told.agents()[1].counters().advice_given > 0,
+        "the newcomer is asked"
+    );
+}
+
+#[test]
+fn the_announcement_is_taken_once_and_again_after_a_restore() {
+    let mut c = with("early-advising", |b: &mut EarlyAdvising| b.give_budget = 1);
+    c.announce_exhausted = true;
+    let mut a = agent(1, 3, c);
+    teach(
+        &mut a,
+        &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
+    );
+    assert!(!a.take_announcement());
+    assert_eq!(a.advise(&kick_state(0), None), Some(Dribble));
+    assert!(a.take_announcement());
+    assert!(!a.take_announcement(), "once");
+    assert_eq!(
+        a.answer(&kick_state(0), None),
+        Answer::Action(proto::AdviceAnswer::Exhausted)
+    );
+    a.restore(a.snapshot()).unwrap();
+    assert!(a.take_announcement(), "a restored agent tells again");
 }

@@ -89,6 +89,9 @@ impl AgentConfig {
         if self.advises != Advises::Honest {
             table.push(("advises".into(), to_value(&self.advises)));
         }
+        if self.announce_exhausted {
+            table.push(("announce_exhausted".into(), true.into()));
+        }
         table
     }
 
@@ -122,6 +125,7 @@ impl AgentConfig {
             fidelity: overlay(Fidelity::of(profile), &mut table, &["profile"])?,
             network: take(&mut table, "network")?,
             advises: take(&mut table, "advises")?.unwrap_or_default(),
+            announce_exhausted: take(&mut table, "announce_exhausted")?.unwrap_or_default(),
             algorithm: AlgorithmSettings::from_table(algorithm, profile, &mut table)?,
         };
         match table.keys().next() {

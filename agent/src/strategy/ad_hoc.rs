@@ -265,6 +265,10 @@ impl AdvisingStrategy for AdHocAdvising {
         }
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        counters.advice_given >= self.settings.give_budget
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
     }

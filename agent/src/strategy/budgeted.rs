@@ -141,6 +141,10 @@ impl AdvisingStrategy for Budgeted {
         at.visited_within(self.give_budget)
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        counters.advice_given >= self.give_budget
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
     }

@@ -218,6 +218,10 @@ impl AdvisingStrategy for Peers {
         self.trust.learn(outcome, self.settings.trust_lr);
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        counters.advice_given >= self.settings.give_budget
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
     }

@@ -114,6 +114,10 @@ impl AdvisingStrategy for Psaf {
         None
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        counters.advice_given >= self.give_budget
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
     }

@@ -86,6 +86,10 @@ impl AdvisingStrategy for Rcmp {
         at.visited_within(self.give_budget)
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        counters.advice_given >= self.give_budget
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
     }

@@ -218,6 +218,10 @@ impl AdvisingStrategy for ReusingAdvice {
         self.ad_hoc.learn_outcome(outcome);
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        self.ad_hoc.exhausted(counters)
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         self.ad_hoc.spent_budget(counters)
     }

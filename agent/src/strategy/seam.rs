@@ -201,6 +201,13 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// The budget the paper plots (advice given, or transitions shared).
     fn spent_budget(&self, counters: &AdviceCounters) -> u64;
 
+    /// Advisor: whether its give budget is spent, so that it answers no
+    /// more (its replies say so, and with `announce_exhausted` it tells
+    /// everyone once). Never, by default.
+    fn exhausted(&self, _counters: &AdviceCounters) -> bool {
+        false
+    }
+
     /// An episode in `mode` begins (the previous one may have been
     /// abandoned).
     fn begin_episode(&mut self, _mode: Mode) {}

@@ -102,6 +102,10 @@ impl AdvisingStrategy for TorreyTeacher {
             && importance > self.settings.importance_threshold
     }
 
+    fn exhausted(&self, counters: &AdviceCounters) -> bool {
+        counters.advice_given >= self.settings.give_budget
+    }
+
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         counters.advice_given
     }

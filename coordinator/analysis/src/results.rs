@@ -141,6 +141,17 @@ pub struct AgentStats {
     pub advising_messages: u64,
     /// Their encoded bytes.
     pub advising_bytes: u64,
+    /// Requests that brought advice (or values).
+    pub answered_requests: u64,
+    /// Requests that brought replies, some advisor declining: it could
+    /// have advised.
+    pub declined_requests: u64,
+    /// Requests every advisor asked answered with its give budget spent:
+    /// nobody could answer them.
+    pub futile_requests: u64,
+    /// Requests some of whose replies were lost or late, and none brought
+    /// advice or a decline.
+    pub lost_requests: u64,
 }
 
 /// A newcomer that joined a run: who played which episodes.

@@ -431,12 +431,8 @@ impl Backend for RemoteBackend<'_> {
 fn stats_of(r: &AgentReport) -> AgentStats {
     let sent = r.messages.total(proto::Direction::Sent);
     let received = r.messages.total(proto::Direction::Received);
-    let advising = r.messages.sent_of(&[
-        MessageKind::AdviceRequest,
-        MessageKind::AdviceReply,
-        MessageKind::ValuesReply,
-        MessageKind::SharedEpisode,
-    ]);
+    let advising = r.messages.sent_of(&MessageKind::ADVISING);
+    let [answered, declined, futile, lost] = r.request_outcomes;
     AgentStats {
         give_spent: r.give_spent,
         ask_spent: r.ask_spent,
@@ -450,5 +446,9 @@ fn stats_of(r: &AgentReport) -> AgentStats {
         messages_dropped: r.messages.dropped.total(),
         advising_messages: advising.messages,
         advising_bytes: advising.bytes,
+        answered_requests: answered,
+        declined_requests: declined,
+        futile_requests: futile,
+        lost_requests: lost,
     }
 }
