@@ -309,7 +309,9 @@ struct NetworkArgs {
     #[arg(long, value_name = "MS")]
     stall_limit_ms: Option<u64>,
     /// Restart an agent process that dies from its latest checkpoint and go
-    /// on, recording the gap (default: a lost agent ends the run).
+    /// on, recording the gap; one that dies before joining, at start-up too,
+    /// is started again, 3 times per slot at most (default: a lost agent
+    /// ends the run).
     #[arg(long)]
     restart_agents: bool,
     /// With --restart-agents: checkpoint every agent every this many

@@ -44,7 +44,8 @@ pub struct ZenohSettings {
     /// run ends with an error (ms).
     pub stall_limit_ms: u64,
     /// Restart an agent process that dies from its latest checkpoint
-    /// instead of ending the run (recorded only when on).
+    /// instead of ending the run, and start again one that dies before
+    /// joining (recorded only when on).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub restart_agents: bool,
     /// With `restart_agents`: a checkpoint of every agent every this many

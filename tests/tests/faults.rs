@@ -427,7 +427,7 @@ fn play(trial: &Trial, name: &str, dir: &Path) -> Verdict {
     let stderr = std::fs::read_to_string(&stderr_path).unwrap_or_default();
     let last = stderr.lines().rev().find(|l| !l.trim().is_empty());
     match (status.code(), last) {
-        (Some(0), _) => Verdict::Ok("finished".into()),
+        (Some(0), _) => Verdict::Ok(format!("finished{}", restarts(&out))),
         // A signal before the handlers are installed, i.e. before any spawn.
         (None, _)
             if target.is_none()
@@ -439,6 +439,21 @@ fn play(trial: &Trial, name: &str, dir: &Path) -> Verdict {
             Verdict::Ok(format!("exit {code}: {line}"))
         }
         _ => Verdict::Unclear(format!("{status}, stderr: {stderr}")),
+    }
+}
+
+/// The causes of the agent restarts the run in `out` recorded, as
+/// `; restarted: <cause> | ...`, or nothing.
+fn restarts(out: &Path) -> String {
+    let run = std::fs::read_to_string(out.join("run-0.json")).unwrap_or_default();
+    let run: serde_json::Value = serde_json::from_str(&run).unwrap_or_default();
+    let causes: Vec<&str> = (run["restarts"].as_array().into_iter().flatten())
+        .filter_map(|r| r["cause"].as_str())
+        .collect();
+    if causes.is_empty() {
+        String::new()
+    } else {
+        format!("; restarted: {}", causes.join(" | "))
     }
 }
 

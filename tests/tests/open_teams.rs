@@ -90,6 +90,12 @@ fn newcomers_join_while_the_others_keep_learning_in_both_transports() {
 
 /// The pid of agent `id`'s process of experiment `experiment`, if running.
 fn agent_pid(experiment: &str, id: u8) -> Option<u32> {
+    agent_pid_but(experiment, id, &[])
+}
+
+/// The pid of a process of agent `id` of experiment `experiment` other than
+/// those of `known`, if one runs.
+fn agent_pid_but(experiment: &str, id: u8, known: &[u32]) -> Option<u32> {
     let wanted = |cmdline: &str| {
         let args: Vec<&str> = cmdline.split('\0').collect();
         let after = |flag: &str| {
@@ -107,6 +113,9 @@ fn agent_pid(experiment: &str, id: u8) -> Option<u32> {
         .flatten()
         .find_map(|entry| {
             let pid: u32 = entry.file_name().to_str()?.parse().ok()?;
+            if known.contains(&pid) {
+                return None;
+            }
             let cmdline = std::fs::read_to_string(entry.path().join("cmdline")).ok()?;
             wanted(&cmdline).then_some(pid)
         })
@@ -188,5 +197,133 @@ fn an_agent_that_dies_is_restarted_from_its_checkpoint_and_the_run_completes() {
     );
     assert_eq!(run["points"].as_array().unwrap().len(), 4);
     // The new process is gone with the run.
+    assert_eq!(agent_pid(&experiment, 1), None);
+}
+
+/// Three AdHocTD agents; after training episode 30 a fresh learner takes
+/// slot 2.
+const JOIN_AT_30: &str = r#"
+[[agent]]
+algorithm = "adhoc-td"
+[[agent]]
+algorithm = "adhoc-td"
+[[agent]]
+algorithm = "adhoc-td"
+
+[[event]]
+episode = 30
+slot = 2
+"#;
+
+/// Waits for a process of agent `id` other than `known`: its pid. Panics,
+/// with the coordinator's standard error (in `stderr`), if the coordinator
+/// ends first.
+fn seen(
+    coordinator: &mut std::process::Child,
+    stderr: &Path,
+    (experiment, id): (&str, u8),
+    known: &[u32],
+) -> u32 {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    loop {
+        if let Some(pid) = agent_pid_but(experiment, id, known) {
+            return pid;
+        }
+        if let Some(status) = coordinator.try_wait().unwrap() {
+            let stderr = std::fs::read_to_string(stderr).unwrap_or_default();
+            panic!("the coordinator ended ({status}) before a new agent {id} was seen: {stderr}");
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "no new process of agent {id}"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+/// How long process `pid` has been running (Linux /proc, to the clock
+/// tick, USER_HZ = 100).
+fn age(pid: u32) -> std::time::Duration {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+    // The fields after the command name (in parentheses): state, then ...;
+    // the 22nd, start time in ticks since boot, is the 20th of them.
+    let after_name: Vec<&str> = stat[stat.rfind(')').unwrap() + 2..].split(' ').collect();
+    let started = after_name[19].parse::<f64>().unwrap() / 100.0;
+    let uptime = std::fs::read_to_string("/proc/uptime").unwrap();
+    let uptime: f64 = uptime.split(' ').next().unwrap().parse().unwrap();
+    std::time::Duration::from_secs_f64((uptime - started).max(0.0))
+}
+
+/// Kills agent process `pid` (SIGKILL) and checks that it was killed before
+/// it could join: an agent process declares its liveliness token no sooner
+/// than a second after it starts (it first watches that long for another
+/// process of its id, agent/process/src/unique.rs).
+fn kill_before_joining(pid: u32) {
+    let age = age(pid);
+    let killed = Command::new("kill")
+        .args(["-KILL", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success(), "process {pid} was not there to kill");
+    assert!(
+        age < std::time::Duration::from_millis(800),
+        "process {pid} was killed {age:?} after it started: it might have joined"
+    );
+}
+
+#[test]
+fn an_agent_that_dies_before_joining_is_started_again_and_the_run_completes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, team, stderr) = (
+        tmp.path().join("out"),
+        tmp.path().join("team.toml"),
+        tmp.path().join("stderr"),
+    );
+    std::fs::write(&team, JOIN_AT_30).unwrap();
+    let experiment = format!("early-{}", std::process::id());
+    let mut coordinator = Command::new(bin("coordinator"))
+        .args(["run", "--team"])
+        .arg(&team)
+        .args(["--runs", "1", "--episodes", "60", "--eval-every", "30"])
+        .args(["--eval-episodes", "5", "--transport", "zenoh"])
+        .args(["--restart-agents", "--stall-limit-ms", "2000"])
+        .args(["--experiment", &experiment, "--quiet", "--out"])
+        .arg(&out)
+        .stderr(std::fs::File::create(&stderr).unwrap())
+        .spawn()
+        .unwrap();
+    // Agent 1's first process and slot 2's newcomer, killed as soon as they
+    // are seen, die before joining; the causes recorded below say that the
+    // coordinator saw it so.
+    let (one, two) = ((experiment.as_str(), 1), (experiment.as_str(), 2));
+    kill_before_joining(seen(&mut coordinator, &stderr, one, &[]));
+    let first = seen(&mut coordinator, &stderr, two, &[]);
+    kill_before_joining(seen(&mut coordinator, &stderr, two, &[first]));
+    let status = coordinator.wait().unwrap();
+    let stderr = std::fs::read_to_string(&stderr).unwrap();
+    assert!(status.success(), "{stderr}");
+    let run: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("run-0.json")).unwrap()).unwrap();
+    let restarts = run["restarts"].as_array().unwrap();
+    assert_eq!(restarts.len(), 2, "{restarts:?}");
+    for (restart, slot, episode, process) in [
+        (&restarts[0], 1, 0, "agent 1 exited"),
+        (&restarts[1], 2, 30, "agent 2 (process 2) exited"),
+    ] {
+        assert_eq!(
+            (&restart["slot"], &restart["episode"]),
+            (&Value::from(slot), &Value::from(episode)),
+            "{restart}"
+        );
+        let cause = restart["cause"].as_str().unwrap();
+        assert!(
+            cause.starts_with(process) && cause.contains("before joining"),
+            "{restart}"
+        );
+        assert_eq!(restart["checkpoint"], Value::Null, "{restart}");
+        assert_eq!(restart["replayed"], false, "{restart}");
+    }
+    assert_eq!(run["joins"].as_array().unwrap().len(), 1);
+    assert_eq!(run["points"].as_array().unwrap().len(), 3);
     assert_eq!(agent_pid(&experiment, 1), None);
 }

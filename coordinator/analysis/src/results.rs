@@ -169,7 +169,9 @@ pub struct Join {
 }
 
 /// An agent process that died and was restarted from its latest
-/// checkpoint: the gap in its learning.
+/// checkpoint: the gap in its learning. One that died before joining (at
+/// the team's start-up, as a newcomer or as a restarted agent) was started
+/// again as it was to start: nothing of its learning was lost.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Restart {
     /// Its slot.
@@ -178,12 +180,15 @@ pub struct Restart {
     pub episode: u64,
     /// The training episodes of the checkpoint it restarted from; `None`:
     /// none yet (or a learner process without snapshot hooks), it
-    /// restarted fresh.
+    /// restarted fresh. For one that died before joining, the snapshot it
+    /// was to load: the checkpoint of a restart, or a newcomer's (or, at
+    /// start-up, the team's) `load`, counted at `episode`.
     pub checkpoint: Option<u64>,
     /// Whether the episode in flight was abandoned and played again.
     pub replayed: bool,
     /// Wall time from the start of the episode (or call) that found it
-    /// lost to the restarted agent ready (ms).
+    /// lost, or for one that died before joining from its exit, to the
+    /// restarted agent ready (ms).
     pub wait_ms: u64,
     /// How it was lost.
     pub cause: String,

@@ -87,13 +87,19 @@ impl Children {
         exits.iter().find(|(n, _)| n == name).map(|(_, s)| *s)
     }
 
-    /// Resolves once a process has exited, saying which and how; never
-    /// without processes.
-    pub async fn first_exit(&self) -> String {
+    /// Resolves once one of the processes `names` has exited (or at once if
+    /// one has): its index in `names` and its status; never if none does.
+    pub async fn first_exit_of(&self, names: &[String]) -> (usize, ExitStatus) {
         let mut exits = self.exits.subscribe();
-        match exits.wait_for(|exits| !exits.is_empty()).await {
-            Ok(exits) => format!("{} exited ({})", exits[0].0, exits[0].1),
-            Err(_) => std::future::pending().await,
+        loop {
+            let found = (exits.borrow_and_update().iter())
+                .find_map(|(name, status)| Some((names.iter().position(|n| n == name)?, *status)));
+            if let Some(found) = found {
+                return found;
+            }
+            if exits.changed().await.is_err() {
+                return std::future::pending().await;
+            }
         }
     }
 

@@ -10,6 +10,6 @@ mod processes;
 mod router;
 mod run;
 
-pub use processes::ZenohTeam;
+pub use processes::{StartedAgain, ZenohTeam};
 pub use router::serve_router;
 pub use run::RemoteBackend;

@@ -24,6 +24,23 @@ use crate::config::AgentSpec;
 use crate::error::{ConfigError, Error};
 use crate::transport::{Auth, Endpoints, ZenohSettings};
 
+/// Under the restart policy, how many times an agent process that exits
+/// before joining is started again in its slot, per start-up (of the team,
+/// of a newcomer or of a restarted agent); one more exit ends the run.
+const START_RETRIES: usize = 3;
+
+/// An agent process that exited before joining and was started again in
+/// its slot under the restart policy.
+#[derive(Debug)]
+pub struct StartedAgain {
+    /// Its slot.
+    pub slot: usize,
+    /// How it was lost: it exited, with its status, before joining.
+    pub cause: String,
+    /// When its exit was seen.
+    pub found: Instant,
+}
+
 /// The joined network and the processes of the experiment.
 pub struct ZenohTeam {
     settings: ZenohSettings,
@@ -41,6 +58,9 @@ pub struct ZenohTeam {
     /// Per agent slot, the processes that took it after the first
     /// (newcomers and restarts).
     newcomers: Mutex<Vec<usize>>,
+    /// The agent processes started again during the team's start-up, until
+    /// the first run takes them.
+    started_again: Mutex<Vec<StartedAgain>>,
     /// The loopback port this coordinator listens on for its processes.
     port: u16,
     children: Arc<Children>,
@@ -190,7 +210,7 @@ impl ZenohTeam {
             network.stop_on_signals()?;
             network.launch(team)?;
         }
-        network.wait_for_everyone()?;
+        network.wait_for_everyone(team)?;
         Ok(network)
     }
 
@@ -253,6 +273,7 @@ impl ZenohTeam {
             lost,
             leaving,
             newcomers: Mutex::new(vec![0; agents]),
+            started_again: Mutex::default(),
             port,
             counters: Mutex::new(MessageCounters::default()),
             secret,
@@ -359,8 +380,14 @@ impl ZenohTeam {
     }
 
     /// Agent `slot`'s process was lost: once it has exited, starts `spec`
-    /// in its place and waits until it has joined; the loss is cleared.
-    pub fn restart(&self, slot: usize, spec: &AgentSpec) -> Result<String, Error> {
+    /// in its place and waits until it has joined, as [`admit`](Self::admit)
+    /// does; the loss is cleared. Returns how it was lost and the processes
+    /// started again before one joined.
+    pub fn restart(
+        &self,
+        slot: usize,
+        spec: &AgentSpec,
+    ) -> Result<(String, Vec<StartedAgain>), Error> {
         let name = self.agent_name(slot);
         let cause = self.loss(Role::Agent(slot as u8));
         if !self.children.started(&name) {
@@ -376,9 +403,8 @@ impl ZenohTeam {
                 "{cause}; its process still runs, so it is not restarted"
             )));
         }
-        self.admit(slot, spec)?;
-        self.lost.send_replace(None);
-        Ok(cause)
+        let again = self.admit(slot, spec)?;
+        Ok((cause, again))
     }
 
     /// Agent `slot`'s process leaves the running experiment: it is asked to
@@ -415,43 +441,84 @@ impl ZenohTeam {
     }
 
     /// Starts the newcomer `spec` in agent `slot`'s place and waits, within
-    /// the startup timeout, until it has joined.
-    pub fn admit(&self, slot: usize, spec: &AgentSpec) -> Result<(), Error> {
+    /// the startup timeout, until it has joined; under the restart policy a
+    /// process of it that exits first is started again (see
+    /// [`join_or_start_again`](Self::join_or_start_again)), and those are
+    /// returned. A loss of the slot seen meanwhile is cleared.
+    pub fn admit(&self, slot: usize, spec: &AgentSpec) -> Result<Vec<StartedAgain>, Error> {
+        self.start_next(slot, spec)?;
+        let role = Role::Agent(slot as u8);
+        let again = self.join_or_start_again(&[role], |_| spec)?;
+        self.lost
+            .send_if_modified(|lost| *lost == Some(role) && lost.take().is_some());
+        Ok(again)
+    }
+
+    /// Starts `spec` as the next process of agent `slot`, named as
+    /// [`agent_name`](Self::agent_name) says.
+    fn start_next(&self, slot: usize, spec: &AgentSpec) -> Result<(), Error> {
         if let Some(k) = lock(&self.newcomers).get_mut(slot) {
             *k += 1;
         }
-        let name = self.agent_name(slot);
-        self.spawn_agent(slot, self.roles.len() - 1, spec)?;
-        let options = &self.settings.endpoints;
-        let deadline = tokio::time::Instant::now() + options.startup_timeout;
-        let role = [Role::Agent(slot as u8)];
-        self.runtime.block_on(async {
-            tokio::select! {
-                joined = self.joined(deadline, &role) => joined,
-                Some(status) = self.children.exit_status(&name, options.startup_timeout) => {
-                    Err(net_error(format!("{name} exited ({status}) before joining")))
-                }
-            }
-        })
+        self.spawn_agent(slot, self.roles.len() - 1, spec)
     }
 
-    /// Waits, within the startup timeout, until every process has joined:
-    /// its liveliness token is seen and its control queryable reachable.
-    /// Fails at once if a process this coordinator started exits first.
-    fn wait_for_everyone(&self) -> Result<(), Error> {
-        let options = &self.settings.endpoints;
-        let deadline = tokio::time::Instant::now() + options.startup_timeout;
-        self.runtime.block_on(async {
-            tokio::select! {
-                joined = self.joined(deadline, &self.roles) => joined,
-                exited = self.children.first_exit() => Err(net_error(format!(
-                    "{exited} before joining experiment {}",
-                    options.experiment
-                ))),
-            }
-        })?;
+    /// Waits until every process has joined, as
+    /// [`join_or_start_again`](Self::join_or_start_again) says (`team`:
+    /// what each agent process is started as); keeps those started again
+    /// for the first run to record.
+    fn wait_for_everyone(&self, team: &[AgentSpec]) -> Result<(), Error> {
+        let again = self.join_or_start_again(&self.roles, |slot| &team[slot])?;
+        *lock(&self.started_again) = again;
         self.lost.send_replace(None);
         Ok(())
+    }
+
+    /// Waits, within the startup timeout, until every one of `roles` has
+    /// joined: its liveliness token is seen and its control queryable
+    /// reachable. Fails at once if a process this coordinator started for
+    /// one of them exits first; but under the restart policy an agent's is
+    /// started again as `spec_of` its slot says, at most
+    /// [`START_RETRIES`] times per slot, and the wait begins anew with a
+    /// whole startup timeout. Returns the processes started again.
+    fn join_or_start_again<'s>(
+        &self,
+        roles: &[Role],
+        spec_of: impl Fn(usize) -> &'s AgentSpec,
+    ) -> Result<Vec<StartedAgain>, Error> {
+        let options = &self.settings.endpoints;
+        let mut again: Vec<StartedAgain> = Vec::new();
+        loop {
+            let names: Vec<String> = roles.iter().map(|r| self.process_name(*r)).collect();
+            let deadline = tokio::time::Instant::now() + options.startup_timeout;
+            let exited = self.runtime.block_on(async {
+                tokio::select! {
+                    joined = self.joined(deadline, roles) => joined.map(|()| None),
+                    exited = self.children.first_exit_of(&names) => Ok(Some(exited)),
+                }
+            })?;
+            let Some((k, status)) = exited else {
+                return Ok(again);
+            };
+            let cause = format!(
+                "{} exited ({status}) before joining experiment {}",
+                names[k], options.experiment
+            );
+            let (Role::Agent(slot), true) = (roles[k], self.settings.restart_agents) else {
+                return Err(net_error(cause));
+            };
+            let slot = usize::from(slot);
+            if again.iter().filter(|a| a.slot == slot).count() == START_RETRIES {
+                return Err(net_error(format!(
+                    "{cause}; its slot was already started again {START_RETRIES} times, \
+                     the most per start-up"
+                )));
+            }
+            tracing::warn!(slot, %cause, "starting the agent again");
+            let found = Instant::now();
+            self.start_next(slot, spec_of(slot))?;
+            again.push(StartedAgain { slot, cause, found });
+        }
     }
 
     /// Resolves once every role's token is seen and its control queryable
@@ -543,12 +610,17 @@ impl ZenohTeam {
         self.runtime.block_on(self.describe_loss(role))
     }
 
-    async fn describe_loss(&self, role: Role) -> String {
-        let name = match role {
+    /// The name of `role`'s current process.
+    fn process_name(&self, role: Role) -> String {
+        match role {
             Role::Server => "env-server".to_owned(),
             Role::Agent(i) => self.agent_name(i.into()),
             Role::Coordinator => "coordinator".to_owned(),
-        };
+        }
+    }
+
+    async fn describe_loss(&self, role: Role) -> String {
+        let name = self.process_name(role);
         let exit = self.children.exit_status(&name, Duration::from_millis(500));
         match exit.await {
             Some(status) => format!("{role} is gone: its process exited ({status})"),
@@ -558,6 +630,12 @@ impl ZenohTeam {
             ),
             None => format!("{role} is gone (its liveliness token disappeared)"),
         }
+    }
+
+    /// The agent processes started again during the team's start-up (for
+    /// the first run to record; none after).
+    pub fn take_started_again(&self) -> Vec<StartedAgain> {
+        std::mem::take(&mut lock(&self.started_again))
     }
 
     /// The settings it was started with.

@@ -10,7 +10,7 @@ use proto::MessageKind;
 use proto::keys::Role;
 use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
-use super::ZenohTeam;
+use super::{StartedAgain, ZenohTeam};
 use crate::backend::{Backend, EpisodeEnd};
 use crate::config::AgentSpec;
 use crate::error::Error;
@@ -55,7 +55,9 @@ pub struct RemoteBackend<'a> {
 }
 
 impl<'a> RemoteBackend<'a> {
-    /// Resets env-server and every agent for run `run` of `experiment`.
+    /// Resets env-server and every agent for run `run` of `experiment`;
+    /// the first run records the agent processes started again during the
+    /// team's start-up.
     pub fn new(network: &'a ZenohTeam, experiment: &Experiment, run: u64) -> Result<Self, Error> {
         let config = experiment.config();
         let seeds = experiment.seeds(run);
@@ -88,6 +90,8 @@ impl<'a> RemoteBackend<'a> {
         for (i, spec) in config.team.iter().enumerate() {
             backend.reset_agent(i, spec, seeds.agents[i], experiment.snapshot(i))?;
         }
+        let loaded = |slot| experiment.snapshot(slot).map(|_| 0);
+        backend.record_started_again(network.take_started_again(), loaded);
         Ok(backend)
     }
 
@@ -237,21 +241,47 @@ impl<'a> RemoteBackend<'a> {
     /// `played`, is played again.
     fn restart(&self, slot: usize, replayed: bool, played: Instant) -> Result<(), Error> {
         let (spec, seed) = self.members[slot].clone();
-        let cause = self.network.restart(slot, &spec)?;
+        let (cause, again) = self.network.restart(slot, &spec)?;
         let snapshot = (self.checkpoint.as_ref())
             .and_then(|(episode, s)| Some((*episode, s.get(slot)?.as_ref()?)));
         self.reset_agent(slot, &spec, seed, snapshot.map(|(_, s)| s))?;
-        let restart = Restart {
+        let checkpoint = snapshot.map(|(episode, _)| episode);
+        self.record(Restart {
             slot,
             episode: self.trained,
-            checkpoint: snapshot.map(|(episode, _)| episode),
+            checkpoint,
             replayed,
             wait_ms: played.elapsed().as_millis() as u64,
             cause,
-        };
+        });
+        self.record_started_again(again, |_| checkpoint);
+        Ok(())
+    }
+
+    /// Records the agent processes that exited before joining and were
+    /// started again, once the last of their slot is ready: each restarted
+    /// from what its slot was to load, the snapshot of `checkpoint(slot)`
+    /// training episodes (`None`: fresh).
+    fn record_started_again(
+        &self,
+        again: Vec<StartedAgain>,
+        checkpoint: impl Fn(usize) -> Option<u64>,
+    ) {
+        for StartedAgain { slot, cause, found } in again {
+            self.record(Restart {
+                slot,
+                episode: self.trained,
+                checkpoint: checkpoint(slot),
+                replayed: false,
+                wait_ms: found.elapsed().as_millis() as u64,
+                cause,
+            });
+        }
+    }
+
+    fn record(&self, restart: Restart) {
         tracing::warn!(run = self.run, ?restart, "agent restarted");
         lock(&self.restarts).push(restart);
-        Ok(())
     }
 
     /// Plays the next episode in `mode` (`seed`: see
@@ -385,8 +415,9 @@ impl Backend for RemoteBackend<'_> {
         let started = Instant::now();
         self.recover(false, started)?;
         self.network.retire(slot).map_err(|e| self.error(e))?;
-        self.network.admit(slot, &spec)?;
+        let again = self.network.admit(slot, &spec)?;
         self.reset_agent(slot, &spec, seed, snapshot)?;
+        self.record_started_again(again, |_| snapshot.map(|_| self.trained));
         if let Some((_, snapshots)) = &mut self.checkpoint {
             // Until the next checkpoint, a restart starts it as it joined.
             snapshots[slot] = snapshot.cloned();
