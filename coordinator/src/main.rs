@@ -308,17 +308,17 @@ struct NetworkArgs {
     /// run ends with an error (ms; default 10000).
     #[arg(long, value_name = "MS")]
     stall_limit_ms: Option<u64>,
-    /// Restart an agent process that dies from its latest checkpoint and go
+    /// Restart an agent process that dies from its latest snapshot and go
     /// on, recording the gap; one that dies before joining, at start-up too,
     /// is started again, 3 times per slot at most (default: a lost agent
     /// ends the run).
     #[arg(long)]
     restart_agents: bool,
-    /// With --restart-agents: checkpoint every agent every this many
-    /// training episodes (default 100).
-    #[arg(long, value_name = "N", requires = "restart_agents",
+    /// With --restart-agents: snapshot every agent every this many
+    /// training episodes (default 100; `--checkpoint-every` before 0.3).
+    #[arg(long, value_name = "N", requires = "restart_agents", alias = "checkpoint-every",
           value_parser = clap::value_parser!(u64).range(1..))]
-    checkpoint_every: Option<u64>,
+    snapshot_every: Option<u64>,
     /// How long to wait for every process to join (s, 1 to 3600).
     #[arg(long, value_name = "S", default_value_t = 30,
           value_parser = clap::value_parser!(u64).range(1..=3600))]
@@ -352,7 +352,7 @@ impl NetworkArgs {
             step_timeout_ms: self.step_timeout_ms.unwrap_or(base.step_timeout_ms),
             stall_limit_ms: self.stall_limit_ms.unwrap_or(base.stall_limit_ms),
             restart_agents: self.restart_agents || base.restart_agents,
-            checkpoint_every: self.checkpoint_every.unwrap_or(base.checkpoint_every),
+            snapshot_every: self.snapshot_every.unwrap_or(base.snapshot_every),
             simulator: self.simulator().unwrap_or(base.simulator),
             endpoints: Endpoints {
                 experiment: self.experiment.clone().unwrap_or_else(unique),

@@ -141,12 +141,18 @@ fn comparable(identity: &Value) -> Value {
 
 /// Rewrites the keys an earlier version wrote under another name as they
 /// are spelled today (CHANGELOG.md), so its results still resume: a team
-/// entry's `strategy` is `algorithm` since 0.2.0.
+/// entry's `strategy` is `algorithm` since 0.2.0, the zenoh transport's
+/// `checkpoint_every` is `snapshot_every` since 0.3.
 fn todays_spellings(value: &mut Value) {
     match value {
         Value::Object(map) => {
-            if let Some(algorithm) = map.remove("strategy") {
-                map.insert("algorithm".to_owned(), algorithm);
+            for (old, new) in [
+                ("strategy", "algorithm"),
+                ("checkpoint_every", "snapshot_every"),
+            ] {
+                if let Some(v) = map.remove(old) {
+                    map.insert(new.to_owned(), v);
+                }
             }
             map.values_mut().for_each(todays_spellings);
         }

@@ -43,15 +43,18 @@ pub struct ZenohSettings {
     /// How long a kicker may send no action, frame after frame, before its
     /// run ends with an error (ms).
     pub stall_limit_ms: u64,
-    /// Restart an agent process that dies from its latest checkpoint
+    /// Restart an agent process that dies from its latest snapshot
     /// instead of ending the run, and start again one that dies before
     /// joining (recorded only when on).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub restart_agents: bool,
-    /// With `restart_agents`: a checkpoint of every agent every this many
+    /// With `restart_agents`: a snapshot of every agent every this many
     /// training episodes (recorded only when not the default).
-    #[serde(skip_serializing_if = "is_default_checkpoint")]
-    pub checkpoint_every: u64,
+    #[serde(
+        alias = "checkpoint_every",
+        skip_serializing_if = "is_default_snapshot_every"
+    )]
+    pub snapshot_every: u64,
     /// What env-server plays: our simulator or the real HFO (recorded,
     /// with whether it is deterministic, only when the real HFO).
     #[serde(skip_serializing_if = "is_ours", with = "simulator_record")]
@@ -68,18 +71,18 @@ impl Default for ZenohSettings {
             step_timeout_ms: 1000,
             stall_limit_ms: 10_000,
             restart_agents: false,
-            checkpoint_every: DEFAULT_CHECKPOINT_EVERY,
+            snapshot_every: DEFAULT_SNAPSHOT_EVERY,
             simulator: Simulator::Ours,
             endpoints: Endpoints::default(),
         }
     }
 }
 
-/// Training episodes between checkpoints of a run whose agents restart.
-pub const DEFAULT_CHECKPOINT_EVERY: u64 = 100;
+/// Training episodes between the snapshots of a run whose agents restart.
+pub const DEFAULT_SNAPSHOT_EVERY: u64 = 100;
 
-fn is_default_checkpoint(every: &u64) -> bool {
-    *every == DEFAULT_CHECKPOINT_EVERY
+fn is_default_snapshot_every(every: &u64) -> bool {
+    *every == DEFAULT_SNAPSHOT_EVERY
 }
 
 fn is_ours(simulator: &Simulator) -> bool {
@@ -246,7 +249,7 @@ impl Transport {
                 1..=proto::MAX_WAIT_MS,
             ),
             ("step_timeout_ms", z.step_timeout_ms, 1..=proto::MAX_WAIT_MS),
-            ("checkpoint_every", z.checkpoint_every, 1..=u64::MAX),
+            ("snapshot_every", z.snapshot_every, 1..=u64::MAX),
             (
                 "stall_limit_ms",
                 z.stall_limit_ms,

@@ -127,7 +127,7 @@ fn every_run(config: &ExperimentConfig) -> RunResult {
         restarts: vec![Restart {
             slot: 1,
             episode: 1,
-            checkpoint: Some(0),
+            snapshot: Some(0),
             replayed: true,
             wait_ms: 1,
             cause: "lost".into(),
@@ -161,7 +161,7 @@ fn current_keys() -> BTreeSet<String> {
         eval_episodes: 1,
         transport: Transport::Zenoh(ZenohSettings {
             restart_agents: true,
-            checkpoint_every: 7,
+            snapshot_every: 7,
             simulator: Simulator::RealHfo,
             ..ZenohSettings::default()
         }),

@@ -344,7 +344,7 @@ fn play(trial: &Trial, name: &str, dir: &Path) -> Verdict {
             "--restart-agents".into(),
         ]
         .into_iter()
-        .chain(["--checkpoint-every", "20"].map(String::from))
+        .chain(["--snapshot-every", "20"].map(String::from))
         .collect();
     }
     let stderr = File::create(&stderr_path).expect("stderr file");

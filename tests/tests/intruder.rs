@@ -109,7 +109,7 @@ fn attached_settings(name: &str, secret: &Secret, endpoints: &[String]) -> Zenoh
         step_timeout_ms: 2000,
         stall_limit_ms: 10_000,
         restart_agents: false,
-        checkpoint_every: 100,
+        snapshot_every: 100,
         endpoints: Endpoints {
             experiment: name.to_owned(),
             connect: endpoints.to_vec(),

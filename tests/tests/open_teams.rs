@@ -122,7 +122,7 @@ fn agent_pid_but(experiment: &str, id: u8, known: &[u32]) -> Option<u32> {
 }
 
 #[test]
-fn an_agent_that_dies_is_restarted_from_its_checkpoint_and_the_run_completes() {
+fn an_agent_that_dies_is_restarted_from_its_latest_snapshot_and_the_run_completes() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
     let experiment = format!("restart-{}", std::process::id());
@@ -146,7 +146,7 @@ fn an_agent_that_dies_is_restarted_from_its_checkpoint_and_the_run_completes() {
         ])
         .args([
             "--restart-agents",
-            "--checkpoint-every",
+            "--snapshot-every",
             "20",
             "--stall-limit-ms",
             "2000",
@@ -156,7 +156,7 @@ fn an_agent_that_dies_is_restarted_from_its_checkpoint_and_the_run_completes() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    // Kill agent 1 once training is under way (after its first checkpoint).
+    // Kill agent 1 once training is under way (after its first snapshot).
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
     let pid = loop {
         assert!(
@@ -183,12 +183,12 @@ fn an_agent_that_dies_is_restarted_from_its_checkpoint_and_the_run_completes() {
     assert_eq!(restarts.len(), 1, "{restarts:?}");
     let restart = &restarts[0];
     assert_eq!(restart["slot"], 1);
-    let (episode, checkpoint) = (
+    let (episode, snapshot) = (
         restart["episode"].as_u64().unwrap(),
-        restart["checkpoint"].as_u64(),
+        restart["snapshot"].as_u64(),
     );
     assert!(
-        checkpoint.is_some_and(|c| c <= episode && c % 20 == 0),
+        snapshot.is_some_and(|c| c <= episode && c % 20 == 0),
         "{restart}"
     );
     assert!(
@@ -320,7 +320,7 @@ fn an_agent_that_dies_before_joining_is_started_again_and_the_run_completes() {
             cause.starts_with(process) && cause.contains("before joining"),
             "{restart}"
         );
-        assert_eq!(restart["checkpoint"], Value::Null, "{restart}");
+        assert_eq!(restart["snapshot"], Value::Null, "{restart}");
         assert_eq!(restart["replayed"], false, "{restart}");
     }
     assert_eq!(run["joins"].as_array().unwrap().len(), 1);

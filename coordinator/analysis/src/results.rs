@@ -169,7 +169,7 @@ pub struct Join {
 }
 
 /// An agent process that died and was restarted from its latest
-/// checkpoint: the gap in its learning. One that died before joining (at
+/// snapshot: the gap in its learning. One that died before joining (at
 /// the team's start-up, as a newcomer or as a restarted agent) was started
 /// again as it was to start: nothing of its learning was lost.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -178,12 +178,13 @@ pub struct Restart {
     pub slot: usize,
     /// Training episodes played when it was found lost.
     pub episode: u64,
-    /// The training episodes of the checkpoint it restarted from; `None`:
+    /// The training episodes of the snapshot it restarted from; `None`:
     /// none yet (or a learner process without snapshot hooks), it
     /// restarted fresh. For one that died before joining, the snapshot it
-    /// was to load: the checkpoint of a restart, or a newcomer's (or, at
-    /// start-up, the team's) `load`, counted at `episode`.
-    pub checkpoint: Option<u64>,
+    /// was to load: a restart's, or a newcomer's (or, at start-up, the
+    /// team's) `load`, counted at `episode`. (`checkpoint` before 0.3.)
+    #[serde(alias = "checkpoint")]
+    pub snapshot: Option<u64>,
     /// Whether the episode in flight was abandoned and played again.
     pub replayed: bool,
     /// Wall time from the start of the episode (or call) that found it

@@ -44,10 +44,10 @@ pub struct RemoteBackend<'a> {
     members: Vec<(AgentSpec, u64)>,
     /// Training episodes played.
     trained: u64,
-    /// With `restart_agents`: the latest checkpoint, at these training
+    /// With `restart_agents`: the latest snapshots, at these training
     /// episodes, of every agent (none for a learner process without
     /// snapshot hooks).
-    checkpoint: Option<(u64, Vec<Option<Snapshot>>)>,
+    latest: Option<(u64, Vec<Option<Snapshot>>)>,
     /// The agents restarted so far.
     restarts: Mutex<Vec<Restart>>,
     /// The simulator's restarts so far.
@@ -72,7 +72,7 @@ impl<'a> RemoteBackend<'a> {
                 .zip(seeds.agents.iter().copied())
                 .collect(),
             trained: 0,
-            checkpoint: None,
+            latest: None,
             restarts: Mutex::new(Vec::new()),
             simulator_restarts: Vec::new(),
         };
@@ -225,53 +225,53 @@ impl<'a> RemoteBackend<'a> {
 
     /// Every agent's snapshot now, kept to restart an agent that dies (none
     /// for a learner process without snapshot hooks).
-    fn take_checkpoint(&mut self) -> Result<(), Error> {
+    fn take_snapshots(&mut self) -> Result<(), Error> {
         let snapshots = self.snapshots()?;
         let kept = (snapshots.into_iter().zip(&self.members))
             .map(|(s, (spec, _))| {
                 (spec.learner.is_none() || s.learner_state.is_some()).then_some(s)
             })
             .collect();
-        self.checkpoint = Some((self.trained, kept));
+        self.latest = Some((self.trained, kept));
         Ok(())
     }
 
-    /// Restarts the lost agent `slot` from the latest checkpoint and
+    /// Restarts the lost agent `slot` from its latest snapshot and
     /// records the gap; `replayed`: the episode in flight, begun at
     /// `played`, is played again.
     fn restart(&self, slot: usize, replayed: bool, played: Instant) -> Result<(), Error> {
         let (spec, seed) = self.members[slot].clone();
         let (cause, again) = self.network.restart(slot, &spec)?;
-        let snapshot = (self.checkpoint.as_ref())
+        let snapshot = (self.latest.as_ref())
             .and_then(|(episode, s)| Some((*episode, s.get(slot)?.as_ref()?)));
         self.reset_agent(slot, &spec, seed, snapshot.map(|(_, s)| s))?;
-        let checkpoint = snapshot.map(|(episode, _)| episode);
+        let taken = snapshot.map(|(episode, _)| episode);
         self.record(Restart {
             slot,
             episode: self.trained,
-            checkpoint,
+            snapshot: taken,
             replayed,
             wait_ms: played.elapsed().as_millis() as u64,
             cause,
         });
-        self.record_started_again(again, |_| checkpoint);
+        self.record_started_again(again, |_| taken);
         Ok(())
     }
 
     /// Records the agent processes that exited before joining and were
     /// started again, once the last of their slot is ready: each restarted
-    /// from what its slot was to load, the snapshot of `checkpoint(slot)`
+    /// from what its slot was to load, the snapshot of `snapshot(slot)`
     /// training episodes (`None`: fresh).
     fn record_started_again(
         &self,
         again: Vec<StartedAgain>,
-        checkpoint: impl Fn(usize) -> Option<u64>,
+        snapshot: impl Fn(usize) -> Option<u64>,
     ) {
         for StartedAgain { slot, cause, found } in again {
             self.record(Restart {
                 slot,
                 episode: self.trained,
-                checkpoint: checkpoint(slot),
+                snapshot: snapshot(slot),
                 replayed: false,
                 wait_ms: found.elapsed().as_millis() as u64,
                 cause,
@@ -382,9 +382,9 @@ impl Backend for RemoteBackend<'_> {
         self.check_alive()?;
         if mode == Mode::Training {
             self.trained += 1;
-            let every = self.network.settings().checkpoint_every;
+            let every = self.network.settings().snapshot_every;
             if self.network.settings().restart_agents && self.trained % every == 0 {
-                self.take_checkpoint()?;
+                self.take_snapshots()?;
             }
         }
         Ok(EpisodeEnd {
@@ -418,8 +418,8 @@ impl Backend for RemoteBackend<'_> {
         let again = self.network.admit(slot, &spec)?;
         self.reset_agent(slot, &spec, seed, snapshot)?;
         self.record_started_again(again, |_| snapshot.map(|_| self.trained));
-        if let Some((_, snapshots)) = &mut self.checkpoint {
-            // Until the next checkpoint, a restart starts it as it joined.
+        if let Some((_, snapshots)) = &mut self.latest {
+            // Until the next snapshots, a restart starts it as it joined.
             snapshots[slot] = snapshot.cloned();
         }
         self.members[slot] = (spec, seed);

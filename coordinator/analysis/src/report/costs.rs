@@ -78,7 +78,7 @@ pub(super) fn restarts(md: &mut Markdown, entries: &[EntryResults]) {
     md.heading(2, "Restarts");
     md.paragraph(
         "Processes that went down in a run and were started again: an agent (with \
-         `--restart-agents`) from its latest checkpoint, losing what it learned since; the real \
+         `--restart-agents`) from its latest snapshot, losing what it learned since; the real \
          HFO afresh, playing the abandoned episode again. Each row is one restart.",
     );
     md.table(
@@ -109,7 +109,7 @@ pub(super) fn restart_rows(label: &str, r: &RunResult) -> Vec<[String; 7]> {
         ]
     };
     let agents = r.restarts.iter().map(|a| {
-        let lost = a.checkpoint.map_or_else(
+        let lost = a.snapshot.map_or_else(
             || format!("{} (restarted fresh)", a.episode),
             |c| a.episode.saturating_sub(c).to_string(),
         );
@@ -147,7 +147,7 @@ mod tests {
             Restart {
                 slot: 2,
                 episode: 250,
-                checkpoint: Some(200),
+                snapshot: Some(200),
                 replayed: true,
                 wait_ms: 1500,
                 cause: "its process exited | code 9".into(),
@@ -155,7 +155,7 @@ mod tests {
             Restart {
                 slot: 0,
                 episode: 40,
-                checkpoint: None,
+                snapshot: None,
                 replayed: false,
                 wait_ms: 200,
                 cause: "lost".into(),
