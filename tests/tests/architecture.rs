@@ -1,6 +1,7 @@
 //! The rules of docs/ARCHITECTURE.md that the sources themselves can show:
-//! no module imports forming a circle in any crate, and pure libraries
-//! that touch neither the network nor files.
+//! no module imports forming a circle in any crate, pure libraries that
+//! touch neither the network nor files, and packages, Rust or Python, that
+//! stay in their layers.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -107,10 +108,11 @@ fn packages() -> Vec<(String, PathBuf)> {
 }
 
 /// The layers, lowest first: a package under a layer's directory (the
-/// longest that holds it) depends on no package of a layer above it. The
-/// simulator and its binding stand below the agent; the coordinator above
-/// both; the Python package `adhoc_advising`, the framework from Python, on
-/// top of them all.
+/// longest that holds it) depends on no package of a layer above it, and a
+/// Python file there imports none (a package's layer: the top directory
+/// that holds it). The simulator and its binding stand below the agent; the
+/// coordinator above both; the Python package `adhoc_advising`, the
+/// framework from Python, on top of them all.
 const LAYERS: [(&str, &[&str]); 4] = [
     ("proto", &["env-server", "agent", "coordinator"]),
     ("env-server", &["agent", "coordinator"]),
@@ -118,27 +120,37 @@ const LAYERS: [(&str, &[&str]); 4] = [
     ("coordinator/python", &[]),
 ];
 
+/// What the layer holding `path` (relative to the workspace) must not
+/// depend on: the list of the longest of LAYERS that holds it.
+fn layer_above(path: &Path) -> Option<&'static [&'static str]> {
+    (LAYERS.iter())
+        .filter(|(layer, _)| path.starts_with(layer))
+        .max_by_key(|(layer, _)| layer.len())
+        .map(|(_, above)| *above)
+}
+
+/// The top directory of `path` (relative to the workspace), as LAYERS's
+/// lists name them.
+fn home(path: &Path) -> String {
+    let top = path.components().next();
+    top.map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
 #[test]
 fn every_package_stays_in_its_layer() {
     let packages = packages();
-    let home = |name: &str| {
+    let home_of = |name: &str| {
         let (_, dir) = packages.iter().find(|(n, _)| n == name).expect("a package");
-        dir.components()
-            .next()
-            .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        home(dir)
     };
     let mut violations = Vec::new();
     for (name, dir) in &packages {
-        let layer = (LAYERS.iter())
-            .filter(|(layer, _)| dir.starts_with(layer))
-            .max_by_key(|(layer, _)| layer.len());
-        if let Some((_, above)) = layer {
+        if let Some(above) = layer_above(dir) {
             for line in normal_dependencies(name).lines().skip(1) {
                 let dependency = line.split(' ').next().unwrap_or_default();
                 if packages.iter().any(|(n, _)| n == dependency)
-                    && above
-                        .iter()
-                        .any(|a| home(dependency).as_deref() == Some(*a))
+                    && above.contains(&home_of(dependency).as_str())
                 {
                     violations.push(format!(
                         "{name} ({}) depends on {dependency}",
@@ -153,6 +165,102 @@ fn every_package_stays_in_its_layer() {
     assert!(
         violations.is_empty(),
         "layers crossed:\n{}",
+        violations.join("\n")
+    );
+}
+
+/// Every `.py` file of the workspace and every Python package (the
+/// outermost directory with an `__init__.py`) by name, relative to the
+/// workspace; build outputs, hidden directories and virtual environments
+/// left out. A package under a `tests` directory is a test's stand-in
+/// (`fake_hfo/hfo` for HFO's `hfo`) or helper: its files are among the
+/// files, but it is no package of its layer, so that a stand-in for a
+/// package of ours can neither hide nor move that package's layer.
+fn python_sources() -> (Vec<PathBuf>, Vec<(String, PathBuf)>) {
+    let root = workspace().canonicalize().unwrap();
+    let (mut files, mut packages) = (Vec::new(), Vec::new());
+    let mut dirs = vec![PathBuf::new()];
+    while let Some(dir) = dirs.pop() {
+        if root.join(&dir).join("pyvenv.cfg").exists() {
+            continue;
+        }
+        let is_package = |d: &Path| root.join(d).join("__init__.py").is_file();
+        let in_tests = dir.components().any(|c| c.as_os_str() == "tests");
+        if is_package(&dir) && !dir.parent().is_some_and(is_package) && !in_tests {
+            let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+            packages.push((name, dir.clone()));
+        }
+        for entry in std::fs::read_dir(root.join(&dir)).unwrap() {
+            let entry = entry.unwrap();
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let kind = entry.file_type().unwrap();
+            let skipped =
+                name.starts_with('.') || ["target", "__pycache__"].contains(&name.as_str());
+            if kind.is_dir() && !skipped {
+                dirs.push(dir.join(&name));
+            } else if kind.is_file() && name.ends_with(".py") {
+                files.push(dir.join(&name));
+            }
+        }
+    }
+    files.sort();
+    (files, packages)
+}
+
+/// The top-level modules a line of Python imports, at any indentation:
+/// `import a.b, c as d` gives `a` and `c`; `from a.b import c` gives `a`;
+/// a relative import, none.
+fn imported_modules(line: &str) -> Vec<&str> {
+    let code = line.split('#').next().unwrap_or_default().trim();
+    fn top(module: &str) -> &str {
+        module.trim().split(['.', ' ']).next().unwrap_or_default()
+    }
+    if let Some(rest) = code.strip_prefix("from ") {
+        match rest.split_whitespace().collect::<Vec<_>>()[..] {
+            [module, "import", ..] if !module.starts_with('.') => vec![top(module)],
+            _ => Vec::new(),
+        }
+    } else if let Some(rest) = code.strip_prefix("import ") {
+        rest.split(',').map(top).filter(|m| !m.is_empty()).collect()
+    } else {
+        Vec::new()
+    }
+}
+
+#[test]
+fn python_modules_stay_in_their_layers() {
+    let (files, packages) = python_sources();
+    assert!(
+        ["adhoc_advising", "halffield", "hfo_oracle"]
+            .iter()
+            .all(|p| packages.iter().any(|(name, _)| name == p)),
+        "{packages:?}"
+    );
+    let mut violations = Vec::new();
+    for file in &files {
+        let Some(above) = layer_above(file) else {
+            continue;
+        };
+        let text = std::fs::read_to_string(workspace().join(file)).expect("UTF-8");
+        for (number, line) in text.lines().enumerate() {
+            for module in imported_modules(line) {
+                for (name, dir) in &packages {
+                    if name == module && above.contains(&home(dir).as_str()) {
+                        violations.push(format!(
+                            "{}:{}: imports {module}, a package of {} ({})",
+                            file.display(),
+                            number + 1,
+                            home(dir),
+                            dir.display()
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        violations.is_empty(),
+        "Python imports of a layer above or beside the file's:\n{}",
         violations.join("\n")
     );
 }

@@ -8,8 +8,9 @@ One module per job:
   actions, shot distance bins) and its atomic write;
 - :mod:`hfo_oracle.stats`: means, standard deviations, Wilson intervals and
   z statistics (also used by ``compare.py`` and ``learned.py``);
-- :mod:`hfo_oracle.agent`: the HFO agent process (needs HFO's ``hfo``);
-- :mod:`hfo_oracle.team`: a learned agent frozen from its snapshot file;
+- :mod:`hfo_oracle.agent`: the HFO agent process (needs HFO's ``hfo``),
+  playing a policy or a learned agent made by the factory ``--team-factory``
+  names;
 - :mod:`hfo_oracle.launch`: starting and stopping HFO, rcssserver and the
   agents, one batch of episodes at a time;
 - :mod:`hfo_oracle.logs`: the parsers of rcssserver's logs and of the

@@ -1,7 +1,7 @@
 """The HFO agent process: one offense player connected to rcssserver through
 HFO's Python interface (``hfo``, found through ``PYTHONPATH=<hfo-dir>``),
-playing a fixed high-level policy or a learned agent of ours, and writing
-its choice file (:mod:`hfo_oracle.logs`).
+playing a fixed high-level policy or a learned agent, and writing its choice
+file (:mod:`hfo_oracle.logs`).
 
 It runs under ``--python`` (HFO's interpreter), started by the launcher as
 ``python -m hfo_oracle agent ...``. An agent that cannot kick always MOVEs;
@@ -11,9 +11,11 @@ with the ball it chooses as its policy says.
 from __future__ import annotations
 
 import argparse
+import importlib
 import math
 import random
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from hfo_oracle import logs
 from hfo_oracle.schema import ACTION_CODES, POLICIES
@@ -87,16 +89,46 @@ def paper_state(state: Sequence[float]) -> list[float]:
     ]
 
 
+def split_factory(spec: str) -> tuple[str, str]:
+    """``MODULE:CALLABLE`` as its module and its callable's (dotted) name;
+    :class:`ValueError` when ``spec`` is not that."""
+    module, colon, name = spec.partition(":")
+    names = module.split(".") + name.split(".")
+    if not colon or not all(n.isidentifier() for n in names):
+        raise ValueError("--team-factory %r is not MODULE:CALLABLE" % spec)
+    return module, name
+
+
+def load_factory(spec: str) -> Callable[[str], Any]:
+    """The callable ``spec`` (``MODULE:CALLABLE``) names, imported in this
+    interpreter: called with a snapshot file, it returns an agent whose
+    ``act(state, can_kick)`` is the index of its action
+    (:data:`hfo_oracle.schema.ACTIONS`) in the paper's 6-feature state."""
+    module, name = split_factory(spec)
+    found: Any = importlib.import_module(module)
+    for attribute in name.split("."):
+        found = getattr(found, attribute)
+    return found
+
+
 def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     """The agent's command line (given by the launcher)."""
     p = argparse.ArgumentParser(prog="hfo_oracle.py agent")
     p.add_argument("--port", type=int, required=True)
     p.add_argument("--policy", choices=POLICIES + ("team",), required=True)
     p.add_argument("--snapshot", help="with --policy team: this agent's snapshot file")
+    p.add_argument(
+        "--team-factory",
+        metavar="MODULE:CALLABLE",
+        help="with --policy team: what makes the agent of its snapshot file",
+    )
     p.add_argument("--seed", type=int, required=True)
     p.add_argument("--config-dir", required=True)
     p.add_argument("--out", required=True)
-    return p.parse_args(argv)
+    a = p.parse_args(argv)
+    if a.policy == "team" and (a.snapshot is None or a.team_factory is None):
+        p.error("--policy team needs --snapshot and --team-factory")
+    return a
 
 
 def main(argv: Sequence[str]) -> int:
@@ -106,9 +138,7 @@ def main(argv: Sequence[str]) -> int:
 
     learner = None
     if a.policy == "team":
-        from hfo_oracle.team import greedy_agent
-
-        learner = greedy_agent(a.snapshot)
+        learner = load_factory(a.team_factory)(a.snapshot)
     codes = POLICY_CODES.get(a.policy, "")
     rng = random.Random(a.seed)
     env = hfo.HFOEnvironment()

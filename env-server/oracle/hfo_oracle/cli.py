@@ -22,15 +22,21 @@ from collections.abc import Sequence
 from typing import Any
 
 from hfo_oracle import launch
+from hfo_oracle.agent import split_factory
 from hfo_oracle.schema import POLICIES, write_json
 from hfo_oracle.tally import Tally
 
 MAX_ATTEMPTS = 4  # plays of one batch before giving up on a run that hangs
 
+# The factory of our own agents, for the help and the errors: the Python
+# package of our agents, which --python must have.
+OUR_AGENTS = "adhoc_advising:GreedyAgent"
+
 
 def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     """The harness's options, checked; ``policy`` is ``team`` with
-    ``--team``, whose files are made absolute."""
+    ``--team``, whose files are made absolute and which needs
+    ``--team-factory``."""
     p = argparse.ArgumentParser(
         prog="hfo_oracle.py",
         description="Play N episodes of a fixed policy on the real HFO (3 offense agents vs "
@@ -52,9 +58,16 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
         "--team",
         nargs=launch.OFFENSE_AGENTS,
         metavar="SNAPSHOT",
-        help="a learned team: our agents' snapshot files (coordinator run "
-        "--save-agents), played greedily as our evaluations play; --python "
-        "must have the package that binds our agents",
+        help="a learned team: its agents' snapshot files, each made an agent by --team-factory",
+    )
+    p.add_argument(
+        "--team-factory",
+        metavar="MODULE:CALLABLE",
+        help="with --team: the callable that makes an agent of a snapshot file, "
+        "imported by --python in each agent process; the agent's act(state, "
+        "can_kick) returns its action's index in the paper's 6-feature state. "
+        "For our agents (coordinator run --save-agents), played greedily as our "
+        "evaluations play: %s" % OUR_AGENTS,
     )
     p.add_argument("--episodes", type=int, required=True)
     p.add_argument("--seed", type=int, default=1)
@@ -75,6 +88,7 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     p.add_argument("--tmp", default=None, help="parent directory for the temporary logs")
     p.add_argument("--keep-logs", action="store_true", help="do not delete the logs (debugging)")
     args = p.parse_args(argv)
+    check_team_factory(p, args)
     if not args.hfo_dir or not os.path.exists(os.path.join(args.hfo_dir, "bin", "HFO")):
         p.error("--hfo-dir (or $HFO_DIR) must point at a built HFO tree containing bin/HFO")
     args.hfo_dir = os.path.abspath(args.hfo_dir)
@@ -89,6 +103,23 @@ def parse_args(argv: Sequence[str]) -> argparse.Namespace:
     if args.batch <= 0:
         p.error("--batch must be positive")
     return args
+
+
+def check_team_factory(p: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Exits with status 2 and one line when ``--team`` has no well-formed
+    ``--team-factory``, or a policy has one."""
+    error = None
+    if args.team and args.team_factory is None:
+        error = "--team needs --team-factory MODULE:CALLABLE (our agents: %s)" % OUR_AGENTS
+    elif args.team:
+        try:
+            split_factory(args.team_factory)
+        except ValueError as e:
+            error = "%s (our agents: %s)" % (e, OUR_AGENTS)
+    elif args.team_factory is not None:
+        error = "--team-factory goes with --team"
+    if error:
+        p.exit(2, "%s: error: %s\n" % (p.prog, error))
 
 
 def batch_sizes(episodes: int, batch: int) -> list[int]:
@@ -112,7 +143,7 @@ def harness_main(argv: Sequence[str]) -> int:
     signal.signal(signal.SIGTERM, on_term)
     signal.signal(signal.SIGHUP, on_term)
 
-    setup = launch.Setup(args.hfo_dir, args.python, args.policy, args.team)
+    setup = launch.Setup(args.hfo_dir, args.python, args.policy, args.team, args.team_factory)
     procs = launch.Procs()
     workdir = tempfile.mkdtemp(prefix="hfo-oracle-", dir=args.tmp)
     tally = Tally()
@@ -155,6 +186,7 @@ def harness_main(argv: Sequence[str]) -> int:
         res = tally.result(args.policy, args.seed)
         if args.team:
             res["team"] = args.team
+            res["team_factory"] = args.team_factory
         res["wall_seconds"] = round(time.time() - t0, 1)
         write_json(args.out, res)
         print(

@@ -116,12 +116,14 @@ def wait_for_line(path: str, needle: str, proc: subprocess.Popen, timeout: float
 class Setup:
     """What every run plays: the built HFO tree, the interpreter of its
     launcher and of the agents, the policy (``team`` for a learned team)
-    and, for a team, the agents' snapshot files."""
+    and, for a team, the agents' snapshot files and the factory
+    (``MODULE:CALLABLE``) that makes each an agent."""
 
     hfo_dir: str
     python: str
     policy: str
     team: Sequence[str] | None = None
+    team_factory: str | None = None
 
 
 class Batch:
@@ -209,6 +211,7 @@ def start_batch(batch: Batch, setup: Setup, procs: Procs) -> None:
         ]
         if setup.team:
             acmd.append("--snapshot=%s" % setup.team[i])
+            acmd.append("--team-factory=%s" % setup.team_factory)
         with open(os.path.join(batch.dir, "agent%d.err" % i), "w") as err:
             batch.agents.append(
                 procs.start(

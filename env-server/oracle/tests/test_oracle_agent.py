@@ -1,7 +1,9 @@
 """The agent's reading of HFO's high-level features (hfo_oracle.agent),
-without HFO: states built by hand in its layout."""
+without HFO: states built by hand in its layout; and the factory of a
+learned team's agents, found by its name."""
 
 import math
+import os.path
 
 import pytest
 
@@ -70,3 +72,21 @@ def test_every_policy_draws_known_actions():
     assert set(agent.POLICY_CODES) == set(POLICIES)
     for codes in agent.POLICY_CODES.values():
         assert set(codes) <= set(ACTION_CODES) - {"M"}
+
+
+def test_a_team_factory_is_found_by_module_and_dotted_name():
+    assert agent.split_factory("os.path:join") == ("os.path", "join")
+    assert agent.load_factory("os.path:join") is os.path.join
+    assert agent.load_factory("math:inf.__class__") is float
+    for bad in ("os.path", "os.path:", ":join", "os path:join", "os.path:join()", "os:path:join"):
+        with pytest.raises(ValueError, match="is not MODULE:CALLABLE"):
+            agent.split_factory(bad)
+
+
+def test_a_team_agent_needs_its_snapshot_and_factory(capsys):
+    common = ["--port", "1", "--seed", "1", "--config-dir", "c", "--out", "o", "--policy", "team"]
+    with pytest.raises(SystemExit):
+        agent.parse_args(common + ["--snapshot", "a.qtable"])
+    assert "--policy team needs --snapshot and --team-factory" in capsys.readouterr().err
+    a = agent.parse_args(common + ["--snapshot", "a.qtable", "--team-factory", "m:f"])
+    assert (a.snapshot, a.team_factory) == ("a.qtable", "m:f")

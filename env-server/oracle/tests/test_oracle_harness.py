@@ -1,7 +1,8 @@
 """The whole harness, `hfo_oracle.py` as the docs run it, against the fake HFO
 tree in fake_hfo/ (a launcher that writes rcssserver's logs of a scripted
 game and an `hfo` module that plays it): processes started and ended,
-batches pipelined, the agents' choices joined, the statistics written."""
+batches pipelined, the agents' choices joined, the statistics written; a
+learned team made by the stand-in factory in fake_team/."""
 
 import json
 import os
@@ -14,6 +15,10 @@ import pytest
 TESTS = os.path.dirname(os.path.abspath(__file__))
 ORACLE = os.path.dirname(TESTS)
 FAKE_HFO = os.path.join(TESTS, "fake_hfo")
+# The stand-in team factory's directory, on the harness's PYTHONPATH as a
+# user's factory would be.
+FAKE_TEAM = os.path.join(TESTS, "fake_team")
+FACTORY = "fixed_agent:FixedAgent"
 
 
 def namespaces_work():
@@ -33,7 +38,12 @@ def run_harness(tmp_path, *args, net="host"):
     rundir.mkdir()
     work = tmp_path / "tmp"
     work.mkdir()
-    env = dict(os.environ, FAKE_HFO_RUNDIR=str(rundir), PYTHONDONTWRITEBYTECODE="1")
+    env = dict(
+        os.environ,
+        FAKE_HFO_RUNDIR=str(rundir),
+        PYTHONDONTWRITEBYTECODE="1",
+        PYTHONPATH=os.pathsep.join(filter(None, [FAKE_TEAM, os.environ.get("PYTHONPATH")])),
+    )
     env.pop("HFO_ORACLE_NETNS", None)
     cmd = [
         sys.executable,
@@ -95,13 +105,15 @@ def test_a_learned_team_is_played_through_its_snapshots(tmp_path):
     team = []
     for i in range(3):
         path = tmp_path / ("agent-%d.qtable" % i)
-        path.write_text("1")  # the fake GreedyAgent's action: SHOOT
+        path.write_text("1")  # the stand-in agent's action: SHOOT
         team.append(str(path))
     out = tmp_path / "hfo-team.json"
-    done = run_harness(tmp_path, "--team", *team, "--episodes", "2", "--out", str(out))
+    done = run_harness(
+        tmp_path, "--team", *team, "--team-factory", FACTORY, "--episodes", "2", "--out", str(out)
+    )
     assert done.returncode == 0, done.stderr
     r = json.loads(out.read_text())
-    assert r["policy"] == "team" and r["team"] == team
+    assert r["policy"] == "team" and r["team"] == team and r["team_factory"] == FACTORY
     # --net host: in this network.
     assert (tmp_path / "run" / "netns").read_text() == os.readlink("/proc/self/ns/net")
     assert r["actions"]["shoot"] == 2 and r["outcomes"]["goal"] == 1
@@ -114,8 +126,16 @@ def test_bad_command_lines_are_refused(tmp_path):
     missing = str(tmp_path / "missing.qtable")
     second = tmp_path / "second"
     second.mkdir()
-    done = run_harness(second, "--team", missing, missing, missing, "--episodes", "1", "--out", out)
+    team = ["--team", missing, missing, missing, "--team-factory", FACTORY]
+    done = run_harness(second, *team, "--episodes", "1", "--out", out)
     assert done.returncode == 2 and "--team: no such file" in done.stderr
+    third = tmp_path / "third"
+    third.mkdir()
+    policy = ["--policy", "shoot", "--team-factory", FACTORY]
+    done = run_harness(third, *policy, "--episodes", "1", "--out", out)
+    assert done.returncode == 2 and done.stderr == (
+        "hfo_oracle.py: error: --team-factory goes with --team\n"
+    )
     done = subprocess.run(
         [
             sys.executable,
@@ -135,6 +155,27 @@ def test_bad_command_lines_are_refused(tmp_path):
     )
     assert done.returncode == 2 and "must point at a built HFO tree" in done.stderr
     assert not os.path.exists(out)
+
+
+@pytest.mark.parametrize(
+    "factory, error",
+    [
+        ([], "--team needs --team-factory MODULE:CALLABLE"),
+        (["--team-factory", "fixed_agent"], "--team-factory 'fixed_agent' is not MODULE:CALLABLE"),
+        (["--team-factory", "fixed agent:FixedAgent"], "--team-factory 'fixed agent:"),
+        (["--team-factory", "fixed_agent:"], "--team-factory 'fixed_agent:' is not"),
+    ],
+)
+def test_a_team_without_a_well_formed_factory_is_refused(tmp_path, factory, error):
+    path = tmp_path / "agent.qtable"
+    path.write_text("1")
+    out = tmp_path / "x.json"
+    team = ["--team", str(path), str(path), str(path)]
+    done = run_harness(tmp_path, *team, *factory, "--episodes", "1", "--out", str(out))
+    # One line, without the usage.
+    assert done.returncode == 2 and len(done.stderr.splitlines()) == 1, done.stderr
+    assert done.stderr.startswith("hfo_oracle.py: error: " + error), done.stderr
+    assert not out.exists()
 
 
 @pytest.mark.parametrize("entry", [["hfo_oracle.py"], ["-m", "hfo_oracle"]])

@@ -2,13 +2,16 @@
 """A learned team on our simulator: plays N episodes of three of our agents'
 snapshot files (`coordinator run --save-agents`), greedily as our
 evaluations play, on one long-lived simulator, and writes the statistics
-`hfo_oracle.py --team` writes for the real HFO (outcomes, frames, the
-kickers' choices), for `learned.py` to set side by side.
+`hfo_oracle.py --team A B C --team-factory adhoc_advising:GreedyAgent`
+writes for the real HFO (outcomes, frames, the kickers' choices), for
+`learned.py` (env-server/oracle) to set side by side.
 
-Needs the `halffield` package (env-server/python) and our agents' Python
-binding, which holds `GreedyAgent` (`hfo_oracle/team.py` says where it looks):
+Needs the `halffield` package (env-server/python) and our agents' package
+`adhoc_advising` (coordinator/python), whose `GreedyAgent` plays each
+agent; the statistics' vocabulary is the harness's (`hfo_oracle` in
+env-server/oracle, found from this file's place in the tree):
 
-    python3 team_ours.py --team A B C --episodes 4000 --seed 1 --out ours.json
+    python3 coordinator/oracle/team_ours.py --team A B C --episodes 4000 --seed 1 --out ours.json
 """
 
 from __future__ import annotations
@@ -18,15 +21,20 @@ import os
 import sys
 from typing import Any
 
+# The harness's package, a layer below in env-server/oracle.
+sys.path.insert(
+    0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "env-server", "oracle")
+)
+
 import halffield
+from adhoc_advising import GreedyAgent
 from hfo_oracle.schema import ACTIONS, STATUS_OUTCOMES, write_json
 from hfo_oracle.stats import mean, sample_sd
-from hfo_oracle.team import greedy_agent
 
 
 def play(team: list[str], episodes: int, seed: int) -> dict[str, Any]:
     """Statistics of ``episodes`` episodes of ``team`` from ``seed``."""
-    agents = [greedy_agent(path) for path in team]
+    agents = [GreedyAgent(path) for path in team]
     env = halffield.parallel_env(observation="paper")
     outcomes = dict.fromkeys(STATUS_OUTCOMES.values(), 0)
     actions = dict.fromkeys(ACTIONS, 0)
