@@ -61,7 +61,7 @@ def test_team_ours_writes_a_team_s_statistics(tmp_path, monkeypatch):
     )
     team = []
     for i, action in enumerate((1, 2, 4)):  # shoot, dribble, pass far
-        path = tmp_path / f"agent-{i}.qtable"
+        path = tmp_path / f"agent-{i}.snapshot"
         path.write_text(str(action))
         team.append(str(path))
     import team_ours

@@ -86,7 +86,7 @@ def test_a_team_factory_is_found_by_module_and_dotted_name():
 def test_a_team_agent_needs_its_snapshot_and_factory(capsys):
     common = ["--port", "1", "--seed", "1", "--config-dir", "c", "--out", "o", "--policy", "team"]
     with pytest.raises(SystemExit):
-        agent.parse_args(common + ["--snapshot", "a.qtable"])
+        agent.parse_args(common + ["--snapshot", "a.snapshot"])
     assert "--policy team needs --snapshot and --team-factory" in capsys.readouterr().err
-    a = agent.parse_args(common + ["--snapshot", "a.qtable", "--team-factory", "m:f"])
-    assert (a.snapshot, a.team_factory) == ("a.qtable", "m:f")
+    a = agent.parse_args(common + ["--snapshot", "a.snapshot", "--team-factory", "m:f"])
+    assert (a.snapshot, a.team_factory) == ("a.snapshot", "m:f")

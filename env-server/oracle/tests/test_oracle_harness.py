@@ -104,7 +104,7 @@ def test_a_policy_is_played_in_pipelined_batches(tmp_path):
 def test_a_learned_team_is_played_through_its_snapshots(tmp_path):
     team = []
     for i in range(3):
-        path = tmp_path / ("agent-%d.qtable" % i)
+        path = tmp_path / ("agent-%d.snapshot" % i)
         path.write_text("1")  # the stand-in agent's action: SHOOT
         team.append(str(path))
     out = tmp_path / "hfo-team.json"
@@ -123,7 +123,7 @@ def test_bad_command_lines_are_refused(tmp_path):
     out = str(tmp_path / "x.json")
     done = run_harness(tmp_path, "--policy", "shoot", "--episodes", "0", "--out", out)
     assert done.returncode == 2 and "--episodes must be positive" in done.stderr
-    missing = str(tmp_path / "missing.qtable")
+    missing = str(tmp_path / "missing.snapshot")
     second = tmp_path / "second"
     second.mkdir()
     team = ["--team", missing, missing, missing, "--team-factory", FACTORY]
@@ -167,7 +167,7 @@ def test_bad_command_lines_are_refused(tmp_path):
     ],
 )
 def test_a_team_without_a_well_formed_factory_is_refused(tmp_path, factory, error):
-    path = tmp_path / "agent.qtable"
+    path = tmp_path / "agent.snapshot"
     path.write_text("1")
     out = tmp_path / "x.json"
     team = ["--team", str(path), str(path), str(path)]

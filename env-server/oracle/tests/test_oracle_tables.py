@@ -70,7 +70,7 @@ def test_learned_pools_the_runs_of_each_team(tmp_path, capsys):
                     goals + 10 * run,
                     100,
                     actions=actions,
-                    team=["/x/adhoc-td-1000/run-%d-agent-0.qtable" % run],
+                    team=["/x/adhoc-td-1000/run-%d-agent-0.snapshot" % run],
                 )
             )
     assert learned.main(files) == 0
