@@ -16,7 +16,7 @@ use crate::persist::{Entry, PersistError, Snapshot};
 use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
 use crate::strategy::{
-    AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, Replies, Sends,
+    AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies, Sends,
 };
 use crate::tiles::{Tiling, TilingParams};
 
@@ -433,10 +433,23 @@ impl Agent {
         self.counters.advice_replies_received += replies;
         self.outcomes.count(f.asked, replies, answers);
         let ties = self.config.fidelity.vote_ties;
+        // A strategy that weighs its own choice gets it drawn first.
+        let own = self.strategy.weighs_own_choice().then(|| {
+            let at = Seen {
+                state: &f.state,
+                index: Some(f.index),
+            };
+            OwnChoice {
+                values: self.learner.values(at),
+                action: f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
+            }
+        });
         let replies = Replies {
             key: f.key,
             advice: &answers.advice,
             values: &answers.values,
+            advisor_values: &answers.advisor_values,
+            own,
         };
         let visits = self.states.visits(f.index);
         if let Some(shared) = self.strategy.adopt(&replies, visits) {
@@ -463,7 +476,10 @@ impl Agent {
                 }
                 advice.action
             }
-            None => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
+            None => match own {
+                Some(own) => own.action,
+                None => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
+            },
         };
         let advisor = followed.map(|advice| advice.advisor);
         self.step(f.index, action, f.state, f.reward, advisor);
@@ -547,10 +563,13 @@ impl Agent {
                 self.share_values(state)
                     .map_or(ValuesAnswer::Declined, ValuesAnswer::Values),
             ),
-            (false, false) => Answer::Action(
-                self.advise(state, intended)
-                    .map_or(AdviceAnswer::Declined, AdviceAnswer::Advice),
-            ),
+            (false, false) => Answer::Action(match self.advise(state, intended) {
+                None => AdviceAnswer::Declined,
+                Some(action) => match self.strategy.advisor_value() {
+                    Some(value) => AdviceAnswer::Recommendation(action, value as f32),
+                    None => AdviceAnswer::Advice(action),
+                },
+            }),
         }
     }
 
@@ -576,7 +595,7 @@ impl Agent {
     /// Its visits and values of `state` (none where training never met it)
     /// when its strategy is willing to give about it now; `None` outside
     /// training or when it is not.
-    fn willing(&mut self, state: &State) -> Option<(u64, ActionValues)> {
+    fn willing(&mut self, state: &State) -> Option<(u64, ActionValues, Option<usize>)> {
         if !self.training() {
             return None;
         }
@@ -598,7 +617,7 @@ impl Agent {
         };
         self.strategy
             .gives(&at, &mut self.rng)
-            .then_some((visits, values))
+            .then_some((visits, values, index))
     }
 
     /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
@@ -606,9 +625,13 @@ impl Agent {
     /// ties broken as its fidelity says. With `intended` (Mistake Correcting)
     /// it answers, and spends budget, only when its action differs.
     pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
-        let (_, values) = self.willing(state)?;
+        let (_, values, index) = self.willing(state)?;
         let ties = self.config.fidelity.advisor_ties;
-        let honest = (self.strategy).advice(&values, ties, &mut self.rng);
+        let honest = if self.strategy.suggests_its_choice() {
+            self.learner.choose(Seen { state, index }, &mut self.rng)
+        } else {
+            (self.strategy).advice(&values, ties, &mut self.rng)
+        };
         let answer = self.config.advises.answer(honest, &values, &mut self.rng);
         if intended == Some(answer) {
             return None;
@@ -620,7 +643,7 @@ impl Agent {
     /// Sharer side (a value-sharing method): its values and visits of an
     /// advisee's `state`, or `None`; one unit of its give budget.
     pub fn share_values(&mut self, state: &State) -> Option<SharedValues> {
-        let (visits, values) = self.willing(state)?;
+        let (visits, values, _) = self.willing(state)?;
         self.gave();
         Some(SharedValues {
             q: values.q,

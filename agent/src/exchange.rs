@@ -58,6 +58,8 @@ pub struct Answers {
     pub declined: u32,
     /// Replies without advice from advisors whose give budget is spent.
     pub exhausted: u32,
+    /// What the advisors that recommended said of themselves, by advisor.
+    pub advisor_values: Vec<(usize, f64)>,
 }
 
 impl Answers {
@@ -67,6 +69,7 @@ impl Answers {
         self.values.clear();
         self.declined = 0;
         self.exhausted = 0;
+        self.advisor_values.clear();
     }
 
     /// Takes advisor `advisor`'s answer.
@@ -74,6 +77,10 @@ impl Answers {
         match answer {
             Answer::Action(AdviceAnswer::Advice(action)) => {
                 self.advice.push(Advice { advisor, action })
+            }
+            Answer::Action(AdviceAnswer::Recommendation(action, value)) => {
+                self.advice.push(Advice { advisor, action });
+                self.advisor_values.push((advisor, f64::from(value)));
             }
             Answer::Values(ValuesAnswer::Values(values)) => {
                 self.values.push(ValuesAdvice { advisor, values })

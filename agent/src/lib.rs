@@ -85,8 +85,8 @@ pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
     AdHoc, AdviceReuse, AdvisingStrategy, AskContext, Confidence, EarlyAdvising, EndContext,
-    EpisodeSharing, GiveContext, NoSettings, Outcome, PeerLearning, Psaf, RandomAdvising, Rcmp,
-    Replies, ReuseRule, Sends, Torrey,
+    EpisodeSharing, GiveContext, NoSettings, Outcome, OwnChoice, PeerLearning, Psaf,
+    RandomAdvising, Rcmp, Replies, ReuseRule, Sends, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

@@ -32,7 +32,9 @@ pub use peers::PeerLearning;
 pub use psaf::Psaf;
 pub use rcmp::Rcmp;
 pub use reuse::{AdviceReuse, ReuseRule};
-pub use seam::{AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, Replies, Sends};
+pub use seam::{
+    AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies, Sends,
+};
 pub use torrey::Torrey;
 
 /// Every algorithm, registered once: the paper's, in the order it

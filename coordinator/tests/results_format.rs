@@ -63,12 +63,14 @@ fn every_agent() -> Vec<AgentSpec> {
                 ..AgentConfig::of(algorithm, Profile::Paper)
             };
             for (key, value) in config.algorithm.settings() {
-                let set = match value {
-                    Value::Null => Value::from(0.1),
-                    Value::Bool(false) => Value::Bool(true),
+                match value {
+                    // An unset option: a fraction where one is taken, else 1.
+                    Value::Null => (config.algorithm.set(&key, Value::from(0.1)))
+                        .or_else(|_| config.algorithm.set(&key, Value::from(1)))
+                        .unwrap(),
+                    Value::Bool(false) => config.algorithm.set(&key, Value::Bool(true)).unwrap(),
                     _ => continue,
-                };
-                config.algorithm.set(&key, set).unwrap();
+                }
             }
             AgentSpec {
                 config,

@@ -171,16 +171,23 @@ mod tests {
                     intended
                 })
             ),
-            (any::<u8>(), prop::option::of(action()), any::<bool>()).prop_map(
-                |(from, advice, exhausted)| Body::AdviceReply(AdviceReply {
-                    from,
-                    answer: match (advice, exhausted) {
-                        (Some(a), _) => AdviceAnswer::Advice(a),
-                        (None, false) => AdviceAnswer::Declined,
-                        (None, true) => AdviceAnswer::Exhausted,
-                    },
-                })
-            ),
+            (
+                any::<u8>(),
+                prop::option::of(action()),
+                0u8..3,
+                -1e3f32..1e3
+            )
+                .prop_map(|(from, advice, kind, value)| Body::AdviceReply(
+                    AdviceReply {
+                        from,
+                        answer: match (advice, kind) {
+                            (Some(a), 0) => AdviceAnswer::Advice(a),
+                            (Some(a), _) => AdviceAnswer::Recommendation(a, value),
+                            (None, 0) => AdviceAnswer::Declined,
+                            (None, _) => AdviceAnswer::Exhausted,
+                        },
+                    }
+                )),
             any::<u8>().prop_map(|from| Body::Exhausted(Exhausted { from })),
             (
                 any::<u8>(),

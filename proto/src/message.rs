@@ -160,7 +160,7 @@ pub struct AdviceRequest {
 
 /// What an advisor answers to a request: advice, none, or none because its
 /// give budget is spent. (Encoded as `Option<Action>` was, plus one value.)
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum AdviceAnswer {
     /// No advice: the advisor is not confident, or agrees (Mistake
     /// Correcting), or does not advise now.
@@ -169,10 +169,13 @@ pub enum AdviceAnswer {
     Advice(Action),
     /// No advice: its give budget is spent.
     Exhausted,
+    /// A recommended action with what the advisor says of itself (peer
+    /// learning's value of an agent).
+    Recommendation(Action, f32),
 }
 
 /// An advisor's answer to a request.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdviceReply {
     /// The answering agent.
     pub from: u8,

@@ -60,7 +60,10 @@ impl Collector {
         self.rtt_ms.push(rtt.as_secs_f32() * 1000.0);
         // Only kick actions count as advice.
         let answer = match answer {
-            Answer::Action(AdviceAnswer::Advice(action)) if !action.is_kick() => {
+            Answer::Action(
+                AdviceAnswer::Advice(action) | AdviceAnswer::Recommendation(action, _),
+            ) if !action.is_kick() => Answer::Action(AdviceAnswer::Declined),
+            Answer::Action(AdviceAnswer::Recommendation(_, value)) if !value.is_finite() => {
                 Answer::Action(AdviceAnswer::Declined)
             }
             answer => answer,

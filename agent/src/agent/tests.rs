@@ -1393,6 +1393,8 @@ fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
         key: 0,
         advice: &[],
         values: &answers.values,
+        advisor_values: &[],
+        own: None,
     };
     assert_eq!(strategy.adopt(&replies, 100), None);
 }

@@ -302,6 +302,8 @@ mod tests {
                 key: 7,
                 advice,
                 values: &[],
+                advisor_values: &[],
+                own: None,
             };
             ad_hoc.follow(&replies, VoteTies::Fixed, &mut rng)
         };

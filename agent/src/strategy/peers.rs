@@ -1,16 +1,18 @@
 //! Peer learning (Derstroff et al., "Peer Learning: Learning Complex
 //! Policies in Groups from Scratch via Action Recommendations", AAAI 2024;
 //! docs/algorithms.md section 7): at a decision every peer recommends an
-//! action, the agent picks whose recommendation to follow (its own
-//! included) by a softmax over its trust in each, follows that peer for a
-//! few decisions, and learns its trust from the advantage of what it played.
+//! action (sampled from its policy), the agent picks whose to follow (its
+//! own choice included) by a softmax over its trust in each, the value
+//! each says of itself and its own value of each action, follows that peer
+//! for a few decisions, and learns its trust from the advantage of what it
+//! played.
 
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
 use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
 use super::trust::Trust;
-use crate::advice::{PAPER_BUDGET, Reachable, reachable_set};
+use crate::advice::{Reachable, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::exchange::Advice;
@@ -18,17 +20,20 @@ use crate::fidelity::{Fidelity, Profile, VoteTies};
 use crate::method::Method;
 use crate::selection::AgentRng;
 
-/// The settings of peer learning (Derstroff et al., AAAI 2024): whom to
-/// follow by trust learned from outcomes.
+/// The settings of peer learning (Derstroff et al., AAAI 2024, as its
+/// code kramerlab/PeerLearning runs it: `run_peer.py` with the flags of the
+/// paper's runs): whom to follow, among the peers' suggestions and its own
+/// choice, by trust, the peers' own values and the critic's value of each.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PeerLearning {
-    /// Advisee budget: steps acted on a peer's recommendation (default 1000).
-    pub ask_budget: u64,
-    /// Advisor budget: recommendations given (default 1000).
-    pub give_budget: u64,
+    /// Advisee budget: steps acted on a peer's suggestion (default none:
+    /// the paper's runs have no budget).
+    pub ask_budget: Option<u64>,
+    /// Advisor budget: suggestions given (default none).
+    pub give_budget: Option<u64>,
     /// The peers asked (default everyone).
     pub reachable: Reachable,
-    /// The softmax temperature T of the choice among recommendations,
+    /// The softmax temperature T of the choice among the candidates,
     /// finite and > 0 (default 1, the paper's).
     pub temperature: f64,
     /// The learning rate of trust, in [0, 1] (default 0.001, the paper's).
@@ -36,29 +41,41 @@ pub struct PeerLearning {
     /// Decisions a chosen peer (or its own choice) is followed for, at
     /// least 1 (default 10, the paper's).
     pub follow_steps: u32,
+    /// Weigh each candidate by the agent's own value of its action,
+    /// Q(s, a) (the paper's critic, `--use-critic`; default on).
+    pub use_critic: bool,
+    /// Weigh each candidate by what it says of itself, its trust in its
+    /// own choices (the paper's agent value, `--use-agent-value`; default
+    /// on).
+    pub use_agent_value: bool,
+    /// Peers suggest their exploring choice, sampled from their policy
+    /// (`--peers-sample-with-noise`; default on); off, their greedy action.
+    pub sample_suggestions: bool,
 }
 
 impl Default for PeerLearning {
     fn default() -> Self {
         Self {
-            ask_budget: PAPER_BUDGET,
-            give_budget: PAPER_BUDGET,
+            ask_budget: None,
+            give_budget: None,
             reachable: Reachable::Everyone,
             temperature: 1.0,
             trust_lr: 0.001,
             follow_steps: 10,
+            use_critic: true,
+            use_agent_value: true,
+            sample_suggestions: true,
         }
     }
 }
 
-/// `peer-learning`: follow recommendations by trust learned from outcomes.
+/// `peer-learning`: follow suggestions by trust, value and critic.
 pub(crate) struct PeerLearningMethod;
 
 impl Method for PeerLearningMethod {
     type Settings = PeerLearning;
     const NAME: &'static str = "peer-learning";
-    const ABOUT: &'static str =
-        "follow recommendations by trust learned from outcomes (Derstroff et al., AAAI 2024)";
+    const ABOUT: &'static str = "follow the suggestions of peers by trust learned from outcomes (Derstroff et al., AAAI 2024)";
 
     fn defaults(_: Profile) -> PeerLearning {
         PeerLearning::default()
@@ -111,39 +128,78 @@ impl Peers {
         }
     }
 
-    /// Its trust in `advisor` (0 for one never followed).
-    pub fn trust(&self, advisor: usize) -> f64 {
-        self.trust.of(advisor)
-    }
-
-    /// Chooses among its own choice (`None`) and the `advice`, by a softmax
-    /// of their trust (scaled by the largest magnitude) over the temperature.
-    fn choose(&self, advice: &[Advice], rng: &mut AgentRng) -> Option<Advice> {
-        let weight = self.trust.weigh(advice, self.settings.temperature);
-        let own = weight(self.trust.own());
-        let total = own
-            + advice
-                .iter()
-                .map(|a| weight(self.trust(a.advisor)))
-                .sum::<f64>();
-        let mut draw = rng.random::<f64>() * total - own;
-        if draw < 0.0 {
-            return None;
+    /// Chooses among its own choice and the suggestions: each candidate's
+    /// score is the sum of its trust, its agent value (what it says of
+    /// itself) and the critic's value of its action, each term divided by
+    /// its largest magnitude among the candidates (the code's
+    /// normalisation); the candidate is drawn from e^(score / T). Without
+    /// its own choice (no critic), the terms it has.
+    fn choose(&self, replies: &Replies<'_>, rng: &mut AgentRng) -> Option<Advice> {
+        let s = &self.settings;
+        let advice = replies.advice;
+        let said = |advisor: usize| {
+            (replies.advisor_values.iter())
+                .find(|(j, _)| *j == advisor)
+                .map_or(0.0, |(_, v)| *v)
+        };
+        // Candidate 0 is its own choice, then the suggestions in order.
+        let mut terms: Vec<Vec<f64>> = vec![
+            std::iter::once(self.trust.own())
+                .chain(advice.iter().map(|a| self.trust.of(a.advisor)))
+                .collect(),
+        ];
+        if s.use_agent_value {
+            terms.push(
+                std::iter::once(self.trust.own())
+                    .chain(advice.iter().map(|a| said(a.advisor)))
+                    .collect(),
+            );
         }
-        for a in advice {
-            draw -= weight(self.trust(a.advisor));
+        if let (true, Some(own)) = (s.use_critic, replies.own) {
+            terms.push(
+                std::iter::once(own.action)
+                    .chain(advice.iter().map(|a| a.action))
+                    .map(|action| own.values.q[action.index()])
+                    .collect(),
+            );
+        }
+        let scores: Vec<f64> = (0..=advice.len())
+            .map(|k| terms.iter().map(|t| normalised(t)[k]).sum())
+            .collect();
+        let top = scores.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let weights: Vec<f64> = (scores.iter())
+            .map(|x| ((x - top) / s.temperature).exp())
+            .collect();
+        let total: f64 = weights.iter().sum();
+        let mut draw = rng.random::<f64>() * total;
+        for (k, w) in weights.iter().enumerate() {
+            draw -= w;
             if draw < 0.0 {
-                return Some(*a);
+                return k.checked_sub(1).map(|k| advice[k]);
             }
         }
         advice.last().copied()
     }
 }
 
+/// `values` each divided by their largest magnitude (as they are when all
+/// are 0).
+fn normalised(values: &[f64]) -> Vec<f64> {
+    let scale = values.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    values
+        .iter()
+        .map(|v| if scale > 0.0 { v / scale } else { *v })
+        .collect()
+}
+
 impl AdvisingStrategy for Peers {
     /// With ask budget left, unless it is following its own choice.
     fn asks(&mut self, at: &AskContext<'_>, _rng: &mut AgentRng) -> bool {
-        if at.counters.ask_spent >= self.settings.ask_budget {
+        if self
+            .settings
+            .ask_budget
+            .is_some_and(|b| at.counters.ask_spent >= b)
+        {
             self.following = Following::Nobody;
             return false;
         }
@@ -170,9 +226,25 @@ impl AdvisingStrategy for Peers {
         }
     }
 
-    /// Every request about a visited state, while the give budget lasts.
+    /// Every request, while the give budget (if any) lasts: a peer always
+    /// suggests.
     fn gives(&mut self, at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
-        at.visited_within(self.settings.give_budget)
+        self.settings
+            .give_budget
+            .is_none_or(|b| at.counters.advice_given < b)
+    }
+
+    fn suggests_its_choice(&self) -> bool {
+        self.settings.sample_suggestions
+    }
+
+    /// Its trust in its own choices: what it says of itself.
+    fn advisor_value(&self) -> Option<f64> {
+        self.settings.use_agent_value.then(|| self.trust.own())
+    }
+
+    fn weighs_own_choice(&self) -> bool {
+        self.settings.use_critic
     }
 
     /// The followed peer's advice while it lasts and arrives; else a new
@@ -197,7 +269,7 @@ impl AdvisingStrategy for Peers {
             return Some(*advice);
         }
         let left = self.settings.follow_steps.saturating_sub(1);
-        let chosen = self.choose(replies.advice, rng);
+        let chosen = self.choose(replies, rng);
         self.following = match (chosen, left) {
             (_, 0) => Following::Nobody,
             (None, left) => Following::Itself { left },
@@ -219,7 +291,9 @@ impl AdvisingStrategy for Peers {
     }
 
     fn exhausted(&self, counters: &AdviceCounters) -> bool {
-        counters.advice_given >= self.settings.give_budget
+        self.settings
+            .give_budget
+            .is_some_and(|b| counters.advice_given >= b)
     }
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
@@ -230,6 +304,7 @@ impl AdvisingStrategy for Peers {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::strategy::OwnChoice;
     use proto::Action::{Dribble, Shoot};
     use rand::SeedableRng;
 
@@ -238,6 +313,8 @@ mod tests {
             key: 1,
             advice,
             values: &[],
+            advisor_values: &[],
+            own: None,
         }
     }
 
@@ -275,7 +352,10 @@ mod tests {
                 followed[advisor.unwrap_or(0)] += 1;
             }
         }
-        assert!(peers.trust(1) > 0.9 && peers.trust(2) < -0.9, "{peers:?}");
+        assert!(
+            peers.trust.of(1) > 0.9 && peers.trust.of(2) < -0.9,
+            "{peers:?}"
+        );
         // Softmax at temperature 1 over trust scaled to [-1, 1]: e^1 : e^0 :
         // e^-1, so advisor 1 is followed about two times in three.
         assert!(
@@ -316,5 +396,44 @@ mod tests {
         );
         peers.advisors(0, 3, &[], &mut out);
         assert_eq!(out, vec![1, 2], "chosen anew among everyone");
+    }
+
+    #[test]
+    fn the_critic_prefers_the_suggestion_it_values_most() {
+        let settings = PeerLearning {
+            temperature: 0.01,
+            ..PeerLearning::default()
+        };
+        let mut peers = Peers::new(settings);
+        let mut rng = AgentRng::seed_from_u64(3);
+        let (good, bad) = (
+            Advice {
+                advisor: 1,
+                action: Shoot,
+            },
+            Advice {
+                advisor: 2,
+                action: Dribble,
+            },
+        );
+        let mut values = crate::learner::ActionValues::default();
+        values.q[Shoot.index()] = 1.0;
+        values.q[Dribble.index()] = -1.0;
+        let own = OwnChoice {
+            action: proto::Action::PassNear,
+            values,
+        };
+        let advice = [bad, good];
+        let mut asked = replies(&advice);
+        asked.own = Some(own);
+        for _ in 0..20 {
+            assert_eq!(peers.choose(&asked, &mut rng), Some(good));
+        }
+        // What a peer says of itself weighs too: the bad one claims much.
+        let said = [(2, 5.0), (1, -5.0)];
+        asked.advisor_values = &said;
+        assert!(peers.weighs_own_choice() && peers.suggests_its_choice());
+        peers.settings.use_critic = false;
+        assert_eq!(peers.choose(&asked, &mut rng), Some(bad));
     }
 }

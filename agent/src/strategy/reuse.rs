@@ -25,9 +25,15 @@ use crate::selection::{ACTIONS, AgentRng, chance};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ReuseRule {
-    /// "Q-change per step": reuse while its own values in the state still
-    /// change, between visits, by more than `q_change_threshold`.
+    /// "Q-change per step" (the paper's): reuse while the advice leads to
+    /// an increase in its value: the advised action's value in the state
+    /// rose by more than `q_change_threshold` since the advice was last
+    /// played (then it forgets the advice).
     QChange,
+    /// This project's first reading of it: reuse while its values in the
+    /// state change, in either direction, by more than
+    /// `q_change_threshold` (the largest change over the actions).
+    QChangeEither,
     /// "Decay reusing probability": reuse with a probability that starts at
     /// 1 and is multiplied by `reuse_decay` at each reuse.
     Decay,
@@ -54,8 +60,9 @@ pub struct AdviceReuse {
     pub trust_lr: Option<f64>,
     /// Which rule decides a reuse (default `q-change`).
     pub reuse_rule: ReuseRule,
-    /// `q-change`: the change of its values (largest over the actions)
-    /// above which it still reuses, finite and >= 0 (default 0.01).
+    /// `q-change`: the rise of the advised action's value (`q-change-either`:
+    /// the change of its values, largest over the actions) above which it
+    /// still reuses, finite and >= 0 (default 0.001).
     pub q_change_threshold: f64,
     /// `decay`: the factor of the reuse probability after each reuse, in
     /// [0, 1] (default 0.9).
@@ -99,7 +106,7 @@ impl Method for AdviceReuseMethod {
             backoff: td.backoff,
             trust_lr: td.trust_lr,
             reuse_rule: ReuseRule::QChange,
-            q_change_threshold: 0.01,
+            q_change_threshold: 0.001,
             reuse_decay: 0.9,
         }
     }
@@ -123,7 +130,8 @@ impl Method for AdviceReuseMethod {
 #[derive(Clone, Copy, Debug)]
 struct Kept {
     action: Action,
-    /// Its values in the state when the advice was last played (q-change).
+    /// Its values in the state when the advice was last played (q-change
+    /// rules).
     values: Option<[f64; ACTIONS]>,
     /// The probability of the next reuse (decay).
     p: f64,
@@ -147,8 +155,9 @@ fn change(a: &[f64; ACTIONS], b: &[f64; ACTIONS]) -> f64 {
 
 impl AdvisingStrategy for ReusingAdvice {
     /// The kept advice of the state, while the rule allows: q-change while
-    /// its values moved by more than the threshold since the advice was
-    /// last played (then it forgets the advice), decay with a probability
+    /// the advised action's value rose by more than the threshold since the
+    /// advice was last played (q-change-either: while its values moved by
+    /// more than it), then it forgets the advice; decay with a probability
     /// that shrinks at every reuse.
     fn reuse(
         &mut self,
@@ -157,12 +166,17 @@ impl AdvisingStrategy for ReusingAdvice {
         rng: &mut AgentRng,
     ) -> Option<Action> {
         let kept = self.kept.get_mut(&key)?;
+        let threshold = self.rule.q_change_threshold;
         match self.rule.reuse_rule {
-            ReuseRule::QChange => {
+            ReuseRule::QChange | ReuseRule::QChangeEither => {
                 let now = values().q;
-                let moving = kept
-                    .values
-                    .is_none_or(|then| change(&now, &then) > self.rule.q_change_threshold);
+                let moving = kept.values.is_none_or(|then| match self.rule.reuse_rule {
+                    ReuseRule::QChange => {
+                        let a = kept.action.index();
+                        now[a] - then[a] > threshold
+                    }
+                    _ => change(&now, &then) > threshold,
+                });
                 if moving {
                     kept.values = Some(now);
                     Some(kept.action)
@@ -224,5 +238,63 @@ impl AdvisingStrategy for ReusingAdvice {
 
     fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
         self.ad_hoc.spent_budget(counters)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proto::Action::Shoot;
+    use rand::SeedableRng;
+
+    /// A student that followed Shoot in state 7, reusing by `rule`.
+    fn student(rule: ReuseRule) -> ReusingAdvice {
+        let settings = AdviceReuse {
+            reuse_rule: rule,
+            ..AdviceReuseMethod::defaults(Profile::Paper)
+        };
+        let mut s = ReusingAdvice {
+            ad_hoc: AdHocAdvising::new(Confidence::Td, settings.ad_hoc()),
+            rule: settings,
+            kept: FnvHashMap::default(),
+        };
+        let advice = [Advice {
+            advisor: 1,
+            action: Shoot,
+        }];
+        let replies = Replies {
+            key: 7,
+            advice: &advice,
+            values: &[],
+            advisor_values: &[],
+            own: None,
+        };
+        let mut rng = AgentRng::seed_from_u64(1);
+        s.follow(&replies, VoteTies::Fixed, &mut rng);
+        s
+    }
+
+    /// Whether it reuses in state 7 when Shoot's value is `q` (the others 0).
+    fn reuses(s: &mut ReusingAdvice, q: f64) -> bool {
+        let mut values = || {
+            let mut v = ActionValues::default();
+            v.q[Shoot.index()] = q;
+            v
+        };
+        s.reuse(7, &mut values, &mut AgentRng::seed_from_u64(1))
+            .is_some()
+    }
+
+    #[test]
+    fn q_change_reuses_while_the_advice_raises_its_value() {
+        let mut s = student(ReuseRule::QChange);
+        assert!(reuses(&mut s, 0.1), "the first visit reuses");
+        assert!(reuses(&mut s, 0.2), "a rise reuses");
+        assert!(!reuses(&mut s, 0.1), "a fall forgets the advice");
+        assert!(!reuses(&mut s, 0.5), "forgotten");
+        // The first reading reused on a fall too.
+        let mut s = student(ReuseRule::QChangeEither);
+        assert!(reuses(&mut s, 0.2) && reuses(&mut s, 0.1));
+        assert!(!reuses(&mut s, 0.1), "no change forgets the advice");
     }
 }

@@ -67,6 +67,20 @@ pub struct Replies<'a> {
     pub advice: &'a [Advice],
     /// The values shared, with who shared them.
     pub values: &'a [ValuesAdvice],
+    /// What the advisors that recommended said of themselves, by advisor.
+    pub advisor_values: &'a [(usize, f64)],
+    /// The agent's own choice and its values in the state, for a strategy
+    /// that [`weighs_own_choice`](AdvisingStrategy::weighs_own_choice).
+    pub own: Option<OwnChoice>,
+}
+
+/// An agent's own choice in a state and its values there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OwnChoice {
+    /// The action it would play (its learner's exploring choice).
+    pub action: Action,
+    /// Its values in the state.
+    pub values: ActionValues,
 }
 
 impl Replies<'_> {
@@ -164,6 +178,26 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// Advisor: whether it answers about a state.
     /// Never, by default.
     fn gives(&mut self, _at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
+        false
+    }
+
+    /// Advisor: whether it recommends its learner's own exploring choice
+    /// (peer learning's suggestion, sampled from its policy) rather than
+    /// [`advice`](Self::advice). No, by default.
+    fn suggests_its_choice(&self) -> bool {
+        false
+    }
+
+    /// Advisor: what it says of itself with each recommendation (peer
+    /// learning's value of an agent); none by default.
+    fn advisor_value(&self) -> Option<f64> {
+        None
+    }
+
+    /// Advisee: whether [`follow`](Self::follow) weighs its own choice and
+    /// values ([`Replies::own`]); the framework then draws its choice first
+    /// and plays it when no advice is followed.
+    fn weighs_own_choice(&self) -> bool {
         false
     }
 
