@@ -39,15 +39,17 @@ impl RequestOutcomes {
     /// Counts a request to `asked` advisors of which `replies` replied,
     /// with `answers`.
     pub(crate) fn count(&mut self, asked: u64, replies: u64, answers: &crate::Answers) {
-        let outcome = if !answers.advice.is_empty() || !answers.values.is_empty() {
-            &mut self.answered
-        } else if answers.declined > 0 {
-            &mut self.declined
-        } else if replies == asked && u64::from(answers.exhausted) == asked {
-            &mut self.futile
-        } else {
-            &mut self.lost
-        };
+        let outcome =
+            if !answers.advice.is_empty() || !answers.values.is_empty() || !answers.best.is_empty()
+            {
+                &mut self.answered
+            } else if answers.declined > 0 {
+                &mut self.declined
+            } else if replies == asked && u64::from(answers.exhausted) == asked {
+                &mut self.futile
+            } else {
+                &mut self.lost
+            };
         *outcome += 1;
     }
 }

@@ -1,7 +1,7 @@
 //! One learning agent: its per-frame API (advisee side), its advisor side and
 //! its learned state.
 
-use proto::{Action, AdviceAnswer, Mode, SharedValues, State, ValuesAnswer};
+use proto::{Action, AdviceAnswer, Along, Mode, SharedValues, State, ValuesAnswer};
 use rand::{Rng, SeedableRng};
 
 use crate::advice_counters::{AdviceCounters, RequestOutcomes};
@@ -13,10 +13,11 @@ use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::learners::learner_of;
 use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
-use crate::selection::{AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
+use crate::selection::{ACTIONS, AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
 use crate::strategy::{
-    AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies, Sends,
+    Adopted, AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies,
+    Sends,
 };
 use crate::tiles::{Tiling, TilingParams};
 
@@ -72,17 +73,30 @@ struct InFlight {
 pub enum Decision {
     /// The action for this frame; the frame is complete.
     Act(Action),
-    /// Ask these advisors about `state` (with the `intended` action in
-    /// Mistake Correcting mode), then pass their advice to
-    /// [`Agent::act_complete`].
+    /// Ask these advisors about `state` (with what the request carries
+    /// `along`), then pass their advice to [`Agent::act_complete`].
     Ask {
         /// The advisors, in the order of the reachable set.
         to: Vec<usize>,
         /// The advisee's state.
         state: State,
-        /// Its own epsilon-greedy choice, sent along in Mistake Correcting mode.
-        intended: Option<Action>,
+        /// What the request carries: its own choice in Mistake Correcting
+        /// mode, its visits by action for PSAF, else nothing.
+        along: Along,
     },
+}
+
+/// What an advisor knows of a state it is asked about.
+#[derive(Clone, Copy, Debug, Default)]
+struct Known {
+    /// n(s).
+    visits: u64,
+    /// m(s, a) by action index.
+    action_visits: [u32; ACTIONS],
+    /// Its learner's values there.
+    values: ActionValues,
+    /// The state's index, where training met it.
+    index: Option<usize>,
 }
 
 /// A learning agent (or the random baseline) with its advising strategy:
@@ -337,14 +351,10 @@ impl Agent {
     ) -> Action {
         match self.act_begin(obs, reward, positions, &|_| true) {
             Decision::Act(action) => action,
-            Decision::Ask {
-                to,
-                state,
-                intended,
-            } => {
+            Decision::Ask { to, state, along } => {
                 let mut answers = std::mem::take(&mut self.answers);
                 answers.clear();
-                let replies = exchange.ask(self.id, &to, &state, intended, &mut answers);
+                let replies = exchange.ask(self.id, &to, &state, along, &mut answers);
                 let action = self.act_complete(&answers, replies);
                 self.answers = answers;
                 action
@@ -407,10 +417,17 @@ impl Agent {
                     intended,
                     asked: self.reach.len() as u64,
                 });
+                let along = match intended {
+                    Some(action) => Along::Intended(action),
+                    None if self.strategy.shares_best() => {
+                        Along::ActionVisits(self.states.action_visits(index))
+                    }
+                    None => Along::Nothing,
+                };
                 return Decision::Ask {
                     to: self.reach.clone(),
                     state: obs.state,
-                    intended,
+                    along,
                 };
             }
         }
@@ -423,7 +440,8 @@ impl Agent {
     /// (in any number, possibly none) in `replies` replies (with or without
     /// advice). Values its strategy adopts go into its learner first (one
     /// unit of its ask budget); with advice to follow it plays it (one unit
-    /// of its ask budget), else its intended or epsilon-greedy action; then
+    /// of its ask budget), else, after a best value, its greedy action, else
+    /// its intended or epsilon-greedy action; then
     /// the frame completes as in [`act`](Self::act). Without a frame
     /// waiting for advice it returns `Move` and changes nothing.
     pub fn act_complete(&mut self, answers: &Answers, replies: u64) -> Action {
@@ -448,24 +466,13 @@ impl Agent {
             key: f.key,
             advice: &answers.advice,
             values: &answers.values,
+            best: &answers.best,
             advisor_values: &answers.advisor_values,
             own,
         };
         let visits = self.states.visits(f.index);
-        if let Some(shared) = self.strategy.adopt(&replies, visits) {
-            let values = ActionValues {
-                q: shared.q,
-                learned: shared.learned,
-            };
-            let at = Seen {
-                state: &f.state,
-                index: Some(f.index),
-            };
-            if self.learner.absorb(at, values) {
-                self.counters.ask_spent += 1;
-                self.advised.push(f.key);
-            }
-        }
+        let adopted = self.strategy.adopt(&replies, visits);
+        let greedy = adopted.and_then(|adopted| self.adopt(&f, adopted));
         let followed = self.strategy.follow(&replies, ties, &mut self.rng);
         let action = match followed {
             Some(advice) => {
@@ -476,14 +483,44 @@ impl Agent {
                 }
                 advice.action
             }
-            None => match own {
-                Some(own) => own.action,
-                None => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
+            None => match (greedy, own) {
+                (Some(action), _) => action,
+                (None, Some(own)) => own.action,
+                (None, None) => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
             },
         };
         let advisor = followed.map(|advice| advice.advisor);
         self.step(f.index, action, f.state, f.reward, advisor);
         action
+    }
+
+    /// Takes adopted values into its learner, one unit of its ask budget
+    /// when the learner can take them; after a best value (PSAF), its
+    /// greedy action on its values now, which it then plays.
+    fn adopt(&mut self, f: &InFlight, adopted: Adopted) -> Option<Action> {
+        let at = Seen {
+            state: &f.state,
+            index: Some(f.index),
+        };
+        let values = match adopted {
+            Adopted::Row(shared) => ActionValues {
+                q: shared.q,
+                learned: shared.learned,
+            },
+            Adopted::Best { action, value } => {
+                let mut values = self.learner.values(at);
+                values.q[action.index()] = value;
+                values.learned |= 1 << action.index();
+                values
+            }
+        };
+        if !self.learner.absorb(at, values) {
+            return None;
+        }
+        self.counters.ask_spent += 1;
+        self.advised.push(f.key);
+        let q = self.learner.values(at).q;
+        matches!(adopted, Adopted::Best { .. }).then(|| greedy_random(&q, &mut self.rng))
     }
 
     /// Completes a training frame: learns the previous step towards this
@@ -505,7 +542,7 @@ impl Agent {
         if let Some(prev) = self.pending.take() {
             self.learn(prev, reward, Some(this));
         }
-        self.states.visit(index);
+        self.states.visit(index, action);
         self.pending = Some(this);
     }
 
@@ -554,16 +591,13 @@ impl Agent {
     /// answers: an action ([`advise`](Self::advise)) or, for a value-sharing
     /// method, its values ([`share_values`](Self::share_values)); none, and
     /// why, otherwise.
-    pub fn answer(&mut self, state: &State, intended: Option<Action>) -> Answer {
+    pub fn answer(&mut self, state: &State, along: Along) -> Answer {
         let exhausted = self.training() && self.strategy.exhausted(&self.counters);
         match (self.strategy.shares_values(), exhausted) {
             (true, true) => Answer::Values(ValuesAnswer::Exhausted),
             (false, true) => Answer::Action(AdviceAnswer::Exhausted),
-            (true, false) => Answer::Values(
-                self.share_values(state)
-                    .map_or(ValuesAnswer::Declined, ValuesAnswer::Values),
-            ),
-            (false, false) => Answer::Action(match self.advise(state, intended) {
+            (true, false) => Answer::Values(self.share_values(state, along.action_visits())),
+            (false, false) => Answer::Action(match self.advise(state, along.intended()) {
                 None => AdviceAnswer::Declined,
                 Some(action) => match self.strategy.advisor_value() {
                     Some(value) => AdviceAnswer::Recommendation(action, value as f32),
@@ -592,32 +626,35 @@ impl Agent {
         }
     }
 
-    /// Its visits and values of `state` (none where training never met it)
-    /// when its strategy is willing to give about it now; `None` outside
+    /// What it knows of `state` (nothing where training never met it) when
+    /// its strategy is willing to give about it now to an asker that took
+    /// each action there `asker` times (if it says); `None` outside
     /// training or when it is not.
-    fn willing(&mut self, state: &State) -> Option<(u64, ActionValues, Option<usize>)> {
+    fn willing(&mut self, state: &State, asker: Option<[u32; ACTIONS]>) -> Option<Known> {
         if !self.training() {
             return None;
         }
         let index = self.states.get(self.tiling.key(state));
-        let (visits, values) = match index {
-            Some(i) => {
-                let at = Seen {
+        let known = match index {
+            Some(i) => Known {
+                visits: self.states.visits(i),
+                action_visits: self.states.action_visits(i),
+                values: self.learner.values(Seen {
                     state,
                     index: Some(i),
-                };
-                (self.states.visits(i), self.learner.values(at))
-            }
-            None => (0, ActionValues::default()),
+                }),
+                index,
+            },
+            None => Known::default(),
         };
         let at = GiveContext {
-            visits,
-            values: &values,
+            visits: known.visits,
+            action_visits: known.action_visits,
+            values: &known.values,
+            asker_visits: asker,
             counters: &self.counters,
         };
-        self.strategy
-            .gives(&at, &mut self.rng)
-            .then_some((visits, values, index))
+        self.strategy.gives(&at, &mut self.rng).then_some(known)
     }
 
     /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
@@ -625,14 +662,21 @@ impl Agent {
     /// ties broken as its fidelity says. With `intended` (Mistake Correcting)
     /// it answers, and spends budget, only when its action differs.
     pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
-        let (_, values, index) = self.willing(state)?;
+        let known = self.willing(state, None)?;
         let ties = self.config.fidelity.advisor_ties;
         let honest = if self.strategy.suggests_its_choice() {
-            self.learner.choose(Seen { state, index }, &mut self.rng)
+            let at = Seen {
+                state,
+                index: known.index,
+            };
+            self.learner.choose(at, &mut self.rng)
         } else {
-            (self.strategy).advice(&values, ties, &mut self.rng)
+            (self.strategy).advice(&known.values, ties, &mut self.rng)
         };
-        let answer = self.config.advises.answer(honest, &values, &mut self.rng);
+        let answer = self
+            .config
+            .advises
+            .answer(honest, &known.values, &mut self.rng);
         if intended == Some(answer) {
             return None;
         }
@@ -641,14 +685,22 @@ impl Agent {
     }
 
     /// Sharer side (a value-sharing method): its values and visits of an
-    /// advisee's `state`, or `None`; one unit of its give budget.
-    pub fn share_values(&mut self, state: &State) -> Option<SharedValues> {
-        let (visits, values, _) = self.willing(state)?;
+    /// advisee's `state` (or only its best action and that action's value,
+    /// as its strategy shares; `asker`: the advisee's visits by action, if
+    /// sent), or why none; one unit of its give budget.
+    pub fn share_values(&mut self, state: &State, asker: Option<[u32; ACTIONS]>) -> ValuesAnswer {
+        let Some(known) = self.willing(state, asker) else {
+            return ValuesAnswer::Declined;
+        };
         self.gave();
-        Some(SharedValues {
-            q: values.q,
-            learned: values.learned,
-            visits,
+        if self.strategy.shares_best() {
+            let best = greedy_first(&known.values.q);
+            return ValuesAnswer::Best(best, known.values.q[best.index()]);
+        }
+        ValuesAnswer::Values(SharedValues {
+            q: known.values.q,
+            learned: known.values.learned,
+            visits: known.visits,
         })
     }
 
@@ -868,7 +920,7 @@ impl Agent {
             });
         }
         snapshot.check()?;
-        let rows = snapshot.entries.iter().map(|(key, e)| (*key, e.visits));
+        let rows = (snapshot.entries.iter()).map(|(key, e)| (*key, e.visits, greedy_first(&e.q)));
         let states =
             StateIndex::from_rows(rows).map_err(|e| PersistError::Invalid(e.to_string()))?;
         let values = (snapshot.entries.iter())

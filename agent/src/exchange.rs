@@ -3,7 +3,7 @@
 //! Budgets, probabilities and votes live in the agent ([`crate::Agent::advise`],
 //! [`crate::Agent::receive_shared`]); an exchange only carries messages.
 
-use proto::{Action, AdviceAnswer, SharedValues, State, ValuesAnswer};
+use proto::{Action, AdviceAnswer, Along, SharedValues, State, ValuesAnswer};
 
 /// One step of a shared episode, `(s, a, r, s', a')`: the wire type itself,
 /// so that a transport ships shared episodes as they are.
@@ -25,6 +25,18 @@ pub struct ValuesAdvice {
     pub advisor: usize,
     /// Its values and visits.
     pub values: SharedValues,
+}
+
+/// One sharer's best action in a state and its value, max_a Q(s, a)
+/// (PSAF's answer).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BestValue {
+    /// The sharer's id.
+    pub advisor: usize,
+    /// Its best action.
+    pub action: Action,
+    /// That action's value.
+    pub value: f64,
 }
 
 /// An advisor's answer to one request, as its method answers.
@@ -54,6 +66,8 @@ pub struct Answers {
     pub advice: Vec<Advice>,
     /// The values shared, with who shared them.
     pub values: Vec<ValuesAdvice>,
+    /// The best values shared, with who shared them.
+    pub best: Vec<BestValue>,
     /// Replies without advice from advisors that could have given some.
     pub declined: u32,
     /// Replies without advice from advisors whose give budget is spent.
@@ -67,6 +81,7 @@ impl Answers {
     pub fn clear(&mut self) {
         self.advice.clear();
         self.values.clear();
+        self.best.clear();
         self.declined = 0;
         self.exhausted = 0;
         self.advisor_values.clear();
@@ -85,6 +100,11 @@ impl Answers {
             Answer::Values(ValuesAnswer::Values(values)) => {
                 self.values.push(ValuesAdvice { advisor, values })
             }
+            Answer::Values(ValuesAnswer::Best(action, value)) => self.best.push(BestValue {
+                advisor,
+                action,
+                value,
+            }),
             Answer::Action(AdviceAnswer::Declined) | Answer::Values(ValuesAnswer::Declined) => {
                 self.declined += 1
             }
@@ -97,16 +117,17 @@ impl Answers {
 
 /// Carries advice requests and shared episodes between agents.
 pub trait AdviceExchange {
-    /// Asks every agent of `to`, in order, for advice on `state` (with the
-    /// asker's `intended` action in Mistake Correcting mode) and appends each
-    /// answer to `answers`; returns the replies that arrived, with or without
-    /// advice (an advisor without advice replies all the same).
+    /// Asks every agent of `to`, in order, for advice on `state` (with what
+    /// the request carries `along`: the asker's intended action in Mistake
+    /// Correcting mode, its visits for PSAF) and appends each answer to
+    /// `answers`; returns the replies that arrived, with or without advice
+    /// (an advisor without advice replies all the same).
     fn ask(
         &mut self,
         from: usize,
         to: &[usize],
         state: &State,
-        intended: Option<Action>,
+        along: Along,
         answers: &mut Answers,
     ) -> u64;
 
@@ -119,7 +140,7 @@ pub trait AdviceExchange {
 pub struct Isolated;
 
 impl AdviceExchange for Isolated {
-    fn ask(&mut self, _: usize, _: &[usize], _: &State, _: Option<Action>, _: &mut Answers) -> u64 {
+    fn ask(&mut self, _: usize, _: &[usize], _: &State, _: Along, _: &mut Answers) -> u64 {
         0
     }
 

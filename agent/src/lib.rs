@@ -71,7 +71,9 @@ pub use algorithm_settings::AlgorithmSettings;
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
 pub use ensemble::EnsembleSarsa;
-pub use exchange::{Advice, AdviceExchange, Answer, Answers, Isolated, Transition, ValuesAdvice};
+pub use exchange::{
+    Advice, AdviceExchange, Answer, Answers, BestValue, Isolated, Transition, ValuesAdvice,
+};
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
@@ -84,9 +86,9 @@ pub use proto::Mode;
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
-    AdHoc, AdviceReuse, AdvisingStrategy, AskContext, Confidence, EarlyAdvising, EndContext,
-    EpisodeSharing, GiveContext, NoSettings, Outcome, OwnChoice, PeerLearning, Psaf,
-    RandomAdvising, Rcmp, Replies, ReuseRule, Sends, Torrey,
+    AdHoc, Adopted, AdviceReuse, AdvisingStrategy, AskContext, Confidence, EarlyAdvising,
+    EndContext, EpisodeSharing, GiveContext, NoSettings, Outcome, OwnChoice, PeerLearning, Psaf,
+    PsafShares, RandomAdvising, Rcmp, Replies, ReuseRule, Sends, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

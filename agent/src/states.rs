@@ -1,7 +1,12 @@
 //! The framework's index of the states an agent met in training: each
-//! tile-coded key gets the next dense index, with its visit count n(s).
+//! tile-coded key gets the next dense index, with its visit count n(s) and
+//! how often each action was taken there, m(s, a).
 
 use std::collections::HashMap;
+
+use proto::Action;
+
+use crate::selection::ACTIONS;
 use std::hash::{BuildHasher, Hasher};
 
 /// A key that occurs twice where keys must be unique (a saved table).
@@ -9,7 +14,7 @@ use std::hash::{BuildHasher, Hasher};
 #[error("state key {0:#x} occurs twice")]
 pub(crate) struct DuplicateKey(pub u64);
 
-/// Every state met in training: its key, by dense index, and n(s).
+/// Every state met in training: its key, by dense index, n(s) and m(s, a).
 ///
 /// Keys live in a `Vec` in the order they were met, so that learners and
 /// traces refer to states by index without hashing; the map only
@@ -19,6 +24,7 @@ pub(crate) struct StateIndex {
     index: HashMap<u64, usize, KeyHasherBuilder>,
     keys: Vec<u64>,
     visits: Vec<u64>,
+    action_visits: Vec<[u32; ACTIONS]>,
 }
 
 impl StateIndex {
@@ -39,6 +45,7 @@ impl StateIndex {
         if i == next {
             self.keys.push(key);
             self.visits.push(0);
+            self.action_visits.push([0; ACTIONS]);
         }
         i
     }
@@ -53,24 +60,34 @@ impl StateIndex {
         self.visits[i]
     }
 
-    /// Counts one training step in index `i`.
-    pub(crate) fn visit(&mut self, i: usize) {
-        self.visits[i] += 1;
+    /// m(s, a) of index `i`, by action index.
+    pub(crate) fn action_visits(&self, i: usize) -> [u32; ACTIONS] {
+        self.action_visits[i]
     }
 
-    /// An index of `(key, visits)` rows, indexed in their order.
+    /// Counts one training step taking `action` in index `i`.
+    pub(crate) fn visit(&mut self, i: usize, action: Action) {
+        self.visits[i] += 1;
+        let m = &mut self.action_visits[i][action.index()];
+        *m = m.saturating_add(1);
+    }
+
+    /// An index of `(key, visits, greedy action)` rows, indexed in their
+    /// order. A saved table keeps n(s), not its split over the actions:
+    /// each state's n(s) counts as m(s, a) of the action it values most.
     pub(crate) fn from_rows(
-        rows: impl ExactSizeIterator<Item = (u64, u64)>,
+        rows: impl ExactSizeIterator<Item = (u64, u64, Action)>,
     ) -> Result<Self, DuplicateKey> {
         let mut states = Self::default();
         states.index.reserve(rows.len());
-        for (key, visits) in rows {
+        for (key, visits, greedy) in rows {
             let before = states.len();
             let i = states.index_or_insert(key);
             if states.len() == before {
                 return Err(DuplicateKey(key));
             }
             states.visits[i] = visits;
+            states.action_visits[i][greedy.index()] = u32::try_from(visits).unwrap_or(u32::MAX);
         }
         Ok(states)
     }
@@ -124,13 +141,21 @@ mod tests {
         let b = s.index_or_insert(10);
         assert_eq!((a, b), (0, 1));
         assert_eq!(s.index_or_insert(30), a);
-        s.visit(b);
-        s.visit(b);
+        s.visit(b, Action::Shoot);
+        s.visit(b, Action::Dribble);
         assert_eq!((s.len(), s.visits(b), s.key(b)), (2, 2, 10));
+        assert_eq!(s.action_visits(b), [0, 1, 1, 0, 0]);
         assert_eq!(s.get(20), None);
-        let rebuilt = StateIndex::from_rows([(10, 2), (30, 0)].into_iter()).unwrap();
+        let rows = [(10, 2, Action::PassFar), (30, 0, Action::Move)];
+        let rebuilt = StateIndex::from_rows(rows.into_iter()).unwrap();
         assert_eq!((rebuilt.get(10), rebuilt.visits(0)), (Some(0), 2));
-        let dup = StateIndex::from_rows([(1, 0), (1, 0)].into_iter()).unwrap_err();
+        assert_eq!(
+            rebuilt.action_visits(0),
+            [0, 0, 0, 0, 2],
+            "n(s) to its greedy action"
+        );
+        let dup = [(1, 0, Action::Move), (1, 0, Action::Move)];
+        let dup = StateIndex::from_rows(dup.into_iter()).unwrap_err();
         assert_eq!(dup, DuplicateKey(1));
     }
 }

@@ -29,11 +29,12 @@ pub use alone::NoSettings;
 pub use budgeted::{EarlyAdvising, RandomAdvising};
 pub use episode_sharing::EpisodeSharing;
 pub use peers::PeerLearning;
-pub use psaf::Psaf;
+pub use psaf::{Psaf, PsafShares};
 pub use rcmp::Rcmp;
 pub use reuse::{AdviceReuse, ReuseRule};
 pub use seam::{
-    AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies, Sends,
+    Adopted, AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies,
+    Sends,
 };
 pub use torrey::Torrey;
 

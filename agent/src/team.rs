@@ -2,8 +2,8 @@
 //! in a fixed order, so a run is bit-for-bit deterministic.
 
 use proto::{
-    Action, AdviceReply, AdviceRequest, Body, Envelope, Exhausted, Header, Mode, SharedEpisode,
-    State, ValuesReply,
+    Action, AdviceReply, AdviceRequest, Along, Body, Envelope, Exhausted, Header, Mode,
+    SharedEpisode, State, ValuesReply,
 };
 
 use crate::agent::{Agent, Observation};
@@ -275,7 +275,7 @@ impl AdviceExchange for Peers<'_> {
         from: usize,
         to: &[usize],
         state: &State,
-        intended: Option<Action>,
+        along: Along,
         answers: &mut Answers,
     ) -> u64 {
         let delay = |link: Option<&Link>, message| link.map_or(Some(0.0), |l| l.delay(message));
@@ -284,7 +284,7 @@ impl AdviceExchange for Peers<'_> {
         let request = Body::AdviceRequest(AdviceRequest {
             from: from as u8,
             state: *state,
-            intended,
+            along,
         });
         let mut replies = 0;
         for &j in to {
@@ -296,7 +296,7 @@ impl AdviceExchange for Peers<'_> {
             let Some(advisor) = self.get(j) else {
                 continue;
             };
-            let answer = advisor.answer(state, intended);
+            let answer = advisor.answer(state, along);
             let arrives = delay(advisor.link(), back)
                 .is_some_and(|b| asker.is_none_or(|l| sent + b <= l.timeout_ms()));
             let from = j as u8;

@@ -164,13 +164,20 @@ mod tests {
             .prop_map(Body::Observations),
             (any::<u8>(), action())
                 .prop_map(|(agent, action)| Body::Action(ActionChoice { agent, action })),
-            (any::<u8>(), state(), prop::option::of(action())).prop_map(
-                |(from, state, intended)| Body::AdviceRequest(AdviceRequest {
+            (
+                any::<u8>(),
+                state(),
+                prop_oneof![
+                    Just(Along::Nothing),
+                    action().prop_map(Along::Intended),
+                    prop::array::uniform5(any::<u32>()).prop_map(Along::ActionVisits),
+                ]
+            )
+                .prop_map(|(from, state, along)| Body::AdviceRequest(AdviceRequest {
                     from,
                     state,
-                    intended
-                })
-            ),
+                    along
+                })),
             (
                 any::<u8>(),
                 prop::option::of(action()),
@@ -254,14 +261,16 @@ mod tests {
             ".{0,40}".prop_map(|e| Body::ControlReply(ControlReply::SimulatorFailed(e))),
             (
                 any::<u8>(),
-                prop::option::of((prop::array::uniform5(-10.0f64..10.0), 0u8..32, any::<u64>()))
+                prop::option::of((prop::array::uniform5(-10.0f64..10.0), 0u8..32, any::<u64>())),
+                action(),
             )
-                .prop_map(|(from, values)| Body::ValuesReply(ValuesReply {
+                .prop_map(|(from, values, best)| Body::ValuesReply(ValuesReply {
                     from,
                     answer: match values {
-                        Some((q, learned, visits)) => {
+                        Some((q, learned, visits)) if learned % 2 == 0 => {
                             ValuesAnswer::Values(SharedValues { q, learned, visits })
                         }
+                        Some((q, ..)) => ValuesAnswer::Best(best, q[0]),
                         None => ValuesAnswer::Declined,
                     },
                 })),
@@ -356,5 +365,12 @@ mod tests {
         let old = postcard::to_allocvec(&Some(values)).unwrap();
         let new = postcard::to_allocvec(&ValuesAnswer::Values(values)).unwrap();
         assert_eq!(new, old);
+        let old = |a: Option<Action>| postcard::to_allocvec(&a).unwrap();
+        let new = |a: Along| postcard::to_allocvec(&a).unwrap();
+        assert_eq!(new(Along::Nothing), old(None));
+        assert_eq!(
+            new(Along::Intended(Action::Dribble)),
+            old(Some(Action::Dribble))
+        );
     }
 }

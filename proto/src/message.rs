@@ -154,8 +154,40 @@ pub struct AdviceRequest {
     pub from: u8,
     /// Its state.
     pub state: State,
-    /// Its intended action (Mistake Correcting), if sent.
-    pub intended: Option<Action>,
+    /// What the request carries beside the state.
+    pub along: Along,
+}
+
+/// What a request carries beside the state. (Encoded as the
+/// `Option<Action>` of the intended action was, plus one variant.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Along {
+    /// Nothing.
+    #[default]
+    Nothing,
+    /// Its intended action (Mistake Correcting).
+    Intended(Action),
+    /// How often it took each action in the state, m(s, a) by action index
+    /// (PSAF's partaker, whose sharers compare their confidence with it).
+    ActionVisits([u32; 5]),
+}
+
+impl Along {
+    /// The intended action, if carried.
+    pub fn intended(self) -> Option<Action> {
+        match self {
+            Along::Intended(action) => Some(action),
+            _ => None,
+        }
+    }
+
+    /// The asker's visits by action, if carried.
+    pub fn action_visits(self) -> Option<[u32; 5]> {
+        match self {
+            Along::ActionVisits(visits) => Some(visits),
+            _ => None,
+        }
+    }
 }
 
 /// What an advisor answers to a request: advice, none, or none because its
@@ -213,6 +245,9 @@ pub enum ValuesAnswer {
     Values(SharedValues),
     /// No values: its give budget is spent.
     Exhausted,
+    /// Its best action in the state and that action's value, max_a Q(s, a)
+    /// (PSAF's sharer).
+    Best(Action, f64),
 }
 
 /// A value-sharing advisor's answer to a request.

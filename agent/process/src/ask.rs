@@ -43,9 +43,13 @@ impl Collector {
     /// from an advisor that was not asked is refused as unrequested, a
     /// second one as a duplicate.
     pub fn take(&mut self, from: u8, answer: Answer, rtt: Duration) -> Result<(), DropReason> {
-        if let Answer::Values(ValuesAnswer::Values(values)) = answer
-            && !values.is_valid()
-        {
+        let finite = match answer {
+            Answer::Values(ValuesAnswer::Values(values)) => values.is_valid(),
+            Answer::Values(ValuesAnswer::Best(_, value)) => value.is_finite(),
+            Answer::Action(AdviceAnswer::Recommendation(_, value)) => value.is_finite(),
+            _ => true,
+        };
+        if !finite {
             return Err(DropReason::Malformed);
         }
         let Some(k) = self.waiting.iter().position(|&j| j == from) else {
@@ -63,8 +67,8 @@ impl Collector {
             Answer::Action(
                 AdviceAnswer::Advice(action) | AdviceAnswer::Recommendation(action, _),
             ) if !action.is_kick() => Answer::Action(AdviceAnswer::Declined),
-            Answer::Action(AdviceAnswer::Recommendation(_, value)) if !value.is_finite() => {
-                Answer::Action(AdviceAnswer::Declined)
+            Answer::Values(ValuesAnswer::Best(action, _)) if !action.is_kick() => {
+                Answer::Values(ValuesAnswer::Declined)
             }
             answer => answer,
         };

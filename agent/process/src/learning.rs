@@ -193,11 +193,7 @@ impl Learning {
         Ok(
             match agent.act_begin(&me, obs.reward, &obs.positions, reachable) {
                 Decision::Act(action) => Step::Act(obs.can_kick.then_some(action)),
-                Decision::Ask {
-                    to,
-                    state,
-                    intended,
-                } => Step::Ask(Ask {
+                Decision::Ask { to, state, along } => Step::Ask(Ask {
                     // Ids come from a team of at most u8::MAX agents.
                     to: to
                         .into_iter()
@@ -206,7 +202,7 @@ impl Learning {
                     request: AdviceRequest {
                         from: self.id,
                         state,
-                        intended,
+                        along,
                     },
                     epoch: self.epoch,
                 }),
@@ -278,7 +274,7 @@ impl Learning {
             return Err(DropReason::Malformed);
         }
         match self.agent.as_mut() {
-            Some(a) if header.run == self.run => Ok(a.answer(&request.state, request.intended)),
+            Some(a) if header.run == self.run => Ok(a.answer(&request.state, request.along)),
             _ => Err(DropReason::Stale),
         }
     }
@@ -303,6 +299,7 @@ fn replay(agent: &mut Agent, shares: &mut PendingShares, finished: Option<u32>) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proto::Along;
 
     /// The wire form of the `AgentConfig` these JSON settings describe.
     fn config(json: &str) -> Vec<u8> {
@@ -499,7 +496,7 @@ mod tests {
         let request = |from| AdviceRequest {
             from,
             state: [0.0; 6],
-            intended: None,
+            along: Along::Nothing,
         };
         assert_eq!(
             l.advise(&header(3, 0, 0), &request(1)),

@@ -7,8 +7,8 @@
 use std::cell::RefCell;
 
 use agent::{
-    ActionValues, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng, AskContext,
-    GiveContext, Outcome, Replies, VoteTies,
+    ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
+    AskContext, GiveContext, Outcome, Replies, VoteTies,
 };
 use proto::{Action, SharedValues};
 use serde::Deserialize;
@@ -152,7 +152,7 @@ struct FollowedAdvice {
 
 /// The values taken into the learner, or none.
 #[derive(Deserialize)]
-struct Adopted {
+struct AdoptReply {
     values: Option<[Option<f64>; Action::ALL.len()]>,
 }
 
@@ -221,14 +221,14 @@ impl AdvisingStrategy for PipeStrategy {
         self.traits.shares_values
     }
 
-    fn adopt(&mut self, r: &Replies<'_>, visits: u64) -> Option<SharedValues> {
+    fn adopt(&mut self, r: &Replies<'_>, visits: u64) -> Option<Adopted> {
         if r.values.is_empty() {
             return None;
         }
         let mut request = replies(r);
         request["op"] = "adopt".into();
         request["visits"] = visits.into();
-        let Adopted { values } = self.query("adopt", request);
+        let AdoptReply { values } = self.query("adopt", request);
         let mut shared = SharedValues {
             q: [0.0; Action::ALL.len()],
             learned: 0,
@@ -244,7 +244,7 @@ impl AdvisingStrategy for PipeStrategy {
             shared.q[a] = q;
             shared.learned |= 1 << a;
         }
-        Some(shared)
+        Some(Adopted::Row(shared))
     }
 
     fn gives(&mut self, at: &GiveContext<'_>, _: &mut AgentRng) -> bool {

@@ -6,8 +6,8 @@ use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
 use crate::strategy::{
-    AdHoc, AdviceReuse, EarlyAdvising, EpisodeSharing, Psaf, RandomAdvising, Rcmp, ReuseRule,
-    Torrey,
+    AdHoc, AdviceReuse, EarlyAdvising, EpisodeSharing, Psaf, PsafShares, RandomAdvising, Rcmp,
+    ReuseRule, Torrey,
 };
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
@@ -89,10 +89,10 @@ impl AdviceExchange for Script {
         from: usize,
         to: &[usize],
         _: &State,
-        intended: Option<Action>,
+        along: Along,
         answers: &mut Answers,
     ) -> u64 {
-        self.asked.push((from, to.to_vec(), intended));
+        self.asked.push((from, to.to_vec(), along.intended()));
         // The scripted answers come from the advisors asked, in turn.
         answers.advice.extend(
             self.answers
@@ -798,15 +798,11 @@ fn play_two_phase(
             for (i, obs) in frame.iter().enumerate() {
                 let action = match agents[i].act_begin(obs, 0.0, &positions, &|_| true) {
                     Decision::Act(action) => action,
-                    Decision::Ask {
-                        to,
-                        state,
-                        intended,
-                    } => {
+                    Decision::Ask { to, state, along } => {
                         let advice = to
                             .iter()
                             .filter_map(|&j| {
-                                let action = agents[j].advise(&state, intended)?;
+                                let action = agents[j].advise(&state, along.intended())?;
                                 Some(Advice { advisor: j, action })
                             })
                             .collect();
@@ -903,7 +899,7 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
         Decision::Ask {
             to: vec![2],
             state: kick_state(0),
-            intended: None
+            along: Along::Nothing
         }
     );
     let advice = Advice {
@@ -1352,9 +1348,10 @@ fn rcmp_asks_while_its_heads_disagree() {
 }
 
 #[test]
-fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
+fn psaf_rows_are_shared_and_the_partaker_takes_the_most_visited() {
     let sharing = |v_g| {
         with("psaf", |p: &mut Psaf| {
+            p.shares = PsafShares::Row;
             p.v_g = v_g;
         })
     };
@@ -1372,7 +1369,7 @@ fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
     };
     let mut values = Vec::new();
     for (advisor, a) in [(1, &mut sharer), (2, &mut novice)] {
-        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(&state, None) else {
+        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(&state, Along::Nothing) else {
             panic!("a sharer answers with its values");
         };
         values.push(ValuesAdvice { advisor, values: v });
@@ -1388,15 +1385,53 @@ fn psaf_shares_values_and_the_partaker_takes_the_most_visited() {
     assert_eq!(partaker.counters().ask_spent, 1);
     assert_eq!(sharer.counters().advice_given, 1);
     // Values from sharers that visited the state less are left alone.
-    let mut strategy = Psaf::default();
+    let mut strategy = Psaf {
+        shares: PsafShares::Row,
+        ..Psaf::default()
+    };
     let replies = Replies {
-        key: 0,
-        advice: &[],
         values: &answers.values,
-        advisor_values: &[],
-        own: None,
+        ..Replies::default()
     };
     assert_eq!(strategy.adopt(&replies, 100), None);
+}
+
+#[test]
+fn psaf_shares_the_best_value_where_more_confident_and_the_partaker_plays_it() {
+    let psaf = with("psaf", |_: &mut Psaf| {});
+    let q = [0.0, 0.2, 0.9, 0.1, 0.0];
+    let mut partaker = agent(0, 3, psaf.clone());
+    let mut sharer = agent(1, 3, psaf.clone());
+    teach(&mut sharer, &[(kick_state(0), known(q, 40))]);
+    let mut novice = agent(2, 3, psaf);
+    teach(&mut novice, &[(kick_state(0), known([0.5; 5], 40))]);
+    finish_one_episode(&mut partaker);
+    let Decision::Ask { state, along, .. } =
+        partaker.act_begin(&obs(kick_state(0)), 0.0, &[], &|_| true)
+    else {
+        panic!("a partaker that never visited the state asks");
+    };
+    assert_eq!(along, Along::ActionVisits([0; 5]), "its visits go along");
+    // The sharer's confidence, 40 visits of Dribble x (1 - 1 / (0.9 + 1)),
+    // beats the partaker's 0; the novice's values do not spread.
+    let mut answers = Answers::default();
+    answers.take(1, sharer.answer(&state, along));
+    answers.take(2, novice.answer(&state, along));
+    assert_eq!(answers.best.len(), 1);
+    assert_eq!(
+        (answers.best[0].action, answers.best[0].value),
+        (Dribble, 0.9)
+    );
+    assert_eq!(answers.declined, 1);
+    let played = partaker.act_complete(&answers, 2);
+    assert_eq!(played, Dribble, "greedy on the value it took");
+    assert_eq!(
+        partaker.entry(&kick_state(0)).unwrap().q[Dribble.index()],
+        0.9
+    );
+    assert_eq!(partaker.counters().ask_spent, 1);
+    assert_eq!(sharer.counters().advice_given, 1);
+    assert_eq!(novice.counters().advice_given, 0);
 }
 
 /// A team of three early-advising agents whose give budget is `give`,
@@ -1491,7 +1526,7 @@ fn the_announcement_is_taken_once_and_again_after_a_restore() {
     assert!(a.take_announcement());
     assert!(!a.take_announcement(), "once");
     assert_eq!(
-        a.answer(&kick_state(0), None),
+        a.answer(&kick_state(0), Along::Nothing),
         Answer::Action(proto::AdviceAnswer::Exhausted)
     );
     a.restore(a.snapshot()).unwrap();

@@ -301,9 +301,7 @@ mod tests {
             let replies = Replies {
                 key: 7,
                 advice,
-                values: &[],
-                advisor_values: &[],
-                own: None,
+                ..Replies::default()
             };
             ad_hoc.follow(&replies, VoteTies::Fixed, &mut rng)
         };

@@ -312,9 +312,7 @@ mod tests {
         Replies {
             key: 1,
             advice,
-            values: &[],
-            advisor_values: &[],
-            own: None,
+            ..Replies::default()
         }
     }
 

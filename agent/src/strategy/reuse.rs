@@ -265,9 +265,7 @@ mod tests {
         let replies = Replies {
             key: 7,
             advice: &advice,
-            values: &[],
-            advisor_values: &[],
-            own: None,
+            ..Replies::default()
         };
         let mut rng = AgentRng::seed_from_u64(1);
         s.follow(&replies, VoteTies::Fixed, &mut rng);

@@ -6,10 +6,10 @@ use std::fmt;
 use proto::{Action, Mode, SharedValues};
 
 use crate::advice_counters::AdviceCounters;
-use crate::exchange::{Advice, Transition, ValuesAdvice};
+use crate::exchange::{Advice, BestValue, Transition, ValuesAdvice};
 use crate::fidelity::{AdvisorTies, VoteTies};
 use crate::learner::ActionValues;
-use crate::selection::{AgentRng, greedy_first, greedy_random, majority};
+use crate::selection::{ACTIONS, AgentRng, greedy_first, greedy_random, majority};
 
 /// What an advisee knows when it decides whether to ask about a state.
 #[derive(Clone, Copy, Debug)]
@@ -33,8 +33,13 @@ pub struct AskContext<'a> {
 pub struct GiveContext<'a> {
     /// Its visits n(s) of the advisee's state (0 for a state it never met).
     pub visits: u64,
+    /// How often it took each action there, m(s, a) by action index.
+    pub action_visits: [u32; ACTIONS],
     /// Its learner's values there (all unlearned for a state it never met).
     pub values: &'a ActionValues,
+    /// The asker's m(s, a), where its request carries them (a strategy
+    /// that [`shares_best`](AdvisingStrategy::shares_best)).
+    pub asker_visits: Option<[u32; ACTIONS]>,
     /// Its counters.
     pub counters: &'a AdviceCounters,
 }
@@ -59,7 +64,7 @@ pub type Sends = Vec<(usize, Vec<Transition>)>;
 
 /// What arrived for one request: the advice (any number, possibly none,
 /// in the order of the advisors asked) about the state of key `key`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Replies<'a> {
     /// The key of the state asked about (the tile-coded state).
     pub key: u64,
@@ -67,11 +72,28 @@ pub struct Replies<'a> {
     pub advice: &'a [Advice],
     /// The values shared, with who shared them.
     pub values: &'a [ValuesAdvice],
+    /// The best values shared, with who shared them.
+    pub best: &'a [BestValue],
     /// What the advisors that recommended said of themselves, by advisor.
     pub advisor_values: &'a [(usize, f64)],
     /// The agent's own choice and its values in the state, for a strategy
     /// that [`weighs_own_choice`](AdvisingStrategy::weighs_own_choice).
     pub own: Option<OwnChoice>,
+}
+
+/// Shared values an advisee takes into its learner.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Adopted {
+    /// A sharer's whole row: its values replace the advisee's.
+    Row(SharedValues),
+    /// A sharer's best action and its value: it replaces the advisee's value
+    /// of that action, and the advisee then plays greedily (PSAF).
+    Best {
+        /// The action.
+        action: Action,
+        /// Its value.
+        value: f64,
+    },
 }
 
 /// An agent's own choice in a state and its values there.
@@ -168,10 +190,17 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
         false
     }
 
+    /// Sharer: whether it shares only its best action and that action's
+    /// value (PSAF) rather than all its values of the state; its requests
+    /// then carry its visits by action. No, by default.
+    fn shares_best(&self) -> bool {
+        false
+    }
+
     /// Advisee: the shared values it takes into its learner for the state
     /// asked about, where it visited the state `visits` times; none by
     /// default.
-    fn adopt(&mut self, _replies: &Replies<'_>, _visits: u64) -> Option<SharedValues> {
+    fn adopt(&mut self, _replies: &Replies<'_>, _visits: u64) -> Option<Adopted> {
         None
     }
 

@@ -11,8 +11,8 @@ use std::cell::RefCell;
 use std::sync::{Arc, Mutex, PoisonError};
 
 use agent::{
-    ActionValues, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng, AskContext,
-    Experience, GiveContext, Learner, Outcome, Replies, Seen, Step, VoteTies,
+    ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
+    AskContext, Experience, GiveContext, Learner, Outcome, Replies, Seen, Step, VoteTies,
 };
 use coordinator::plugin::{Plugin, PluginSpec, PluginStart};
 use proto::{Action, SharedValues};
@@ -491,7 +491,7 @@ impl AdvisingStrategy for PythonStrategy {
         self.traits.shares_values
     }
 
-    fn adopt(&mut self, r: &Replies<'_>, visits: u64) -> Option<SharedValues> {
+    fn adopt(&mut self, r: &Replies<'_>, visits: u64) -> Option<Adopted> {
         if r.values.is_empty() {
             return None;
         }
@@ -501,11 +501,11 @@ impl AdvisingStrategy for PythonStrategy {
                 self.object
                     .answer(py, "adopt", (key, advice, shared, visits))?;
             let v = self.object.values(py, "adopt", q?)?;
-            Some(SharedValues {
+            Some(Adopted::Row(SharedValues {
                 q: v.q,
                 learned: v.learned,
                 visits,
-            })
+            }))
         })
     }
 
