@@ -447,7 +447,10 @@ mod tests {
         .unwrap_err();
         let err = err.to_string();
         assert!(err.contains("`mistake_correcting`"), "{err}");
-        assert!(err.contains("adhoc-visit, adhoc-td, torrey"), "{err}");
+        assert!(
+            err.contains("adhoc-visit, adhoc-td, torrey, early-advising"),
+            "{err}"
+        );
     }
 
     #[test]

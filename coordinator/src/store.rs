@@ -436,8 +436,9 @@ mod tests {
             "episode,goal_pct,time_to_goal,give_spent_0,give_spent_1,ask_spent_0,ask_spent_1,\
              advice_requests,advice_given,spent_budget,advice_replies_received,messages_sent,\
              bytes_sent,messages_received,bytes_received,messages_dropped,actions_timed_out,\
-             advising_messages,advising_bytes\n\
-             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4,0,0\n"
+             advising_messages,advising_bytes,answered_requests,declined_requests,\
+             futile_requests,lost_requests\n\
+             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4,0,0,0,0,0,0\n"
         );
         ExperimentDir::check(&dir, &ours).unwrap();
         // More runs (or fewer) resume the same experiment.

@@ -24,6 +24,9 @@ pub struct EarlyAdvising {
     pub give_budget: u64,
     /// The reachable set G: whom the advisee asks (default everyone).
     pub reachable: Reachable,
+    /// Mistake Correcting, as for [`AdHoc::mistake_correcting`](crate::AdHoc::mistake_correcting)
+    /// (default off).
+    pub mistake_correcting: bool,
 }
 
 impl Default for EarlyAdvising {
@@ -32,6 +35,7 @@ impl Default for EarlyAdvising {
             ask_budget: PAPER_BUDGET,
             give_budget: PAPER_BUDGET,
             reachable: Reachable::Everyone,
+            mistake_correcting: false,
         }
     }
 }
@@ -48,6 +52,9 @@ pub struct RandomAdvising {
     pub give_budget: u64,
     /// The reachable set G: whom the advisee asks (default everyone).
     pub reachable: Reachable,
+    /// Mistake Correcting, as for [`AdHoc::mistake_correcting`](crate::AdHoc::mistake_correcting)
+    /// (default off).
+    pub mistake_correcting: bool,
 }
 
 impl Default for RandomAdvising {
@@ -57,6 +64,7 @@ impl Default for RandomAdvising {
             ask_budget: PAPER_BUDGET,
             give_budget: PAPER_BUDGET,
             reachable: Reachable::Everyone,
+            mistake_correcting: false,
         }
     }
 }
@@ -84,6 +92,7 @@ impl Method for EarlyAdvisingMethod {
             ask_budget: s.ask_budget,
             give_budget: s.give_budget,
             reachable: s.reachable.clone(),
+            mistake_correcting: s.mistake_correcting,
         })
     }
 }
@@ -112,6 +121,7 @@ impl Method for RandomAdvisingMethod {
             ask_budget: s.ask_budget,
             give_budget: s.give_budget,
             reachable: s.reachable.clone(),
+            mistake_correcting: s.mistake_correcting,
         })
     }
 }
@@ -124,6 +134,7 @@ struct Budgeted {
     ask_budget: u64,
     give_budget: u64,
     reachable: Reachable,
+    mistake_correcting: bool,
 }
 
 impl AdvisingStrategy for Budgeted {
@@ -134,6 +145,10 @@ impl AdvisingStrategy for Budgeted {
 
     fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>) {
         reachable_set(&self.reachable, me, team_size, positions, out);
+    }
+
+    fn mistake_correcting(&self) -> bool {
+        self.mistake_correcting
     }
 
     /// Give budget left and a visited state.

@@ -27,6 +27,9 @@ pub struct Rcmp {
     pub give_budget: u64,
     /// The reachable set G (default everyone).
     pub reachable: Reachable,
+    /// Mistake Correcting, as for [`AdHoc::mistake_correcting`](crate::AdHoc::mistake_correcting)
+    /// (default off).
+    pub mistake_correcting: bool,
 }
 
 impl Default for Rcmp {
@@ -36,6 +39,7 @@ impl Default for Rcmp {
             ask_budget: PAPER_BUDGET,
             give_budget: PAPER_BUDGET,
             reachable: Reachable::Everyone,
+            mistake_correcting: false,
         }
     }
 }
@@ -79,6 +83,10 @@ impl AdvisingStrategy for Rcmp {
 
     fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>) {
         reachable_set(&self.reachable, me, team_size, positions, out);
+    }
+
+    fn mistake_correcting(&self) -> bool {
+        self.mistake_correcting
     }
 
     /// Every request about a visited state, while the give budget lasts.

@@ -41,7 +41,7 @@ pub enum ReuseRule {
 
 /// The settings of advice reuse (Zhu et al., "Learning by reusing previous
 /// advice: a memory-based teacher-student framework", JAAMAS 2023): AdHocTD's
-/// (without Mistake Correcting) and the reuse rule's.
+/// and the reuse rule's.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AdviceReuse {
     /// AdHocTD's v_a (default 0.5).
@@ -58,6 +58,8 @@ pub struct AdviceReuse {
     pub backoff: bool,
     /// AdHocTD's trust in advisors (default none).
     pub trust_lr: Option<f64>,
+    /// AdHocTD's Mistake Correcting (default off).
+    pub mistake_correcting: bool,
     /// Which rule decides a reuse (default `q-change`).
     pub reuse_rule: ReuseRule,
     /// `q-change`: the rise of the advised action's value (`q-change-either`:
@@ -80,7 +82,7 @@ impl AdviceReuse {
             reachable: self.reachable.clone(),
             backoff: self.backoff,
             trust_lr: self.trust_lr,
-            ..AdHoc::td()
+            mistake_correcting: self.mistake_correcting,
         }
     }
 }
@@ -105,6 +107,7 @@ impl Method for AdviceReuseMethod {
             reachable: td.reachable,
             backoff: td.backoff,
             trust_lr: td.trust_lr,
+            mistake_correcting: false,
             reuse_rule: ReuseRule::QChange,
             q_change_threshold: 0.001,
             reuse_decay: 0.9,
@@ -201,6 +204,10 @@ impl AdvisingStrategy for ReusingAdvice {
 
     fn advisors(&self, me: usize, team_size: usize, positions: &[[f64; 2]], out: &mut Vec<usize>) {
         self.ad_hoc.advisors(me, team_size, positions, out);
+    }
+
+    fn mistake_correcting(&self) -> bool {
+        self.ad_hoc.mistake_correcting()
     }
 
     fn gives(&mut self, at: &GiveContext<'_>, rng: &mut AgentRng) -> bool {

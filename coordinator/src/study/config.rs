@@ -14,7 +14,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 10] = [
+pub const PRESETS: [(&str, &str); 14] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -43,6 +43,19 @@ pub const PRESETS: [(&str, &str); 10] = [
     ("newcomer", include_str!("../../presets/newcomer.toml")),
     ("untrusted", include_str!("../../presets/untrusted.toml")),
     ("real-hfo", include_str!("../../presets/real-hfo.toml")),
+    ("frontier", include_str!("../../presets/frontier.toml")),
+    (
+        "methods-expert",
+        include_str!("../../presets/methods-expert.toml"),
+    ),
+    (
+        "methods-mistake-correcting",
+        include_str!("../../presets/methods-mistake-correcting.toml"),
+    ),
+    (
+        "methods-sensitivity",
+        include_str!("../../presets/methods-sensitivity.toml"),
+    ),
 ];
 
 /// What a study runs.
