@@ -20,7 +20,8 @@ pub struct AdviceCounters {
 }
 
 /// What became of the advice requests an agent sent, each counted once:
-/// by what arrived, the first that applies.
+/// by what arrived, the first that applies; and the requests kept advice
+/// saved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct RequestOutcomes {
     /// Advice (or values) arrived.
@@ -33,6 +34,9 @@ pub struct RequestOutcomes {
     /// Some reply was lost or late (network conditions, the timeout) and
     /// none arrived with advice or a decline.
     pub lost: u64,
+    /// Decisions that played kept advice instead of asking (advice reuse):
+    /// not requests, but requests saved.
+    pub reused: u64,
 }
 
 impl RequestOutcomes {

@@ -759,7 +759,9 @@ impl Agent {
                 index: Some(index),
             })
         };
-        self.strategy.reuse(key, &mut values, &mut self.rng)
+        let reused = self.strategy.reuse(key, &mut values, &mut self.rng);
+        self.outcomes.reused += u64::from(reused.is_some());
+        reused
     }
 
     /// Whether a training step with the ball asks for advice, as its

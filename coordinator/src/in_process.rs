@@ -163,6 +163,7 @@ fn stats_of(agent: &Agent, traffic: &AdvisingTraffic) -> AgentStats {
         declined_requests: agent.request_outcomes().declined,
         futile_requests: agent.request_outcomes().futile,
         lost_requests: agent.request_outcomes().lost,
+        reused_advice: agent.request_outcomes().reused,
         ..AgentStats::default()
     }
 }

@@ -305,6 +305,7 @@ const COLUMNS: &[Column] = &[
     Column::Team("declined_requests", |a| a.declined_requests),
     Column::Team("futile_requests", |a| a.futile_requests),
     Column::Team("lost_requests", |a| a.lost_requests),
+    Column::Team("reused_advice", |a| a.reused_advice),
 ];
 
 impl Column {
@@ -437,8 +438,8 @@ mod tests {
              advice_requests,advice_given,spent_budget,advice_replies_received,messages_sent,\
              bytes_sent,messages_received,bytes_received,messages_dropped,actions_timed_out,\
              advising_messages,advising_bytes,answered_requests,declined_requests,\
-             futile_requests,lost_requests\n\
-             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4,0,0,0,0,0,0\n"
+             futile_requests,lost_requests,reused_advice\n\
+             20,0,,0,0,0,0,0,0,0,0,0,0,0,0,0,4,0,0,0,0,0,0,0\n"
         );
         ExperimentDir::check(&dir, &ours).unwrap();
         // More runs (or fewer) resume the same experiment.

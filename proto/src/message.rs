@@ -446,9 +446,9 @@ pub struct AgentReport {
     pub advice_replies_received: u64,
     /// Advice given to others.
     pub advice_given: u64,
-    /// What became of its requests: answered, declined, futile, lost
-    /// (`agent::RequestOutcomes`).
-    pub request_outcomes: [u64; 4],
+    /// What became of its requests: answered, declined, futile, lost; and
+    /// the decisions that reused kept advice (`agent::RequestOutcomes`).
+    pub request_outcomes: [u64; 5],
     /// Messages and bytes by kind and direction.
     pub messages: MessageCounters,
     /// Round-trip times of advice requests (ms), one per request with a reply.

@@ -67,3 +67,116 @@ fn every_method_advises_in_a_mixed_team_over_both_transports() {
         }
     }
 }
+
+/// A homogeneous team of three agents of `method` with the table `extra`,
+/// written into `dir` as `name.toml`.
+fn homogeneous(dir: &Path, name: &str, method: &str, extra: &str) -> std::path::PathBuf {
+    let agent = format!("[[agent]]\nalgorithm = \"{method}\"\n{extra}\n");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, agent.repeat(3)).unwrap();
+    path
+}
+
+/// The team's total of counter `key` at the last evaluation.
+fn team_total(agents: &[Value], key: &str) -> u64 {
+    agents.iter().map(|a| a[key].as_u64().unwrap()).sum()
+}
+
+/// `homogeneous(method, extra)` played over `transport`: the agents'
+/// counters at the last evaluation.
+fn played(dir: &Path, transport: &str, name: &str, method: &str, extra: &str) -> Vec<Value> {
+    let team = homogeneous(dir, name, method, extra);
+    last_counters(&team, transport, &dir.join(format!("{name}-{transport}")))
+}
+
+#[test]
+fn advice_reuse_plays_kept_advice_without_a_message() {
+    let tmp = tempfile::tempdir().unwrap();
+    for transport in ["in-process", "zenoh"] {
+        let agents = played(tmp.path(), transport, "reuse", "advice-reuse", "");
+        let reused = team_total(&agents, "reused_advice");
+        let requests = team_total(&agents, "advice_requests");
+        let outcomes: u64 = ["answered", "declined", "futile", "lost"]
+            .iter()
+            .map(|o| team_total(&agents, &format!("{o}_requests")))
+            .sum();
+        assert!(reused > 0, "{transport}: nothing reused: {agents:?}");
+        // A reuse sends nothing: every request has its outcome, and none is
+        // a reuse.
+        assert_eq!(outcomes, requests, "{transport}: {agents:?}");
+    }
+}
+
+#[test]
+fn psaf_partakers_take_the_values_sharers_more_confident_send() {
+    let tmp = tempfile::tempdir().unwrap();
+    for transport in ["in-process", "zenoh"] {
+        let agents = played(tmp.path(), transport, "psaf", "psaf", "");
+        let taken = team_total(&agents, "ask_spent");
+        let shared = team_total(&agents, "advice_given");
+        let answered = team_total(&agents, "answered_requests");
+        let declined = team_total(&agents, "declined_requests");
+        assert!(taken > 0, "{transport}: no values taken: {agents:?}");
+        // A partaker spends its budget only on a request that brought a
+        // value, and a sharer less confident than the partaker declines.
+        assert!(
+            taken <= answered && answered <= shared,
+            "{transport}: {agents:?}"
+        );
+        assert!(declined > 0, "{transport}: every sharer shared: {agents:?}");
+    }
+}
+
+#[test]
+fn peer_learning_follows_its_choice_for_the_window() {
+    let tmp = tempfile::tempdir().unwrap();
+    for transport in ["in-process", "zenoh"] {
+        // Advising messages per request: each request goes to both peers
+        // (2 requests, 2 replies) unless the agent follows one peer, asked
+        // alone; following its own choice asks nobody.
+        let per_request = |window: u32| {
+            let name = format!("peers-{window}");
+            let extra = format!("follow_steps = {window}\n");
+            let agents = played(tmp.path(), transport, &name, "peer-learning", &extra);
+            let messages = team_total(&agents, "advising_messages") as f64;
+            let requests = team_total(&agents, "advice_requests") as f64;
+            assert!(requests > 0.0, "{transport}: no request: {agents:?}");
+            (messages / requests, requests)
+        };
+        let (each, asked_each) = per_request(1);
+        let (window, asked_window) = per_request(10);
+        assert!(each > 3.5, "{transport}: {each} messages per request");
+        assert!(window < 3.0, "{transport}: {window} messages per request");
+        assert!(
+            asked_window < asked_each,
+            "{transport}: its own choice asks nobody"
+        );
+    }
+}
+
+#[test]
+fn an_announced_exhausted_advisor_is_asked_no_more() {
+    let tmp = tempfile::tempdir().unwrap();
+    for transport in ["in-process", "zenoh"] {
+        let run = |announce: bool| {
+            let name = format!("announce-{announce}");
+            let extra = format!("give_budget = 20\nannounce_exhausted = {announce}\n");
+            played(tmp.path(), transport, &name, "early-advising", &extra)
+        };
+        let (quiet, told) = (run(false), run(true));
+        let futile = |agents: &[Value]| team_total(agents, "futile_requests");
+        let messages = |agents: &[Value]| team_total(agents, "advising_messages");
+        assert!(futile(&quiet) > 0, "{transport}: {quiet:?}");
+        // Over zenoh a request may cross the announcement in flight.
+        assert!(
+            futile(&told) * 10 <= futile(&quiet),
+            "{transport}: {} futile requests announced, {} not",
+            futile(&told),
+            futile(&quiet)
+        );
+        assert!(
+            messages(&told) < messages(&quiet),
+            "{transport}: the announcement saves no message"
+        );
+    }
+}

@@ -161,7 +161,7 @@ fn report(ctx: &Context) -> Result<AgentReport, String> {
             advice_given: c.advice_given,
             request_outcomes: {
                 let o = agent.request_outcomes();
-                [o.answered, o.declined, o.futile, o.lost]
+                [o.answered, o.declined, o.futile, o.lost, o.reused]
             },
             advised_by: agent.advised_by().to_vec(),
             ..AgentReport::default()

@@ -152,6 +152,8 @@ pub struct AgentStats {
     /// Requests some of whose replies were lost or late, and none brought
     /// advice or a decline.
     pub lost_requests: u64,
+    /// Decisions that played kept advice instead of asking (advice reuse).
+    pub reused_advice: u64,
 }
 
 /// A newcomer that joined a run: who played which episodes.

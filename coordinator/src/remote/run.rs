@@ -463,7 +463,7 @@ fn stats_of(r: &AgentReport) -> AgentStats {
     let sent = r.messages.total(proto::Direction::Sent);
     let received = r.messages.total(proto::Direction::Received);
     let advising = r.messages.sent_of(&MessageKind::ADVISING);
-    let [answered, declined, futile, lost] = r.request_outcomes;
+    let [answered, declined, futile, lost, reused] = r.request_outcomes;
     AgentStats {
         give_spent: r.give_spent,
         ask_spent: r.ask_spent,
@@ -481,5 +481,6 @@ fn stats_of(r: &AgentReport) -> AgentStats {
         declined_requests: declined,
         futile_requests: futile,
         lost_requests: lost,
+        reused_advice: reused,
     }
 }
