@@ -335,6 +335,7 @@ mod tests {
                 "heads",
                 "learner",
                 "mask_probability",
+                "mistake_correcting",
                 "reachable",
                 "uncertainty_threshold"
             ]
