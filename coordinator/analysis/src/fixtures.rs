@@ -1,6 +1,7 @@
 //! Test inputs shared by the study's and the statistics' modules.
 
 use crate::results::{EvalPoint, RunResult};
+use crate::study::{Entry, EntryResults};
 
 /// Run `run` with goal percentages `goals` at episodes 0, `every`, 2 `every`, ...
 pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
@@ -27,4 +28,18 @@ pub(crate) fn run_with_goals(run: u64, every: u64, goals: &[f64]) -> RunResult {
         simulator_restarts: Vec::new(),
         advice_matrix: Vec::new(),
     }
+}
+
+/// The entry `name` of `group` (algorithm no-advice) with `runs`,
+/// summarised at 95 %.
+pub(crate) fn entry_results(name: &str, group: Option<&str>, runs: Vec<RunResult>) -> EntryResults {
+    let entry = Entry {
+        name: name.to_owned(),
+        algorithm: "no-advice".parse().expect("an algorithm"),
+        group: group.map(str::to_owned),
+        expert: false,
+        network: None,
+        events: Vec::new(),
+    };
+    EntryResults::new(entry, serde_json::Value::Null, runs, 0.95)
 }

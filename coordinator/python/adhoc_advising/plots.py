@@ -5,6 +5,7 @@ DataFrames, so they can be restyled (``pip install matplotlib``).
     >>> study = load("out/quick")
     >>> plots.curves(study, "goal_pct")          # goal_pct.svg of REPORT.md
     >>> plots.gain_vs_messages(study)            # gain_vs_messages.svg
+    >>> plots.frontier(study, cost="bytes")      # frontier_bytes.svg
 
 Each function draws on ``ax`` (a new figure's when ``None``) and returns it.
 They read only the summaries and ``significance.json``, which the
@@ -110,4 +111,55 @@ def gain_vs_messages(study: Study, ax: Axes | None = None) -> Axes:
     ax.axhline(0, color="grey", linewidth=0.8)
     ax.set_xlabel("advising messages per agent per training episode")
     ax.set_ylabel("goal % gain, last ten evaluations")
+    return ax
+
+
+def frontier(study: Study, cost: str = "messages", ax: Axes | None = None) -> Axes:
+    """The communication frontier (``frontier_messages.svg``,
+    ``frontier_bytes.svg``): each entry's last-ten gain over the baseline
+    against the advising ``cost`` (``"messages"`` or ``"bytes"``) each agent
+    sent per training episode, on a log axis, with both intervals as
+    whiskers; one colour per group, its entries joined in order of cost, the
+    Pareto front ringed. Entries that sent nothing have no place on a log
+    axis: the legend counts them beside their group. From
+    ``significance.json``'s ``frontier`` (:attr:`Study.frontier`)."""
+    if cost not in ("messages", "bytes"):
+        raise ValueError(f'cost must be "messages" or "bytes", got {cost!r}')
+    if study.frontier.empty:
+        raise ValueError(
+            f"{study.path} has no frontier in significance.json: it needs a baseline and a "
+            "group of two or more entries (an older study's comes from `analyse DIR`)"
+        )
+    ax = _axes(ax)
+    for group, points in study.frontier.groupby("group", sort=False):
+        placed = points[(points[cost] > 0) & points.last_ten_gain.notna()].sort_values(cost)
+        silent = int((points[cost] == 0).sum())
+        if not silent:
+            label = group
+        elif placed.empty:
+            label = f"{group} (sent none)"
+        else:
+            label = f"{group} ({silent} sent none)"
+        x, y = placed[cost].to_numpy(), placed.last_ten_gain.to_numpy()
+        xerr = [x - placed[f"{cost}_ci_low"].to_numpy(), placed[f"{cost}_ci_high"].to_numpy() - x]
+        yerr = [
+            y - placed.last_ten_gain_ci_low.to_numpy(),
+            placed.last_ten_gain_ci_high.to_numpy() - y,
+        ]
+        ax.errorbar(x, y, xerr=xerr, yerr=yerr, fmt="-o", capsize=3, label=label)
+        front = placed[placed[f"front_{cost}"]]
+        ax.scatter(
+            front[cost],
+            front.last_ten_gain,
+            s=160,
+            facecolors="none",
+            edgecolors="black",
+            linewidths=1.5,
+            zorder=3,
+        )
+    ax.set_xscale("log")
+    ax.axhline(0, color="grey", linewidth=0.8)
+    ax.set_xlabel(f"advising {cost} per agent per training episode")
+    ax.set_ylabel("goal % gain, last ten evaluations")
+    ax.legend()
     return ax

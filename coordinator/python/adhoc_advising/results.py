@@ -33,6 +33,9 @@ SUMMARY_METRICS = (
     "advising_bytes",
 )
 
+#: The estimates of a `significance.json` frontier point.
+FRONTIER_ESTIMATES = ("messages", "bytes", "last_ten_gain", "area_gain")
+
 
 def _pandas() -> Any:
     try:
@@ -91,6 +94,12 @@ class Study:
     holm: pd.DataFrame = field(repr=False)
     #: `significance.json`'s `comparisons`: one row per pair.
     comparisons: pd.DataFrame = field(repr=False)
+    #: `significance.json`'s `frontier.points`: one row per entry but the
+    #: baseline, with its `group`, its costs `messages` and `bytes` and its
+    #: `last_ten_gain` and `area_gain` (each as in :attr:`gains`),
+    #: `front_messages`, `front_bytes` and `messages_per_point`; empty
+    #: without a frontier.
+    frontier: pd.DataFrame = field(repr=False)
 
 
 def load(path: str | Path) -> Study | Experiment | pd.DataFrame:
@@ -238,6 +247,22 @@ def _study(directory: Path) -> Study:
                     "p_improvement_ci_high": ci[1],
                 }
             )
+    frontier = pandas.DataFrame(
+        [
+            {
+                "entry": p["entry"],
+                "group": p["group"],
+                **_flatten(p, FRONTIER_ESTIMATES),
+                "front_messages": p["front_messages"],
+                "front_bytes": p["front_bytes"],
+                "messages_per_point": p["messages_per_point"],
+            }
+            for p in (significance.get("frontier") or {}).get("points", [])
+        ]
+    )
+    if not frontier.empty:
+        numeric = [c for c in frontier.columns if c not in ("entry", "group")]
+        frontier[numeric] = frontier[numeric].apply(pandas.to_numeric)
     return Study(
         path=directory,
         config=config,
@@ -250,4 +275,5 @@ def _study(directory: Path) -> Study:
         aggregate=pandas.DataFrame(aggregate_rows),
         holm=pandas.DataFrame(significance.get("holm", [])),
         comparisons=pandas.DataFrame(significance.get("comparisons", [])),
+        frontier=frontier,
     )

@@ -98,6 +98,9 @@ pub struct SeriesPoint {
     pub low: Option<f64>,
     /// Upper bound of the confidence interval.
     pub high: Option<f64>,
+    /// The interval of x, where x is itself an estimate (a cost); else
+    /// `None`.
+    pub x_interval: Option<(f64, f64)>,
 }
 
 /// One algorithm's curve of one metric: a line with a band around it.
@@ -149,6 +152,7 @@ impl SeriesPoint {
             mean: known(estimate.mean),
             low: known(estimate.ci_low),
             high: known(estimate.ci_high),
+            x_interval: None,
         }
     }
 }

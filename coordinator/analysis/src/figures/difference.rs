@@ -10,7 +10,7 @@
 
 use super::catalogue::note_of;
 use super::data::{Series, SeriesPoint};
-use super::draw::{self, Captions, Curve, Mark, PALETTE, Panel, Style};
+use super::draw::{self, Captions, Curve, Mark, MarkShape, PALETTE, Panel, Style};
 use super::figure::{Figure, FigureError};
 use super::layout::{Layout, PLOT, YRange};
 use crate::stats::Estimate;
@@ -93,7 +93,11 @@ impl DifferenceSet {
                 Some(Mark {
                     episode: point.episode,
                     value: point.mean?,
-                    up: p.better?,
+                    shape: if p.better? {
+                        MarkShape::Up
+                    } else {
+                        MarkShape::Down
+                    },
                 })
             })
             .collect()

@@ -3,14 +3,17 @@
 //! rasterising it to a PNG.
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::data::{Series, SeriesPoint};
 use super::layout::{
     HEADER_H, HEADING_H, LEGEND_GAP, LEGEND_LINE, LEGEND_PAD, LEGEND_SWATCH, LEGEND_TEXT, Layout,
-    Legend, MARGIN, SIZE, TICKS, X_LABELS_H, Y_LABELS_W, decimals,
+    Legend, MARGIN, SIZE, Scale, TICKS, X_LABELS_H, Y_LABELS_W, decimals,
 };
+use super::log_axis::{LogAxis, tick_label};
 
 /// Font families, first available wins (as env-server's pictures).
 const FONT: &str = "DejaVu Sans, Liberation Sans, Arial, Helvetica, sans-serif";
@@ -63,20 +66,69 @@ pub(super) enum Style {
     Line,
     /// Each mean a dot with its interval as a whisker, labelled beside it.
     Dots,
+    /// Each mean a marker with its intervals as whiskers (on x too, where
+    /// x is an estimate), the markers joined in order by a line, with a
+    /// legend.
+    Path(Marker),
+}
+
+/// The shape of a [`Style::Path`] curve's markers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Marker {
+    /// A dot.
+    Circle,
+    /// A square.
+    Square,
+    /// A diamond.
+    Diamond,
+    /// A triangle pointing up.
+    Triangle,
+}
+
+/// The markers, in the order curves take them once [`PALETTE`] is used up.
+pub(super) const MARKERS: [Marker; 4] = [
+    Marker::Circle,
+    Marker::Square,
+    Marker::Diamond,
+    Marker::Triangle,
+];
+
+impl Marker {
+    /// The corners of its polygon around its centre (pixels); a circle has
+    /// none.
+    fn corners(self) -> Vec<(i32, i32)> {
+        match self {
+            Marker::Circle => Vec::new(),
+            Marker::Square => vec![(-4, -4), (4, -4), (4, 4), (-4, 4)],
+            Marker::Diamond => vec![(0, -6), (6, 0), (0, 6), (-6, 0)],
+            Marker::Triangle => vec![(0, -6), (6, 4), (-6, 4)],
+        }
+    }
 }
 
 /// Radius of a dot, and half the width of a whisker's caps (pixels).
 const DOT: i32 = 5;
 
-/// A marked point of a curve: a triangle pointing up or down.
+/// A marked point of a curve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Mark {
-    /// Training episodes (the x value).
+    /// The x value (training episodes, or whatever x is).
     pub episode: f64,
     /// The value marked.
     pub value: f64,
-    /// Up (else down).
-    pub up: bool,
+    /// How it is marked.
+    pub shape: MarkShape,
+}
+
+/// How a point is marked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum MarkShape {
+    /// A triangle pointing up, in the curve's colour.
+    Up,
+    /// A triangle pointing down, in the curve's colour.
+    Down,
+    /// A dark ring around the point.
+    Ring,
 }
 
 /// The texts of a figure above and below its charts.
@@ -166,20 +218,43 @@ fn draw_chart(
     panel: &Panel,
     x_axis: Option<&str>,
 ) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
-    let (layout, curves) = (&panel.layout, panel.curves);
-    let ranges = layout.ranges;
-    let mut chart = ChartBuilder::on(area)
+    let ranges = panel.layout.ranges;
+    let mut builder = ChartBuilder::on(area);
+    builder
         .margin_top(MARGIN.0)
         .margin_right(MARGIN.1)
         .margin_bottom(MARGIN.2)
         .margin_left(MARGIN.3)
         .x_label_area_size(X_LABELS_H)
-        .y_label_area_size(Y_LABELS_W)
-        .build_cartesian_2d(ranges.x.0..ranges.x.1, ranges.y.0..ranges.y.1)?;
+        .y_label_area_size(Y_LABELS_W);
+    let y = ranges.y.0..ranges.y.1;
+    match ranges.x_scale {
+        Scale::Linear => {
+            let chart = builder.build_cartesian_2d(ranges.x.0..ranges.x.1, y)?;
+            let x_decimals = decimals(ranges.x.1 - ranges.x.0);
+            plot(chart, panel, x_axis, &|x: &f64| format!("{x:.x_decimals$}"))
+        }
+        Scale::Log => {
+            let chart = builder.build_cartesian_2d(LogAxis(ranges.x.0..ranges.x.1), y)?;
+            plot(chart, panel, x_axis, &|x: &f64| tick_label(*x))
+        }
+    }
+}
+
+/// Draws `panel` on `chart`, whose x axis is labelled by `x_format`.
+fn plot<X>(
+    mut chart: ChartContext<'_, SVGBackend<'_>, Cartesian2d<X, RangedCoordf64>>,
+    panel: &Panel,
+    x_axis: Option<&str>,
+    x_format: &dyn Fn(&f64) -> String,
+) -> Result<(), DrawingAreaErrorKind<std::io::Error>>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let (layout, curves) = (&panel.layout, panel.curves);
+    let ranges = layout.ranges;
     debug_assert_eq!(chart.plotting_area().dim_in_pixel(), layout.plot);
-    let x_decimals = decimals(ranges.x.1 - ranges.x.0);
     let y_decimals = decimals(ranges.y.1 - ranges.y.0);
-    let x_format = |x: &f64| format!("{x:.x_decimals$}");
     let y_format = |y: &f64| format!("{y:.y_decimals$}");
     let mut mesh = chart.configure_mesh();
     mesh.y_desc(panel.y_axis)
@@ -190,7 +265,7 @@ fn draw_chart(
         .light_line_style(TRANSPARENT)
         .x_labels(TICKS)
         .y_labels(y_ticks(layout.plot.1))
-        .x_label_formatter(&x_format)
+        .x_label_formatter(x_format)
         .y_label_formatter(&y_format);
     if let Some(x_axis) = x_axis {
         mesh.x_desc(x_axis);
@@ -202,8 +277,12 @@ fn draw_chart(
         chart.draw_series([PathElement::new(rule, INK.stroke_width(1))])?;
     }
     let clamp = |y: f64| y.clamp(ranges.y.0, ranges.y.1);
-    let (lines, dots): (Vec<&Curve>, Vec<&Curve>) =
-        curves.iter().partition(|c| c.style == Style::Line);
+    let clamp_x = |x: f64| x.clamp(ranges.x.0, ranges.x.1);
+    let lines: Vec<&Curve> = curves.iter().filter(|c| c.style == Style::Line).collect();
+    let dots: Vec<&Curve> = curves.iter().filter(|c| c.style == Style::Dots).collect();
+    let paths: Vec<&Curve> = (curves.iter())
+        .filter(|c| matches!(c.style, Style::Path(_)))
+        .collect();
     for c in &lines {
         for run in runs(&c.series.points, |p| p.low.zip(p.high)) {
             let upper = run.iter().map(|&(x, (_, hi))| (x, clamp(hi)));
@@ -223,17 +302,30 @@ fn draw_chart(
             }
         }
     }
+    for c in &paths {
+        for run in runs(&c.series.points, |p| p.mean) {
+            let run: Vec<(f64, f64)> = run.into_iter().map(|(x, y)| (x, clamp(y))).collect();
+            chart.draw_series([PathElement::new(run, c.colour.stroke_width(LINE_WIDTH))])?;
+        }
+    }
     for c in curves {
         // A triangle outlined in white, centred on the mark.
-        let triangle = |m: &Mark| {
-            let (tip, base) = if m.up { (-7, 4) } else { (7, -4) };
+        let triangle = |m: &Mark, up: bool| {
+            let (tip, base) = if up { (-7, 4) } else { (7, -4) };
             let corners = vec![(0, tip), (6, base), (-6, base)];
             let outline = vec![(0, tip), (6, base), (-6, base), (0, tip)];
             EmptyElement::at((m.episode, m.value))
                 + Polygon::new(corners, c.colour.filled())
                 + PathElement::new(outline, WHITE.stroke_width(1))
         };
-        chart.draw_series(c.marks.iter().map(triangle))?;
+        let (rings, triangles): (Vec<&Mark>, Vec<&Mark>) =
+            c.marks.iter().partition(|m| m.shape == MarkShape::Ring);
+        chart
+            .draw_series((triangles.into_iter()).map(|m| triangle(m, m.shape == MarkShape::Up)))?;
+        chart.draw_series(rings.into_iter().map(|m| {
+            let at = (clamp_x(m.episode), clamp(m.value));
+            EmptyElement::at(at) + Circle::new((0, 0), DOT + 5, INK.stroke_width(2))
+        }))?;
     }
     // Each dot's label beside it, moved down where it would cover another.
     let at = |p: &SeriesPoint| {
@@ -250,20 +342,45 @@ fn draw_chart(
         .filter_map(|(p, label)| Some((at(p)?, label)))
         .collect();
     let mut shifts = label_shifts(&labelled).into_iter();
-    for c in &dots {
-        let label = font(14.0, &c.colour).pos(Pos::new(HPos::Left, VPos::Center));
+    for c in dots.iter().chain(&paths) {
+        let stroke = c.colour.stroke_width(2);
         for p in &c.series.points {
             if let (Some(low), Some(high)) = (p.low, p.high) {
                 let whisker = |y: f64| (p.episode, clamp(y));
                 let cap = |y: f64| {
                     EmptyElement::at(whisker(y))
-                        + PathElement::new(vec![(-DOT, 0), (DOT, 0)], c.colour.stroke_width(2))
+                        + PathElement::new(vec![(-DOT, 0), (DOT, 0)], stroke)
                 };
-                let line =
-                    PathElement::new(vec![whisker(low), whisker(high)], c.colour.stroke_width(2));
+                let line = PathElement::new(vec![whisker(low), whisker(high)], stroke);
                 chart.draw_series([line])?;
                 chart.draw_series([cap(low), cap(high)])?;
             }
+            if let (Some((low, high)), Some(mean)) = (p.x_interval, p.mean) {
+                let whisker = |x: f64| (clamp_x(x), clamp(mean));
+                let cap = |x: f64| {
+                    EmptyElement::at(whisker(x))
+                        + PathElement::new(vec![(0, -DOT), (0, DOT)], stroke)
+                };
+                let line = PathElement::new(vec![whisker(low), whisker(high)], stroke);
+                chart.draw_series([line])?;
+                chart.draw_series([cap(low), cap(high)])?;
+            }
+        }
+    }
+    for c in &paths {
+        let Style::Path(marker) = c.style else {
+            continue;
+        };
+        for p in &c.series.points {
+            if let Some(mean) = p.mean {
+                let at = (p.episode, clamp(mean));
+                draw_marker(chart.plotting_area(), at, marker, c.colour)?;
+            }
+        }
+    }
+    for c in &dots {
+        let label = font(14.0, &c.colour).pos(Pos::new(HPos::Left, VPos::Center));
+        for p in &c.series.points {
             if let Some(mean) = p.mean {
                 let shift = shifts.next().unwrap_or_default();
                 let dot = EmptyElement::at((p.episode, clamp(mean)))
@@ -367,17 +484,35 @@ fn draw_legend(
     for (i, c) in curves.iter().enumerate() {
         let y = top + LEGEND_PAD + 9 + LEGEND_LINE * i as i32;
         let x = left + LEGEND_PAD;
-        let band = [(x, y - 7), (x + LEGEND_SWATCH, y + 7)];
-        area.draw(&Rectangle::new(band, c.colour.mix(BAND_ALPHA).filled()))?;
         let line = vec![(x, y), (x + LEGEND_SWATCH, y)];
-        area.draw(&PathElement::new(
-            line,
-            c.colour.stroke_width(LINE_WIDTH + 1),
-        ))?;
+        if let Style::Path(marker) = c.style {
+            area.draw(&PathElement::new(line, c.colour.stroke_width(LINE_WIDTH)))?;
+            draw_marker(area, (x + LEGEND_SWATCH / 2, y), marker, c.colour)?;
+        } else {
+            let band = [(x, y - 7), (x + LEGEND_SWATCH, y + 7)];
+            area.draw(&Rectangle::new(band, c.colour.mix(BAND_ALPHA).filled()))?;
+            let style = c.colour.stroke_width(LINE_WIDTH + 1);
+            area.draw(&PathElement::new(line, style))?;
+        }
         let at = (x + LEGEND_SWATCH + LEGEND_GAP, y);
         area.draw(&Text::new(c.series.label.as_str(), at, text.clone()))?;
     }
     Ok(())
+}
+
+/// Draws `marker` in `colour` centred at `at` on `area`.
+fn draw_marker<CT: CoordTranslate>(
+    area: &DrawingArea<SVGBackend<'_>, CT>,
+    at: CT::From,
+    marker: Marker,
+    colour: RGBColor,
+) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
+    let corners = marker.corners();
+    if corners.is_empty() {
+        area.draw(&(EmptyElement::at(at) + Circle::new((0, 0), DOT, colour.filled())))
+    } else {
+        area.draw(&(EmptyElement::at(at) + Polygon::new(corners, colour.filled())))
+    }
 }
 
 /// The maximal runs of consecutive points where `value` is known, as

@@ -53,13 +53,46 @@ pub(super) enum YRange {
     Around(f64),
 }
 
+/// How the x axis maps its values to the page.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Scale {
+    /// In proportion to the values.
+    Linear,
+    /// In proportion to their logarithms (positive values only).
+    Log,
+}
+
+impl Scale {
+    /// Where `x` lies along the axis, up to an affine map.
+    fn of(self, x: f64) -> f64 {
+        match self {
+            Scale::Linear => x,
+            Scale::Log => x.ln(),
+        }
+    }
+}
+
 /// Data ranges of a chart.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Ranges {
-    /// Episodes.
+    /// Episodes, or whatever x is.
     pub x: (f64, f64),
     /// Metric values.
     pub y: (f64, f64),
+    /// How x is drawn.
+    pub x_scale: Scale,
+}
+
+impl Ranges {
+    /// The x value `fraction` of the way along the axis.
+    fn x_at(&self, fraction: f64) -> f64 {
+        let (lo, hi) = (self.x_scale.of(self.x.0), self.x_scale.of(self.x.1));
+        let at = lo + (hi - lo) * fraction;
+        match self.x_scale {
+            Scale::Linear => at,
+            Scale::Log => at.exp(),
+        }
+    }
 }
 
 /// The legend's box in the plotting area, in pixels.
@@ -98,6 +131,7 @@ impl Layout {
             ranges: Ranges {
                 x: x_range(shown),
                 y: y_range(y, shown),
+                x_scale: Scale::Linear,
             },
             legend: None,
             rule: match y {
@@ -113,10 +147,30 @@ impl Layout {
     /// it covers some and the range is not fixed, the y range grows to make
     /// room above the data.
     pub(super) fn sized(shown: &[Series], y: YRange, plot: (u32, u32)) -> Self {
-        let mut ranges = Ranges {
+        let ranges = Ranges {
             x: x_range(shown),
             y: y_range(y, shown),
+            x_scale: Scale::Linear,
         };
+        Self::placed(shown, y, ranges, plot)
+    }
+
+    /// The layout of `shown`, whose x values are positive and span orders
+    /// of magnitude, on a logarithmic x axis, with y range rule `y`, in a
+    /// figure's plotting area ([`PLOT`]); the legend placed as
+    /// [`Layout::sized`] places it.
+    pub(super) fn log_x(shown: &[Series], y: YRange) -> Self {
+        let ranges = Ranges {
+            x: log_range(shown),
+            y: y_range(y, shown),
+            x_scale: Scale::Log,
+        };
+        Self::placed(shown, y, ranges, PLOT)
+    }
+
+    /// The layout of `shown` in `ranges` with the legend where it covers
+    /// the least data (see [`Layout::sized`]).
+    fn placed(shown: &[Series], y: YRange, mut ranges: Ranges, plot: (u32, u32)) -> Self {
         let legend = legend_size(shown).map(|size| {
             let (place, covered) = best_place(shown, ranges, size, plot);
             if covered == 0 || matches!(y, YRange::Fixed(..)) {
@@ -179,6 +233,34 @@ fn x_range(shown: &[Series]) -> (f64, f64) {
     } else {
         (lo - 1.0, lo + 1.0)
     }
+}
+
+/// Share of the decades shown left free at each end of a logarithmic axis.
+const LOG_MARGIN: f64 = 0.06;
+
+/// The least ratio of the ends of a logarithmic axis.
+const LOG_LEAST: f64 = 3.0;
+
+/// From the least positive x shown (a point's or its interval's) to the
+/// greatest, on a logarithmic axis: spanning a ratio of at least
+/// [`LOG_LEAST`], with a margin; 1 to 10 without any.
+fn log_range(shown: &[Series]) -> (f64, f64) {
+    let xs = (shown.iter().flat_map(|s| &s.points))
+        .flat_map(|p| {
+            let (lo, hi) = p.x_interval.unzip();
+            [Some(p.episode), lo, hi]
+        })
+        .flatten()
+        .filter(|x| *x > 0.0 && x.is_finite());
+    let (Some(lo), Some(hi)) = (xs.clone().min_by(f64::total_cmp), xs.max_by(f64::total_cmp))
+    else {
+        return (1.0, 10.0);
+    };
+    let (lo, hi) = (lo.log10(), hi.log10());
+    let span = (hi - lo).max(LOG_LEAST.log10());
+    let half = span / 2.0 + span * LOG_MARGIN;
+    let middle = (lo + hi) / 2.0;
+    (10f64.powf(middle - half), 10f64.powf(middle + half))
 }
 
 /// The y range by `rule` over every known value shown.
@@ -250,7 +332,7 @@ fn best_place(
     plot: (u32, u32),
 ) -> ((i32, i32), usize) {
     let (w, h) = (f64::from(plot.0), f64::from(plot.1));
-    let to_x = |px: i32| ranges.x.0 + (ranges.x.1 - ranges.x.0) * f64::from(px) / w;
+    let to_x = |px: i32| ranges.x_at(f64::from(px) / w);
     let to_y = |px: i32| ranges.y.1 - (ranges.y.1 - ranges.y.0) * f64::from(px) / h;
     // Pixels kept free above and below the legend.
     const CLEAR: i32 = 8;
@@ -261,7 +343,9 @@ fn best_place(
             let (y0, y1) = (to_y(top + size.1 + CLEAR), to_y(top - CLEAR));
             let covered = (0..=32)
                 .map(|i| x0 + (x1 - x0) * f64::from(i) / 32.0)
-                .flat_map(|x| shown.iter().filter_map(move |s| extent_at(&s.points, x)))
+                .flat_map(|x| {
+                    (shown.iter()).filter_map(move |s| extent_at(&s.points, x, ranges.x_scale))
+                })
                 .filter(|&(lo, hi)| lo <= y1 && hi >= y0)
                 .count();
             ((left, top), covered)
@@ -271,8 +355,9 @@ fn best_place(
 }
 
 /// The vertical extent of a series' line and band at episode `x`,
-/// interpolated between the evaluations around it.
-fn extent_at(points: &[SeriesPoint], x: f64) -> Option<(f64, f64)> {
+/// interpolated between the evaluations around it along an axis of
+/// `scale`.
+fn extent_at(points: &[SeriesPoint], x: f64, scale: Scale) -> Option<(f64, f64)> {
     let i = points.iter().position(|p| p.episode >= x)?;
     let b = &points[i];
     let a = if b.episode == x || i == 0 {
@@ -281,7 +366,7 @@ fn extent_at(points: &[SeriesPoint], x: f64) -> Option<(f64, f64)> {
         &points[i - 1]
     };
     let t = if b.episode > a.episode {
-        (x - a.episode) / (b.episode - a.episode)
+        (scale.of(x) - scale.of(a.episode)) / (scale.of(b.episode) - scale.of(a.episode))
     } else {
         0.0
     };
@@ -297,7 +382,7 @@ fn extent_at(points: &[SeriesPoint], x: f64) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::super::data::Metric;
-    use super::super::fixtures::{RISING, set};
+    use super::super::fixtures::{RISING, estimate, set};
     use super::*;
 
     /// The goal percentage curve of a set with `goal`, labelled "Curve".
@@ -327,6 +412,7 @@ mod tests {
         let ranges = Ranges {
             x: (0.0, 300.0),
             y: (0.0, 100.0),
+            x_scale: Scale::Linear,
         };
         // Rising curves leave the upper left free.
         let rising = [goal(&[Some(0.0), Some(50.0), Some(90.0), Some(95.0)])];
@@ -360,6 +446,43 @@ mod tests {
         assert_eq!(Layout::of(&[], YRange::FromZero).legend, None);
     }
 
+    #[test]
+    fn a_log_axis_spans_the_decades_shown_with_a_margin() {
+        let at = |x: f64, across: Option<(f64, f64)>| SeriesPoint {
+            x_interval: across,
+            ..SeriesPoint::at(x, &estimate(Some(1.0)))
+        };
+        let shown = |points| {
+            [Series {
+                label: "A".to_owned(),
+                points,
+            }]
+        };
+        // From 0.5 (an interval's end) to 100: 2.3 decades, 6 % more each side.
+        let (lo, hi) = log_range(&shown(vec![at(1.0, Some((0.5, 2.0))), at(100.0, None)]));
+        let margin = 0.06 * 200f64.log10();
+        assert!(
+            (lo.log10() - (0.5f64.log10() - margin)).abs() < 1e-12,
+            "{lo}"
+        );
+        assert!((hi.log10() - (2.0 + margin)).abs() < 1e-12, "{hi}");
+        // Nothing positive shown: 1 to 10; one value: a factor 3 around it.
+        assert_eq!(
+            log_range(&shown(vec![at(0.0, Some((-1.0, 0.0)))])),
+            (1.0, 10.0)
+        );
+        let (lo, hi) = log_range(&shown(vec![at(2.0, None)]));
+        assert!((hi / lo - 3f64.powf(1.12)).abs() < 1e-9 && (lo * hi - 4.0).abs() < 1e-9);
+        // The legend's place is judged on the same axis: half way across a
+        // log axis from 1 to 100 is 10.
+        let ranges = Ranges {
+            x: (1.0, 100.0),
+            y: (0.0, 1.0),
+            x_scale: Scale::Log,
+        };
+        assert!((ranges.x_at(0.5) - 10.0).abs() < 1e-12);
+    }
+
     /// A band from 0 to 100 over episodes 0 to 300.
     fn wide_band() -> Series {
         let point = |episode| SeriesPoint {
@@ -367,6 +490,7 @@ mod tests {
             mean: Some(50.0),
             low: Some(0.0),
             high: Some(100.0),
+            x_interval: None,
         };
         Series {
             label: "Wide".to_owned(),

@@ -6,7 +6,9 @@
 //! run ([`draw_difference`], with a method whose differences dwarf the
 //! others' drawn apart: [`drawn_apart`]), and what advising costs in
 //! messages and bytes per training episode, and each method's gain against
-//! the messages it sent ([`draw_tradeoff`]).
+//! the messages it sent ([`draw_tradeoff`]); and the communication frontier
+//! of a study that sweeps settings, gain against messages or bytes on a
+//! logarithmic axis, each method a curve ([`draw_frontier`]).
 //!
 //! Pure: the input is every algorithm's estimates in memory
 //! ([`SeriesSet`]), the output every figure as an SVG document drawn with
@@ -44,7 +46,9 @@ mod draw;
 mod figure;
 #[cfg(test)]
 mod fixtures;
+mod frontier;
 mod layout;
+mod log_axis;
 mod sweep;
 mod tradeoff;
 
@@ -54,6 +58,7 @@ pub use difference::{
     drawn_apart,
 };
 pub use figure::{Figure, FigureError};
+pub use frontier::{FRONTIER_BYTES, FRONTIER_MESSAGES, FrontierDot, FrontierGroup, draw_frontier};
 pub use layout::SIZE;
 pub use sweep::{Condition, ConditionPoint, ConditionSet, draw_sweep};
 pub use tradeoff::{TRADEOFF, TradeoffPoint, draw_tradeoff};

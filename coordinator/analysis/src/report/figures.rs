@@ -6,23 +6,26 @@ use super::markdown::{Markdown, mean_at_end, per_agent};
 use crate::difference::difference_sets;
 use crate::error::Error;
 use crate::figures::{
-    DIFFERENCE, Figure, Point, SeriesSet, TradeoffPoint, draw_difference, draw_figures,
-    draw_tradeoff,
+    DIFFERENCE, Figure, FrontierDot, FrontierGroup, Point, SeriesSet, TradeoffPoint,
+    draw_difference, draw_figures, draw_frontier, draw_tradeoff,
 };
 use crate::files;
 use crate::results::EvalPoint;
+use crate::stats::frontier::{CostUnit, Frontier};
 use crate::stats::gains::{Gain, LAST_POINTS};
 use crate::study::{EntryResults, Study};
 use crate::sweep::sweep_figures;
 
 /// Draws the figures of every entry into `out/figures`, with a baseline
-/// the difference from it after the goal percentage and, last, each
-/// method's `gains` against the messages it sent.
+/// the difference from it after the goal percentage, then each method's
+/// `gains` against the messages it sent and, last, the `frontier` against
+/// messages and bytes.
 pub(super) fn write_figures(
     out: &Path,
     study: &Study,
     entries: &[EntryResults],
     gains: &[Gain],
+    frontier: Option<&Frontier>,
 ) -> Result<Vec<Figure>, Error> {
     let sets: Vec<SeriesSet> = entries
         .iter()
@@ -38,15 +41,27 @@ pub(super) fn write_figures(
     }
     let baseline = study.baseline.as_deref();
     figures.extend(sweep_figures(entries, baseline, study.ci_level())?);
+    let runs = entries
+        .iter()
+        .map(|e| e.results.len() as u64)
+        .max()
+        .unwrap_or(0);
+    let level = (runs, study.ci_level());
     if let (Some(baseline), false) = (baseline, gains.is_empty()) {
-        let runs = entries
-            .iter()
-            .map(|e| e.results.len() as u64)
-            .max()
-            .unwrap_or(0);
         let points = tradeoff_points(entries, gains);
-        let level = (runs, study.ci_level());
         figures.push(draw_tradeoff(baseline, LAST_POINTS, level, &points)?);
+    }
+    if let Some(f) = frontier {
+        for unit in CostUnit::ALL {
+            let groups = frontier_groups(f, unit);
+            figures.push(draw_frontier(
+                unit,
+                &f.baseline,
+                LAST_POINTS,
+                level,
+                &groups,
+            )?);
+        }
     }
     let dir = out.join("figures");
     files::create_dir(&dir)?;
@@ -84,6 +99,23 @@ pub(super) fn tradeoff_points(entries: &[EntryResults], gains: &[Gain]) -> Vec<T
                 messages: mean_at_end(e, &messages)?,
                 gain: gain.last_ten_gain,
             })
+        })
+        .collect()
+}
+
+/// The frontier's groups, each with its entries' cost in `unit` and gain.
+fn frontier_groups(f: &Frontier, unit: CostUnit) -> Vec<FrontierGroup> {
+    (f.groups().into_iter())
+        .map(|(group, points)| FrontierGroup {
+            label: group.to_owned(),
+            dots: (points.iter())
+                .map(|p| FrontierDot {
+                    entry: p.entry.clone(),
+                    cost: *p.cost(unit),
+                    gain: p.last_ten_gain,
+                    on_front: p.on_front(unit),
+                })
+                .collect(),
         })
         .collect()
 }

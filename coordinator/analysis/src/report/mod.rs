@@ -3,10 +3,12 @@
 
 mod costs;
 mod figures;
+mod frontier;
 mod introduction;
 mod markdown;
 mod network;
 mod performance;
+mod requests;
 mod significance;
 mod teams;
 
@@ -18,16 +20,19 @@ use crate::error::Error;
 use crate::files;
 use crate::stats::aggregates::{Aggregates, aggregates};
 use crate::stats::analysis::{Comparison, compare_all};
+use crate::stats::frontier::{Frontier, frontier};
 use crate::stats::gains::{Gain, gains};
 use crate::stats::holm::{HolmComparison, holm_against};
 use crate::study::{EntryResults, Study};
 use costs::{communication, cost, restarts};
 use figures::{figure_links, write_figures};
+use frontier::frontier_section;
 use introduction::{introduction, settings};
 use markdown::Markdown;
 use network::network_conditions;
 pub use performance::gains_table;
 use performance::{aggregate_table, at_a_glance, final_performance, gains_over};
+use requests::requests;
 use significance::{holm_table, significance_against, significance_between_advising};
 use teams::{newcomers, who_advised_whom};
 
@@ -44,6 +49,10 @@ struct Significance<'a> {
     /// Every entry's tests against the baseline, Holm-corrected across
     /// entries (none without a baseline).
     holm: &'a [HolmComparison],
+    /// Every entry's cost and gain, the Pareto front and the gains at equal
+    /// cost (absent without a baseline and a group of two entries).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    frontier: Option<&'a Frontier>,
 }
 
 /// Writes `significance.json`, the figures and `REPORT.md` into `out`.
@@ -54,14 +63,16 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
     let aggregate = aggregates(entries, study.baseline.as_deref(), level);
     let holm = (study.baseline.as_deref())
         .map_or_else(Vec::new, |b| holm_against(entries, b, 1.0 - level));
+    let frontier = (study.baseline.as_deref()).and_then(|b| frontier(entries, b, level));
     let significance = Significance {
         comparisons,
         gains: &gains,
         aggregate: &aggregate,
         holm: &holm,
+        frontier: frontier.as_ref(),
     };
     files::write_json(&out.join("significance.json"), &significance)?;
-    let figures = write_figures(out, study, entries, &gains)?;
+    let figures = write_figures(out, study, entries, &gains, frontier.as_ref())?;
     let mut md = Markdown::default();
     introduction(&mut md, study, entries);
     if let Some(baseline) = &study.baseline {
@@ -74,6 +85,10 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
         significance_against(&mut md, baseline, comparisons);
         holm_table(&mut md, baseline, &holm);
     }
+    if let Some(frontier) = &frontier {
+        frontier_section(&mut md, frontier);
+    }
+    requests(&mut md, entries);
     newcomers(&mut md, entries);
     who_advised_whom(&mut md, entries);
     significance_between_advising(&mut md, study, entries, comparisons);

@@ -10,13 +10,16 @@
 //!   stratified bootstrap intervals (Agarwal et al. 2021, `rliable`).
 //! - A study's analyses: [`analysis`] (Wilcoxon at every evaluation point
 //!   between entries), [`holm`] (against the baseline, Holm-corrected across
-//!   entries), [`gains`] (last ten and area, paired by run) and
-//!   [`aggregates`] (the bootstrap statistics of each entry's scores).
+//!   entries), [`gains`] (last ten and area, paired by run),
+//!   [`aggregates`] (the bootstrap statistics of each entry's scores) and
+//!   [`frontier`] (each entry's gain against its advising traffic, the
+//!   Pareto front, gains at equal cost).
 
 pub mod aggregates;
 pub mod analysis;
 pub mod bootstrap;
 pub mod estimate;
+pub mod frontier;
 pub mod gains;
 pub mod holm;
 pub mod summary;
