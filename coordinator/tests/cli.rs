@@ -134,12 +134,17 @@ fn check_tiny_run_csv(text: &str) {
             "messages_dropped",
             "actions_timed_out",
             "advising_messages",
-            "advising_bytes"
+            "advising_bytes",
+            "answered_requests",
+            "declined_requests",
+            "futile_requests",
+            "lost_requests",
+            "reused_advice"
         ]
     );
     assert_eq!(rows.len(), 4, "header + evaluations at 0, 20, 40");
     for (row, episode) in rows[1..].iter().zip(["0", "20", "40"]) {
-        assert_eq!(row.len(), 21);
+        assert_eq!(row.len(), 26);
         assert_eq!(row[0], episode);
         let gp: f64 = row[1].parse().unwrap();
         assert!((0.0..=100.0).contains(&gp) && gp % 10.0 == 0.0, "{gp}");
