@@ -13,7 +13,7 @@ use anyhow::Result;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 use coordinator::request::{Agents, RunRequest};
-use coordinator::study::{StudyConfig, StudyOptions};
+use coordinator::study::{PRESETS, StudyConfig, StudyOptions};
 use coordinator::transport::{Auth, TRANSPORT_NAMES};
 use coordinator::{
     Endpoints, Estimate, Experiment, ExperimentDir, RunOptions, Transport, ZenohSettings,
@@ -139,10 +139,8 @@ struct RouterArgs {
 #[derive(Args)]
 #[command(group = clap::ArgGroup::new("which").required(true).args(["preset", "config"]))]
 struct StudyArgs {
-    /// A preset: quick, paper-scratch, paper-mistake-correcting, paper-expert,
-    /// fidelity-sensitivity, advice-network, advising-methods, newcomer,
-    /// untrusted, real-hfo.
-    #[arg(long, value_name = "NAME")]
+    /// A preset: a study file of coordinator/presets/, by name.
+    #[arg(long, value_name = "NAME", value_parser = preset_names())]
     preset: Option<String>,
     /// A study file (TOML, the format of coordinator/presets/*.toml).
     #[arg(long, value_name = "FILE")]
@@ -542,6 +540,11 @@ fn algorithm_names() -> impl TypedValueParser<Value = Algorithm> {
             .help(n.about())
     });
     PossibleValuesParser::new(names).try_map(|name| name.parse::<Algorithm>())
+}
+
+/// The names of `coordinator::study::PRESETS`, the presets `--preset` takes.
+fn preset_names() -> PossibleValuesParser {
+    PossibleValuesParser::new(PRESETS.map(|(name, _)| name))
 }
 
 fn run_one(args: RunArgs) -> Result<()> {

@@ -607,6 +607,14 @@ fn every_setting_is_in_settings_md() {
         values.insert(profile.name().to_owned(), "profile".to_owned());
     }
     in_section("Team files", "value", values);
+    let preset_row = (doc.lines())
+        .find(|line| line.starts_with("| `--preset` |"))
+        .unwrap_or_default();
+    for (name, _) in PRESETS {
+        if !preset_row.contains(&format!("`{name}`")) {
+            missing.push(format!("  preset `{name}` in the row of `--preset`"));
+        }
+    }
 
     assert!(
         missing.is_empty(),

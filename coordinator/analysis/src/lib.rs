@@ -2,7 +2,8 @@
 //! results files alone (docs/results.md), every statistic, figure and the
 //! study's `REPORT.md`. It depends on no transport and no runner; the
 //! coordinator's `study` calls it after playing, and `analyse DIR` (this
-//! crate's binary) re-analyses a study directory.
+//! crate's binary) re-analyses a study directory, or with `--publish DEST`
+//! publishes it.
 //!
 //! - [`results`]: what a run records (`run-<k>.json`).
 //! - [`study`]: what a study ran (`study.json`) and each entry's runs.
@@ -11,7 +12,10 @@
 //! - [`figures`]: the figures, as SVG and PNG.
 //! - [`report`]: `REPORT.md`, `significance.json` and the figures of a
 //!   study, one module per section.
-//! - [`files`]: a study directory read, the report written.
+//! - [`files`]: a study directory read (plain or published), the report
+//!   written.
+//! - [`publish`]: a study published: what redraws its figures, its runs
+//!   gzipped.
 //! - [`published`]: the authors' published results read as runs.
 //!
 //! ```no_run
@@ -31,6 +35,7 @@ pub mod files;
 #[cfg(test)]
 mod fixtures;
 mod newcomers;
+pub mod publish;
 pub mod published;
 pub mod report;
 pub mod results;

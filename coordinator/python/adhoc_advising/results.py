@@ -8,12 +8,15 @@ DataFrames, columns named as docs/results.md names them.
 
 :func:`load` takes a study directory (``study.json``), an experiment
 directory (``config.json``) or one run's ``run-<k>.json``, and reads only
-what those files hold: nothing is recomputed. pandas is needed
-(``pip install pandas``); nothing else.
+what those files hold: nothing is recomputed. A published study
+(``analyse DIR --publish DEST``) holds its runs gzipped, ``run-<k>.json.gz``
+and ``run-<k>.csv.gz``: they are read where the plain files are absent.
+pandas is needed (``pip install pandas``); nothing else.
 """
 
 from __future__ import annotations
 
+import gzip
 import json
 import re
 from dataclasses import dataclass, field
@@ -104,8 +107,8 @@ class Study:
 
 def load(path: str | Path) -> Study | Experiment | pd.DataFrame:
     """A study (a directory with `study.json`), an experiment (a directory
-    with `config.json`) or one run (a `run-<k>.json` file: its curve, as
-    :attr:`Experiment.curves` holds it)."""
+    with `config.json`) or one run (a `run-<k>.json` or `run-<k>.json.gz`
+    file: its curve, as :attr:`Experiment.curves` holds it)."""
     path = Path(path)
     if path.is_file():
         return _run_points(path)
@@ -115,19 +118,29 @@ def load(path: str | Path) -> Study | Experiment | pd.DataFrame:
         return _experiment(path)
     raise FileNotFoundError(
         f"{path} holds neither study.json (a study) nor config.json (an experiment), "
-        "and is not a run-<k>.json file"
+        "and is not a run-<k>.json(.gz) file"
     )
 
 
 def _read_json(path: Path) -> Any:
-    with path.open() as f:
+    """A JSON file, gunzipped when its name ends in `.gz`."""
+    opener = gzip.open if path.suffix == ".gz" else open
+    with opener(path, "rt", encoding="utf-8") as f:
         return json.load(f)
 
 
+def _plain_or_gzipped(path: Path) -> Path:
+    """`path`, or its gzipped copy `<path>.gz` (a published study's) when
+    only that exists."""
+    gzipped = path.with_name(path.name + ".gz")
+    return gzipped if not path.is_file() and gzipped.is_file() else path
+
+
 def _runs(directory: Path) -> list[int]:
-    """The finished runs of an experiment directory, in order."""
-    found = (re.fullmatch(r"run-(\d+)\.json", p.name) for p in directory.iterdir())
-    return sorted(int(m.group(1)) for m in found if m)
+    """The finished runs of an experiment directory (`run-<k>.json`, or
+    `run-<k>.json.gz` in a published study), in order."""
+    found = (re.fullmatch(r"run-(\d+)\.json(\.gz)?", p.name) for p in directory.iterdir())
+    return sorted({int(m.group(1)) for m in found if m})
 
 
 def _run_points(path: Path) -> pd.DataFrame:
@@ -147,7 +160,7 @@ def _curves(directory: Path, runs: list[int]) -> pd.DataFrame:
     pandas = _pandas()
     frames = []
     for k in runs:
-        frame = pandas.read_csv(directory / f"run-{k}.csv")
+        frame = pandas.read_csv(_plain_or_gzipped(directory / f"run-{k}.csv"))
         frame.insert(0, "run", k)
         frames.append(frame)
     return pandas.concat(frames, ignore_index=True) if frames else pandas.DataFrame()
@@ -158,7 +171,7 @@ def _experiment(directory: Path) -> Experiment:
     runs = _runs(directory)
     agents, advice = [], []
     for k in runs:
-        run = _read_json(directory / f"run-{k}.json")
+        run = _read_json(_plain_or_gzipped(directory / f"run-{k}.json"))
         for point in run["points"]:
             for i, counters in enumerate(point["agents"]):
                 agents.append({"run": k, "episode": point["episode"], "agent": i, **counters})

@@ -99,6 +99,27 @@ def test_one_run_and_a_wrong_path(study_dir: Path) -> None:
         load(study_dir / "figures")
 
 
+def test_a_published_study_loads_as_the_study_itself(study_dir: Path, tmp_path: Path) -> None:
+    """`analyse DIR --publish DEST` gzips every run (run-<k>.json.gz,
+    run-<k>.csv.gz); load() reads them as it reads the plain files."""
+    published = tmp_path / "published"
+    subprocess.run(
+        [str(workspace_binary("analyse")), str(study_dir), "--publish", str(published)],
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
+    assert not list(published.glob("*/run-*.json")) and not list(published.glob("*/run-*.csv"))
+    assert (published / "adhoc-td" / "run-1.csv.gz").is_file()
+    ours, theirs = load(study_dir), load(published)
+    assert isinstance(theirs, Study) and len(theirs.curves) == 2 * 2 * 3
+    for frame in ("curves", "agents", "summary", "advice", "gains", "aggregate", "comparisons"):
+        pandas.testing.assert_frame_equal(getattr(theirs, frame), getattr(ours, frame))
+    pandas.testing.assert_frame_equal(
+        load(published / "adhoc-td" / "run-1.json.gz"), load(study_dir / "adhoc-td" / "run-1.json")
+    )
+
+
 def test_what_a_reproduction_carries_redraws_its_figures(study_dir: Path, tmp_path: Path) -> None:
     """docs/reproduction/<study>/ keeps study.json, significance.json and each
     entry's config.json and summary.json, not the runs: enough for load()
