@@ -486,14 +486,16 @@ fn team_file_keys() -> BTreeMap<String, String> {
                 network: Some(NetworkConditions::default()),
                 ..AgentConfig::of(algorithm, Profile::Paper)
             };
-            // The keys written only when set, set.
+            // The keys written only when set, set (a number: a fraction or
+            // a count).
             for (key, value) in config.algorithm.settings() {
-                let set = match value {
-                    Value::Null => Value::from(0.1),
-                    Value::Bool(false) => Value::Bool(true),
+                match value {
+                    Value::Null => (config.algorithm.set(&key, Value::from(0.1)))
+                        .or_else(|_| config.algorithm.set(&key, Value::from(1)))
+                        .unwrap(),
+                    Value::Bool(false) => config.algorithm.set(&key, Value::Bool(true)).unwrap(),
                     _ => continue,
-                };
-                config.algorithm.set(&key, set).unwrap();
+                }
             }
             config
         })
