@@ -10,6 +10,7 @@ mod network;
 mod performance;
 mod requests;
 mod significance;
+mod sweeps;
 mod teams;
 
 use std::path::{Path, PathBuf};
@@ -23,6 +24,7 @@ use crate::stats::analysis::{Comparison, compare_all};
 use crate::stats::frontier::{Frontier, frontier};
 use crate::stats::gains::{Gain, gains};
 use crate::stats::holm::{HolmComparison, holm_against};
+use crate::stats::sweeps::{SweepTest, sweep_tests};
 use crate::study::{EntryResults, Study};
 use costs::{communication, cost, restarts};
 use figures::{figure_links, write_figures};
@@ -34,6 +36,7 @@ pub use performance::gains_table;
 use performance::{aggregate_table, at_a_glance, final_performance, gains_over};
 use requests::requests;
 use significance::{holm_table, significance_against, significance_between_advising};
+use sweeps::sweeps_section;
 use teams::{newcomers, who_advised_whom};
 
 /// What `significance.json` holds.
@@ -53,6 +56,10 @@ struct Significance<'a> {
     /// cost (absent without a baseline and a group of two entries).
     #[serde(skip_serializing_if = "Option::is_none")]
     frontier: Option<&'a Frontier>,
+    /// Whether each swept group's result depends on its value (absent
+    /// without a group of two entries).
+    #[serde(skip_serializing_if = "<[SweepTest]>::is_empty")]
+    sweeps: &'a [SweepTest],
 }
 
 /// Writes `significance.json`, the figures and `REPORT.md` into `out`.
@@ -64,12 +71,14 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
     let holm = (study.baseline.as_deref())
         .map_or_else(Vec::new, |b| holm_against(entries, b, 1.0 - level));
     let frontier = (study.baseline.as_deref()).and_then(|b| frontier(entries, b, level));
+    let sweeps = sweep_tests(entries);
     let significance = Significance {
         comparisons,
         gains: &gains,
         aggregate: &aggregate,
         holm: &holm,
         frontier: frontier.as_ref(),
+        sweeps: &sweeps,
     };
     files::write_json(&out.join("significance.json"), &significance)?;
     let figures = write_figures(out, study, entries, &gains, frontier.as_ref())?;
@@ -88,6 +97,7 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
     if let Some(frontier) = &frontier {
         frontier_section(&mut md, frontier);
     }
+    sweeps_section(&mut md, &sweeps, 1.0 - level);
     requests(&mut md, entries);
     newcomers(&mut md, entries);
     who_advised_whom(&mut md, entries);

@@ -13,7 +13,8 @@
 //!   entries), [`gains`] (last ten and area, paired by run),
 //!   [`aggregates`] (the bootstrap statistics of each entry's scores) and
 //!   [`frontier`] (each entry's gain against its advising traffic, the
-//!   Pareto front, gains at equal cost).
+//!   Pareto front, gains at equal cost) and [`sweeps`] (whether a swept
+//!   group's result depends on its value).
 
 pub mod aggregates;
 pub mod analysis;
@@ -23,6 +24,7 @@ pub mod frontier;
 pub mod gains;
 pub mod holm;
 pub mod summary;
+pub mod sweeps;
 pub mod wilcoxon;
 
 pub use estimate::{Estimate, difference_of_means, estimate, t_quantile};
