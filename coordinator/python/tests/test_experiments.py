@@ -232,7 +232,8 @@ def test_a_team_of_snapshots_replays_as_an_animation_and_a_game_log(tmp_path: Pa
         out=tmp_path / "train", algorithm="adhoc-td", save_agents=saved, **{**SMALL, "runs": 1}
     )
     team = [
-        {"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.snapshot")} for i in range(3)
+        {"algorithm": "adhoc-td", "load": str(saved / f"run-0-agent-{i}.snapshot")}
+        for i in range(3)
     ]
     replay = adhoc_advising.replay(team=team, seed=4)
     assert replay == adhoc_advising.replay(team=team, seed=4)
