@@ -20,7 +20,7 @@ from conftest import ROOT, workspace_binary
 import adhoc_advising
 from adhoc_advising.learner import Start, Transition
 
-sys.path.insert(0, str(ROOT / "agent" / "python" / "examples"))
+sys.path.insert(0, str(ROOT / "coordinator" / "python" / "examples"))
 from nearest_teammate import NearestTeammate  # noqa: E402
 from numpy_learner import LinearSarsa  # noqa: E402
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from conftest import ROOT, assert_ended_cleanly, workspace_binary
 
-EXAMPLE = ROOT / "agent" / "python" / "examples" / "numpy_learner.py"
+EXAMPLE = ROOT / "coordinator" / "python" / "examples" / "numpy_learner.py"
 
 
 def team_file(directory: Path, learner: Path) -> Path:

@@ -12,7 +12,7 @@ nbformat = pytest.importorskip("nbformat")
 nbclient = pytest.importorskip("nbclient")
 pytest.importorskip("matplotlib")
 
-EXAMPLES = ROOT / "agent" / "python" / "examples"
+EXAMPLES = ROOT / "coordinator" / "python" / "examples"
 
 
 def test_the_quickstart_notebook_runs(tmp_path: Path) -> None:

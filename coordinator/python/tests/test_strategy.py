@@ -15,7 +15,7 @@ from conftest import ROOT, assert_ended_cleanly, workspace_binary
 
 from adhoc_advising.strategy import AdvisingStrategy, Outcome, Start, serve
 
-EXAMPLE = ROOT / "agent" / "python" / "examples" / "nearest_teammate.py"
+EXAMPLE = ROOT / "coordinator" / "python" / "examples" / "nearest_teammate.py"
 sys.path.insert(0, str(EXAMPLE.parent))
 
 from nearest_teammate import NearestTeammate  # noqa: E402
