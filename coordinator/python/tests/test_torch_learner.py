@@ -1,10 +1,10 @@
 """The PyTorch example (examples/torch_dqn.py), a Double DQN: it learns which
 kick pays on made-up kicks, one seed giving one network, and keeps what it
 learned through save and restore; beside two Rust AdHocTD agents it learns
-and advises in process, the same seed giving the same files and its
-snapshot loading into a new run, and over zenoh as a learner process, its
-snapshot saved. Skipped where torch is not installed (docs/learners.md
-says how to install it)."""
+and advises in process, the same seed giving the same files on one thread
+or two and its snapshot loading into a new run, and over zenoh as a
+learner process, its snapshot saved. Skipped where torch is not installed
+(docs/learners.md says how to install it)."""
 
 from __future__ import annotations
 
@@ -116,13 +116,14 @@ def test_it_learns_which_kick_pays_and_restores_what_it_learned() -> None:
 
 
 def test_it_learns_beside_adhoc_td_in_process_and_a_seed_gives_one_run(tmp_path: Path) -> None:
-    for out in ("a", "b"):
+    # One seed, the same files, whether its two runs play at once or in turn.
+    for out, threads in (("a", 2), ("b", 1)):
         adhoc_advising.run(
             out=tmp_path / out,
             team=mixed_team(DoubleDqn),
             seed=3,
             save_agents=tmp_path / f"saved-{out}",
-            **SMALL,
+            **{**SMALL, "threads": threads},
         )
     assert_same_results(tmp_path / "a", tmp_path / "b", SMALL["runs"])
     config = json.loads((tmp_path / "a" / "config.json").read_text())
