@@ -24,8 +24,9 @@ const MAX_LINE: u64 = 1 << 26;
 
 /// How long a child may take to start (imports, a model on a GPU) and
 /// answer `start`, if longer than its timeout: within the coordinator's
-/// 10 s for a reset, so that the agent names the cause.
-const START_TIMEOUT: Duration = Duration::from_secs(8);
+/// 30 s for a reset, so that the agent names the cause. `import torch`
+/// alone takes 4 to 8 s on a busy 2-core machine (docs/learners.md).
+const START_TIMEOUT: Duration = Duration::from_secs(25);
 
 /// How to start one of an agent's child processes.
 #[derive(Clone, Debug, PartialEq)]

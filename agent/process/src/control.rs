@@ -13,7 +13,7 @@ use zenoh::query::{Query, Queryable};
 use crate::context::{Context, Exit, Traffic};
 
 /// How long Report and Snapshot wait for their episode to end
-/// (less than the coordinator's 10 s, so that it gets this error).
+/// (less than the coordinator's 30 s, so that it gets this error).
 const EPISODE_WAIT: Duration = Duration::from_secs(8);
 
 /// A queryable whose queries are read from a channel.

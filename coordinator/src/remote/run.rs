@@ -17,8 +17,9 @@ use crate::error::Error;
 use crate::experiment::Experiment;
 use analysis::{AgentStats, Restart, SimulatorRestart};
 
-/// How long a process may take to answer a command other than playing.
-const CONTROL_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long a process may take to answer a command other than playing
+/// (a reset includes starting a learner process: an `import torch`).
+const CONTROL_TIMEOUT: Duration = Duration::from_secs(30);
 /// How long a failed call to an agent waits to see it lost, under the
 /// restart policy.
 const LOSS_WAIT: Duration = Duration::from_secs(3);
