@@ -107,7 +107,8 @@ impl AgentConfig {
             return Err(AgentConfigError::new(
                 "learner",
                 format!(
-                    "algorithm {algorithm} needs a learner that measures its uncertainty                      (ensemble), not {}",
+                    "algorithm {algorithm} needs a learner that measures its uncertainty \
+                     (ensemble, or dqn with heads of 2 or more), not {}",
                     self.learner.name()
                 ),
             ));

@@ -1,10 +1,10 @@
 //! Which learner an agent learns with (team key `learner`), chosen by its
-//! settings: SARSA(lambda) by default, or an ensemble of its heads for an
-//! algorithm that asks by uncertainty.
+//! settings: SARSA(lambda) by default, an ensemble of its heads for an
+//! algorithm that asks by uncertainty, or a Double DQN (docs/learners.md).
 
 use serde::{Deserialize, Serialize};
 
-use crate::config_error::{AgentConfigError, require};
+use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::method::LearnerNeed;
 
 /// A learner and its own settings. In team files, `learner = "<name>"` and
@@ -28,11 +28,158 @@ pub enum LearnerSettings {
         /// bootstrap mask), in (0, 1] (default 0.5).
         mask_probability: f64,
     },
+    /// `dqn`: a Double DQN over the agent's observation, learning from one
+    /// kick to the next ([`Dqn`](crate::Dqn)); with `heads` of 2 or more, a
+    /// bootstrapped ensemble of heads on one torso whose variance is its
+    /// uncertainty.
+    Dqn(DqnSettings),
+}
+
+/// The most hidden layers of a DQN.
+pub const MAX_HIDDEN_LAYERS: usize = 4;
+/// The widest hidden layer of a DQN.
+pub const MAX_HIDDEN_WIDTH: u32 = 1024;
+/// The largest replay buffer of a DQN, in transitions.
+pub const MAX_REPLAY: u64 = 1_000_000;
+/// The most heads of a DQN.
+pub const MAX_DQN_HEADS: u32 = 16;
+
+/// What a neural learner reads of a state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ObservationSet {
+    /// The paper's six features (docs/algorithms.md section 1).
+    #[default]
+    Paper,
+    /// HFO's high-level feature set (docs/python.md "The `hfo` set"); not
+    /// delivered to agents yet, so refused.
+    Hfo,
+}
+
+/// A DQN's settings, under the names the DQN literature gives them
+/// (docs/settings.md); the agent's `gamma` is its discount per frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DqnSettings {
+    /// The width of each hidden layer (ReLU), 1 to [`MAX_HIDDEN_LAYERS`]
+    /// layers of 1 to [`MAX_HIDDEN_WIDTH`] units.
+    pub hidden: Vec<u32>,
+    /// Adam's learning rate, in (0, 1].
+    pub lr: f64,
+    /// Transitions per gradient step, 1 to `replay`.
+    pub batch: u32,
+    /// The replay buffer's capacity in transitions, 1 to [`MAX_REPLAY`].
+    pub replay: u64,
+    /// Transitions stored before the first gradient step (at least
+    /// `batch` are).
+    pub warmup: u64,
+    /// Gradient steps between copies of the network to its target, >= 1.
+    pub target_every: u64,
+    /// Transitions stored between gradient steps, >= 1.
+    pub train_every: u64,
+    /// Exploration probability at the first decision, in [0, 1].
+    pub epsilon_start: f64,
+    /// Exploration probability after `epsilon_decay` decisions, in [0, 1].
+    pub epsilon_end: f64,
+    /// Own decisions over which exploration falls linearly from
+    /// `epsilon_start` to `epsilon_end` (0: `epsilon_end` from the start).
+    pub epsilon_decay: u64,
+    /// Heads on the torso, 1 to [`MAX_DQN_HEADS`]: 1 is a plain Double DQN,
+    /// 2 or more a bootstrapped ensemble with an uncertainty.
+    pub heads: u32,
+    /// With heads: the probability that a head learns a transition (its
+    /// bootstrap mask), in (0, 1].
+    pub mask_probability: f64,
+    /// What the network reads: `paper`, the six features.
+    pub observation: ObservationSet,
+}
+
+impl Default for DqnSettings {
+    /// The defaults of docs/learners.md, chosen by its sweep.
+    fn default() -> Self {
+        Self {
+            hidden: vec![64, 64],
+            lr: 1e-3,
+            batch: 32,
+            replay: 50_000,
+            warmup: 500,
+            target_every: 250,
+            train_every: 1,
+            epsilon_start: 0.5,
+            epsilon_end: 0.05,
+            epsilon_decay: 5_000,
+            heads: 1,
+            mask_probability: 0.5,
+            observation: ObservationSet::Paper,
+        }
+    }
+}
+
+impl DqnSettings {
+    /// The first invalid setting, naming its key.
+    pub fn validate(&self) -> Result<(), AgentConfigError> {
+        let hidden = &self.hidden;
+        if hidden.is_empty() || hidden.len() > MAX_HIDDEN_LAYERS {
+            return Err(AgentConfigError::new(
+                "hidden",
+                format!(
+                    "must list 1 to {MAX_HIDDEN_LAYERS} layer widths, got {}",
+                    hidden.len()
+                ),
+            ));
+        }
+        if let Some(&w) = hidden.iter().find(|&&w| w == 0 || w > MAX_HIDDEN_WIDTH) {
+            return Err(AgentConfigError::new(
+                "hidden",
+                format!("each layer must be 1 to {MAX_HIDDEN_WIDTH} units wide, got {w}"),
+            ));
+        }
+        let lr = self.lr;
+        require("lr", lr, "in (0, 1]", lr > 0.0 && lr <= 1.0)?;
+        if !(1..=MAX_REPLAY).contains(&self.replay) {
+            return Err(AgentConfigError::new(
+                "replay",
+                format!("must be 1 to {MAX_REPLAY} transitions, got {}", self.replay),
+            ));
+        }
+        if self.batch == 0 || u64::from(self.batch) > self.replay {
+            return Err(AgentConfigError::new(
+                "batch",
+                format!("must be 1 to replay ({}), got {}", self.replay, self.batch),
+            ));
+        }
+        for (key, value) in [
+            ("target_every", self.target_every),
+            ("train_every", self.train_every),
+        ] {
+            if value == 0 {
+                return Err(AgentConfigError::new(key, "must be at least 1, got 0"));
+            }
+        }
+        require_unit("epsilon_start", self.epsilon_start)?;
+        require_unit("epsilon_end", self.epsilon_end)?;
+        if !(1..=MAX_DQN_HEADS).contains(&self.heads) {
+            return Err(AgentConfigError::new(
+                "heads",
+                format!("must be 1 to {MAX_DQN_HEADS}, got {}", self.heads),
+            ));
+        }
+        let p = self.mask_probability;
+        require("mask_probability", p, "in (0, 1]", p > 0.0 && p <= 1.0)?;
+        if self.observation == ObservationSet::Hfo {
+            return Err(AgentConfigError::new(
+                "observation",
+                "`hfo` is not delivered to agents yet: the env computes HFO's feature set for \
+                 Python's environments only; use `paper`",
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl LearnerSettings {
     /// Every learner's name.
-    pub const NAMES: [&'static str; 2] = ["sarsa", "ensemble"];
+    pub const NAMES: [&'static str; 3] = ["sarsa", "ensemble", "dqn"];
 
     /// The learner `name` with its defaults.
     pub fn named(name: &str) -> Result<Self, AgentConfigError> {
@@ -42,6 +189,7 @@ impl LearnerSettings {
                 heads: 5,
                 mask_probability: 0.5,
             }),
+            "dqn" => Ok(LearnerSettings::Dqn(DqnSettings::default())),
             other => Err(AgentConfigError::new(
                 "learner",
                 format!(
@@ -57,6 +205,7 @@ impl LearnerSettings {
         match self {
             LearnerSettings::Sarsa => "sarsa",
             LearnerSettings::Ensemble { .. } => "ensemble",
+            LearnerSettings::Dqn(_) => "dqn",
         }
     }
 
@@ -73,12 +222,19 @@ impl LearnerSettings {
     pub fn meets(&self, need: LearnerNeed) -> bool {
         match need {
             LearnerNeed::Values => true,
-            LearnerNeed::Uncertainty => matches!(self, LearnerSettings::Ensemble { .. }),
+            LearnerNeed::Uncertainty => match self {
+                LearnerSettings::Sarsa => false,
+                LearnerSettings::Ensemble { .. } => true,
+                LearnerSettings::Dqn(dqn) => dqn.heads >= 2,
+            },
         }
     }
 
     /// The first invalid setting, naming its key.
     pub fn validate(&self) -> Result<(), AgentConfigError> {
+        if let LearnerSettings::Dqn(dqn) = self {
+            return dqn.validate();
+        }
         if let LearnerSettings::Ensemble {
             heads,
             mask_probability: p,

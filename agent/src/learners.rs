@@ -1,6 +1,7 @@
 //! The learner an agent's settings name, made.
 
 use crate::config::AgentConfig;
+use crate::dqn::Dqn;
 use crate::ensemble::EnsembleSarsa;
 use crate::learner::Learner;
 use crate::learner_settings::LearnerSettings;
@@ -8,6 +9,9 @@ use crate::sarsa::TabularSarsa;
 
 /// Mixed into an agent's seed for its ensemble's masks.
 const ENSEMBLE_STREAM: u64 = 0x5243_4d50_6865_6164;
+
+/// Mixed into an agent's seed for its DQN's weights, masks and samples.
+const DQN_STREAM: u64 = 0x4451_4e5f_6e65_7473;
 
 /// The learner of an agent of `config` seeded with `seed`.
 pub(crate) fn learner_of(config: &AgentConfig, seed: u64) -> Box<dyn Learner> {
@@ -22,5 +26,6 @@ pub(crate) fn learner_of(config: &AgentConfig, seed: u64) -> Box<dyn Learner> {
             mask_probability,
             seed ^ ENSEMBLE_STREAM,
         )),
+        LearnerSettings::Dqn(ref dqn) => Box::new(Dqn::new(dqn, config.gamma, seed ^ DQN_STREAM)),
     }
 }

@@ -46,6 +46,7 @@ mod algorithm;
 mod algorithm_settings;
 mod config;
 mod config_error;
+mod dqn;
 mod ensemble;
 mod exchange;
 mod fidelity;
@@ -70,6 +71,7 @@ pub use algorithm::{Algorithm, UnknownAlgorithm};
 pub use algorithm_settings::AlgorithmSettings;
 pub use config::AgentConfig;
 pub use config_error::AgentConfigError;
+pub use dqn::Dqn;
 pub use ensemble::EnsembleSarsa;
 pub use exchange::{
     Advice, AdviceExchange, Answer, Answers, BestValue, Isolated, Transition, ValuesAdvice,
@@ -78,7 +80,10 @@ pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
 };
 pub use learner::{ActionValues, Experience, Learner, Seen, Step};
-pub use learner_settings::LearnerSettings;
+pub use learner_settings::{
+    DqnSettings, LearnerSettings, MAX_DQN_HEADS, MAX_HIDDEN_LAYERS, MAX_HIDDEN_WIDTH, MAX_REPLAY,
+    ObservationSet,
+};
 pub use link::{Latency, Leg, Link, Message, NetworkConditions};
 pub use method::LearnerNeed;
 pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapshot_file};

@@ -1,0 +1,855 @@
+//! A Double DQN over the agent's observation (van Hasselt et al., AAAI
+//! 2016): an MLP of candle tensors, a target network, experience replay,
+//! an epsilon schedule, Huber loss and Adam; with `heads` of 2 or more, K
+//! heads on one torso, each trained on its bootstrap mask (Osband et al.,
+//! NeurIPS 2016), whose variance is its uncertainty (docs/learners.md).
+//!
+//! It learns where the agent decides, from one kick to the next: the frames
+//! it moves without the ball are folded into the kick's discounted reward
+//! (an SMDP step, as HFO's own agents and `numpy_learner.py` learn), so one
+//! stored transition is one decision. Everything it draws (initial weights,
+//! bootstrap masks, replay samples) comes from its own generator, seeded
+//! from the agent's; its arithmetic runs on one thread (candle's CPU
+//! backend with the matrix product's threading turned off), so a seed gives
+//! the same bits whatever the study's threads.
+
+use std::sync::Once;
+
+use candle_core::{D, Device, Tensor, Var};
+use proto::{Action, State};
+use rand::{Rng, SeedableRng};
+use serde::{Deserialize, Serialize};
+
+use crate::learner::{ActionValues, Experience, Learner, Seen};
+use crate::learner_settings::DqnSettings;
+use crate::selection::{AgentRng, epsilon_greedy};
+
+/// The kick actions the network values, in its output order.
+const KICKS: [Action; 4] = [
+    Action::Shoot,
+    Action::Dribble,
+    Action::PassNear,
+    Action::PassFar,
+];
+
+/// Bits of [`ActionValues::learned`] for every kick action.
+const ALL_KICKS: u8 = 0b1_1110;
+
+/// Adam's constants (Kingma & Ba's, PyTorch's defaults).
+const BETA1: f64 = 0.9;
+const BETA2: f64 = 0.999;
+const ADAM_EPSILON: f64 = 1e-8;
+
+/// What a saved state starts with, and its layout's version.
+const STATE_TAG: &str = "adhoc-advising dqn";
+const STATE_VERSION: u16 = 1;
+
+/// The network's output position of a kick action.
+fn kick_slot(action: Action) -> Option<usize> {
+    KICKS.iter().position(|&a| a == action)
+}
+
+/// A state as the network reads it.
+fn features(state: &State) -> [f32; proto::STATE_FEATURES] {
+    state.map(|x| x as f32)
+}
+
+/// Any candle failure: only a shape this module got wrong can cause one.
+fn fault(e: candle_core::Error) -> String {
+    format!("dqn: {e}")
+}
+
+/// The experience replay: a ring of decisions.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+struct Replay {
+    capacity: usize,
+    /// Where the next transition goes once it is full.
+    next: usize,
+    /// `features` per transition.
+    state: Vec<f32>,
+    /// The kick's output slot.
+    action: Vec<u8>,
+    /// The discounted reward to the next decision.
+    reward: Vec<f32>,
+    /// gamma^k to the next decision, 0 at the episode's end.
+    discount: Vec<f32>,
+    /// `features` per transition (zeros at the episode's end).
+    next_state: Vec<f32>,
+    /// Which heads learn it, a bit each.
+    mask: Vec<u16>,
+}
+
+/// One decision, closed.
+struct Decision<'a> {
+    state: &'a [f32],
+    slot: usize,
+    reward: f64,
+    discount: f64,
+    next: Option<&'a [f32]>,
+    mask: u16,
+}
+
+impl Replay {
+    fn new(capacity: usize) -> Self {
+        Self {
+            capacity,
+            ..Self::default()
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.action.len()
+    }
+
+    fn push(&mut self, d: &Decision<'_>) {
+        let width = d.state.len();
+        let zeros = vec![0.0; width];
+        let next = d.next.unwrap_or(&zeros);
+        if self.len() < self.capacity {
+            self.state.extend_from_slice(d.state);
+            self.next_state.extend_from_slice(next);
+            self.action.push(d.slot as u8);
+            self.reward.push(d.reward as f32);
+            self.discount.push(d.discount as f32);
+            self.mask.push(d.mask);
+        } else {
+            let i = self.next;
+            self.state[i * width..(i + 1) * width].copy_from_slice(d.state);
+            self.next_state[i * width..(i + 1) * width].copy_from_slice(next);
+            self.action[i] = d.slot as u8;
+            self.reward[i] = d.reward as f32;
+            self.discount[i] = d.discount as f32;
+            self.mask[i] = d.mask;
+            self.next = (i + 1) % self.capacity;
+        }
+    }
+
+    /// Whether its columns agree with one another, `width` and `heads`.
+    fn consistent(&self, width: usize, heads: usize) -> bool {
+        let n = self.len();
+        n <= self.capacity
+            && (self.next < self.capacity.max(1))
+            && [self.reward.len(), self.discount.len(), self.mask.len()] == [n; 3]
+            && self.state.len() == n * width
+            && self.next_state.len() == n * width
+            && self.action.iter().all(|&a| usize::from(a) < KICKS.len())
+            && self
+                .mask
+                .iter()
+                .all(|&m| m != 0 && u32::from(m) >> heads == 0)
+    }
+}
+
+/// The kick being learned: its state and slot, the discounted reward since
+/// and the discount of what follows.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct Open {
+    state: Vec<f32>,
+    slot: usize,
+    reward: f64,
+    discount: f64,
+}
+
+impl Open {
+    /// Folds one frame's `reward` in.
+    fn fold(&mut self, reward: f64, gamma: f64) {
+        self.reward += self.discount * reward;
+        self.discount *= gamma;
+    }
+}
+
+/// Adam's moments and step count.
+#[derive(Debug)]
+struct Adam {
+    lr: f64,
+    m: Vec<Tensor>,
+    v: Vec<Tensor>,
+    t: u64,
+}
+
+impl Adam {
+    fn new(lr: f64, params: &[Var]) -> candle_core::Result<Self> {
+        let zeros = || -> candle_core::Result<Vec<Tensor>> {
+            params.iter().map(|p| p.as_tensor().zeros_like()).collect()
+        };
+        Ok(Self {
+            lr,
+            m: zeros()?,
+            v: zeros()?,
+            t: 0,
+        })
+    }
+
+    /// One step of every parameter with a gradient in `grads`.
+    fn step(
+        &mut self,
+        params: &[Var],
+        grads: &candle_core::backprop::GradStore,
+    ) -> candle_core::Result<()> {
+        self.t += 1;
+        let t = self.t as i32;
+        let (c1, c2) = (1.0 - BETA1.powi(t), 1.0 - BETA2.powi(t));
+        for ((p, m), v) in params.iter().zip(&mut self.m).zip(&mut self.v) {
+            let Some(g) = grads.get(p.as_tensor()) else {
+                continue;
+            };
+            *m = ((&*m * BETA1)? + (g * (1.0 - BETA1))?)?;
+            *v = ((&*v * BETA2)? + (g.sqr()? * (1.0 - BETA2))?)?;
+            let m_hat = (&*m / c1)?;
+            let v_hat = (&*v / c2)?;
+            let step = ((m_hat / (v_hat.sqrt()? + ADAM_EPSILON)?)? * self.lr)?;
+            p.set(&(p.as_tensor() - step)?)?;
+        }
+        Ok(())
+    }
+}
+
+/// The layers' parameters: weight (in x out) then bias, layer by layer.
+fn forward<'a>(
+    params: impl ExactSizeIterator<Item = &'a Tensor>,
+    x: &Tensor,
+) -> candle_core::Result<Tensor> {
+    let layers = params.len() / 2;
+    let mut h = x.clone();
+    let mut params = params;
+    for l in 0..layers {
+        let (w, b) = (params.next(), params.next());
+        let (Some(w), Some(b)) = (w, b) else {
+            unreachable!("a weight and a bias per layer");
+        };
+        h = h.matmul(w)?.broadcast_add(b)?;
+        if l + 1 < layers {
+            h = h.relu()?;
+        }
+    }
+    Ok(h)
+}
+
+/// Turns off the threading of the matrix products candle's CPU backend
+/// runs (the `gemm` crate's, above a size): a DQN's products are small, a
+/// study already runs its runs on its threads, and one thread per product
+/// keeps every sum in one order.
+fn single_threaded_products() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| gemm_common::gemm::set_threading_threshold(usize::MAX));
+}
+
+/// The agent's Double DQN (or ensemble of heads on one torso).
+#[derive(Debug)]
+pub struct Dqn {
+    settings: DqnSettings,
+    gamma: f64,
+    width: usize,
+    heads: usize,
+    params: Vec<Var>,
+    target: Vec<Tensor>,
+    adam: Adam,
+    replay: Replay,
+    rng: AgentRng,
+    /// The own kick being learned, and a shared episode's.
+    open: Option<Open>,
+    /// Own decisions learned: the epsilon schedule's clock.
+    decisions: u64,
+    /// Transitions stored, own and shared: the training clock.
+    stored: u64,
+    /// Gradient steps taken.
+    updates: u64,
+    /// The last state valued and every head's outputs there.
+    cache: Option<([u64; proto::STATE_FEATURES], Vec<f32>)>,
+}
+
+impl Dqn {
+    /// A DQN of `settings` over the six features, discounting by `gamma`
+    /// per frame, its weights and draws seeded by `seed`.
+    pub fn new(settings: &DqnSettings, gamma: f64, seed: u64) -> Self {
+        single_threaded_products();
+        let mut rng = AgentRng::seed_from_u64(seed);
+        let width = proto::STATE_FEATURES;
+        let heads = settings.heads.max(1) as usize;
+        let params = Self::initial(settings, width, heads, &mut rng);
+        let target: candle_core::Result<Vec<Tensor>> =
+            params.iter().map(|p| p.as_tensor().copy()).collect();
+        Self {
+            adam: Adam::new(settings.lr, &params).expect("zeros of its parameters' shapes"),
+            target: target.unwrap_or_else(|e| panic!("{}", fault(e))),
+            params,
+            replay: Replay::new(settings.replay as usize),
+            rng,
+            settings: settings.clone(),
+            gamma,
+            width,
+            heads,
+            open: None,
+            decisions: 0,
+            stored: 0,
+            updates: 0,
+            cache: None,
+        }
+    }
+
+    /// PyTorch's default initialisation of a linear layer, drawn from `rng`:
+    /// weights and biases uniform in +-1/sqrt(fan_in).
+    fn initial(settings: &DqnSettings, width: usize, heads: usize, rng: &mut AgentRng) -> Vec<Var> {
+        let mut sizes = vec![width];
+        sizes.extend(settings.hidden.iter().map(|&w| w as usize));
+        sizes.push(heads * KICKS.len());
+        let mut params = Vec::with_capacity(2 * (sizes.len() - 1));
+        for pair in sizes.windows(2) {
+            let (fan_in, out) = (pair[0], pair[1]);
+            let bound = 1.0 / (fan_in as f32).sqrt();
+            let mut draw = |n: usize| -> Vec<f32> {
+                (0..n)
+                    .map(|_| (rng.random::<f32>() * 2.0 - 1.0) * bound)
+                    .collect()
+            };
+            let w = Var::from_vec(draw(fan_in * out), (fan_in, out), &Device::Cpu);
+            let b = Var::from_vec(draw(out), out, &Device::Cpu);
+            params.push(w.expect("a weight of its own shape"));
+            params.push(b.expect("a bias of its own shape"));
+        }
+        params
+    }
+
+    /// The online network's parameters.
+    fn online(&self) -> impl ExactSizeIterator<Item = &Tensor> {
+        self.params.iter().map(Var::as_tensor)
+    }
+
+    /// Whether it has taken a gradient step: its values mean something.
+    fn trained(&self) -> bool {
+        self.updates > 0
+    }
+
+    /// Every head's four kick values in `state`, head by head.
+    fn outputs(&mut self, state: &State) -> Vec<f32> {
+        let key = state.map(f64::to_bits);
+        if let Some((_, out)) = self.cache.as_ref().filter(|(k, _)| *k == key) {
+            return out.clone();
+        }
+        let x = Tensor::from_slice(&features(state), (1, self.width), &Device::Cpu);
+        let out = x
+            .and_then(|x| forward(self.online(), &x))
+            .and_then(|y| y.flatten_all()?.to_vec1::<f32>())
+            .unwrap_or_else(|e| panic!("{}", fault(e)));
+        self.cache = Some((key, out.clone()));
+        out
+    }
+
+    /// The exploration probability of its next decision.
+    fn epsilon(&self) -> f64 {
+        let s = &self.settings;
+        if self.decisions >= s.epsilon_decay {
+            return s.epsilon_end;
+        }
+        let f = self.decisions as f64 / s.epsilon_decay as f64;
+        s.epsilon_start + f * (s.epsilon_end - s.epsilon_start)
+    }
+
+    /// Which heads learn the next transition (at least one).
+    fn mask(&mut self) -> u16 {
+        if self.heads == 1 {
+            return 1;
+        }
+        let p = self.settings.mask_probability;
+        let mut mask = (0..self.heads).fold(0u16, |m, k| {
+            let learns = p >= 1.0 || self.rng.random::<f64>() < p;
+            m | u16::from(learns) << k
+        });
+        if mask == 0 {
+            mask = 1 << self.rng.random_range(0..self.heads);
+        }
+        mask
+    }
+
+    /// Folds one frame of an episode into `open`, storing the decision it
+    /// closes; whether it closed one.
+    fn fold(&mut self, open: &mut Option<Open>, experience: Experience<'_>) -> bool {
+        let (from, reward, next) = experience;
+        if let Some(slot) = kick_slot(from.action) {
+            *open = Some(Open {
+                state: features(from.at.state).to_vec(),
+                slot,
+                reward: 0.0,
+                discount: 1.0,
+            });
+        }
+        let Some(kick) = open.as_mut() else {
+            return false; // moving before its first kick of the episode
+        };
+        kick.fold(reward, self.gamma);
+        let next = match next {
+            None => None,
+            Some(n) if n.action.is_kick() => Some(features(n.at.state)),
+            Some(_) => return false,
+        };
+        let kick = open.take().expect("an open kick");
+        let mask = self.mask();
+        self.replay.push(&Decision {
+            state: &kick.state,
+            slot: kick.slot,
+            reward: kick.reward,
+            discount: if next.is_some() { kick.discount } else { 0.0 },
+            next: next.as_ref().map(|n| &n[..]),
+            mask,
+        });
+        self.stored += 1;
+        let s = &self.settings;
+        let ready = self.replay.len() as u64 >= s.warmup.max(u64::from(s.batch));
+        if ready && self.stored.is_multiple_of(s.train_every) {
+            self.train().unwrap_or_else(|e| panic!("{}", fault(e)));
+        }
+        true
+    }
+
+    /// One gradient step on a batch drawn from the replay, then the target's
+    /// copy when it is due.
+    fn train(&mut self) -> candle_core::Result<()> {
+        let (n, w, k) = (self.settings.batch as usize, self.width, self.heads);
+        let r = &self.replay;
+        let mut s = Vec::with_capacity(n * w);
+        let mut s2 = Vec::with_capacity(n * w);
+        let (mut a, mut rew, mut disc) = (Vec::new(), Vec::new(), Vec::new());
+        let mut mask = Vec::with_capacity(n * k);
+        for _ in 0..n {
+            let i = self.rng.random_range(0..r.len());
+            s.extend_from_slice(&r.state[i * w..(i + 1) * w]);
+            s2.extend_from_slice(&r.next_state[i * w..(i + 1) * w]);
+            a.extend(std::iter::repeat_n(u32::from(r.action[i]), k));
+            rew.push(r.reward[i]);
+            disc.push(r.discount[i]);
+            mask.extend((0..k).map(|h| f32::from(u8::from(r.mask[i] >> h & 1 == 1))));
+        }
+        let cpu = &Device::Cpu;
+        let s = Tensor::from_vec(s, (n, w), cpu)?;
+        let s2 = Tensor::from_vec(s2, (n, w), cpu)?;
+        let a = Tensor::from_vec(a, (n, k, 1), cpu)?;
+        let rew = Tensor::from_vec(rew, (n, 1), cpu)?;
+        let disc = Tensor::from_vec(disc, (n, 1), cpu)?;
+        let mask = Tensor::from_vec(mask, (n, k), cpu)?;
+        let kicks = KICKS.len();
+        // Double DQN: the online network picks the next action, the target values it.
+        let best = forward(self.online(), &s2)?
+            .detach()
+            .reshape((n, k, kicks))?
+            .argmax_keepdim(D::Minus1)?;
+        let ahead = forward(self.target.iter(), &s2)?
+            .reshape((n, k, kicks))?
+            .gather(&best, D::Minus1)?
+            .squeeze(D::Minus1)?;
+        let y = ahead.broadcast_mul(&disc)?.broadcast_add(&rew)?.detach();
+        let q = forward(self.online(), &s)?
+            .reshape((n, k, kicks))?
+            .gather(&a, D::Minus1)?
+            .squeeze(D::Minus1)?;
+        // Huber (delta 1): c^2 / 2 + (|d| - c), c = min(|d|, 1).
+        let d = (q - y)?.abs()?;
+        let c = d.clamp(0f32, 1f32)?;
+        let huber = ((c.sqr()? * 0.5)? + (d - &c)?)?;
+        let loss = ((huber * mask)?.sum_all()? / (n * k) as f64)?;
+        let grads = loss.backward()?;
+        self.adam.step(&self.params, &grads)?;
+        self.updates += 1;
+        self.cache = None;
+        if self.updates.is_multiple_of(self.settings.target_every) {
+            self.target = (self.params.iter())
+                .map(|p| p.as_tensor().copy())
+                .collect::<candle_core::Result<_>>()?;
+        }
+        Ok(())
+    }
+
+    /// Its state for a snapshot.
+    fn saved(&self) -> candle_core::Result<Saved> {
+        let flat = |t: &Tensor| t.flatten_all()?.to_vec1::<f32>();
+        let all = |ts: &[Tensor]| ts.iter().map(flat).collect::<candle_core::Result<Vec<_>>>();
+        let params: Vec<Tensor> = self.params.iter().map(|p| p.as_tensor().clone()).collect();
+        Ok(Saved {
+            tag: STATE_TAG.into(),
+            version: STATE_VERSION,
+            shape: self.shape(),
+            params: all(&params)?,
+            target: all(&self.target)?,
+            adam_m: all(&self.adam.m)?,
+            adam_v: all(&self.adam.v)?,
+            adam_t: self.adam.t,
+            decisions: self.decisions,
+            stored: self.stored,
+            updates: self.updates,
+            replay: self.replay.clone(),
+            rng: self.rng.clone(),
+        })
+    }
+
+    /// What a saved state must match: the layer sizes.
+    fn shape(&self) -> Vec<u32> {
+        let mut sizes = vec![self.width as u32];
+        sizes.extend(&self.settings.hidden);
+        sizes.push((self.heads * KICKS.len()) as u32);
+        sizes
+    }
+
+    /// Takes `saved` as its state once it checked it fits.
+    fn load(&mut self, saved: Saved) -> Result<(), String> {
+        if saved.shape != self.shape() {
+            return Err(format!(
+                "the snapshot's network has layers {:?} (inputs, hidden, heads x 4 kicks), \
+                 this agent's {:?}",
+                saved.shape,
+                self.shape()
+            ));
+        }
+        if saved.replay.capacity != self.replay.capacity {
+            return Err(format!(
+                "the snapshot's replay holds {} transitions, this agent's `replay` is {}",
+                saved.replay.capacity, self.replay.capacity
+            ));
+        }
+        if !saved.replay.consistent(self.width, self.heads) {
+            return Err("the snapshot's replay buffer is inconsistent".into());
+        }
+        let shapes: Vec<Vec<usize>> = self.params.iter().map(|p| p.dims().to_vec()).collect();
+        let tensors = |lists: Vec<Vec<f32>>, what: &str| -> Result<Vec<Tensor>, String> {
+            if lists.len() != shapes.len() {
+                return Err(format!("the snapshot's {what} has {} tensors", lists.len()));
+            }
+            lists
+                .into_iter()
+                .zip(&shapes)
+                .map(|(values, shape)| {
+                    if values.iter().any(|x| !x.is_finite()) {
+                        return Err(format!("the snapshot's {what} holds a non-finite number"));
+                    }
+                    Tensor::from_vec(values, shape.as_slice(), &Device::Cpu)
+                        .map_err(|e| format!("the snapshot's {what}: {e}"))
+                })
+                .collect()
+        };
+        let params = tensors(saved.params, "network")?;
+        let target = tensors(saved.target, "target network")?;
+        let m = tensors(saved.adam_m, "optimiser state")?;
+        let v = tensors(saved.adam_v, "optimiser state")?;
+        for (var, value) in self.params.iter().zip(&params) {
+            var.set(value).map_err(fault)?;
+        }
+        self.target = target;
+        self.adam.m = m;
+        self.adam.v = v;
+        self.adam.t = saved.adam_t;
+        self.decisions = saved.decisions;
+        self.stored = saved.stored;
+        self.updates = saved.updates;
+        self.replay = saved.replay;
+        self.rng = saved.rng;
+        self.open = None;
+        self.cache = None;
+        Ok(())
+    }
+}
+
+/// A DQN's snapshot bytes (postcard): everything it learns and draws from,
+/// so that a restored agent goes on as the saved one would have.
+#[derive(Serialize, Deserialize)]
+struct Saved {
+    tag: String,
+    version: u16,
+    shape: Vec<u32>,
+    params: Vec<Vec<f32>>,
+    target: Vec<Vec<f32>>,
+    adam_m: Vec<Vec<f32>>,
+    adam_v: Vec<Vec<f32>>,
+    adam_t: u64,
+    decisions: u64,
+    stored: u64,
+    updates: u64,
+    replay: Replay,
+    rng: AgentRng,
+}
+
+impl Learner for Dqn {
+    /// The heads' mean of each kick action, every kick learned once it has
+    /// taken a gradient step; nothing learned before (Move never is).
+    fn values(&mut self, at: Seen<'_>) -> ActionValues {
+        if !self.trained() {
+            return ActionValues::default();
+        }
+        let out = self.outputs(at.state);
+        let mut values = ActionValues {
+            learned: ALL_KICKS,
+            ..ActionValues::default()
+        };
+        for (slot, action) in KICKS.iter().enumerate() {
+            let sum: f64 = (0..self.heads)
+                .map(|h| f64::from(out[h * KICKS.len() + slot]))
+                .sum();
+            values.q[action.index()] = sum / self.heads as f64;
+        }
+        values
+    }
+
+    /// Epsilon-greedy on its values with the schedule's epsilon (the
+    /// exploration draw and greedy ties as SARSA's).
+    fn choose(&mut self, at: Seen<'_>, rng: &mut AgentRng) -> Action {
+        let q = self.values(at).q;
+        epsilon_greedy(&q, self.epsilon(), rng)
+    }
+
+    fn learn(&mut self, experience: Experience<'_>) {
+        let mut open = self.open.take();
+        if self.fold(&mut open, experience) {
+            self.decisions += 1;
+        }
+        self.open = open;
+    }
+
+    fn end_episode(&mut self) {
+        self.open = None;
+    }
+
+    /// A teammate's goal episode, folded from kick to kick as its own and
+    /// stored in its replay (not counted as its decisions).
+    fn replay(&mut self, episode: &[Experience<'_>]) {
+        let mut open = None;
+        for &experience in episode {
+            self.fold(&mut open, experience);
+        }
+    }
+
+    /// None: it keeps its network itself ([`save_state`](Learner::save_state)).
+    fn table(&self) -> Option<Vec<ActionValues>> {
+        None
+    }
+
+    fn restore(&mut self, _values: Vec<ActionValues>) -> Result<(), String> {
+        Err(
+            "the snapshot holds a Q-table (learner sarsa or ensemble), not a DQN's network: \
+             load a snapshot saved by a dqn agent"
+                .into(),
+        )
+    }
+
+    fn save_state(&self) -> Option<Vec<u8>> {
+        let saved = self.saved().unwrap_or_else(|e| panic!("{}", fault(e)));
+        Some(postcard::to_allocvec(&saved).expect("a DQN's state serialises"))
+    }
+
+    fn load_state(&mut self, state: &[u8]) -> Result<(), String> {
+        let tag: Result<(String, &[u8]), _> = postcard::take_from_bytes(state);
+        if !matches!(&tag, Ok((t, _)) if t == STATE_TAG) {
+            return Err("the snapshot holds another learner's state, not a DQN's: \
+                        load a snapshot saved by a dqn agent"
+                .into());
+        }
+        let saved: Saved =
+            postcard::from_bytes(state).map_err(|e| format!("the DQN's saved state: {e}"))?;
+        if saved.version != STATE_VERSION {
+            return Err(format!(
+                "the DQN's saved state is of version {}, this build reads {STATE_VERSION}",
+                saved.version
+            ));
+        }
+        self.load(saved)
+    }
+
+    /// The mean over the kick actions of the heads' variance there;
+    /// infinite before it trained; none for a single head.
+    fn uncertainty(&mut self, at: Seen<'_>) -> Option<f64> {
+        if self.heads < 2 {
+            return None;
+        }
+        if !self.trained() {
+            return Some(f64::INFINITY);
+        }
+        let out = self.outputs(at.state);
+        let k = self.heads as f64;
+        let variance = |slot: usize| {
+            let each = (0..self.heads).map(|h| f64::from(out[h * KICKS.len() + slot]));
+            let mean = each.clone().sum::<f64>() / k;
+            each.map(|q| (q - mean).powi(2)).sum::<f64>() / k
+        };
+        Some((0..KICKS.len()).map(variance).sum::<f64>() / KICKS.len() as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::learner::Step;
+    use Action::*;
+
+    /// Small and quick to train.
+    fn small() -> DqnSettings {
+        DqnSettings {
+            hidden: vec![16],
+            lr: 1e-2,
+            batch: 8,
+            replay: 500,
+            warmup: 16,
+            target_every: 10,
+            epsilon_decay: 0,
+            epsilon_end: 0.2,
+            ..DqnSettings::default()
+        }
+    }
+
+    fn step(state: &State, action: Action) -> Step<'_> {
+        Step {
+            at: Seen { state, index: None },
+            action,
+        }
+    }
+
+    const A: State = [0.5, -0.5, 0.0, 0.2, 0.1, -0.3];
+    const B: State = [-0.5, 0.5, 0.3, -0.2, 0.0, 0.6];
+
+    /// A one-step bandit: in A Shoot pays 1, in B PassFar does; every other
+    /// kick pays 0. Episodes of one decision, the learner's own choices.
+    fn bandit(dqn: &mut Dqn, episodes: usize, rng: &mut AgentRng) {
+        for e in 0..episodes {
+            let (state, best) = if e % 2 == 0 {
+                (&A, Shoot)
+            } else {
+                (&B, PassFar)
+            };
+            let at = Seen { state, index: None };
+            let action = dqn.choose(at, rng);
+            let reward = if action == best { 1.0 } else { 0.0 };
+            dqn.learn((step(state, action), reward, None));
+            dqn.end_episode();
+        }
+    }
+
+    fn bits(values: ActionValues) -> [u64; 5] {
+        values.q.map(f64::to_bits)
+    }
+
+    #[test]
+    fn it_learns_a_one_step_bandit_and_knows_nothing_before() {
+        let mut dqn = Dqn::new(&small(), 0.9, 7);
+        let at = |state| Seen { state, index: None };
+        assert_eq!(dqn.values(at(&A)), ActionValues::default());
+        let mut rng = AgentRng::seed_from_u64(1);
+        bandit(&mut dqn, 600, &mut rng);
+        let (a, b) = (dqn.values(at(&A)), dqn.values(at(&B)));
+        assert_eq!(a.learned, ALL_KICKS);
+        assert_eq!(crate::selection::greedy_first(&a.q), Shoot, "{a:?}");
+        assert_eq!(crate::selection::greedy_first(&b.q), PassFar, "{b:?}");
+        assert!((a.q[Shoot.index()] - 1.0).abs() < 0.2, "{a:?}");
+        assert!(a.kick_spread() > 0.5, "{a:?}");
+    }
+
+    #[test]
+    fn moves_fold_into_the_kick_before_them() {
+        let settings = DqnSettings {
+            warmup: 1000,
+            ..small()
+        };
+        let mut dqn = Dqn::new(&settings, 0.5, 1);
+        // Kick, two moves, a kick, a move, the end.
+        dqn.learn((step(&A, Dribble), 1.0, Some(step(&B, Move))));
+        dqn.learn((step(&B, Move), 2.0, Some(step(&B, Move))));
+        dqn.learn((step(&B, Move), 4.0, Some(step(&A, PassNear))));
+        dqn.learn((step(&A, PassNear), 8.0, Some(step(&A, Move))));
+        dqn.learn((step(&A, Move), 16.0, None));
+        let r = &dqn.replay;
+        assert_eq!(r.len(), 2);
+        assert_eq!(r.action, [1, 2]);
+        // 1 + 0.5 * 2 + 0.25 * 4 = 3, then 0.125 to the next kick.
+        assert_eq!(r.reward, [3.0, 16.0]);
+        assert_eq!(r.discount, [0.125, 0.0]);
+        assert_eq!(r.state[..6], features(&A));
+        assert_eq!(r.next_state[..6], features(&A));
+        assert_eq!(r.next_state[6..], [0.0; 6]);
+        assert_eq!(dqn.decisions, 2);
+        // Moves before any kick teach nothing.
+        dqn.learn((step(&A, Move), 1.0, None));
+        assert_eq!(dqn.replay.len(), 2);
+    }
+
+    #[test]
+    fn a_seed_gives_the_same_bits_and_another_seed_others() {
+        let run = |seed| {
+            let mut dqn = Dqn::new(&small(), 0.9, seed);
+            bandit(&mut dqn, 200, &mut AgentRng::seed_from_u64(3));
+            (
+                bits(dqn.values(Seen {
+                    state: &A,
+                    index: None,
+                })),
+                dqn.save_state(),
+            )
+        };
+        assert_eq!(run(5), run(5));
+        assert_ne!(run(5).0, run(6).0);
+    }
+
+    #[test]
+    fn a_snapshot_goes_on_as_the_saved_learner_would() {
+        let settings = DqnSettings {
+            heads: 3,
+            ..small()
+        };
+        let mut saved = Dqn::new(&settings, 0.9, 11);
+        bandit(&mut saved, 100, &mut AgentRng::seed_from_u64(4));
+        let bytes = saved.save_state().unwrap();
+        let mut loaded = Dqn::new(&settings, 0.9, 99);
+        loaded.load_state(&bytes).unwrap();
+        assert_eq!(loaded.save_state().unwrap(), bytes);
+        for dqn in [&mut saved, &mut loaded] {
+            bandit(dqn, 50, &mut AgentRng::seed_from_u64(8));
+        }
+        let at = Seen {
+            state: &B,
+            index: None,
+        };
+        assert_eq!(bits(saved.values(at)), bits(loaded.values(at)));
+        assert_eq!(saved.uncertainty(at), loaded.uncertainty(at));
+        assert_eq!(saved.save_state(), loaded.save_state());
+    }
+
+    #[test]
+    fn another_learners_snapshot_is_refused() {
+        let mut dqn = Dqn::new(&small(), 0.9, 1);
+        let table = dqn.restore(vec![ActionValues::default()]).unwrap_err();
+        assert!(table.contains("Q-table"), "{table}");
+        let other = dqn.load_state(b"\x93NUMPY weights").unwrap_err();
+        assert!(other.contains("another learner's state"), "{other}");
+        let wider = Dqn::new(
+            &DqnSettings {
+                hidden: vec![32],
+                ..small()
+            },
+            0.9,
+            1,
+        );
+        let shape = dqn.load_state(&wider.save_state().unwrap()).unwrap_err();
+        assert!(shape.contains("layers [6, 32, 4]"), "{shape}");
+        let mut cut = wider.save_state().unwrap();
+        cut.truncate(cut.len() / 2);
+        assert!(dqn.load_state(&cut).is_err());
+    }
+
+    #[test]
+    fn an_ensembles_uncertainty_shrinks_where_it_learned() {
+        let settings = DqnSettings {
+            heads: 5,
+            ..small()
+        };
+        let mut dqn = Dqn::new(&settings, 0.9, 2);
+        let at = Seen {
+            state: &A,
+            index: None,
+        };
+        assert_eq!(dqn.uncertainty(at), Some(f64::INFINITY));
+        assert_eq!(Dqn::new(&small(), 0.9, 2).uncertainty(at), None);
+        let mut seen = Vec::new();
+        for e in 0..400 {
+            let action = KICKS[e % 4];
+            let reward = if action == Shoot { 1.0 } else { -1.0 };
+            dqn.learn((step(&A, action), reward, None));
+            if [20, 399].contains(&e) {
+                seen.push(dqn.uncertainty(at).unwrap());
+            }
+        }
+        assert!(seen[1] < seen[0] / 10.0, "{seen:?}");
+    }
+}
