@@ -43,6 +43,8 @@ pub const MAX_HIDDEN_WIDTH: u32 = 1024;
 pub const MAX_REPLAY: u64 = 1_000_000;
 /// The most heads of a DQN.
 pub const MAX_DQN_HEADS: u32 = 16;
+/// A DQN's heads by default for an algorithm that asks by uncertainty.
+const DQN_ENSEMBLE_HEADS: u32 = 5;
 
 /// What a neural learner reads of a state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -62,7 +64,9 @@ pub enum ObservationSet {
 #[serde(default, deny_unknown_fields)]
 pub struct DqnSettings {
     /// The width of each hidden layer (ReLU), 1 to [`MAX_HIDDEN_LAYERS`]
-    /// layers of 1 to [`MAX_HIDDEN_WIDTH`] units.
+    /// layers of 1 to [`MAX_HIDDEN_WIDTH`] units; in a file a list, or one
+    /// number for one layer.
+    #[serde(deserialize_with = "layers")]
     pub hidden: Vec<u32>,
     /// Adam's learning rate, in (0, 1].
     pub lr: f64,
@@ -92,6 +96,23 @@ pub struct DqnSettings {
     pub mask_probability: f64,
     /// What the network reads: `paper`, the six features.
     pub observation: ObservationSet,
+}
+
+/// `hidden` as a list of widths, or one width.
+fn layers<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<u32>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(
+        untagged,
+        expecting = "a list of layer widths, e.g. [64, 64], or one width"
+    )]
+    enum Layers {
+        One(u32),
+        Many(Vec<u32>),
+    }
+    Ok(match Layers::deserialize(deserializer)? {
+        Layers::One(width) => vec![width],
+        Layers::Many(widths) => widths,
+    })
 }
 
 impl Default for DqnSettings {
@@ -197,6 +218,21 @@ impl LearnerSettings {
                     Self::NAMES.join(", ")
                 ),
             )),
+        }
+    }
+
+    /// The learner `name` with its defaults for an algorithm that needs
+    /// `need`: a DQN for one that asks by uncertainty has 5 heads (as the
+    /// ensemble), one otherwise.
+    pub fn named_for(name: &str, need: LearnerNeed) -> Result<Self, AgentConfigError> {
+        match (Self::named(name)?, need) {
+            (LearnerSettings::Dqn(dqn), LearnerNeed::Uncertainty) => {
+                Ok(LearnerSettings::Dqn(DqnSettings {
+                    heads: DQN_ENSEMBLE_HEADS,
+                    ..dqn
+                }))
+            }
+            (learner, _) => Ok(learner),
         }
     }
 

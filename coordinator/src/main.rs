@@ -188,6 +188,12 @@ struct RunArgs {
     /// (adhoc-visit, adhoc-td and torrey only).
     #[arg(long, conflicts_with = "team")]
     mistake_correcting: bool,
+    /// The learner of every agent with --algorithm, with its defaults
+    /// (docs/learners.md); default: the one the algorithm needs (sarsa, or
+    /// ensemble for rcmp). A team file names each agent's.
+    #[arg(long, value_name = "NAME", value_parser = agent::LearnerSettings::NAMES,
+          conflicts_with = "team")]
+    learner: Option<String>,
     /// Independent runs R.
     #[arg(long, value_name = "R", default_value_t = 50)]
     runs: u64,
@@ -572,6 +578,7 @@ fn run_one(args: RunArgs) -> Result<()> {
         advice_latency: args.advice_latency,
         advice_loss: args.advice_loss,
         advice_timeout_ms: args.network.advice_timeout_ms,
+        learner: args.learner,
         ..RunRequest::new(agents)
     };
     let label = match &args.team {

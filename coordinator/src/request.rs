@@ -2,7 +2,7 @@
 //! Python's `run()` build the same [`ExperimentConfig`] from the same
 //! arguments, so they write the same files.
 
-use agent::{Algorithm, Latency, NetworkConditions, Profile};
+use agent::{Algorithm, Latency, LearnerSettings, NetworkConditions, Profile};
 use env_server::EvaluationMemory;
 
 use crate::config::{AgentSpec, ExperimentConfig, TeamSpec};
@@ -56,6 +56,10 @@ pub struct RunRequest {
     pub advice_loss: Option<f64>,
     /// With network conditions, how long an agent waits for advice (ms).
     pub advice_timeout_ms: Option<u64>,
+    /// The learner of every agent of [`Agents::Algorithm`] by name, with its
+    /// defaults for the algorithm (default: the one the algorithm needs); a
+    /// team file names each agent's.
+    pub learner: Option<String>,
 }
 
 impl RunRequest {
@@ -78,23 +82,26 @@ impl RunRequest {
             advice_latency: None,
             advice_loss: None,
             advice_timeout_ms: None,
+            learner: None,
         }
     }
 
     /// What plays, as the command line prints it: `adhoc-td`,
-    /// `adhoc-td (mistake correcting)` or `team`.
+    /// `adhoc-td (mistake correcting)`, `adhoc-td (learner dqn)` or `team`.
     pub fn label(&self) -> String {
         match &self.agents {
             Agents::Algorithm {
                 algorithm,
                 mistake_correcting,
             } => {
-                let mc = if *mistake_correcting {
-                    " (mistake correcting)"
-                } else {
-                    ""
-                };
-                format!("{}{mc}", algorithm.name())
+                let mut label = algorithm.name().to_string();
+                if *mistake_correcting {
+                    label.push_str(" (mistake correcting)");
+                }
+                if let Some(learner) = &self.learner {
+                    label.push_str(&format!(" (learner {learner})"));
+                }
+                label
             }
             Agents::Team(_) => "team".into(),
         }
@@ -107,12 +114,24 @@ impl RunRequest {
             agents: mut team,
             events,
         } = match self.agents {
+            Agents::Team(_) if self.learner.is_some() => {
+                return Err(ConfigError::new(
+                    "learner",
+                    "names the learner of a team of one algorithm; a team file names each \
+                     agent's (`learner = \"dqn\"` in its table)",
+                ));
+            }
             Agents::Team(team) => team,
             Agents::Algorithm {
                 algorithm,
                 mistake_correcting,
             } => {
                 let mut spec = AgentSpec::of(algorithm, self.profile);
+                if let Some(name) = &self.learner {
+                    spec.config.learner =
+                        LearnerSettings::named_for(name, algorithm.learner_need())
+                            .map_err(|e| ConfigError::new(e.key, e.reason))?;
+                }
                 if mistake_correcting {
                     (spec.config.algorithm)
                         .set("mistake_correcting", true)
@@ -152,5 +171,59 @@ impl RunRequest {
         config.env.offense = self.offense.unwrap_or(config.team.len());
         config.env.evaluation_memory = self.evaluation_memory;
         Ok(config)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use agent::{DqnSettings, LearnerNeed};
+
+    fn of(algorithm: &str, learner: Option<&str>) -> RunRequest {
+        RunRequest {
+            learner: learner.map(String::from),
+            ..RunRequest::new(Agents::Algorithm {
+                algorithm: algorithm.parse().unwrap(),
+                mistake_correcting: false,
+            })
+        }
+    }
+
+    #[test]
+    fn the_learner_named_reaches_every_agent_with_the_algorithms_defaults() {
+        let request = of("adhoc-td", Some("dqn"));
+        assert_eq!(request.label(), "adhoc-td (learner dqn)");
+        let team = request.config().unwrap().team;
+        assert_eq!(team.len(), 3);
+        for spec in &team {
+            assert_eq!(
+                spec.config.learner,
+                LearnerSettings::Dqn(DqnSettings::default())
+            );
+        }
+        // rcmp asks by uncertainty: its DQN has heads.
+        let rcmp = of("rcmp", Some("dqn")).config().unwrap().team;
+        assert!(rcmp[0].config.learner.meets(LearnerNeed::Uncertainty));
+        rcmp[0].config.validate().unwrap();
+        // Without one, the algorithm's own.
+        let sarsa = of("adhoc-td", None).config().unwrap().team;
+        assert_eq!(sarsa[0].config.learner, LearnerSettings::Sarsa);
+    }
+
+    #[test]
+    fn an_unknown_learner_or_one_for_a_team_is_refused() {
+        let e = of("adhoc-td", Some("deep")).config().unwrap_err();
+        assert_eq!(e.key, "learner");
+        assert!(
+            e.reason.contains("expected one of: sarsa, ensemble, dqn"),
+            "{e}"
+        );
+        let team = RunRequest {
+            learner: Some("dqn".into()),
+            ..RunRequest::new(Agents::Team(TeamSpec::default()))
+        };
+        let e = team.config().unwrap_err();
+        assert_eq!(e.key, "learner");
+        assert!(e.reason.contains("a team file names each agent's"), "{e}");
     }
 }

@@ -445,6 +445,87 @@ fn bad_input_is_refused_with_exit_code_2() {
     assert_eq!(contents(&out), before);
 }
 
+#[test]
+fn a_dqn_learner_is_chosen_by_name_and_its_bad_settings_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = out.to_str().unwrap();
+    let short = ["--runs", "1", "--episodes", "20"];
+    fn with<'a>(short: &[&'a str], extra: &[&'a str]) -> Vec<&'a str> {
+        [short, extra].concat()
+    }
+
+    // Every agent of --algorithm learns with the DQN, as config.json records.
+    let played = tmp.path().join("dqn");
+    let output = run_tiny("no-advice", &played, &with(&short, &["--learner", "dqn"]));
+    ok(&output);
+    assert!(
+        String::from_utf8_lossy(&output.stdout).starts_with("no-advice (learner dqn): 1 runs"),
+        "{}",
+        String::from_utf8_lossy(&output.stdout)
+    );
+    let config: Value =
+        serde_json::from_slice(&fs::read(played.join("config.json")).unwrap()).unwrap();
+    let team = config["config"]["team"].as_array().unwrap();
+    assert_eq!(team.len(), 3);
+    for agent in team {
+        assert_eq!(agent["learner"], "dqn", "{agent}");
+        assert_eq!(agent["hidden"], serde_json::json!([64, 64]), "{agent}");
+    }
+
+    // Bad names and bad settings: one line naming the key, nothing written.
+    refused(
+        &run_tiny("no-advice", &out, &with(&short, &["--learner", "deep"])),
+        "--learner",
+    );
+    let team = tmp.path().join("team.toml");
+    let team_args = || {
+        let mut args = vec!["run", "--team", team.to_str().unwrap()];
+        args.extend(TINY);
+        args.extend(["--transport", "in-process", "--quiet", "--out", o]);
+        args
+    };
+    fs::write(&team, "[[agent]]\n[[agent]]\n[[agent]]\n").unwrap();
+    let mut both = team_args();
+    both.extend(["--learner", "dqn"]);
+    refused(&coordinator(&both), "--learner");
+    let dqn_team = |keys: &str| {
+        let agent = format!("[[agent]]\nlearner = \"dqn\"\n{keys}\n");
+        fs::write(&team, format!("[[agent]]\n[[agent]]\n{agent}")).unwrap();
+        coordinator(&team_args())
+    };
+    for (keys, needle) in [
+        (
+            "hidden = 0",
+            "team[2].hidden`: each layer must be 1 to 1024 units wide, got 0",
+        ),
+        (
+            "hidden = [64, 4096]",
+            "team[2].hidden`: each layer must be 1 to 1024 units wide, got 4096",
+        ),
+        ("lr = -0.1", "team[2].lr`: must be in (0, 1], got -0.1"),
+        ("lr = nan", "`lr`: must be a finite number, got NaN"),
+        (
+            "epsilon_end = inf",
+            "`epsilon_end`: must be a finite number",
+        ),
+        (
+            "epsilon_end = 2.0",
+            "team[2].epsilon_end`: must be in [0, 1], got 2",
+        ),
+        (
+            "batch = 64\nreplay = 16",
+            "team[2].batch`: must be 1 to replay (16), got 64",
+        ),
+    ] {
+        let output = dqn_team(keys);
+        refused(&output, needle);
+    }
+    fs::write(&team, "[[agent]]\nlearner = \"dqnn\"\n").unwrap();
+    refused(&coordinator(&team_args()), "unknown learner `dqnn`");
+    assert!(!out.exists(), "nothing written for bad input");
+}
+
 /// NoAdvice learns: over 4 runs, the mean goal percentage after 600
 /// training episodes is clearly above the one before training (about 5%
 /// before, 30% after with this simulator).

@@ -505,10 +505,12 @@ fn team_file_keys() -> BTreeMap<String, String> {
         config.algorithm.get_mut::<AdHoc>().unwrap().reachable = reachable;
         configs.push(config);
     }
-    configs.push(AgentConfig {
-        learner: LearnerSettings::named("ensemble").unwrap(),
-        ..AgentConfig::default()
-    });
+    for learner in ["ensemble", "dqn"] {
+        configs.push(AgentConfig {
+            learner: LearnerSettings::named(learner).unwrap(),
+            ..AgentConfig::default()
+        });
+    }
     let child = ChildSpec {
         command: vec!["python3".into(), "child.py".into()],
         dir: Some("children".into()),

@@ -108,7 +108,7 @@ impl AgentConfig {
             None => take(&mut table, "strategy")?.unwrap_or_default(),
         };
         let learner = match take::<String>(&mut table, "learner")? {
-            Some(name) => LearnerSettings::named(&name)?,
+            Some(name) => LearnerSettings::named_for(&name, algorithm.learner_need())?,
             None => LearnerSettings::for_need(algorithm.learner_need()),
         };
         let config = AgentConfig {
@@ -175,8 +175,20 @@ fn object(value: &impl Serialize) -> Vec<(String, Value)> {
 fn take<T: DeserializeOwned>(table: &mut Table, key: &str) -> Result<Option<T>, AgentConfigError> {
     table
         .remove(key)
-        .map(|v| serde_json::from_value(v).map_err(|e| AgentConfigError::new(key, e.to_string())))
+        .map(|v| {
+            let null = v.is_null();
+            serde_json::from_value(v).map_err(|e| value_error(key, null, e))
+        })
         .transpose()
+}
+
+/// The error of `key`'s value; a null one is what a file's NaN or infinity
+/// becomes in the table (JSON has neither), so it says so.
+fn value_error(key: &str, null: bool, e: serde_json::Error) -> AgentConfigError {
+    if null {
+        return AgentConfigError::new(key, "must be a finite number, got NaN, infinity or null");
+    }
+    AgentConfigError::new(key, e.to_string())
 }
 
 /// `defaults` with the keys of `table` it has (but `kept`, which stay its
@@ -193,9 +205,10 @@ fn overlay<T: Serialize + DeserializeOwned>(
         .collect();
     for key in keys {
         let value = table.remove(&key).expect("a key of the table");
+        let null = value.is_null();
         own.insert(key.clone(), value);
         serde_json::from_value::<T>(Value::Object(own.clone()))
-            .map_err(|e| AgentConfigError::new(key, e.to_string()))?;
+            .map_err(|e| value_error(&key, null, e))?;
     }
     Ok(serde_json::from_value(Value::Object(own)).expect("checked key by key"))
 }
@@ -206,6 +219,7 @@ mod tests {
     use crate::advice::Reachable;
     use crate::fidelity::{AdvisorTies, VoteTies};
     use crate::link::Latency;
+    use crate::method::LearnerNeed;
     use crate::strategy::{AdHoc, AdviceReuse, ReuseRule, Torrey};
 
     /// `name`'s paper settings changed key by key.
@@ -254,6 +268,19 @@ mod tests {
                     mask_probability: 0.25,
                 },
                 ..with("rcmp", &[("uncertainty_threshold", 0.2.into())])
+            },
+            AgentConfig {
+                learner: LearnerSettings::Dqn(crate::DqnSettings {
+                    hidden: vec![32, 16, 8],
+                    lr: 3e-4,
+                    epsilon_decay: 0,
+                    ..crate::DqnSettings::default()
+                }),
+                ..with("adhoc-td", &[])
+            },
+            AgentConfig {
+                learner: LearnerSettings::named_for("dqn", LearnerNeed::Uncertainty).unwrap(),
+                ..with("rcmp", &[])
             },
             AgentConfig {
                 fidelity: Fidelity {
@@ -403,6 +430,97 @@ mod tests {
         let rcmp_sarsa: AgentConfig =
             toml::from_str("algorithm = \"rcmp\"\nlearner = \"sarsa\"\n").unwrap();
         assert_eq!(rcmp_sarsa.validate().unwrap_err().key, "learner");
+    }
+
+    #[test]
+    fn a_dqn_is_named_with_its_keys_and_checked_by_key() {
+        let read = |text: &str| toml::from_str::<AgentConfig>(text);
+        let c = read("algorithm = \"adhoc-td\"\nlearner = \"dqn\"\n").unwrap();
+        assert_eq!(
+            c.learner,
+            LearnerSettings::Dqn(crate::DqnSettings::default())
+        );
+        c.validate().unwrap();
+        let c = read("learner = \"dqn\"\nhidden = 32\nlr = 0.01\nbatch = 16\n").unwrap();
+        let LearnerSettings::Dqn(dqn) = &c.learner else {
+            panic!("{c:?}");
+        };
+        assert_eq!(
+            (dqn.hidden.as_slice(), dqn.lr, dqn.batch),
+            (&[32][..], 0.01, 16)
+        );
+        // An algorithm that asks by uncertainty gets heads; one head is refused.
+        let c = read("algorithm = \"rcmp\"\nlearner = \"dqn\"\n").unwrap();
+        assert!(c.learner.meets(LearnerNeed::Uncertainty), "{c:?}");
+        c.validate().unwrap();
+        let one = read("algorithm = \"rcmp\"\nlearner = \"dqn\"\nheads = 1\n").unwrap();
+        let e = one.validate().unwrap_err();
+        assert_eq!(e.key, "learner");
+        assert!(e.reason.contains("dqn with heads of 2 or more"), "{e}");
+        // Each bad value names its key and what it expects.
+        let refused = |keys: &str, key: &str, expected: &str| {
+            let text = format!("algorithm = \"adhoc-td\"\nlearner = \"dqn\"\n{keys}\n");
+            let e = match read(&text) {
+                Err(e) => e.to_string(),
+                Ok(c) => c.validate().unwrap_err().to_string(),
+            };
+            assert!(e.contains(&format!("`{key}`")), "{keys}: {e}");
+            assert!(e.contains(expected), "{keys}: {e}");
+        };
+        refused("hidden = 0", "hidden", "1 to 1024 units wide, got 0");
+        refused(
+            "hidden = [64, 2000]",
+            "hidden",
+            "1 to 1024 units wide, got 2000",
+        );
+        refused("hidden = []", "hidden", "1 to 4 layer widths, got 0");
+        refused(
+            "hidden = [8, 8, 8, 8, 8]",
+            "hidden",
+            "1 to 4 layer widths, got 5",
+        );
+        refused("hidden = -3", "hidden", "a list of layer widths");
+        refused("lr = -0.001", "lr", "in (0, 1], got -0.001");
+        refused(
+            "lr = nan",
+            "lr",
+            "a finite number, got NaN, infinity or null",
+        );
+        refused(
+            "lr = inf",
+            "lr",
+            "a finite number, got NaN, infinity or null",
+        );
+        refused(
+            "gamma = nan",
+            "gamma",
+            "a finite number, got NaN, infinity or null",
+        );
+        refused("epsilon_start = 1.5", "epsilon_start", "in [0, 1], got 1.5");
+        refused("epsilon_end = -0.1", "epsilon_end", "in [0, 1], got -0.1");
+        refused("mask_probability = 0", "mask_probability", "in (0, 1]");
+        refused(
+            "batch = 64\nreplay = 32",
+            "batch",
+            "1 to replay (32), got 64",
+        );
+        refused("batch = 0", "batch", "got 0");
+        refused("replay = 0", "replay", "1 to 1000000 transitions, got 0");
+        refused("target_every = 0", "target_every", "at least 1, got 0");
+        refused("train_every = 0", "train_every", "at least 1, got 0");
+        refused("heads = 17", "heads", "1 to 16, got 17");
+        refused("observation = \"hfo\"", "observation", "use `paper`");
+        let e = read("learner = \"dqnn\"\n").unwrap_err().to_string();
+        assert!(
+            e.contains("`learner`: unknown learner `dqnn` (expected one of: sarsa, ensemble, dqn)"),
+            "{e}"
+        );
+        // The DQN's keys belong to it alone.
+        let e = read("hidden = 64\n").unwrap_err().to_string();
+        assert!(
+            e.contains("`hidden`: does not apply to learner sarsa; it belongs to learner dqn"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -591,6 +591,49 @@ mod tests {
     }
 
     #[test]
+    fn an_entry_learns_with_a_dqn_by_name_and_its_bad_settings_name_their_key() {
+        let base = "name = \"t\"\nruns = 2\nepisodes = 100\neval_every = 20\neval_episodes = 10\n";
+        let entry = "[[entry]]\nname = \"dqn\"\nalgorithm = \"adhoc-td\"\nlearner = \"dqn\"\n";
+        let study = StudyConfig::parse(&format!("{base}{entry}hidden = [32]\n"), "t").unwrap();
+        study.validate().unwrap();
+        let team = study.experiment(&study.entries[0], None).team;
+        let learner = &team[2].config.learner;
+        let agent::LearnerSettings::Dqn(dqn) = learner else {
+            panic!("{learner:?}");
+        };
+        assert_eq!((dqn.hidden.as_slice(), dqn.heads), (&[32][..], 1));
+        let err = |keys: &str| {
+            StudyConfig::parse(&format!("{base}{entry}{keys}\n"), "t")
+                .and_then(|s| s.validate())
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err("hidden = [2000]");
+        assert!(
+            e.contains("entry[0].team[0].hidden") && e.contains("1 to 1024 units wide, got 2000"),
+            "{e}"
+        );
+        let e = err("lr = -1.0");
+        assert!(
+            e.contains("entry[0].team[0].lr") && e.contains("in (0, 1]"),
+            "{e}"
+        );
+        let e = err("batch = 100\nreplay = 50");
+        assert!(
+            e.contains("entry[0].team[0].batch") && e.contains("replay (50)"),
+            "{e}"
+        );
+        let e = StudyConfig::parse(
+            &format!("{base}[[entry]]\nalgorithm = \"adhoc-td\"\nlearner = \"deep\"\n"),
+            "t",
+        )
+        .and_then(|s| s.validate())
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("unknown learner `deep`"), "{e}");
+    }
+
+    #[test]
     fn bad_studies_name_the_key() {
         let err = |text: &str| {
             StudyConfig::parse(text, "t")
