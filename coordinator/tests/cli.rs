@@ -219,6 +219,72 @@ fn the_summary_is_byte_identical_whatever_the_threads() {
     );
 }
 
+/// `run-<k>.json` without the times it measured.
+fn run_without_timing(path: &Path) -> Value {
+    let mut run: Value = serde_json::from_slice(&fs::read(path).unwrap()).unwrap();
+    let timing = run.as_object_mut().unwrap().remove("timing");
+    assert!(timing.is_some(), "{}", path.display());
+    run
+}
+
+/// A team of three AdHocTD agents learning with small DQNs that train from
+/// their eighth decision, so that a tiny run takes many gradient steps.
+fn dqn_team(dir: &Path, warmup: u64) -> PathBuf {
+    let agent = format!(
+        "[[agent]]\nalgorithm = \"adhoc-td\"\nlearner = \"dqn\"\nhidden = [16, 8]\nbatch = 8\n\
+         replay = 200\nwarmup = {warmup}\ntarget_every = 5\nepsilon_decay = 100\n"
+    );
+    let team = dir.join(format!("dqn-{warmup}.toml"));
+    fs::write(&team, [agent.as_str(); 3].join("\n")).unwrap();
+    team
+}
+
+fn run_team(team: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec!["run", "--team", team.to_str().unwrap()];
+    args.extend(TINY);
+    args.extend(["--transport", "in-process", "--quiet", "--out"]);
+    args.push(out.to_str().unwrap());
+    args.extend(extra);
+    coordinator(&args)
+}
+
+#[test]
+fn a_dqn_run_is_byte_identical_whatever_the_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let team = dqn_team(tmp.path(), 8);
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    ok(&run_team(&team, &one, &["--threads", "1"]));
+    ok(&run_team(&team, &two, &["--threads", "2"]));
+    assert_eq!(
+        common::without_times(&one.join("summary.json")),
+        common::without_times(&two.join("summary.json"))
+    );
+    for run in 0..2 {
+        let csv = format!("run-{run}.csv");
+        assert_eq!(
+            fs::read(one.join(&csv)).unwrap(),
+            fs::read(two.join(&csv)).unwrap(),
+            "{csv}"
+        );
+        let json = format!("run-{run}.json");
+        assert_eq!(
+            run_without_timing(&one.join(&json)),
+            run_without_timing(&two.join(&json)),
+            "{json}"
+        );
+    }
+    // The runs differ from each other, with another seed, and from DQNs
+    // that never train: the files compared hold what the training did.
+    let csv = |dir: &Path, run: u64| fs::read(dir.join(format!("run-{run}.csv"))).unwrap();
+    assert_ne!(csv(&one, 0), csv(&one, 1));
+    let other_seed = tmp.path().join("seed");
+    ok(&run_team(&team, &other_seed, &["--seed", "8"]));
+    assert_ne!(csv(&other_seed, 0), csv(&one, 0));
+    let untrained = tmp.path().join("untrained");
+    ok(&run_team(&dqn_team(tmp.path(), 100_000), &untrained, &[]));
+    assert_ne!(csv(&untrained, 0), csv(&one, 0));
+}
+
 #[test]
 fn a_saved_team_replays_as_a_game_log_that_reads_back() {
     let tmp = tempfile::tempdir().unwrap();
