@@ -931,7 +931,13 @@ impl Agent {
                 learned: e.tried,
             })
             .collect();
+        let own = self.config.learner.name();
         match &snapshot.learner_state {
+            Some(state) if crate::dqn::holds_dqn_state(state) && own != "dqn" => Err(format!(
+                "it holds a DQN's network (saved by an agent of learner dqn), and this agent \
+                 learns with {own}: load it into an agent of learner = \"dqn\" with the same \
+                 hidden layers and heads"
+            )),
             Some(state) => self.learner.load_state(state),
             None => self.learner.restore(values),
         }

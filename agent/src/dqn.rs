@@ -44,6 +44,11 @@ const ADAM_EPSILON: f64 = 1e-8;
 const STATE_TAG: &str = "adhoc-advising dqn";
 const STATE_VERSION: u16 = 1;
 
+/// Whether `state`, a learner's own saved bytes, is a DQN's.
+pub(crate) fn holds_dqn_state(state: &[u8]) -> bool {
+    matches!(postcard::take_from_bytes::<String>(state), Ok((tag, _)) if tag == STATE_TAG)
+}
+
 /// The network's output position of a kick action.
 fn kick_slot(action: Action) -> Option<usize> {
     KICKS.iter().position(|&a| a == action)
@@ -633,8 +638,7 @@ impl Learner for Dqn {
     }
 
     fn load_state(&mut self, state: &[u8]) -> Result<(), String> {
-        let tag: Result<(String, &[u8]), _> = postcard::take_from_bytes(state);
-        if !matches!(&tag, Ok((t, _)) if t == STATE_TAG) {
+        if !holds_dqn_state(state) {
             return Err("the snapshot holds another learner's state, not a DQN's: \
                         load a snapshot saved by a dqn agent"
                 .into());

@@ -286,6 +286,84 @@ fn a_dqn_run_is_byte_identical_whatever_the_threads() {
 }
 
 #[test]
+fn dqn_snapshots_are_saved_and_loaded_and_other_learners_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let one_run = ["--runs", "1"];
+    let agents = tmp.path().join("agents");
+    let dqn = dqn_team(tmp.path(), 8);
+    let mut save = one_run.to_vec();
+    save.extend(["--save-agents", agents.to_str().unwrap()]);
+    ok(&run_team(&dqn, &tmp.path().join("trained"), &save));
+    let snapshot = |i: usize| agents.join(format!("run-0-agent-{i}.snapshot"));
+    // Format version 2: the framework's state, then the DQN's own.
+    let bytes = fs::read(snapshot(0)).unwrap();
+    assert_eq!(&bytes[..10], b"ADVQTAB\0\x02\0");
+    // Network, optimiser and replay: more than the 6-16-8-4 network alone.
+    assert!(
+        bytes.len() > 4 * (6 * 16 + 16 * 8 + 8 * 4) * 4,
+        "{}",
+        bytes.len()
+    );
+
+    // Loaded by DQN agents of the same shape, from the start and as a newcomer.
+    let team = tmp.path().join("team.toml");
+    let dqn_text = fs::read_to_string(&dqn).unwrap();
+    let agent = dqn_text.split("\n\n").next().unwrap().trim_end().to_owned();
+    let newcomer = agent
+        .trim_start_matches("[[agent]]\n")
+        .lines()
+        .collect::<Vec<_>>()
+        .join(", ");
+    fs::write(
+        &team,
+        format!(
+            "{agent}\nload = \"agents/run-0-agent-0.snapshot\"\n\n{agent}\n\n{agent}\n\n\
+             [[event]]\nepisode = 20\nslot = 2\n\
+             newcomer = {{ {newcomer}, load = \"agents/run-0-agent-2.snapshot\" }}\n"
+        ),
+    )
+    .unwrap();
+    let loaded = tmp.path().join("loaded");
+    ok(&run_team(&team, &loaded, &one_run));
+    let s = summary(&loaded);
+    let digests = s["snapshot_digests"].as_array().unwrap();
+    assert_eq!(digests[0].as_str().unwrap().len(), 16, "{digests:?}");
+    assert!(digests[1].is_null());
+
+    // Another learner's snapshot, or another shape's, is refused by name.
+    let out = tmp.path().join("out");
+    let load_into = |agent: &str, path: &Path| {
+        fs::write(
+            &team,
+            format!(
+                "[[agent]]\n[[agent]]\n{agent}\nload = {:?}\n",
+                path.to_str().unwrap()
+            ),
+        )
+        .unwrap();
+        run_team(&team, &out, &one_run)
+    };
+    refused(
+        &load_into("[[agent]]\nalgorithm = \"adhoc-td\"", &snapshot(0)),
+        "it holds a DQN's network (saved by an agent of learner dqn), and this agent learns \
+         with sarsa",
+    );
+    refused(
+        &load_into("[[agent]]\nlearner = \"dqn\"\nhidden = [16]", &snapshot(0)),
+        "the snapshot's network has layers [6, 16, 8, 4]",
+    );
+    let sarsa = tmp.path().join("sarsa");
+    let mut save = one_run.to_vec();
+    save.extend(["--save-agents", sarsa.to_str().unwrap()]);
+    ok(&run_tiny("no-advice", &tmp.path().join("sarsa-run"), &save));
+    refused(
+        &load_into(&agent, &sarsa.join("run-0-agent-0.snapshot")),
+        "the snapshot holds a Q-table (learner sarsa or ensemble), not a DQN's network",
+    );
+    assert!(!out.exists(), "nothing written for bad input");
+}
+
+#[test]
 fn a_saved_team_replays_as_a_game_log_that_reads_back() {
     let tmp = tempfile::tempdir().unwrap();
     let agents = tmp.path().join("agents");
