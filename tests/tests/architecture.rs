@@ -66,6 +66,15 @@ fn no_crate_has_an_import_circle() {
 
 /// What `crate` depends on through normal dependencies, one package a line.
 fn normal_dependencies(krate: &str) -> String {
+    dependencies_to(krate, &[])
+}
+
+/// `krate` and the packages it names itself (`cargo tree --depth 1`).
+fn direct_dependencies(krate: &str) -> String {
+    dependencies_to(krate, &["--depth", "1"])
+}
+
+fn dependencies_to(krate: &str, depth: &[&str]) -> String {
     let output = Command::new(env!("CARGO"))
         .args([
             "tree",
@@ -77,6 +86,7 @@ fn normal_dependencies(krate: &str) -> String {
             "-p",
             krate,
         ])
+        .args(depth)
         .current_dir(workspace())
         .output()
         .expect("cargo tree runs");
@@ -289,12 +299,17 @@ fn the_pure_libraries_use_neither_network_nor_files() {
 #[test]
 fn the_analysis_needs_no_transport_and_no_runner() {
     let tree = normal_dependencies("analysis");
-    for forbidden in ["zenoh", "tokio", "coordinator", "rayon", "env-server"] {
+    for forbidden in ["zenoh", "tokio", "coordinator", "env-server"] {
         let found = tree
             .lines()
             .find(|l| l.starts_with(&format!("{forbidden} ")));
         assert!(found.is_none(), "analysis depends on {found:?}");
     }
+    // The runner's pool is no dependency of its own. (candle, the DQN's
+    // tensors in `agent`, brings rayon for its CPU kernels: no runner.)
+    let direct = direct_dependencies("analysis");
+    let found = direct.lines().find(|l| l.starts_with("rayon "));
+    assert!(found.is_none(), "analysis depends on {found:?} itself");
     // Its files are read and written in one module.
     let root = workspace().join("coordinator/analysis/src/lib.rs");
     let graph = ModuleGraph::read(&root).unwrap_or_else(|e| panic!("{e}"));
