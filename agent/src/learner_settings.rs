@@ -116,7 +116,8 @@ fn layers<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<u32>,
 }
 
 impl Default for DqnSettings {
-    /// The defaults of docs/learners.md, chosen by its sweep.
+    /// The defaults of docs/learners.md: the usual small-DQN values, not
+    /// yet chosen by a sweep on this task.
     fn default() -> Self {
         Self {
             hidden: vec![64, 64],
