@@ -24,6 +24,7 @@ def run(
     team_file: str | None = None,
     team_tables: str | None = None,
     mistake_correcting: bool = False,
+    learner: str | None = None,
     runs: int = 50,
     episodes: int = 5000,
     eval_every: int = 20,

@@ -86,6 +86,7 @@ def run(
     algorithm: str | None = None,
     team: TeamSpec | None = None,
     mistake_correcting: bool = False,
+    learner: str | None = None,
     runs: int = 50,
     episodes: int = 5000,
     eval_every: int = 20,
@@ -106,7 +107,9 @@ def run(
     in-process`` does with the same options (docs/settings.md), and returns
     ``out``. ``algorithm`` (every agent) or ``team``: a team file's path, or
     its agents' tables as dicts, where ``learner`` and ``strategy`` may be
-    Python objects.
+    Python objects. ``learner``: with ``algorithm``, every agent's Rust
+    learner by name (``"sarsa"``, ``"ensemble"``, ``"dqn"``; default: the
+    one the algorithm needs), as ``--learner``.
     ``progress``: a bar on stderr (default: when stderr is a terminal).
     An existing ``out`` of the same experiment is resumed."""
     team_file, team_tables, objects = _team(team)
@@ -119,6 +122,7 @@ def run(
         team_file=team_file,
         team_tables=team_tables,
         mistake_correcting=mistake_correcting,
+        learner=learner,
         runs=runs,
         episodes=episodes,
         eval_every=eval_every,

@@ -154,8 +154,8 @@ fn plugins(mut objects: Vec<AgentObjects>, n: usize) -> (Plugins, Vec<Arc<Failur
 #[pyfunction]
 #[pyo3(signature = (
     *, out, objects, algorithm=None, team_file=None, team_tables=None,
-    mistake_correcting=false, runs=50, episodes=5000, eval_every=20, eval_episodes=100, seed=1,
-    profile="paper", ci_level=None, offense=None, evaluation_memory="carried",
+    mistake_correcting=false, learner=None, runs=50, episodes=5000, eval_every=20,
+    eval_episodes=100, seed=1, profile="paper", ci_level=None, offense=None, evaluation_memory="carried",
     advice_latency=None, advice_loss=None, advice_timeout_ms=None, threads=None,
     save_agents=None, progress=false
 ))]
@@ -168,6 +168,7 @@ pub(crate) fn run(
     team_file: Option<PathBuf>,
     team_tables: Option<&str>,
     mistake_correcting: bool,
+    learner: Option<String>,
     runs: u64,
     episodes: u64,
     eval_every: u64,
@@ -200,6 +201,7 @@ pub(crate) fn run(
             .transpose()?,
         advice_loss,
         advice_timeout_ms,
+        learner,
         ..RunRequest::new(agents)
     };
     let config = request.config().map_err(|e| to_python(e.into()))?;

@@ -102,6 +102,36 @@ def test_run_writes_what_the_command_line_writes(tmp_path: Path) -> None:
     assert_same_results(tmp_path / "py", tmp_path / "cli")
 
 
+def test_a_rust_learner_by_name_is_the_command_lines(tmp_path: Path) -> None:
+    """``learner="dqn"`` is ``--learner dqn``; an unknown name a ValueError."""
+    options = {"runs": 1, "episodes": 60, "eval_every": 30, "eval_episodes": 5, "seed": 3}
+    adhoc_advising.run(out=tmp_path / "py", algorithm="adhoc-td", learner="dqn", **options)
+    subprocess.run(
+        [
+            str(workspace_binary("coordinator")),
+            "run",
+            "--algorithm",
+            "adhoc-td",
+            "--learner",
+            "dqn",
+            *[f"--{key.replace('_', '-')}={value}" for key, value in options.items()],
+            "--transport",
+            "in-process",
+            "--quiet",
+            "--out",
+            str(tmp_path / "cli"),
+        ],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+    assert_same_results(tmp_path / "py", tmp_path / "cli")
+    config = json.loads((tmp_path / "py" / "config.json").read_text())
+    assert all(agent["learner"] == "dqn" for agent in config["config"]["team"])
+    with pytest.raises(ValueError, match="learner"):
+        adhoc_advising.run(out=tmp_path / "bad", algorithm="adhoc-td", learner="lstm", **options)
+
+
 def test_a_team_file_and_its_tables_give_the_same_results(tmp_path: Path) -> None:
     team = tmp_path / "team.toml"
     team.write_text(
