@@ -61,6 +61,19 @@ def mixed_team(learner: object) -> list[dict]:
 SMALL = {"runs": 2, "episodes": 100, "eval_every": 50, "eval_episodes": 10, "threads": 2}
 
 
+def run_command_line(out: Path, *args: str, **options: object) -> None:
+    """`coordinator run ARGS --<option>=<value>... --transport in-process`
+    into `out`, the options named as `run()` names them."""
+    flags = [f"--{key.replace('_', '-')}={value}" for key, value in options.items()]
+    subprocess.run(
+        [str(workspace_binary("coordinator")), "run", *args, *flags]
+        + ["--transport", "in-process", "--quiet", "--out", str(out)],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+
+
 def test_run_writes_what_the_command_line_writes(tmp_path: Path) -> None:
     options = {"runs": 2, "episodes": 150, "eval_every": 50, "eval_episodes": 10, "seed": 7}
     adhoc_advising.run(
@@ -70,34 +83,12 @@ def test_run_writes_what_the_command_line_writes(tmp_path: Path) -> None:
         advice_loss=0.1,
         **options,
     )
-    subprocess.run(
-        [
-            str(workspace_binary("coordinator")),
-            "run",
-            "--algorithm",
-            "adhoc-visit",
-            "--mistake-correcting",
-            "--advice-loss",
-            "0.1",
-            "--runs",
-            "2",
-            "--episodes",
-            "150",
-            "--eval-every",
-            "50",
-            "--eval-episodes",
-            "10",
-            "--seed",
-            "7",
-            "--transport",
-            "in-process",
-            "--quiet",
-            "--out",
-            str(tmp_path / "cli"),
-        ],
-        check=True,
-        capture_output=True,
-        timeout=300,
+    run_command_line(
+        tmp_path / "cli",
+        "--algorithm=adhoc-visit",
+        "--mistake-correcting",
+        "--advice-loss=0.1",
+        **options,
     )
     assert_same_results(tmp_path / "py", tmp_path / "cli")
 
@@ -106,25 +97,7 @@ def test_a_rust_learner_by_name_is_the_command_lines(tmp_path: Path) -> None:
     """``learner="dqn"`` is ``--learner dqn``; an unknown name a ValueError."""
     options = {"runs": 1, "episodes": 60, "eval_every": 30, "eval_episodes": 5, "seed": 3}
     adhoc_advising.run(out=tmp_path / "py", algorithm="adhoc-td", learner="dqn", **options)
-    subprocess.run(
-        [
-            str(workspace_binary("coordinator")),
-            "run",
-            "--algorithm",
-            "adhoc-td",
-            "--learner",
-            "dqn",
-            *[f"--{key.replace('_', '-')}={value}" for key, value in options.items()],
-            "--transport",
-            "in-process",
-            "--quiet",
-            "--out",
-            str(tmp_path / "cli"),
-        ],
-        check=True,
-        capture_output=True,
-        timeout=300,
-    )
+    run_command_line(tmp_path / "cli", "--algorithm=adhoc-td", "--learner=dqn", **options)
     assert_same_results(tmp_path / "py", tmp_path / "cli")
     config = json.loads((tmp_path / "py" / "config.json").read_text())
     assert all(agent["learner"] == "dqn" for agent in config["config"]["team"])
