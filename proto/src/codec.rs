@@ -235,12 +235,24 @@ mod tests {
                     },
                 })
             }),
-            prop::collection::vec(any::<u8>(), 0..100)
-                .prop_map(|snapshot| Body::Control(Control::Load { snapshot })),
+            (
+                any::<u32>(),
+                any::<u32>(),
+                prop::collection::vec(any::<u8>(), 0..100)
+            )
+                .prop_map(|(part, parts, bytes)| Body::Control(Control::Load {
+                    part,
+                    parts,
+                    bytes
+                })),
             (mode(), prop::option::of(any::<u64>()))
                 .prop_map(|(mode, seed)| Body::Control(Control::PlayEpisode { mode, seed })),
             Just(Body::Control(Control::Report)),
+            any::<u32>().prop_map(|part| Body::Control(Control::Snapshot { part })),
             Just(Body::Control(Control::Stop)),
+            (any::<u32>(), prop::collection::vec(any::<u8>(), 0..100)).prop_map(
+                |(parts, bytes)| Body::ControlReply(ControlReply::Snapshot { parts, bytes })
+            ),
             (any::<u32>()).prop_map(|frames| Body::ControlReply(ControlReply::Episode(
                 EpisodeResult {
                     outcome: EpisodeOutcome::Goal,

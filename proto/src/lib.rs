@@ -11,6 +11,7 @@ mod action;
 pub mod codec;
 pub mod keys;
 pub mod message;
+pub mod parts;
 pub mod traffic;
 
 pub use action::{Action, STATE_FEATURES, State};

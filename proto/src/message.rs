@@ -9,7 +9,7 @@ use crate::action::{Action, State};
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 10;
+pub const PROTOCOL_VERSION: u16 = 11;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -328,15 +328,25 @@ pub enum Control {
         /// Reseed the simulator first (evaluation points use their own seeds).
         seed: Option<u64>,
     },
-    /// Agent: replace its learned state with this snapshot.
+    /// Agent: replace its learned state with a snapshot, sent in parts
+    /// ([`parts`](crate::parts)); it loads once the last has come.
     Load {
-        /// The bytes of a snapshot file (`agent::Snapshot::encode`).
-        snapshot: Vec<u8>,
+        /// This part's index, from 0.
+        part: u32,
+        /// How many parts the snapshot has.
+        parts: u32,
+        /// Part `part` of the bytes of a snapshot file (`agent::Snapshot::encode`).
+        bytes: Vec<u8>,
     },
     /// Report counters, budgets and the digest of the learned state.
     Report,
-    /// Agent: send its learned state (the bytes of a snapshot file).
-    Snapshot,
+    /// Agent: send part `part` of its learned state (the bytes of a
+    /// snapshot file, in parts); part 0 takes the snapshot, the others
+    /// come from it.
+    Snapshot {
+        /// The part wanted, from 0.
+        part: u32,
+    },
     /// Exit cleanly.
     Stop,
 }
@@ -363,12 +373,14 @@ impl fmt::Debug for Control {
                 .field("mode", mode)
                 .field("seed", seed)
                 .finish(),
-            Control::Load { snapshot } => f
+            Control::Load { part, parts, bytes } => f
                 .debug_struct("Load")
-                .field("snapshot", &ByteCount(snapshot.len()))
+                .field("part", part)
+                .field("parts", parts)
+                .field("bytes", &ByteCount(bytes.len()))
                 .finish(),
             Control::Report => f.write_str("Report"),
-            Control::Snapshot => f.write_str("Snapshot"),
+            Control::Snapshot { part } => f.debug_struct("Snapshot").field("part", part).finish(),
             Control::Stop => f.write_str("Stop"),
         }
     }
@@ -394,8 +406,13 @@ pub enum ControlReply {
     Agent(Box<AgentReport>),
     /// env-server's report.
     Server(Box<ServerReport>),
-    /// An agent's learned state, as the bytes of a snapshot file.
-    Snapshot(Vec<u8>),
+    /// Part of an agent's learned state, the bytes of a snapshot file.
+    Snapshot {
+        /// How many parts the snapshot has.
+        parts: u32,
+        /// The part asked for.
+        bytes: Vec<u8>,
+    },
     /// The command failed; the text says why.
     Error(String),
     /// The simulator (the real HFO, a child process) failed during the
@@ -513,9 +530,14 @@ mod tests {
             "Reset { seed: 3, config: <2 bytes>, wait_ms: 5, stall_ms: 10, simulator: Ours }"
         );
         let load = Control::Load {
-            snapshot: vec![0; 1000],
+            part: 0,
+            parts: 1,
+            bytes: vec![0; 1000],
         };
-        assert_eq!(format!("{load:?}"), "Load { snapshot: <1000 bytes> }");
+        assert_eq!(
+            format!("{load:?}"),
+            "Load { part: 0, parts: 1, bytes: <1000 bytes> }"
+        );
         let play = Control::PlayEpisode {
             mode: Mode::Training,
             seed: None,

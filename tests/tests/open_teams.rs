@@ -124,33 +124,88 @@ fn agent_pid_but(experiment: &str, id: u8, known: &[u32]) -> Option<u32> {
 #[test]
 fn an_agent_that_dies_is_restarted_from_its_latest_snapshot_and_the_run_completes() {
     let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("out");
-    let experiment = format!("restart-{}", std::process::id());
+    let run = killed_and_restarted(&["--algorithm", "adhoc-td"], "restart", tmp.path());
+    assert_eq!(run["points"].as_array().unwrap().len(), 4);
+}
+
+/// Three AdHocTD agents learning with small DQNs; with `newcomer`, after
+/// training episode 30 slot 2 is taken by a newcomer that loads the DQN
+/// snapshot at that path.
+fn dqn_team(newcomer: Option<&Path>) -> String {
+    let dqn = "algorithm = \"adhoc-td\"\nlearner = \"dqn\"\nhidden = [16, 8]\nbatch = 8\n\
+               replay = 500\nwarmup = 8\ntarget_every = 5\nepsilon_decay = 100\n";
+    let mut team = format!("[[agent]]\n{dqn}\n").repeat(3);
+    if let Some(load) = newcomer {
+        let settings = dqn.trim_end().replace('\n', ", ");
+        team += &format!(
+            "[[event]]\nepisode = 30\nslot = 2\nnewcomer = {{ {settings}, load = {load:?} }}\n"
+        );
+    }
+    team
+}
+
+#[test]
+fn a_dqn_team_over_zenoh_takes_a_saved_dqn_as_newcomer_and_restarts_a_killed_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    // A DQN trained in process, saved.
+    let saved = tmp.path().join("saved");
+    let team = tmp.path().join("team.toml");
+    std::fs::write(&team, dqn_team(None)).unwrap();
+    let schedule = [
+        "--episodes",
+        "20",
+        "--eval-every",
+        "20",
+        "--eval-episodes",
+        "2",
+    ];
+    let output = Command::new(bin("coordinator"))
+        .args(["run", "--team"])
+        .arg(&team)
+        .args(["--runs", "1", "--transport", "in-process", "--quiet"])
+        .args(schedule)
+        .arg("--out")
+        .arg(tmp.path().join("trained"))
+        .arg("--save-agents")
+        .arg(&saved)
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let snapshot = saved.join("run-0-agent-0.snapshot");
+    std::fs::write(&team, dqn_team(Some(&snapshot))).unwrap();
+
+    let team = team.to_str().unwrap();
+    let run = killed_and_restarted(&["--team", team], "restart-dqn", tmp.path());
+    let joins = run["joins"].as_array().unwrap();
+    assert_eq!(joins.len(), 1, "{joins:?}");
+    assert_eq!(
+        (joins[0]["episode"].as_u64(), joins[0]["slot"].as_u64()),
+        (Some(30), Some(2))
+    );
+    let config = std::fs::read_to_string(tmp.path().join("out/config.json")).unwrap();
+    let config: Value = serde_json::from_str(&config).unwrap();
+    let team = config["config"]["team"].as_array().unwrap();
+    assert!(team.iter().all(|a| a["learner"] == "dqn"), "{team:?}");
+}
+
+/// Plays one run of 300 training episodes over zenoh with
+/// `--restart-agents` and `args` (the team), kills agent 1 once training is
+/// under way, and checks that it was restarted once from a snapshot of
+/// its own: the run JSON.
+fn killed_and_restarted(args: &[&str], tag: &str, dir: &Path) -> Value {
+    let out = dir.join("out");
+    let experiment = format!("{tag}-{}", std::process::id());
     let coordinator = Command::new(bin("coordinator"))
-        .args([
-            "run",
-            "--algorithm",
-            "adhoc-td",
-            "--runs",
-            "1",
-            "--episodes",
-            "300",
-        ])
-        .args([
-            "--eval-every",
-            "100",
-            "--eval-episodes",
-            "10",
-            "--transport",
-            "zenoh",
-        ])
-        .args([
-            "--restart-agents",
-            "--snapshot-every",
-            "20",
-            "--stall-limit-ms",
-            "2000",
-        ])
+        .arg("run")
+        .args(args)
+        .args(["--runs", "1", "--episodes", "300"])
+        .args(["--eval-every", "100", "--eval-episodes", "10"])
+        .args(["--transport", "zenoh", "--restart-agents"])
+        .args(["--snapshot-every", "20", "--stall-limit-ms", "2000"])
         .args(["--experiment", &experiment, "--quiet", "--out"])
         .arg(&out)
         .stderr(std::process::Stdio::piped())
@@ -195,9 +250,9 @@ fn an_agent_that_dies_is_restarted_from_its_latest_snapshot_and_the_run_complete
         restart["cause"].as_str().unwrap().contains("agent/1"),
         "{restart}"
     );
-    assert_eq!(run["points"].as_array().unwrap().len(), 4);
     // The new process is gone with the run.
     assert_eq!(agent_pid(&experiment, 1), None);
+    run
 }
 
 /// Three AdHocTD agents; after training episode 30 a fresh learner takes

@@ -35,6 +35,16 @@ pub enum Exit {
 
 /// The process's shared context.
 #[derive(Debug)]
+/// Snapshots travelling in parts (`proto::parts`).
+#[derive(Default)]
+pub struct Transfers {
+    /// The snapshot being loaded, part by part.
+    pub loading: proto::parts::Gathering,
+    /// The snapshot being sent: its bytes and the (run, episode) it was
+    /// taken after.
+    pub sending: Option<((u32, u32), Vec<u8>)>,
+}
+
 pub struct Context {
     /// The zenoh session.
     pub session: Session,
@@ -48,6 +58,7 @@ pub struct Context {
     /// conditions of this agent's advice messages (set by its reset).
     advice: Mutex<(Duration, Option<Link>)>,
     learner: Mutex<Learning>,
+    transfers: Mutex<Transfers>,
     traffic: Mutex<Traffic>,
     alive: Mutex<BTreeSet<u8>>,
     progress: watch::Sender<Progress>,
@@ -72,6 +83,7 @@ impl Context {
             id,
             advice: Mutex::new((Duration::ZERO, None)),
             learner: Mutex::new(Learning::new(id, team_size, children)),
+            transfers: Mutex::new(Transfers::default()),
             traffic: Mutex::new(Traffic::default()),
             alive: Mutex::new(BTreeSet::new()),
             progress: watch::Sender::new(Progress::default()),
@@ -94,6 +106,11 @@ impl Context {
     /// The learner, locked: never hold it across an `.await`.
     pub fn learner(&self) -> MutexGuard<'_, Learning> {
         lock(&self.learner)
+    }
+
+    /// The snapshots on their way in and out, locked.
+    pub fn transfers(&self) -> MutexGuard<'_, Transfers> {
+        lock(&self.transfers)
     }
 
     /// The traffic accounting, locked.

@@ -98,13 +98,16 @@ async fn execute(ctx: &Context, header: Header, control: Control) -> ControlRepl
             ctx.publish_progress(&learner);
             done(result)
         }
-        Control::Load { snapshot } => done(ctx.learner().load(&snapshot)),
-        Control::Snapshot => after_episode(ctx, header, |n| {
-            let snapshot = n.learner().agent()?.snapshot();
-            snapshot.encode().map_err(|e| e.to_string())
-        })
-        .await
-        .map_or_else(ControlReply::Error, ControlReply::Snapshot),
+        Control::Load { part, parts, bytes } => {
+            match ctx.transfers().loading.take(part, parts, &bytes) {
+                Ok(None) => ControlReply::Ok,
+                Ok(Some(snapshot)) => done(ctx.learner().load(&snapshot)),
+                Err(e) => ControlReply::Error(e),
+            }
+        }
+        Control::Snapshot { part } => snapshot_part(ctx, header, part)
+            .await
+            .unwrap_or_else(ControlReply::Error),
         Control::Report => after_episode(ctx, header, report)
             .await
             .map_or_else(ControlReply::Error, |r| ControlReply::Agent(Box::new(r))),
@@ -113,6 +116,44 @@ async fn execute(ctx: &Context, header: Header, control: Control) -> ControlRepl
             ControlReply::Error("an agent does not play episodes; ask env-server".to_owned())
         }
     }
+}
+
+/// Part `part` of the agent's snapshot after episode `header.episode`:
+/// part 0 takes it once that episode has ended, the others come from it.
+async fn snapshot_part(ctx: &Context, header: Header, part: u32) -> Result<ControlReply, String> {
+    let at = (header.run, header.episode);
+    if part == 0 {
+        let bytes = after_episode(ctx, header, |n| {
+            let snapshot = n.learner().agent()?.snapshot();
+            snapshot.encode().map_err(|e| e.to_string())
+        })
+        .await?;
+        ctx.transfers().sending = Some((at, bytes));
+    }
+    let mut transfers = ctx.transfers();
+    let Some((taken, bytes)) = &transfers.sending else {
+        return Err(format!("snapshot part {part} asked before part 0"));
+    };
+    if *taken != at {
+        return Err(format!(
+            "snapshot part {part} asked for run {} episode {}, but the snapshot was taken at run {} \
+             episode {}",
+            at.0, at.1, taken.0, taken.1
+        ));
+    }
+    let parts = proto::parts::split(bytes);
+    let count = parts.len() as u32;
+    let Some(piece) = parts.get(part as usize) else {
+        return Err(format!("snapshot part {part} asked of {count}"));
+    };
+    let reply = ControlReply::Snapshot {
+        parts: count,
+        bytes: piece.to_vec(),
+    };
+    if part + 1 == count {
+        transfers.sending = None;
+    }
+    Ok(reply)
 }
 
 /// Runs `f` once the terminal frame of `header.episode` of run `header.run`

@@ -511,21 +511,45 @@ async fn episode_sharing_travels_as_published_messages() {
         assert_eq!(r.give_spent, 3);
     }
 
-    // Learned state travels as snapshot bytes: agent 1 takes agent 0's.
+    // Learned state travels as snapshot bytes, in parts: agent 1 takes
+    // agent 0's; a part out of order or a broken snapshot is refused.
     let header = fake.header(0, 1, 0);
-    let ControlReply::Snapshot(bytes) = fake.control(0, header, Control::Snapshot).await else {
+    let ControlReply::Snapshot { parts, bytes } =
+        fake.control(0, header, Control::Snapshot { part: 0 }).await
+    else {
         panic!("agent 0 sent no snapshot");
     };
-    let truncated = Control::Load {
-        snapshot: bytes[..bytes.len() - 1].to_vec(),
+    assert_eq!(parts, 1, "a small snapshot is one part");
+    let reply = fake.control(0, header, Control::Snapshot { part: 1 }).await;
+    assert!(
+        matches!(&reply, ControlReply::Error(e) if e.contains("asked before part 0")),
+        "{reply:?}"
+    );
+    let load = |part, parts, bytes: &[u8]| Control::Load {
+        part,
+        parts,
+        bytes: bytes.to_vec(),
     };
+    let reply = fake.control(1, header, load(1, 2, &bytes)).await;
+    assert!(
+        matches!(&reply, ControlReply::Error(e) if e.contains("expected part 0")),
+        "{reply:?}"
+    );
+    let truncated = load(0, 1, &bytes[..bytes.len() - 1]);
     let reply = fake.control(1, header, truncated).await;
     assert!(
         matches!(&reply, ControlReply::Error(e) if e.contains("snapshot")),
         "{reply:?}"
     );
-    let load = Control::Load { snapshot: bytes };
-    assert_eq!(fake.control(1, header, load).await, ControlReply::Ok);
+    let (first, second) = bytes.split_at(bytes.len() / 2);
+    assert_eq!(
+        fake.control(1, header, load(0, 2, first)).await,
+        ControlReply::Ok
+    );
+    assert_eq!(
+        fake.control(1, header, load(1, 2, second)).await,
+        ControlReply::Ok
+    );
     let digest = fake.report(0, 1).await.digest;
     assert_eq!(fake.report(1, 1).await.digest, digest);
 }

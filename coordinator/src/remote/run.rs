@@ -127,7 +127,15 @@ impl<'a> RemoteBackend<'a> {
         if let Some(snapshot) = snapshot {
             let snapshot = (snapshot.encode())
                 .map_err(|e| self.error(format!("agent {i}'s snapshot: {e}")))?;
-            self.expect_ok_once(role, Control::Load { snapshot })?;
+            let parts = proto::parts::split(&snapshot);
+            for (part, bytes) in (0..).zip(&parts) {
+                let load = Control::Load {
+                    part,
+                    parts: parts.len() as u32,
+                    bytes: bytes.to_vec(),
+                };
+                self.expect_ok_once(role, load)?;
+            }
         }
         Ok(())
     }
@@ -235,6 +243,28 @@ impl<'a> RemoteBackend<'a> {
             .collect();
         self.latest = Some((self.trained, kept));
         Ok(())
+    }
+
+    /// Agent `i`'s snapshot after the last episode, gathered part by part.
+    fn snapshot(&self, i: usize) -> Result<Snapshot, Error> {
+        let (role, episode) = (Role::Agent(i as u8), self.last_episode());
+        let bad = |e: String| self.error(format!("agent {i} sent a bad snapshot: {e}"));
+        let mut gathering = proto::parts::Gathering::default();
+        for part in 0..proto::parts::MAX_PARTS {
+            match self.call(role, episode, Control::Snapshot { part }, CONTROL_TIMEOUT)? {
+                ControlReply::Snapshot { parts, bytes } => {
+                    if let Some(whole) = gathering.take(part, parts, &bytes).map_err(bad)? {
+                        return Snapshot::decode(&whole).map_err(|e| bad(e.to_string()));
+                    }
+                }
+                other => {
+                    return Err(self.error(format!(
+                        "agent {i} answered {other:?} to a snapshot request"
+                    )));
+                }
+            }
+        }
+        Err(bad(format!("more than {} parts", proto::parts::MAX_PARTS)))
     }
 
     /// Restarts the lost agent `slot` from its latest snapshot and
@@ -436,22 +466,7 @@ impl Backend for RemoteBackend<'_> {
     }
 
     fn snapshots(&self) -> Result<Vec<Snapshot>, Error> {
-        (0..self.agents)
-            .map(|i| {
-                match self.call(
-                    Role::Agent(i as u8),
-                    self.last_episode(),
-                    Control::Snapshot,
-                    CONTROL_TIMEOUT,
-                )? {
-                    ControlReply::Snapshot(bytes) => Snapshot::decode(&bytes)
-                        .map_err(|e| self.error(format!("agent {i} sent a bad snapshot: {e}"))),
-                    other => Err(self.error(format!(
-                        "agent {i} answered {other:?} to a snapshot request"
-                    ))),
-                }
-            })
-            .collect()
+        (0..self.agents).map(|i| self.snapshot(i)).collect()
     }
 
     fn advice_rtt_ms(&self) -> Vec<Vec<f32>> {

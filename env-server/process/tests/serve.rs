@@ -571,7 +571,9 @@ async fn bad_commands_get_errors_and_change_nothing() {
     assert!(error(play(0, 0, Mode::Training, None).await).contains("run"));
     assert!(error(play(1, 0, Mode::Evaluation, None).await).contains("evaluation"));
     let load = Control::Load {
-        snapshot: vec![0; 64],
+        part: 0,
+        parts: 1,
+        bytes: vec![0; 64],
     };
     assert!(error(h.control(1, 0, load).await).contains("does not handle Load"));
     assert!(!error(h.query(vec![0xff, 0xff]).await).is_empty());
