@@ -21,6 +21,7 @@ flight, the files whole, and the same call resumes.
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 from collections.abc import Mapping, Sequence
@@ -67,7 +68,19 @@ def _team_tables(team: Any) -> tuple[str, list[tuple[Made | None, Made | None]]]
         )
         agents.append(table)
     tables["agent"] = agents
-    return json.dumps(tables), objects
+    return json.dumps(_finite_or_null(tables), allow_nan=False), objects
+
+
+def _finite_or_null(value: Any) -> Any:
+    """``value`` with NaN and infinities as ``None`` (JSON's null), which
+    the native side refuses naming the key, as it does a file's NaN."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, Mapping):
+        return {key: _finite_or_null(v) for key, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite_or_null(v) for v in value]
+    return value
 
 
 def _team(team: TeamSpec | None) -> tuple[str | None, str | None, list]:

@@ -59,6 +59,7 @@ def mixed_team(learner: object) -> list[dict]:
 
 
 SMALL = {"runs": 2, "episodes": 100, "eval_every": 50, "eval_episodes": 10, "threads": 2}
+TINY = {"runs": 1, "episodes": 2, "eval_every": 2, "eval_episodes": 1}
 
 
 def run_command_line(out: Path, *args: str, **options: object) -> None:
@@ -103,6 +104,28 @@ def test_a_rust_learner_by_name_is_the_command_lines(tmp_path: Path) -> None:
     assert all(agent["learner"] == "dqn" for agent in config["config"]["team"])
     with pytest.raises(ValueError, match="learner"):
         adhoc_advising.run(out=tmp_path / "bad", algorithm="adhoc-td", learner="lstm", **options)
+
+
+@pytest.mark.parametrize(
+    ("agent", "key"),
+    [
+        ({"learner": "dqn", "hidden": 0}, "hidden"),
+        ({"learner": "dqn", "hidden": [64, 2000]}, "hidden"),
+        ({"learner": "dqn", "lr": -1.0}, "lr"),
+        ({"learner": "dqn", "lr": float("nan")}, "lr"),
+        ({"learner": "dqn", "batch": 100, "replay": 10}, "batch"),
+        ({"observation": "hfo"}, "observation"),
+        ({"learner": "dqn", "epsilon_end": float("inf")}, "epsilon_end"),
+    ],
+)
+def test_a_bad_learner_setting_is_a_value_error_and_writes_nothing(
+    tmp_path: Path, agent: dict, key: str
+) -> None:
+    """One clear line naming the agent and the key, nothing written."""
+    out = tmp_path / "bad"
+    with pytest.raises(ValueError, match=rf"team\[0\].*\b{key}\b"):
+        adhoc_advising.run(out=out, team=[agent, {}, {}], **TINY)
+    assert not out.exists()
 
 
 def test_a_team_file_and_its_tables_give_the_same_results(tmp_path: Path) -> None:
