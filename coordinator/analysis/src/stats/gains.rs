@@ -1,10 +1,11 @@
-//! Each method's gain over the study's baseline, paired by run: on the
-//! mean of its last ten evaluations, and on the area under its learning
-//! curve. Single evaluation points are noisy (100 episodes each); these
-//! two average many of them (docs/reproduction.md, "The gain, measured properly").
+//! Each method's gain over its baseline, paired by run: on the mean of its
+//! last ten evaluations, and on the area under its learning curve. Single
+//! evaluation points are noisy (100 episodes each); these two average many
+//! of them (docs/reproduction.md, "The gain, measured properly").
 
 use serde::Serialize;
 
+use crate::baselines::Pair;
 use crate::results::RunResult;
 use crate::stats::{Estimate, estimate};
 use crate::study::EntryResults;
@@ -89,15 +90,10 @@ pub fn gain(entry: &EntryResults, baseline: &EntryResults, level: f64) -> Gain {
     }
 }
 
-/// Every entry's gain over the entry named `baseline`, in entry order
-/// (none if there is no such entry).
-pub fn gains(entries: &[EntryResults], baseline: &str, level: f64) -> Vec<Gain> {
-    let Some(base) = entries.iter().find(|e| e.entry.name == baseline) else {
-        return Vec::new();
-    };
-    (entries.iter())
-        .filter(|e| e.entry.name != baseline)
-        .map(|e| gain(e, base, level))
+/// Each pair's gain of its entry over its baseline, in their order.
+pub fn gains(pairs: &[Pair], level: f64) -> Vec<Gain> {
+    (pairs.iter())
+        .map(|p| gain(p.entry, p.baseline, level))
         .collect()
 }
 
