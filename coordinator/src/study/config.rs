@@ -88,7 +88,8 @@ pub struct StudyConfig {
     /// Confidence level of intervals and tests (default: the profile's).
     #[serde(default)]
     pub ci_level: Option<f64>,
-    /// The entry every other is compared with in the report.
+    /// The entry every other is compared with in the report, unless it
+    /// names its own.
     #[serde(default)]
     pub baseline: Option<String>,
     /// What the agents of each evaluation block's simulator remember at
@@ -148,6 +149,9 @@ pub struct StudyEntry {
     /// frontier (default: its own name).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
+    /// The entry it is compared with (default: the study's baseline).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub baseline: Option<String>,
     /// The agents' settings beyond the study profile's defaults: any key of
     /// a team file's `[[agent]]` table (`v_g`, `mistake_correcting`,
     /// `network`, `ask_budget`, a fidelity rule...).
@@ -288,14 +292,7 @@ impl StudyConfig {
                 .validate()
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
         }
-        if let Some(b) = &self.baseline
-            && self.entries.iter().all(|e| &e.name != b)
-        {
-            return Err(ConfigError::new(
-                "baseline",
-                format!("no entry is named '{b}'"),
-            ));
-        }
+        (self.record().check_baselines()).map_err(|e| ConfigError::new(e.key, e.reason))?;
         if let Some(p) = &self.pretrain {
             if p.expert >= TEAM {
                 return Err(ConfigError::new(
@@ -631,6 +628,48 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("unknown learner `deep`"), "{e}");
+    }
+
+    #[test]
+    fn an_entry_names_its_own_baseline_and_bad_ones_are_refused() {
+        let base = "name = \"t\"\nruns = 2\nepisodes = 100\neval_every = 20\neval_episodes = 10\n\
+                    baseline = \"a\"\n[[entry]]\nname = \"a\"\nalgorithm = \"no-advice\"\n\
+                    [[entry]]\nname = \"b\"\nalgorithm = \"no-advice\"\nlearner = \"dqn\"\n";
+        let c = "[[entry]]\nname = \"c\"\nalgorithm = \"adhoc-td\"\n";
+        let study = StudyConfig::parse(&format!("{base}{c}baseline = \"b\"\n"), "t").unwrap();
+        study.validate().unwrap();
+        let record = study.record();
+        let compared: Vec<Option<&str>> = (record.entries.iter())
+            .map(|e| record.baseline_of(e))
+            .collect();
+        assert_eq!(compared, [None, None, Some("b")]);
+        // It reads back from study.json, and a study without it writes none.
+        let again: StudyConfig = serde_json::from_value(study.json()).unwrap();
+        assert_eq!(again.entries, study.entries);
+        let paper = StudyConfig::preset("paper-scratch").unwrap().json();
+        let entries = paper["entry"].as_array().unwrap();
+        assert!(entries.iter().all(|e| e.get("baseline").is_none()));
+
+        let err = |text: &str| {
+            StudyConfig::parse(text, "t")
+                .and_then(|s| s.validate())
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err(&format!("{base}{c}baseline = \"z\"\n"));
+        assert!(
+            e.contains("`entry[2].baseline`") && e.contains("no entry is named 'z'"),
+            "{e}"
+        );
+        let e = err(&format!("{base}{c}baseline = \"c\"\n"));
+        assert!(e.contains("'c' is this entry"), "{e}");
+        // A chain: b is c's baseline and has its own.
+        let chained = base.replace("\"dqn\"\n", "\"dqn\"\nbaseline = \"a\"\n");
+        let e = err(&format!("{chained}{c}baseline = \"b\"\n"));
+        assert!(
+            e.contains("`entry[1].baseline`") && e.contains("'b' is a baseline itself"),
+            "{e}"
+        );
     }
 
     #[test]
