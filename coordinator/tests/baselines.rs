@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::Command;
 
 use analysis::RunResult;
-use analysis::stats::gains::last_ten;
+use analysis::stats::gains::{first, last_ten};
 use coordinator::study::{StudyConfig, StudyOptions, run_study};
 use serde_json::Value;
 
@@ -123,6 +123,11 @@ fn each_entry_is_compared_with_its_own_baseline() {
             (own - wrong).abs() > 1e-9,
             "{entry}: the two baselines must differ for the test to tell them apart"
         );
+        let jumpstart = gain_by_hand(&out, (entry, baseline), first);
+        assert!(
+            (mean("first_gain") - jumpstart).abs() < 1e-9,
+            "{entry}: {gain}"
+        );
         assert_eq!(
             about(&significance["holm"], entry).unwrap()["baseline"],
             baseline
@@ -144,6 +149,7 @@ fn each_entry_is_compared_with_its_own_baseline() {
 
     let report = fs::read_to_string(out.join("REPORT.md")).unwrap();
     for line in [
+        "## First evaluation",
         "## Gains over the baselines",
         "## Significance against the baselines",
         "| algorithm | baseline | gain: last ten |",

@@ -167,6 +167,20 @@ impl EntryResults {
             .unwrap_or(0)
     }
 
+    /// Each agent's learner as its `config.json` names it (null:
+    /// SARSA(λ), which it does not name).
+    pub fn learners(&self) -> Vec<&Value> {
+        (self
+            .config
+            .pointer("/config/team")
+            .and_then(Value::as_array))
+        .map_or_else(Vec::new, |team| {
+            team.iter()
+                .map(|a| a.get("learner").unwrap_or(&Value::Null))
+                .collect()
+        })
+    }
+
     /// What its runs cost.
     pub fn cost(&self) -> Cost {
         Cost::of(&self.results)

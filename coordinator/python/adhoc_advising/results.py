@@ -19,6 +19,7 @@ from __future__ import annotations
 import gzip
 import json
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -38,6 +39,9 @@ SUMMARY_METRICS = (
 
 #: The estimates of a `significance.json` frontier point.
 FRONTIER_ESTIMATES = ("messages", "bytes", "last_ten_gain", "area_gain")
+#: The estimates of a gain; `first` and `first_gain` (the jumpstart) are
+#: absent from significance.json files written before them.
+GAIN_ESTIMATES = ("last_ten", "last_ten_gain", "area", "area_gain", "first", "first_gain")
 
 
 def _pandas() -> Any:
@@ -197,7 +201,7 @@ def _experiment(directory: Path) -> Experiment:
     )
 
 
-def _flatten(record: dict, names: tuple[str, ...]) -> dict:
+def _flatten(record: dict, names: Sequence[str]) -> dict:
     """`{name: {n, mean, ci_low, ci_high}}` as `name`, `name_ci_low`,
     `name_ci_high`, `name_n`."""
     flat = {}
@@ -234,7 +238,7 @@ def _study(directory: Path) -> Study:
             {
                 "entry": g["entry"],
                 "baseline": g["baseline"],
-                **_flatten(g, ("last_ten", "last_ten_gain", "area", "area_gain")),
+                **_flatten(g, [name for name in GAIN_ESTIMATES if name in g]),
             }
             for g in significance.get("gains", [])
         ]

@@ -78,7 +78,9 @@ def test_a_study_loads_as_tidy_frames_that_agree(study_dir: Path) -> None:
     assert set(study.advice.columns) == {"entry", "run", "advisee", "advisor", "decisions"}
     # The gains and aggregates name every entry but the baseline's gain.
     assert list(study.gains.entry) == ["adhoc-td"]
-    assert {"last_ten_gain", "last_ten_gain_ci_low", "area_gain"} <= set(study.gains.columns)
+    assert {"last_ten_gain", "last_ten_gain_ci_low", "area_gain", "first_gain"} <= set(
+        study.gains.columns
+    )
     assert list(study.gains.baseline) == ["no-advice"]
     assert set(study.aggregate.window) == {"last_ten", "area"}
     # Each aggregate names its entry's baseline; the baseline's is none.

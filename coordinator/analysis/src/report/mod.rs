@@ -35,7 +35,7 @@ use introduction::{introduction, settings};
 use markdown::Markdown;
 use network::network_conditions;
 pub use performance::gains_table;
-use performance::{aggregate_table, at_a_glance, final_performance, gains_over};
+use performance::{aggregate_table, at_a_glance, final_performance, first_evaluation, gains_over};
 use requests::requests;
 use significance::{holm_table, significance_against, significance_between_advising};
 use sweeps::sweeps_section;
@@ -90,6 +90,7 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
     if let Some(against) = against {
         at_a_glance(&mut md, against, entries, &gains, &aggregate);
     }
+    first_evaluation(&mut md, against, entries, &gains, &aggregate);
     final_performance(&mut md, study, entries);
     if let Some(against) = against {
         gains_over(&mut md, against, &gains);

@@ -1,12 +1,12 @@
-//! What each method achieved: at a glance, at the end, its gains and
-//! their aggregate statistics.
+//! What each method achieved: at a glance, at the first evaluation and at
+//! the end, its gains and their aggregate statistics.
 
 use super::against::{Against, baseline_cell};
 use super::markdown::{Markdown, interval, label, mean_at_end, per_agent};
 use crate::results::{AgentStats, EvalPoint};
 use crate::stats::Estimate;
 use crate::stats::aggregates::{Aggregates, Scores};
-use crate::stats::gains::{Gain, LAST_POINTS};
+use crate::stats::gains::{Gain, LAST_POINTS, first};
 use crate::study::{EntryResults, Study};
 
 /// The table a report leads with: each method's gain over its baseline
@@ -73,6 +73,69 @@ pub(super) fn at_a_glance(
         ]),
         rows,
     );
+}
+
+/// Each method's goal % at the first evaluation, with its difference
+/// from its baseline's (the jumpstart); only where the entries' first
+/// evaluations differ in some run, or their agents learn with different
+/// learners (whose starts are then compared).
+pub(super) fn first_evaluation(
+    md: &mut Markdown,
+    against: Option<Against>,
+    entries: &[EntryResults],
+    gains: &[Gain],
+    aggregate: &Aggregates,
+) {
+    let firsts = |e: &EntryResults| -> Vec<(u64, Option<f64>)> {
+        e.results.iter().map(|r| (r.run, first(r))).collect()
+    };
+    let same_start = entries.windows(2).all(|w| firsts(&w[0]) == firsts(&w[1]));
+    let same_learners = (entries.windows(2)).all(|w| w[0].learners() == w[1].learners());
+    let Some(first_point) = entries.iter().find_map(|e| e.points.first()) else {
+        return;
+    };
+    if same_start && same_learners {
+        return;
+    }
+    md.heading(2, "First evaluation");
+    let jumpstart = against.map_or(String::new(), |a| {
+        format!(
+            ", and its jumpstart: that minus {}'s, paired by run",
+            a.each()
+        )
+    });
+    let same = if same_start {
+        " It is the same for every entry in every run."
+    } else {
+        ""
+    };
+    md.paragraph(&format!(
+        "Goal % at the first evaluation (episode {}): each method's mean over runs{jumpstart}.{same}",
+        first_point.episode
+    ));
+    let column = |row: Vec<String>, cell: &str| match against {
+        Some(a) => a.row(row, cell),
+        None => row,
+    };
+    let mut header = vec!["algorithm".to_owned(), "goal %".to_owned()];
+    if !gains.is_empty() {
+        header.push("jumpstart".into());
+    }
+    let rows = entries.iter().map(|e| {
+        let name = &e.entry.name;
+        let mut row = vec![
+            label(&e.entry),
+            e.points
+                .first()
+                .map_or("-".into(), |p| format!("{:.1}", p.goal_pct)),
+        ];
+        if !gains.is_empty() {
+            let gain = gains.iter().find(|g| &g.entry == name);
+            row.push(gain.map_or("-".into(), |g| format!("{:.1}", g.first_gain)));
+        }
+        column(row, &baseline_cell(aggregate, name))
+    });
+    md.table(column(header, "baseline"), rows);
 }
 
 /// Goal percentage, time to goal and spent budget at the last point.
