@@ -14,7 +14,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 14] = [
+pub const PRESETS: [(&str, &str); 15] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -56,6 +56,7 @@ pub const PRESETS: [(&str, &str); 14] = [
         "methods-sensitivity",
         include_str!("../../presets/methods-sensitivity.toml"),
     ),
+    ("neural", include_str!("../../presets/neural.toml")),
 ];
 
 /// What a study runs.
@@ -628,6 +629,37 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("unknown learner `deep`"), "{e}");
+    }
+
+    #[test]
+    fn the_neural_preset_compares_each_learner_with_its_own_no_advice() {
+        let neural = StudyConfig::preset("neural").unwrap();
+        let record = neural.record();
+        let compared: Vec<(&str, Option<&str>)> = (record.entries.iter())
+            .map(|e| (e.name.as_str(), record.baseline_of(e)))
+            .collect();
+        assert_eq!(
+            compared,
+            [
+                ("no-advice-sarsa", None),
+                ("adhoc-visit-sarsa", Some("no-advice-sarsa")),
+                ("adhoc-td-sarsa", Some("no-advice-sarsa")),
+                ("no-advice-dqn", None),
+                ("adhoc-visit-dqn", Some("no-advice-dqn")),
+                ("adhoc-td-dqn", Some("no-advice-dqn")),
+            ]
+        );
+        let learner = |i: usize| neural.experiment(&neural.entries[i], None).team[0].clone();
+        assert!(matches!(
+            learner(5).config.learner,
+            agent::LearnerSettings::Dqn(_)
+        ));
+        // Its SARSA(λ) entries are paper-scratch's.
+        let paper = StudyConfig::preset("paper-scratch").unwrap();
+        assert_eq!(
+            learner(2),
+            paper.experiment(&paper.entries[2], None).team[0]
+        );
     }
 
     #[test]
