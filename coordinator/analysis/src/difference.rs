@@ -1,34 +1,29 @@
-//! Each method's goal % minus the baseline's at every evaluation point,
+//! Each method's goal % minus its baseline's at every evaluation point,
 //! paired by run, with the verdicts of the study's signed-rank tests
 //! against the baseline: the input of the difference figure.
 
+use crate::baselines::Pair;
 use crate::figures::{DifferencePoint, DifferenceSet};
 use crate::results::RunResult;
 use crate::stats::analysis::point_tests;
 use crate::stats::estimate;
 use crate::stats::wilcoxon::better_side;
 
-/// The differences of every method in `entries` (name and every run,
-/// sorted by run) from the one named `baseline`, with intervals at `level`
-/// and tests at `1 - level`; none without a baseline among them.
-pub fn difference_sets(
-    entries: &[(&str, &[RunResult])],
-    baseline: Option<&str>,
-    level: f64,
-) -> Vec<DifferenceSet> {
-    let Some(&(name, base)) = baseline.and_then(|b| entries.iter().find(|e| e.0 == b)) else {
-        return Vec::new();
-    };
-    (entries.iter().enumerate())
-        .filter(|(_, e)| e.0 != name)
-        .map(|(slot, &(label, runs))| DifferenceSet {
-            label: label.to_owned(),
-            slot,
-            runs: (runs.iter())
-                .filter(|r| base.iter().any(|b| b.run == r.run))
-                .count() as u64,
-            ci_level: level,
-            points: differences(runs, base, level),
+/// The differences of each pair's entry from its baseline, with intervals
+/// at `level` and tests at `1 - level`.
+pub fn difference_sets(pairs: &[Pair], level: f64) -> Vec<DifferenceSet> {
+    (pairs.iter())
+        .map(|p| {
+            let (runs, base) = (&p.entry.results, &p.baseline.results);
+            DifferenceSet {
+                label: p.entry.entry.name.clone(),
+                slot: p.slot,
+                runs: (runs.iter())
+                    .filter(|r| base.iter().any(|b| b.run == r.run))
+                    .count() as u64,
+                ci_level: level,
+                points: differences(runs, base, level),
+            }
         })
         .collect()
 }
@@ -66,7 +61,7 @@ fn differences(runs: &[RunResult], base: &[RunResult], level: f64) -> Vec<Differ
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fixtures::run_with_goals;
+    use crate::fixtures::{against, entry_results, run_with_goals};
 
     /// Run `run` with goal percentages `goals` every 50 episodes.
     fn run(run: u64, goals: &[f64]) -> RunResult {
@@ -87,8 +82,11 @@ mod tests {
                 run(k, &[10.0 * k as f64 + d, 20.0 * k as f64 - d, 5.0])
             })
             .collect();
-        let entries = [("base", &base[..]), ("method", &method[..])];
-        let sets = difference_sets(&entries, Some("base"), 0.95);
+        let entries = [
+            entry_results("base", None, base),
+            entry_results("method", None, method),
+        ];
+        let sets = difference_sets(&against(&entries, "base"), 0.95);
         assert_eq!(sets.len(), 1);
         let set = &sets[0];
         assert_eq!((set.label.as_str(), set.slot, set.runs), ("method", 1, 6));
@@ -108,8 +106,7 @@ mod tests {
         // The interval is the paired one: narrow despite the spread.
         let d = set.points[0].difference;
         assert!(d.ci_high.unwrap() - d.ci_low.unwrap() < 5.0, "{d:?}");
-        // Without a baseline, or one not among the entries, nothing.
-        assert!(difference_sets(&entries, None, 0.95).is_empty());
-        assert!(difference_sets(&entries, Some("other"), 0.95).is_empty());
+        // Without a baseline among the entries, nothing.
+        assert!(difference_sets(&against(&entries, "other"), 0.95).is_empty());
     }
 }

@@ -25,7 +25,10 @@ pub const GZ: &str = ".gz";
 /// Reads `dir`'s study and every entry's finished runs (`run-<k>.json`),
 /// summarised at the study's level.
 pub fn read_study(dir: &Path) -> Result<(Study, Vec<EntryResults>), Error> {
-    let study: Study = read_json(&dir.join(STUDY_FILE))?;
+    let path = dir.join(STUDY_FILE);
+    let study: Study = read_json(&path)?;
+    (study.check_baselines())
+        .map_err(|e| Error::invalid(&path, format!("`{}`: {}", e.key, e.reason)))?;
     let level = study.ci_level();
     let entries = (study.entries.iter())
         .map(|entry| {

@@ -1,5 +1,6 @@
 //! Test inputs shared by the study's and the statistics' modules.
 
+use crate::baselines::{Pair, pairs};
 use crate::results::{EvalPoint, RunResult};
 use crate::study::{Entry, EntryResults};
 
@@ -37,9 +38,15 @@ pub(crate) fn entry_results(name: &str, group: Option<&str>, runs: Vec<RunResult
         name: name.to_owned(),
         algorithm: "no-advice".parse().expect("an algorithm"),
         group: group.map(str::to_owned),
+        baseline: None,
         expert: false,
         network: None,
         events: Vec::new(),
     };
     EntryResults::new(entry, serde_json::Value::Null, runs, 0.95)
+}
+
+/// Every entry of `entries` but the one named `baseline`, compared with it.
+pub(crate) fn against<'a>(entries: &'a [EntryResults], baseline: &'a str) -> Vec<Pair<'a>> {
+    pairs(entries, |e| (e.name != baseline).then_some(baseline))
 }

@@ -7,6 +7,7 @@
 //!
 //! - [`results`]: what a run records (`run-<k>.json`).
 //! - [`study`]: what a study ran (`study.json`) and each entry's runs.
+//! - [`baselines`]: which entry each entry is compared with.
 //! - [`stats`]: means and intervals, the summary of an experiment,
 //!   Wilcoxon, Holm, gains, bootstrap aggregates.
 //! - [`figures`]: the figures, as SVG and PNG.
@@ -28,6 +29,7 @@
 
 #![warn(missing_docs)]
 
+pub mod baselines;
 mod difference;
 pub mod error;
 pub mod figures;

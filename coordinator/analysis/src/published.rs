@@ -8,7 +8,7 @@ use std::path::Path;
 use crate::error::Error;
 use crate::files;
 use crate::results::{EvalPoint, RunResult};
-use crate::stats::gains::{Gain, area, last_ten};
+use crate::stats::gains::{Gain, area, first, last_ten};
 use crate::stats::{difference_of_means, estimate};
 
 /// The runs of one algorithm's directory: every `_0_<run>_AGENT_1_RESULTS_eval`
@@ -97,6 +97,8 @@ pub fn published_gains(
                 last_ten_gain: gain(last_ten),
                 area: of(area),
                 area_gain: gain(area),
+                first: of(first),
+                first_gain: gain(first),
             })
         })
         .collect()

@@ -37,7 +37,7 @@ pub struct Study {
     /// Confidence level of intervals and tests (default: the profile's).
     #[serde(default)]
     pub ci_level: Option<f64>,
-    /// The entry every other is compared with.
+    /// The entry every other is compared with, unless it names its own.
     #[serde(default)]
     pub baseline: Option<String>,
     /// A pretraining stage that produced an expert.
@@ -75,6 +75,9 @@ pub struct Entry {
     /// from (none: its own name).
     #[serde(default)]
     pub group: Option<String>,
+    /// The entry it is compared with, when not the study's baseline.
+    #[serde(default)]
+    pub baseline: Option<String>,
     /// Whether an expert replaces one of its agents.
     #[serde(default)]
     pub expert: bool,
@@ -162,6 +165,20 @@ impl EntryResults {
             .map(|p| p.agents.len())
             .max()
             .unwrap_or(0)
+    }
+
+    /// Each agent's learner as its `config.json` names it (null:
+    /// SARSA(λ), which it does not name).
+    pub fn learners(&self) -> Vec<&Value> {
+        (self
+            .config
+            .pointer("/config/team")
+            .and_then(Value::as_array))
+        .map_or_else(Vec::new, |team| {
+            team.iter()
+                .map(|a| a.get("learner").unwrap_or(&Value::Null))
+                .collect()
+        })
     }
 
     /// What its runs cost.

@@ -47,16 +47,16 @@ pub fn advised(e: &EntryResults, level: f64) -> Estimate {
     })
 }
 
-/// The figures of every condition the study sweeps, the `baseline`
-/// entry's goal percentages at [`EPISODES`] in their subtitle.
+/// The figures of every condition the study sweeps, the `baselines`'
+/// goal percentages at [`EPISODES`] in their subtitle.
 pub fn sweep_figures(
     entries: &[EntryResults],
-    baseline: Option<&str>,
+    baselines: &[&EntryResults],
     level: f64,
 ) -> Result<Vec<Figure>, FigureError> {
-    let note = (entries.iter())
-        .find(|e| Some(e.entry.name.as_str()) == baseline)
-        .map_or_else(String::new, |b| {
+    let episodes: Vec<String> = EPISODES.iter().map(u64::to_string).collect();
+    let notes: Vec<String> = (baselines.iter())
+        .map(|b| {
             let goals: Vec<String> = (EPISODES.iter())
                 .map(|&ep| {
                     goal_at(b, ep)
@@ -64,14 +64,15 @@ pub fn sweep_figures(
                         .map_or("-".to_owned(), |m| format!("{m:.1}"))
                 })
                 .collect();
-            let episodes: Vec<String> = EPISODES.iter().map(u64::to_string).collect();
             format!(
                 "{}: {} % at {}",
                 b.entry.name,
                 goals.join(" / "),
                 episodes.join(" / ")
             )
-        });
+        })
+        .collect();
+    let note = notes.join("; ");
     let mut figures = Vec::new();
     for condition in Condition::ALL {
         let sets = condition_sets(entries, condition, level);

@@ -74,7 +74,7 @@ def curves(
 
 
 def gains(study: Study, window: str = "last_ten_gain", ax: Axes | None = None) -> Axes:
-    """Each entry's gain over the baseline (``last_ten_gain`` or
+    """Each entry's gain over its baseline (``last_ten_gain`` or
     ``area_gain``) with its paired interval, from ``significance.json``."""
     ax = _axes(ax)
     g = study.gains.iloc[::-1]
@@ -82,7 +82,8 @@ def gains(study: Study, window: str = "last_ten_gain", ax: Axes | None = None) -
     errors = [gain - g[f"{window}_ci_low"].to_numpy(), g[f"{window}_ci_high"].to_numpy() - gain]
     ax.errorbar(gain, g.entry.to_numpy(), xerr=errors, fmt="o", capsize=3)
     ax.axvline(0, color="grey", linewidth=0.8)
-    baseline = study.gains.baseline.iloc[0] if len(study.gains) else "the baseline"
+    baselines = study.gains.baseline.unique() if len(study.gains) else []
+    baseline = baselines[0] if len(baselines) == 1 else "its baseline"
     ax.set_xlabel(f"goal % gain over {baseline}")
     return ax
 

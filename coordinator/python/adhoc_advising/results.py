@@ -19,6 +19,7 @@ from __future__ import annotations
 import gzip
 import json
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -38,6 +39,9 @@ SUMMARY_METRICS = (
 
 #: The estimates of a `significance.json` frontier point.
 FRONTIER_ESTIMATES = ("messages", "bytes", "last_ten_gain", "area_gain")
+#: The estimates of a gain; `first` and `first_gain` (the jumpstart) are
+#: absent from significance.json files written before them.
+GAIN_ESTIMATES = ("last_ten", "last_ten_gain", "area", "area_gain", "first", "first_gain")
 
 
 def _pandas() -> Any:
@@ -87,18 +91,20 @@ class Study:
     summary: pd.DataFrame = field(repr=False)
     #: Every entry's who advised whom, with an `entry` column first.
     advice: pd.DataFrame = field(repr=False)
-    #: `significance.json`'s `gains`: one row per entry, each estimate as
-    #: `<name>`, `<name>_ci_low`, `<name>_ci_high`, `<name>_n`.
+    #: `significance.json`'s `gains`: one row per entry compared with a
+    #: baseline, with its `baseline`, each estimate as `<name>`,
+    #: `<name>_ci_low`, `<name>_ci_high`, `<name>_n`.
     gains: pd.DataFrame = field(repr=False)
     #: `significance.json`'s `aggregate`: one row per entry and window
-    #: (`last_ten`, `area`): `mean`, `mean_ci_low`, ..., `p_improvement`.
+    #: (`last_ten`, `area`): its `baseline` (None for a baseline), `mean`,
+    #: `mean_ci_low`, ..., `p_improvement`.
     aggregate: pd.DataFrame = field(repr=False)
     #: `significance.json`'s `holm`: one row per entry.
     holm: pd.DataFrame = field(repr=False)
     #: `significance.json`'s `comparisons`: one row per pair.
     comparisons: pd.DataFrame = field(repr=False)
-    #: `significance.json`'s `frontier.points`: one row per entry but the
-    #: baseline, with its `group`, its costs `messages` and `bytes` and its
+    #: `significance.json`'s `frontier.points`: one row per entry compared
+    #: with a baseline, with its `group`, its `baseline`, its costs `messages` and `bytes` and its
     #: `last_ten_gain` and `area_gain` (each as in :attr:`gains`),
     #: `front_messages`, `front_bytes` and `messages_per_point`; empty
     #: without a frontier.
@@ -195,7 +201,7 @@ def _experiment(directory: Path) -> Experiment:
     )
 
 
-def _flatten(record: dict, names: tuple[str, ...]) -> dict:
+def _flatten(record: dict, names: Sequence[str]) -> dict:
     """`{name: {n, mean, ci_low, ci_high}}` as `name`, `name_ci_low`,
     `name_ci_high`, `name_n`."""
     flat = {}
@@ -232,7 +238,7 @@ def _study(directory: Path) -> Study:
             {
                 "entry": g["entry"],
                 "baseline": g["baseline"],
-                **_flatten(g, ("last_ten", "last_ten_gain", "area", "area_gain")),
+                **_flatten(g, [name for name in GAIN_ESTIMATES if name in g]),
             }
             for g in significance.get("gains", [])
         ]
@@ -248,6 +254,7 @@ def _study(directory: Path) -> Study:
             aggregate_rows.append(
                 {
                     "entry": e["entry"],
+                    "baseline": e.get("baseline"),
                     "window": window,
                     "mean": a["mean"],
                     "mean_ci_low": a["mean_ci"][0],
@@ -265,6 +272,7 @@ def _study(directory: Path) -> Study:
             {
                 "entry": p["entry"],
                 "group": p["group"],
+                "baseline": p.get("baseline"),
                 **_flatten(p, FRONTIER_ESTIMATES),
                 "front_messages": p["front_messages"],
                 "front_bytes": p["front_bytes"],
@@ -274,7 +282,7 @@ def _study(directory: Path) -> Study:
         ]
     )
     if not frontier.empty:
-        numeric = [c for c in frontier.columns if c not in ("entry", "group")]
+        numeric = [c for c in frontier.columns if c not in ("entry", "group", "baseline")]
         frontier[numeric] = frontier[numeric].apply(pandas.to_numeric)
     return Study(
         path=directory,

@@ -78,8 +78,14 @@ def test_a_study_loads_as_tidy_frames_that_agree(study_dir: Path) -> None:
     assert set(study.advice.columns) == {"entry", "run", "advisee", "advisor", "decisions"}
     # The gains and aggregates name every entry but the baseline's gain.
     assert list(study.gains.entry) == ["adhoc-td"]
-    assert {"last_ten_gain", "last_ten_gain_ci_low", "area_gain"} <= set(study.gains.columns)
+    assert {"last_ten_gain", "last_ten_gain_ci_low", "area_gain", "first_gain"} <= set(
+        study.gains.columns
+    )
+    assert list(study.gains.baseline) == ["no-advice"]
     assert set(study.aggregate.window) == {"last_ten", "area"}
+    # Each aggregate names its entry's baseline; the baseline's is none.
+    baselines = study.aggregate.groupby("entry", sort=False).baseline.first()
+    assert baselines.isna()["no-advice"] and baselines["adhoc-td"] == "no-advice"
 
 
 def test_who_advised_whom_adds_up_to_the_advice_acted_on(study_dir: Path) -> None:

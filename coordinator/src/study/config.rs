@@ -14,7 +14,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 14] = [
+pub const PRESETS: [(&str, &str); 15] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -56,6 +56,7 @@ pub const PRESETS: [(&str, &str); 14] = [
         "methods-sensitivity",
         include_str!("../../presets/methods-sensitivity.toml"),
     ),
+    ("neural", include_str!("../../presets/neural.toml")),
 ];
 
 /// What a study runs.
@@ -88,7 +89,8 @@ pub struct StudyConfig {
     /// Confidence level of intervals and tests (default: the profile's).
     #[serde(default)]
     pub ci_level: Option<f64>,
-    /// The entry every other is compared with in the report.
+    /// The entry every other is compared with in the report, unless it
+    /// names its own.
     #[serde(default)]
     pub baseline: Option<String>,
     /// What the agents of each evaluation block's simulator remember at
@@ -148,6 +150,9 @@ pub struct StudyEntry {
     /// frontier (default: its own name).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
+    /// The entry it is compared with (default: the study's baseline).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub baseline: Option<String>,
     /// The agents' settings beyond the study profile's defaults: any key of
     /// a team file's `[[agent]]` table (`v_g`, `mistake_correcting`,
     /// `network`, `ask_budget`, a fidelity rule...).
@@ -288,14 +293,7 @@ impl StudyConfig {
                 .validate()
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
         }
-        if let Some(b) = &self.baseline
-            && self.entries.iter().all(|e| &e.name != b)
-        {
-            return Err(ConfigError::new(
-                "baseline",
-                format!("no entry is named '{b}'"),
-            ));
-        }
+        (self.record().check_baselines()).map_err(|e| ConfigError::new(e.key, e.reason))?;
         if let Some(p) = &self.pretrain {
             if p.expert >= TEAM {
                 return Err(ConfigError::new(
@@ -631,6 +629,79 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("unknown learner `deep`"), "{e}");
+    }
+
+    #[test]
+    fn the_neural_preset_compares_each_learner_with_its_own_no_advice() {
+        let neural = StudyConfig::preset("neural").unwrap();
+        let record = neural.record();
+        let compared: Vec<(&str, Option<&str>)> = (record.entries.iter())
+            .map(|e| (e.name.as_str(), record.baseline_of(e)))
+            .collect();
+        assert_eq!(
+            compared,
+            [
+                ("no-advice-sarsa", None),
+                ("adhoc-visit-sarsa", Some("no-advice-sarsa")),
+                ("adhoc-td-sarsa", Some("no-advice-sarsa")),
+                ("no-advice-dqn", None),
+                ("adhoc-visit-dqn", Some("no-advice-dqn")),
+                ("adhoc-td-dqn", Some("no-advice-dqn")),
+            ]
+        );
+        let learner = |i: usize| neural.experiment(&neural.entries[i], None).team[0].clone();
+        assert!(matches!(
+            learner(5).config.learner,
+            agent::LearnerSettings::Dqn(_)
+        ));
+        // Its SARSA(λ) entries are paper-scratch's.
+        let paper = StudyConfig::preset("paper-scratch").unwrap();
+        assert_eq!(
+            learner(2),
+            paper.experiment(&paper.entries[2], None).team[0]
+        );
+    }
+
+    #[test]
+    fn an_entry_names_its_own_baseline_and_bad_ones_are_refused() {
+        let base = "name = \"t\"\nruns = 2\nepisodes = 100\neval_every = 20\neval_episodes = 10\n\
+                    baseline = \"a\"\n[[entry]]\nname = \"a\"\nalgorithm = \"no-advice\"\n\
+                    [[entry]]\nname = \"b\"\nalgorithm = \"no-advice\"\nlearner = \"dqn\"\n";
+        let c = "[[entry]]\nname = \"c\"\nalgorithm = \"adhoc-td\"\n";
+        let study = StudyConfig::parse(&format!("{base}{c}baseline = \"b\"\n"), "t").unwrap();
+        study.validate().unwrap();
+        let record = study.record();
+        let compared: Vec<Option<&str>> = (record.entries.iter())
+            .map(|e| record.baseline_of(e))
+            .collect();
+        assert_eq!(compared, [None, None, Some("b")]);
+        // It reads back from study.json, and a study without it writes none.
+        let again: StudyConfig = serde_json::from_value(study.json()).unwrap();
+        assert_eq!(again.entries, study.entries);
+        let paper = StudyConfig::preset("paper-scratch").unwrap().json();
+        let entries = paper["entry"].as_array().unwrap();
+        assert!(entries.iter().all(|e| e.get("baseline").is_none()));
+
+        let err = |text: &str| {
+            StudyConfig::parse(text, "t")
+                .and_then(|s| s.validate())
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err(&format!("{base}{c}baseline = \"z\"\n"));
+        assert!(
+            e.contains("`entry[2].baseline`") && e.contains("no entry is named 'z'"),
+            "{e}"
+        );
+        let e = err(&format!("{base}{c}baseline = \"c\"\n"));
+        assert!(e.contains("'c' is this entry"), "{e}");
+        // A chain: b is c's baseline and has its own.
+        let chained = base.replace("\"dqn\"\n", "\"dqn\"\nbaseline = \"a\"\n");
+        let e = err(&format!("{chained}{c}baseline = \"b\"\n"));
+        assert!(
+            e.contains("`entry[1].baseline`") && e.contains("'b' is a baseline itself"),
+            "{e}"
+        );
     }
 
     #[test]

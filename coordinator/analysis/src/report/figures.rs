@@ -2,7 +2,9 @@
 
 use std::path::Path;
 
+use super::against::Against;
 use super::markdown::{Markdown, mean_at_end, per_agent};
+use crate::baselines::{Pair, baselines};
 use crate::difference::difference_sets;
 use crate::error::Error;
 use crate::figures::{
@@ -16,14 +18,15 @@ use crate::stats::gains::{Gain, LAST_POINTS};
 use crate::study::{EntryResults, Study};
 use crate::sweep::sweep_figures;
 
-/// Draws the figures of every entry into `out/figures`, with a baseline
-/// the difference from it after the goal percentage, then each method's
-/// `gains` against the messages it sent and, last, the `frontier` against
-/// messages and bytes.
+/// Draws the figures of every entry into `out/figures`, with `pairs` the
+/// difference from their baselines after the goal percentage, then each
+/// method's `gains` against the messages it sent and, last, the `frontier`
+/// against messages and bytes.
 pub(super) fn write_figures(
     out: &Path,
     study: &Study,
     entries: &[EntryResults],
+    pairs: &[Pair],
     gains: &[Gain],
     frontier: Option<&Frontier>,
 ) -> Result<Vec<Figure>, Error> {
@@ -32,31 +35,29 @@ pub(super) fn write_figures(
         .map(|e| series_set(e, study.ci_level()))
         .collect();
     let mut figures = draw_figures(&sets)?;
-    let runs: Vec<_> = (entries.iter())
-        .map(|e| (e.entry.name.as_str(), &e.results[..]))
-        .collect();
-    let differences = difference_sets(&runs, study.baseline.as_deref(), study.ci_level());
-    if let (Some(baseline), false) = (&study.baseline, differences.is_empty()) {
-        figures.insert(1, draw_difference(baseline, &differences)?);
+    let against = Against::of(pairs);
+    if let Some(against) = against {
+        let differences = difference_sets(pairs, study.ci_level());
+        figures.insert(1, draw_difference(against.plain(), &differences)?);
     }
-    let baseline = study.baseline.as_deref();
-    figures.extend(sweep_figures(entries, baseline, study.ci_level())?);
+    figures.extend(sweep_figures(entries, &baselines(pairs), study.ci_level())?);
     let runs = entries
         .iter()
         .map(|e| e.results.len() as u64)
         .max()
         .unwrap_or(0);
     let level = (runs, study.ci_level());
-    if let (Some(baseline), false) = (baseline, gains.is_empty()) {
+    if let (Some(against), false) = (against, gains.is_empty()) {
         let points = tradeoff_points(entries, gains);
-        figures.push(draw_tradeoff(baseline, LAST_POINTS, level, &points)?);
+        figures.push(draw_tradeoff(against.plain(), LAST_POINTS, level, &points)?);
     }
     if let Some(f) = frontier {
+        let against = Against::named(f.baseline.as_deref());
         for unit in CostUnit::ALL {
             let groups = frontier_groups(f, unit);
             figures.push(draw_frontier(
                 unit,
-                &f.baseline,
+                against.plain(),
                 LAST_POINTS,
                 level,
                 &groups,
@@ -73,15 +74,16 @@ pub(super) fn write_figures(
     Ok(figures)
 }
 
-/// Every figure, as an image; the difference from the baseline with what
+/// Every figure, as an image; the difference from the baselines with what
 /// it shows.
-pub(super) fn figure_links(md: &mut Markdown, study: &Study, figures: &[Figure]) {
+pub(super) fn figure_links(md: &mut Markdown, against: Option<Against>, figures: &[Figure]) {
     md.heading(2, "Figures");
     for f in figures {
-        if let (DIFFERENCE, Some(baseline)) = (f.name, &study.baseline) {
+        if let (DIFFERENCE, Some(against)) = (f.name, against) {
+            let baseline = against.each();
             md.paragraph(&format!(
-                "Each method's goal percentage minus `{baseline}`'s, paired by run (mean and interval over runs); \
-                 triangles mark where the signed-rank test against `{baseline}` above finds it better (up) or worse (down)."
+                "Each method's goal percentage minus {baseline}'s, paired by run (mean and interval over runs); \
+                 triangles mark where the signed-rank test against {baseline} above finds it better (up) or worse (down)."
             ));
         }
         md.paragraph(&format!("![{name}.svg](figures/{name}.svg)", name = f.name));

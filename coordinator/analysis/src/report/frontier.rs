@@ -1,6 +1,7 @@
 //! The communication frontier: every entry's cost and gain with the Pareto
 //! front, each method's gain at equal cost, and what a point of gain cost.
 
+use super::against::Against;
 use super::markdown::Markdown;
 use crate::figures::{FRONTIER_BYTES, FRONTIER_MESSAGES};
 use crate::stats::Estimate;
@@ -9,40 +10,46 @@ use crate::stats::gains::LAST_POINTS;
 
 /// The section "Frontier" of `f`.
 pub(super) fn frontier_section(md: &mut Markdown, f: &Frontier) {
-    let baseline = &f.baseline;
+    let against = Against::named(f.baseline.as_deref());
+    let baseline = against.each();
+    let rivals = match against {
+        Against::One(_) => "no other entry",
+        Against::Several => "no other entry of the same baseline",
+    };
     md.heading(2, "Frontier");
     md.paragraph(&format!(
-        "What each entry gains over `{baseline}` for what its agents send. Its group is the \
+        "What each entry gains over {baseline} for what its agents send. Its group is the \
          study entry it was swept from (else its own name). Cost: the advising messages \
          (requests, replies, shared episodes), or their bytes, each agent sent per training \
          episode over the whole training (per run, the team's count at the last evaluation \
          divided by its agents and training episodes; mean over runs with its interval). Gain: \
          in goal % over the last {LAST_POINTS} evaluations and over the whole curve, paired by \
-         run. On the front: no other entry, nor `{baseline}` at its own cost and a gain of 0, \
+         run. On the front: {rivals}, nor {baseline} at its own cost and a gain of 0, \
          costs as little or less and gains as much or more over the last {LAST_POINTS}, one of \
          the two strictly (means)."
     ));
     for unit in CostUnit::ALL {
         md.heading(3, &format!("Gain against {}", unit.name()));
         let rows = f.points.iter().map(|p| {
-            [
+            let row = vec![
                 p.group.clone(),
                 p.entry.clone(),
                 cost_cell(p.cost(unit)),
                 format!("{:.1}", p.last_ten_gain),
                 format!("{:.1}", p.area_gain),
                 if p.on_front(unit) { "yes" } else { "no" }.to_owned(),
-            ]
+            ];
+            against.row(row, &p.baseline)
         });
         md.table(
-            [
+            against.header(&[
                 "group",
                 "entry",
                 &format!("{} / agent / episode", unit.name()),
                 "gain: last ten",
                 "gain: whole curve",
                 "on the front",
-            ],
+            ]),
             rows,
         );
     }
@@ -142,12 +149,13 @@ mod tests {
                 bytes: estimate(40.0 * messages, 4.0 * messages),
                 last_ten_gain: estimate(gain, 1.0),
                 area_gain: estimate(gain / 2.0, 1.0),
+                baseline: "no-advice".to_owned(),
                 front_messages: front,
                 front_bytes: front,
                 messages_per_point: (gain > 1.0).then(|| messages / gain),
             };
         let f = Frontier {
-            baseline: "no-advice".to_owned(),
+            baseline: Some("no-advice".to_owned()),
             points: vec![
                 point("a-30", "a", 0.0123, 2.0, true),
                 point("a-300", "a", 4.56, 3.0, true),

@@ -1,6 +1,7 @@
 //! A study's `REPORT.md`, `significance.json` and figures, from its
 //! entries' runs: one module per section of the report.
 
+mod against;
 mod costs;
 mod figures;
 mod frontier;
@@ -26,6 +27,7 @@ use crate::stats::gains::{Gain, gains};
 use crate::stats::holm::{HolmComparison, holm_against};
 use crate::stats::sweeps::{SweepTest, sweep_tests};
 use crate::study::{EntryResults, Study};
+use against::Against;
 use costs::{communication, cost, restarts};
 use figures::{figure_links, write_figures};
 use frontier::frontier_section;
@@ -33,7 +35,7 @@ use introduction::{introduction, settings};
 use markdown::Markdown;
 use network::network_conditions;
 pub use performance::gains_table;
-use performance::{aggregate_table, at_a_glance, final_performance, gains_over};
+use performance::{aggregate_table, at_a_glance, final_performance, first_evaluation, gains_over};
 use requests::requests;
 use significance::{holm_table, significance_against, significance_between_advising};
 use sweeps::sweeps_section;
@@ -44,13 +46,13 @@ use teams::{newcomers, who_advised_whom};
 struct Significance<'a> {
     /// Every pair of entries, point by point.
     comparisons: &'a [Comparison],
-    /// Every entry's gain over the baseline (none without one).
+    /// Every entry's gain over its baseline (none without one).
     gains: &'a [Gain],
-    /// Every entry's mean, IQM and probability of improvement over the
+    /// Every entry's mean, IQM and probability of improvement over its
     /// baseline, with bootstrap intervals.
     aggregate: &'a Aggregates,
-    /// Every entry's tests against the baseline, Holm-corrected across
-    /// entries (none without a baseline).
+    /// Every entry's tests against its baseline, Holm-corrected across
+    /// the entries of each baseline.
     holm: &'a [HolmComparison],
     /// Every entry's cost and gain, the Pareto front and the gains at equal
     /// cost (absent without a baseline and a group of two entries).
@@ -66,11 +68,12 @@ struct Significance<'a> {
 pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Result<PathBuf, Error> {
     let comparisons = &compare_all(study, entries);
     let level = study.ci_level();
-    let gains = (study.baseline.as_deref()).map_or_else(Vec::new, |b| gains(entries, b, level));
-    let aggregate = aggregates(entries, study.baseline.as_deref(), level);
-    let holm = (study.baseline.as_deref())
-        .map_or_else(Vec::new, |b| holm_against(entries, b, 1.0 - level));
-    let frontier = (study.baseline.as_deref()).and_then(|b| frontier(entries, b, level));
+    let pairs = study.pairs(entries);
+    let against = Against::of(&pairs);
+    let gains = gains(&pairs, level);
+    let aggregate = aggregates(entries, &pairs, level);
+    let holm = holm_against(&pairs, 1.0 - level);
+    let frontier = frontier(&pairs, level);
     let sweeps = sweep_tests(entries);
     let significance = Significance {
         comparisons,
@@ -81,18 +84,19 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
         sweeps: &sweeps,
     };
     files::write_json(&out.join("significance.json"), &significance)?;
-    let figures = write_figures(out, study, entries, &gains, frontier.as_ref())?;
+    let figures = write_figures(out, study, entries, &pairs, &gains, frontier.as_ref())?;
     let mut md = Markdown::default();
     introduction(&mut md, study, entries);
-    if let Some(baseline) = &study.baseline {
-        at_a_glance(&mut md, baseline, entries, &gains, &aggregate);
+    if let Some(against) = against {
+        at_a_glance(&mut md, against, entries, &gains, &aggregate);
     }
+    first_evaluation(&mut md, against, entries, &gains, &aggregate);
     final_performance(&mut md, study, entries);
-    if let Some(baseline) = &study.baseline {
-        gains_over(&mut md, baseline, &gains);
-        aggregate_table(&mut md, baseline, &aggregate);
-        significance_against(&mut md, baseline, comparisons);
-        holm_table(&mut md, baseline, &holm);
+    if let Some(against) = against {
+        gains_over(&mut md, against, &gains);
+        aggregate_table(&mut md, against, &aggregate);
+        significance_against(&mut md, against, &pairs, comparisons);
+        holm_table(&mut md, against, &holm);
     }
     if let Some(frontier) = &frontier {
         frontier_section(&mut md, frontier);
@@ -104,7 +108,7 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
     significance_between_advising(&mut md, study, entries, comparisons);
     network_conditions(&mut md, study, entries);
     md.paragraph("Every pair, with the same intervals: `significance.json`.");
-    figure_links(&mut md, study, &figures);
+    figure_links(&mut md, against, &figures);
     if study.communicates() {
         communication(&mut md, entries);
     }

@@ -1,13 +1,14 @@
 //! Each method's aggregate statistics (Agarwal et al. 2021, `rliable`;
 //! see [`crate::stats::bootstrap`]): the mean and the interquartile mean of its
 //! per-run scores with stratified bootstrap intervals, and its probability
-//! of improvement over the baseline, on the last ten evaluations and on the
+//! of improvement over its baseline, on the last ten evaluations and on the
 //! area under the curve (the scores of [`super::gains`]).
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use crate::baselines::{Pair, common_baseline};
 use crate::results::RunResult;
 use crate::stats::bootstrap::{Aggregate, Improvement, RESAMPLES, SEED, aggregate, improvement};
 use crate::stats::gains::{area, last_ten};
@@ -19,8 +20,8 @@ pub struct Scores {
     /// Mean and IQM with their intervals.
     #[serde(flatten)]
     pub aggregate: Aggregate,
-    /// P(a run of the method scores more than a run of the baseline), none
-    /// for the baseline itself or without one.
+    /// P(a run of the method scores more than a run of its baseline), none
+    /// for a baseline itself or without one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub p_improvement: Option<Improvement>,
 }
@@ -41,6 +42,8 @@ impl Scores {
 pub struct EntryAggregate {
     /// The method.
     pub entry: String,
+    /// Its baseline: none for a baseline itself or without one.
+    pub baseline: Option<String>,
     /// On the mean goal % of each run's last ten evaluations.
     pub last_ten: Option<Scores>,
     /// On the mean height of each run's goal % curve.
@@ -56,7 +59,8 @@ pub struct Aggregates {
     pub resamples: usize,
     /// The seed of every interval's generator.
     pub seed: u64,
-    /// The baseline of the probabilities of improvement.
+    /// The baseline of every probability of improvement, if they share
+    /// one (else each entry's own).
     pub baseline: Option<String>,
     /// Every method, in entry order.
     pub entries: Vec<EntryAggregate>,
@@ -116,26 +120,28 @@ fn scores(entry: &EntryResults, metric: fn(&RunResult) -> Option<f64>) -> Vec<f6
     entry.results.iter().filter_map(metric).collect()
 }
 
-/// Every entry's statistics at `level`, with probabilities of improvement
-/// over the entry named `baseline` if there is one.
-pub fn aggregates(entries: &[EntryResults], baseline: Option<&str>, level: f64) -> Aggregates {
-    let base = entries
-        .iter()
-        .find(|e| Some(e.entry.name.as_str()) == baseline);
-    let of = |e: &EntryResults, metric: fn(&RunResult) -> Option<f64>| {
-        let y = (base.filter(|b| b.entry.name != e.entry.name)).map(|b| scores(b, metric));
-        Scores::of(&scores(e, metric), y.as_deref(), level)
-    };
+/// Every entry's statistics at `level`, with the probabilities of
+/// improvement of `pairs`' entries over their baselines.
+pub fn aggregates(entries: &[EntryResults], pairs: &[Pair], level: f64) -> Aggregates {
+    let of =
+        |e: &EntryResults, base: Option<&EntryResults>, metric: fn(&RunResult) -> Option<f64>| {
+            let y = base.map(|b| scores(b, metric));
+            Scores::of(&scores(e, metric), y.as_deref(), level)
+        };
     Aggregates {
         level,
         resamples: RESAMPLES,
         seed: SEED,
-        baseline: base.map(|b| b.entry.name.clone()),
-        entries: (entries.iter())
-            .map(|e| EntryAggregate {
-                entry: e.entry.name.clone(),
-                last_ten: of(e, last_ten),
-                area: of(e, area),
+        baseline: common_baseline(pairs).map(str::to_owned),
+        entries: (entries.iter().enumerate())
+            .map(|(slot, e)| {
+                let base = pairs.iter().find(|p| p.slot == slot).map(|p| p.baseline);
+                EntryAggregate {
+                    entry: e.entry.name.clone(),
+                    baseline: base.map(|b| b.entry.name.clone()),
+                    last_ten: of(e, base, last_ten),
+                    area: of(e, base, area),
+                }
             })
             .collect(),
     }

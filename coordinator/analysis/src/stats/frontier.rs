@@ -1,4 +1,4 @@
-//! The communication frontier: what each entry gains over the baseline for
+//! The communication frontier: what each entry gains over its baseline for
 //! what it sends. Entries swept from one study entry share a group (the
 //! method), and each is a point of its group's curve: its cost (advising
 //! messages, or bytes, each agent sent per training episode over the whole
@@ -7,6 +7,7 @@
 
 use serde::Serialize;
 
+use crate::baselines::{Pair, common_baseline};
 use crate::results::{AgentStats, RunResult};
 use crate::stats::gains::gain;
 use crate::stats::{Estimate, estimate};
@@ -49,17 +50,20 @@ pub struct FrontierPoint {
     pub entry: String,
     /// Its group: the entry it was swept from, or its own name.
     pub group: String,
+    /// Its baseline.
+    pub baseline: String,
     /// Advising messages each agent sent per training episode over the
     /// whole training, over runs.
     pub messages: Estimate,
     /// Their bytes, likewise.
     pub bytes: Estimate,
-    /// Its gain in goal % over the baseline on the last ten evaluations,
+    /// Its gain in goal % over its baseline on the last ten evaluations,
     /// paired by run.
     pub last_ten_gain: Estimate,
     /// The same on the whole curve (its mean height).
     pub area_gain: Estimate,
-    /// On the Pareto front of messages and last-ten gain.
+    /// On the Pareto front of messages and last-ten gain (among the
+    /// entries of its baseline).
     pub front_messages: bool,
     /// On the Pareto front of bytes and last-ten gain.
     pub front_bytes: bool,
@@ -96,12 +100,13 @@ pub struct EqualCost {
     pub gains: Vec<Option<Estimate>>,
 }
 
-/// A study's frontier against its baseline.
+/// A study's frontier against its baselines.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Frontier {
-    /// The baseline.
-    pub baseline: String,
-    /// Every entry but the baseline, in entry order.
+    /// The baseline of every point, if they share one (else each point's
+    /// own).
+    pub baseline: Option<String>,
+    /// Every entry compared with a baseline, in entry order.
     pub points: Vec<FrontierPoint>,
     /// The message rates of the equal-cost table (messages per agent per
     /// training episode).
@@ -126,19 +131,17 @@ impl Frontier {
     }
 }
 
-/// The frontier of `entries` against the entry named `baseline`, with
-/// intervals at `level`; none without that entry, or without a group of
-/// two or more entries besides it.
-pub fn frontier(entries: &[EntryResults], baseline: &str, level: f64) -> Option<Frontier> {
-    let base = entries.iter().find(|e| e.entry.name == baseline)?;
-    let mut points: Vec<FrontierPoint> = (entries.iter())
-        .filter(|e| e.entry.name != baseline)
-        .map(|e| {
-            let g = gain(e, base, level);
+/// The frontier of `pairs`' entries against their baselines, with
+/// intervals at `level`; none without a group of two or more of them.
+pub fn frontier(pairs: &[Pair], level: f64) -> Option<Frontier> {
+    let mut points: Vec<FrontierPoint> = (pairs.iter())
+        .map(|p| {
+            let (e, g) = (p.entry, gain(p.entry, p.baseline, level));
             let messages = cost(e, CostUnit::Messages, level);
             FrontierPoint {
                 entry: e.entry.name.clone(),
                 group: (e.entry.group.clone()).unwrap_or_else(|| e.entry.name.clone()),
+                baseline: p.baseline_name().to_owned(),
                 messages,
                 bytes: cost(e, CostUnit::Bytes, level),
                 messages_per_point: messages_per_point(&messages, &g.last_ten_gain),
@@ -150,18 +153,30 @@ pub fn frontier(entries: &[EntryResults], baseline: &str, level: f64) -> Option<
         })
         .collect();
     let mut frontier = Frontier {
-        baseline: baseline.to_owned(),
+        baseline: common_baseline(pairs).map(str::to_owned),
         points: Vec::new(),
         rates: Vec::new(),
         equal_cost: Vec::new(),
     };
     for unit in CostUnit::ALL {
-        // The baseline counts as a point at its own cost and a gain of 0.
-        let base_cost = cost(base, unit, level).mean.map(|c| (c, 0.0));
         let at = |p: &FrontierPoint| Some((p.cost(unit).mean?, p.last_ten_gain.mean?));
-        let known: Vec<(f64, f64)> = points.iter().filter_map(at).chain(base_cost).collect();
-        for p in &mut points {
-            let on = at(p).is_some_and(|me| !known.iter().any(|&other| dominates(other, me)));
+        let known: Vec<(&str, Option<(f64, f64)>)> = points
+            .iter()
+            .map(|p| (p.baseline.as_str(), at(p)))
+            .collect();
+        let on: Vec<bool> = (points.iter().zip(pairs))
+            .map(|(p, pair)| {
+                // The baseline counts as a point at its own cost and a gain of 0.
+                let base = cost(pair.baseline, unit, level).mean.map(|c| (c, 0.0));
+                let rivals: Vec<(f64, f64)> = (known.iter())
+                    .filter(|(b, _)| *b == p.baseline)
+                    .filter_map(|(_, point)| *point)
+                    .chain(base)
+                    .collect();
+                at(p).is_some_and(|me| !rivals.iter().any(|&other| dominates(other, me)))
+            })
+            .collect();
+        for (p, on) in points.iter_mut().zip(on) {
             match unit {
                 CostUnit::Messages => p.front_messages = on,
                 CostUnit::Bytes => p.front_bytes = on,
@@ -357,7 +372,7 @@ fn thin(values: Vec<f64>, most: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fixtures::{entry_results, run_with_goals};
+    use crate::fixtures::{against, entry_results, run_with_goals};
 
     /// Run `run` with goals `goals` every 100 episodes, its 3 agents having
     /// sent `messages` advising messages (and 40 bytes each) by the end.
@@ -413,7 +428,7 @@ mod tests {
             // Free but worse than the baseline, which is free too: off.
             entry("c", None, [-2.0, -1.0, 0.0], [0; 3]),
         ];
-        let f = frontier(&entries, "base", 0.95).unwrap();
+        let f = frontier(&against(&entries, "base"), 0.95).unwrap();
         let on: Vec<(&str, bool)> = (f.points.iter())
             .map(|p| (p.entry.as_str(), p.front_messages))
             .collect();
@@ -436,12 +451,12 @@ mod tests {
     #[test]
     fn no_frontier_without_a_baseline_or_a_swept_group() {
         let single = [baseline(), entry("a", None, [1.0; 3], [600; 3])];
-        assert_eq!(frontier(&single, "base", 0.95), None);
+        assert_eq!(frontier(&against(&single, "base"), 0.95), None);
         let swept = [
             entry("a-1", Some("a"), [1.0; 3], [600; 3]),
             entry("a-2", Some("a"), [2.0; 3], [900; 3]),
         ];
-        assert_eq!(frontier(&swept, "base", 0.95), None);
+        assert_eq!(frontier(&against(&swept, "base"), 0.95), None);
     }
 
     #[test]
@@ -502,7 +517,7 @@ mod tests {
             entry("c-0", Some("c"), [1.0; 3], [0; 3]),
             entry("c-1", Some("c"), [1.0; 3], [600; 3]),
         ];
-        let f = frontier(&entries, "base", 0.95).unwrap();
+        let f = frontier(&against(&entries, "base"), 0.95).unwrap();
         // From 1 to 100 messages a agent a episode.
         assert_eq!(f.rates, [1.0, 3.0, 10.0, 30.0, 100.0]);
         assert_eq!(f.equal_cost.len(), 1);

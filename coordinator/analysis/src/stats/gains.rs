@@ -1,10 +1,12 @@
-//! Each method's gain over the study's baseline, paired by run: on the
-//! mean of its last ten evaluations, and on the area under its learning
-//! curve. Single evaluation points are noisy (100 episodes each); these
-//! two average many of them (docs/reproduction.md, "The gain, measured properly").
+//! Each method's gain over its baseline, paired by run: on the mean of its
+//! last ten evaluations, and on the area under its learning curve. Single
+//! evaluation points are noisy (100 episodes each); these two average many
+//! of them (docs/reproduction.md, "The gain, measured properly"). Besides,
+//! the first evaluation's difference: the jumpstart.
 
 use serde::Serialize;
 
+use crate::baselines::Pair;
 use crate::results::RunResult;
 use crate::stats::{Estimate, estimate};
 use crate::study::EntryResults;
@@ -29,6 +31,15 @@ pub struct Gain {
     pub area: Estimate,
     /// That minus the baseline's, paired by run.
     pub area_gain: Estimate,
+    /// Its goal % at the first evaluation, over runs.
+    pub first: Estimate,
+    /// That minus the baseline's, paired by run: the jumpstart.
+    pub first_gain: Estimate,
+}
+
+/// The goal % of a run's first evaluation point.
+pub fn first(run: &RunResult) -> Option<f64> {
+    run.points.first().map(|p| p.goal_pct)
 }
 
 /// The mean goal % of a run's last ten evaluation points (all of them if
@@ -86,18 +97,15 @@ pub fn gain(entry: &EntryResults, baseline: &EntryResults, level: f64) -> Gain {
         last_ten_gain: gain_of(last_ten),
         area: level_of(area),
         area_gain: gain_of(area),
+        first: level_of(first),
+        first_gain: gain_of(first),
     }
 }
 
-/// Every entry's gain over the entry named `baseline`, in entry order
-/// (none if there is no such entry).
-pub fn gains(entries: &[EntryResults], baseline: &str, level: f64) -> Vec<Gain> {
-    let Some(base) = entries.iter().find(|e| e.entry.name == baseline) else {
-        return Vec::new();
-    };
-    (entries.iter())
-        .filter(|e| e.entry.name != baseline)
-        .map(|e| gain(e, base, level))
+/// Each pair's gain of its entry over its baseline, in their order.
+pub fn gains(pairs: &[Pair], level: f64) -> Vec<Gain> {
+    (pairs.iter())
+        .map(|p| gain(p.entry, p.baseline, level))
         .collect()
 }
 

@@ -1,22 +1,23 @@
-//! The study's tests against the baseline with Holm's correction across
-//! the methods compared with it: at every evaluation point, the Wilcoxon
-//! p-values of every method against the baseline form one family.
+//! The study's tests against the baselines with Holm's correction across
+//! the methods compared with the same baseline: at every evaluation point,
+//! the Wilcoxon p-values of every method against one baseline form one
+//! family (one family per baseline).
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use crate::baselines::Pair;
 use crate::stats::analysis::point_tests;
 use crate::stats::wilcoxon::{Interval, better_intervals};
-use crate::study::EntryResults;
 
-/// Where one method is significantly better or worse than the baseline,
+/// Where one method is significantly better or worse than its baseline,
 /// on Holm-adjusted p-values.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct HolmComparison {
     /// The method.
     pub entry: String,
-    /// The baseline.
+    /// Its baseline.
     pub baseline: String,
     /// Episode intervals `[first, last]` where the method is better.
     pub better: Vec<Interval>,
@@ -26,24 +27,19 @@ pub struct HolmComparison {
     pub final_p: Option<f64>,
 }
 
-/// Every entry's comparison with the entry named `baseline` at level
-/// `alpha`, in entry order (none if there is no such entry).
-pub fn holm_against(entries: &[EntryResults], baseline: &str, alpha: f64) -> Vec<HolmComparison> {
-    let Some(base) = entries.iter().find(|e| e.entry.name == baseline) else {
-        return Vec::new();
-    };
-    let others: Vec<&EntryResults> = (entries.iter())
-        .filter(|e| e.entry.name != baseline)
-        .collect();
-    let mut tests: Vec<Vec<(u64, f64, f64)>> = others
+/// Each pair's comparison of its entry with its baseline at level
+/// `alpha`, in their order.
+pub fn holm_against(pairs: &[Pair], alpha: f64) -> Vec<HolmComparison> {
+    let mut tests: Vec<Vec<(u64, f64, f64)>> = pairs
         .iter()
-        .map(|e| point_tests(&e.results, &base.results))
+        .map(|p| point_tests(&p.entry.results, &p.baseline.results))
         .collect();
-    // Every episode's family: (method, test) of the methods tested there.
-    let mut families: BTreeMap<u64, Vec<(usize, usize)>> = BTreeMap::new();
-    for (m, t) in tests.iter().enumerate() {
+    // Every family, by baseline and episode: (method, test) of the methods
+    // tested there against that baseline.
+    let mut families: BTreeMap<(&str, u64), Vec<(usize, usize)>> = BTreeMap::new();
+    for (m, (t, pair)) in tests.iter().zip(pairs).enumerate() {
         for (k, &(episode, _, _)) in t.iter().enumerate() {
-            families.entry(episode).or_default().push((m, k));
+            (families.entry((pair.baseline_name(), episode)).or_default()).push((m, k));
         }
     }
     for family in families.values() {
@@ -52,12 +48,12 @@ pub fn holm_against(entries: &[EntryResults], baseline: &str, alpha: f64) -> Vec
             tests[m][k].1 = adjusted;
         }
     }
-    (others.iter().zip(&tests))
-        .map(|(e, t)| {
+    (pairs.iter().zip(&tests))
+        .map(|(pair, t)| {
             let (better, worse) = better_intervals(t, alpha);
             HolmComparison {
-                entry: e.entry.name.clone(),
-                baseline: baseline.to_owned(),
+                entry: pair.entry.entry.name.clone(),
+                baseline: pair.baseline_name().to_owned(),
                 better,
                 worse,
                 final_p: t.last().map(|t| t.1),
