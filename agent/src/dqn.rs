@@ -195,10 +195,12 @@ impl Adam {
         let t = self.t as i32;
         let (c1, c2) = (1.0 - BETA1.powi(t), 1.0 - BETA2.powi(t));
         for ((p, m), v) in params.iter().zip(&mut self.m).zip(&mut self.v) {
-            let Some(g) = grads.get(p.as_tensor()) else {
+            // Detached: a variable's gradient holds the step's graph, which
+            // the moments would otherwise chain from step to step.
+            let Some(g) = grads.get(p.as_tensor()).map(Tensor::detach) else {
                 continue;
             };
-            *m = ((&*m * BETA1)? + (g * (1.0 - BETA1))?)?;
+            *m = ((&*m * BETA1)? + (&g * (1.0 - BETA1))?)?;
             *v = ((&*v * BETA2)? + (g.sqr()? * (1.0 - BETA2))?)?;
             let m_hat = (&*m / c1)?;
             let v_hat = (&*v / c2)?;
