@@ -794,6 +794,15 @@ mod tests {
     }
 
     #[test]
+    fn adams_moments_keep_no_step_graph() {
+        let mut dqn = Dqn::new(&small(), 0.9, 3);
+        bandit(&mut dqn, 50, &mut AgentRng::seed_from_u64(2));
+        assert!(dqn.trained());
+        // A graph in a moment would chain every gradient step's to it.
+        assert!(!dqn.adam.m.track_op() && !dqn.adam.v.track_op());
+    }
+
+    #[test]
     fn a_seed_gives_the_same_bits_and_another_seed_others() {
         let run = |seed| {
             let mut dqn = Dqn::new(&small(), 0.9, seed);
