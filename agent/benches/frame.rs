@@ -3,7 +3,7 @@
 
 use std::hint::black_box;
 
-use agent::{Agent, AgentConfig, Mode, Observation, Profile, Team};
+use agent::{Agent, AgentConfig, Features, Mode, Observation, Profile, Team};
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -26,6 +26,7 @@ fn frames(n: usize) -> Vec<[Observation; AGENTS]> {
                 }
                 Observation {
                     state,
+                    features: Features::NONE,
                     can_kick: i == kicker,
                     position: [0.0, 0.0],
                 }

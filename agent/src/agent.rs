@@ -1,7 +1,7 @@
 //! One learning agent: its per-frame API (advisee side), its advisor side and
 //! its learned state.
 
-use proto::{Action, AdviceAnswer, Along, Mode, SharedValues, State, ValuesAnswer};
+use proto::{Action, AdviceAnswer, Along, Features, Mode, SharedValues, State, ValuesAnswer};
 use rand::{Rng, SeedableRng};
 
 use crate::advice_counters::{AdviceCounters, RequestOutcomes};
@@ -10,6 +10,7 @@ use crate::config_error::AgentConfigError;
 use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
 use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
+use crate::learner_settings::ObservationSet;
 use crate::learners::learner_of;
 use crate::link::Link;
 use crate::persist::{Entry, PersistError, Snapshot};
@@ -26,6 +27,9 @@ use crate::tiles::{Tiling, TilingParams};
 pub struct Observation {
     /// The 6 features of docs/algorithms.md section 1, each in [-1, 1].
     pub state: State,
+    /// HFO's features of the state, for an agent whose learner reads them
+    /// (`observation = "hfo"`); [`Features::NONE`] for the others.
+    pub features: Features,
     /// Whether the agent can kick the ball (it chooses a kick action only then).
     pub can_kick: bool,
     /// Field position, used only by
@@ -39,17 +43,24 @@ struct OpenStep {
     index: usize,
     action: Action,
     state: State,
+    features: Features,
     /// The advisor whose advice it played, if any.
     advisor: Option<usize>,
 }
 
 impl OpenStep {
+    /// Where it was taken.
+    fn at(&self) -> Seen<'_> {
+        Seen {
+            state: &self.state,
+            features: self.features.as_slice(),
+            index: Some(self.index),
+        }
+    }
+
     fn step(&self) -> Step<'_> {
         Step {
-            at: Seen {
-                state: &self.state,
-                index: Some(self.index),
-            },
+            at: self.at(),
             action: self.action,
         }
     }
@@ -62,6 +73,7 @@ struct InFlight {
     key: u64,
     index: usize,
     state: State,
+    features: Features,
     reward: f64,
     intended: Option<Action>,
     /// Advisors asked.
@@ -70,6 +82,10 @@ struct InFlight {
 
 /// The first half of a frame (see [`Agent::act_begin`]).
 #[derive(Clone, Debug, PartialEq)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "made and matched once a frame; boxing the features would allocate every request"
+)]
 pub enum Decision {
     /// The action for this frame; the frame is complete.
     Act(Action),
@@ -80,6 +96,9 @@ pub enum Decision {
         to: Vec<usize>,
         /// The advisee's state.
         state: State,
+        /// HFO's features of it, where the advisee's observations carry
+        /// them.
+        features: Features,
         /// What the request carries: its own choice in Mistake Correcting
         /// mode, its visits by action for PSAF, else nothing.
         along: Along,
@@ -152,7 +171,7 @@ impl Agent {
         config: AgentConfig,
         seed: u64,
     ) -> Result<Self, AgentConfigError> {
-        let learner = learner_of(&config, seed);
+        let learner = learner_of(&config, team_size, seed);
         Self::with_learner(id, team_size, config, seed, learner)
     }
 
@@ -174,6 +193,17 @@ impl Agent {
             ));
         }
         config.algorithm.check_team(team_size)?;
+        if config.learner.observation() == ObservationSet::Hfo
+            && team_size > proto::MAX_FEATURE_TEAM
+        {
+            return Err(AgentConfigError::new(
+                "observation",
+                format!(
+                    "`hfo` is given to teams of at most {} agents, this one has {team_size}",
+                    proto::MAX_FEATURE_TEAM
+                ),
+            ));
+        }
         if let Some(network) = &config.network {
             network.validate()?;
         }
@@ -287,6 +317,7 @@ impl Agent {
         let index = self.states.get(self.tiling.key(state))?;
         let values = self.learner.values(Seen {
             state,
+            features: &[],
             index: Some(index),
         });
         Some(Entry {
@@ -351,10 +382,15 @@ impl Agent {
     ) -> Action {
         match self.act_begin(obs, reward, positions, &|_| true) {
             Decision::Act(action) => action,
-            Decision::Ask { to, state, along } => {
+            Decision::Ask {
+                to,
+                state,
+                features,
+                along,
+            } => {
                 let mut answers = std::mem::take(&mut self.answers);
                 answers.clear();
-                let replies = exchange.ask(self.id, &to, &state, along, &mut answers);
+                let replies = exchange.ask(self.id, &to, &state, &features, along, &mut answers);
                 let action = self.act_complete(&answers, replies);
                 self.answers = answers;
                 action
@@ -384,35 +420,45 @@ impl Agent {
             return Decision::Act(self.random_action(obs.can_kick));
         }
         let key = self.tiling.key(&obs.state);
+        let seen = |index| Seen {
+            state: &obs.state,
+            features: obs.features.as_slice(),
+            index,
+        };
         if self.mode == Mode::Evaluation {
             if !obs.can_kick {
                 return Decision::Act(Action::Move);
             }
-            let at = Seen {
-                state: &obs.state,
-                index: self.states.get(key),
-            };
+            let at = seen(self.states.get(key));
             return Decision::Act(greedy_first(&self.learner.values(at).q));
         }
         let index = self.states.index_or_insert(key);
+        let at = seen(Some(index));
+        let open = |action| OpenStep {
+            index,
+            action,
+            state: obs.state,
+            features: obs.features,
+            advisor: None,
+        };
         if !obs.can_kick {
-            self.step(index, Action::Move, obs.state, reward, None);
+            self.step(open(Action::Move), reward);
             return Decision::Act(Action::Move);
         }
-        if let Some(action) = self.reused(key, index, &obs.state) {
-            self.step(index, action, obs.state, reward, None);
+        if let Some(action) = self.reused(key, at) {
+            self.step(open(action), reward);
             return Decision::Act(action);
         }
-        if self.asks(key, index, &obs.state) {
+        if self.asks(key, index, at) {
             self.fill_reach(positions, reachable);
             if !self.reach.is_empty() {
-                let intended =
-                    (self.strategy.mistake_correcting()).then(|| self.intent(index, &obs.state));
+                let intended = (self.strategy.mistake_correcting()).then(|| self.intent(at));
                 self.counters.advice_requests += 1;
                 self.in_flight = Some(InFlight {
                     key,
                     index,
                     state: obs.state,
+                    features: obs.features,
                     reward,
                     intended,
                     asked: self.reach.len() as u64,
@@ -427,12 +473,13 @@ impl Agent {
                 return Decision::Ask {
                     to: self.reach.clone(),
                     state: obs.state,
+                    features: obs.features,
                     along,
                 };
             }
         }
-        let action = self.choose(index, &obs.state);
-        self.step(index, action, obs.state, reward, None);
+        let action = self.choose(at);
+        self.step(open(action), reward);
         Decision::Act(action)
     }
 
@@ -451,16 +498,15 @@ impl Agent {
         self.counters.advice_replies_received += replies;
         self.outcomes.count(f.asked, replies, answers);
         let ties = self.config.fidelity.vote_ties;
+        let at = Seen {
+            state: &f.state,
+            features: f.features.as_slice(),
+            index: Some(f.index),
+        };
         // A strategy that weighs its own choice gets it drawn first.
-        let own = self.strategy.weighs_own_choice().then(|| {
-            let at = Seen {
-                state: &f.state,
-                index: Some(f.index),
-            };
-            OwnChoice {
-                values: self.learner.values(at),
-                action: f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
-            }
+        let own = self.strategy.weighs_own_choice().then(|| OwnChoice {
+            values: self.learner.values(at),
+            action: f.intended.unwrap_or_else(|| self.choose(at)),
         });
         let replies = Replies {
             key: f.key,
@@ -486,11 +532,17 @@ impl Agent {
             None => match (greedy, own) {
                 (Some(action), _) => action,
                 (None, Some(own)) => own.action,
-                (None, None) => f.intended.unwrap_or_else(|| self.choose(f.index, &f.state)),
+                (None, None) => f.intended.unwrap_or_else(|| self.choose(at)),
             },
         };
-        let advisor = followed.map(|advice| advice.advisor);
-        self.step(f.index, action, f.state, f.reward, advisor);
+        let this = OpenStep {
+            index: f.index,
+            action,
+            state: f.state,
+            features: f.features,
+            advisor: followed.map(|advice| advice.advisor),
+        };
+        self.step(this, f.reward);
         action
     }
 
@@ -500,6 +552,7 @@ impl Agent {
     fn adopt(&mut self, f: &InFlight, adopted: Adopted) -> Option<Action> {
         let at = Seen {
             state: &f.state,
+            features: f.features.as_slice(),
             index: Some(f.index),
         };
         let values = match adopted {
@@ -523,26 +576,13 @@ impl Agent {
         matches!(adopted, Adopted::Best { .. }).then(|| greedy_random(&q, &mut self.rng))
     }
 
-    /// Completes a training frame: learns the previous step towards this
-    /// one, counts the visit and keeps this step open.
-    fn step(
-        &mut self,
-        index: usize,
-        action: Action,
-        state: State,
-        reward: f64,
-        advisor: Option<usize>,
-    ) {
-        let this = OpenStep {
-            index,
-            action,
-            state,
-            advisor,
-        };
+    /// Completes a training frame: learns the previous step towards
+    /// `this` one, counts the visit and keeps this step open.
+    fn step(&mut self, this: OpenStep, reward: f64) {
         if let Some(prev) = self.pending.take() {
             self.learn(prev, reward, Some(this));
         }
-        self.states.visit(index, action);
+        self.states.visit(this.index, this.action);
         self.pending = Some(this);
     }
 
@@ -587,23 +627,28 @@ impl Agent {
         std::mem::take(&mut self.outbox)
     }
 
-    /// Advisor side: its answer to a request about `state`, as its method
+    /// Advisor side: its answer to a request about `state` (with the
+    /// asker's HFO `features` of it, if it sent them), as its method
     /// answers: an action ([`advise`](Self::advise)) or, for a value-sharing
     /// method, its values ([`share_values`](Self::share_values)); none, and
     /// why, otherwise.
-    pub fn answer(&mut self, state: &State, along: Along) -> Answer {
+    pub fn answer(&mut self, state: &State, features: &[f32], along: Along) -> Answer {
         let exhausted = self.training() && self.strategy.exhausted(&self.counters);
         match (self.strategy.shares_values(), exhausted) {
             (true, true) => Answer::Values(ValuesAnswer::Exhausted),
             (false, true) => Answer::Action(AdviceAnswer::Exhausted),
-            (true, false) => Answer::Values(self.share_values(state, along.action_visits())),
-            (false, false) => Answer::Action(match self.advise(state, along.intended()) {
-                None => AdviceAnswer::Declined,
-                Some(action) => match self.strategy.advisor_value() {
-                    Some(value) => AdviceAnswer::Recommendation(action, value as f32),
-                    None => AdviceAnswer::Advice(action),
-                },
-            }),
+            (true, false) => {
+                Answer::Values(self.share_values(state, features, along.action_visits()))
+            }
+            (false, false) => {
+                Answer::Action(match self.advise(state, features, along.intended()) {
+                    None => AdviceAnswer::Declined,
+                    Some(action) => match self.strategy.advisor_value() {
+                        Some(value) => AdviceAnswer::Recommendation(action, value as f32),
+                        None => AdviceAnswer::Advice(action),
+                    },
+                })
+            }
         }
     }
 
@@ -630,7 +675,12 @@ impl Agent {
     /// its strategy is willing to give about it now to an asker that took
     /// each action there `asker` times (if it says); `None` outside
     /// training or when it is not.
-    fn willing(&mut self, state: &State, asker: Option<[u32; ACTIONS]>) -> Option<Known> {
+    fn willing(
+        &mut self,
+        state: &State,
+        features: &[f32],
+        asker: Option<[u32; ACTIONS]>,
+    ) -> Option<Known> {
         if !self.training() {
             return None;
         }
@@ -641,6 +691,7 @@ impl Agent {
                 action_visits: self.states.action_visits(i),
                 values: self.learner.values(Seen {
                     state,
+                    features,
                     index: Some(i),
                 }),
                 index,
@@ -658,15 +709,22 @@ impl Agent {
     }
 
     /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
-    /// advisee's `state`, or `None`. The answer is its greedy kick action,
-    /// ties broken as its fidelity says. With `intended` (Mistake Correcting)
-    /// it answers, and spends budget, only when its action differs.
-    pub fn advise(&mut self, state: &State, intended: Option<Action>) -> Option<Action> {
-        let known = self.willing(state, None)?;
+    /// advisee's `state` (with its HFO features, if it sent them), or
+    /// `None`. The answer is its greedy kick action, ties broken as its
+    /// fidelity says. With `intended` (Mistake Correcting) it answers, and
+    /// spends budget, only when its action differs.
+    pub fn advise(
+        &mut self,
+        state: &State,
+        features: &[f32],
+        intended: Option<Action>,
+    ) -> Option<Action> {
+        let known = self.willing(state, features, None)?;
         let ties = self.config.fidelity.advisor_ties;
         let honest = if self.strategy.suggests_its_choice() {
             let at = Seen {
                 state,
+                features,
                 index: known.index,
             };
             self.learner.choose(at, &mut self.rng)
@@ -685,11 +743,17 @@ impl Agent {
     }
 
     /// Sharer side (a value-sharing method): its values and visits of an
-    /// advisee's `state` (or only its best action and that action's value,
-    /// as its strategy shares; `asker`: the advisee's visits by action, if
-    /// sent), or why none; one unit of its give budget.
-    pub fn share_values(&mut self, state: &State, asker: Option<[u32; ACTIONS]>) -> ValuesAnswer {
-        let Some(known) = self.willing(state, asker) else {
+    /// advisee's `state` and HFO features (or only its best action and that
+    /// action's value, as its strategy shares; `asker`: the advisee's
+    /// visits by action, if sent), or why none; one unit of its give
+    /// budget.
+    pub fn share_values(
+        &mut self,
+        state: &State,
+        features: &[f32],
+        asker: Option<[u32; ACTIONS]>,
+    ) -> ValuesAnswer {
+        let Some(known) = self.willing(state, features, asker) else {
             return ValuesAnswer::Declined;
         };
         self.gave();
@@ -730,6 +794,7 @@ impl Agent {
                 let from = Step {
                     at: Seen {
                         state: &t.state,
+                        features: &[],
                         index: Some(from),
                     },
                     action: t.action,
@@ -737,6 +802,7 @@ impl Agent {
                 let next = t.next.as_ref().zip(next).map(|((s, a), index)| Step {
                     at: Seen {
                         state: s,
+                        features: &[],
                         index: Some(index),
                     },
                     action: match bootstrap {
@@ -751,27 +817,19 @@ impl Agent {
     }
 
     /// The advice its strategy reuses instead of asking, if any.
-    fn reused(&mut self, key: u64, index: usize, state: &State) -> Option<Action> {
+    fn reused(&mut self, key: u64, at: Seen<'_>) -> Option<Action> {
         let learner = &mut self.learner;
-        let mut values = || {
-            learner.values(Seen {
-                state,
-                index: Some(index),
-            })
-        };
+        let mut values = || learner.values(at);
         let reused = self.strategy.reuse(key, &mut values, &mut self.rng);
         self.outcomes.reused += u64::from(reused.is_some());
         reused
     }
 
-    /// Whether a training step with the ball asks for advice, as its
-    /// strategy decides.
-    fn asks(&mut self, key: u64, index: usize, state: &State) -> bool {
+    /// Whether a training step with the ball (`at` state `index`) asks for
+    /// advice, as its strategy decides.
+    fn asks(&mut self, key: u64, index: usize, at: Seen<'_>) -> bool {
         let uncertainty = if self.strategy.asks_by_uncertainty() {
-            self.learner.uncertainty(Seen {
-                state,
-                index: Some(index),
-            })
+            self.learner.uncertainty(at)
         } else {
             None
         };
@@ -797,24 +855,16 @@ impl Agent {
     /// The intended action a Mistake Correcting advisee sends along: its
     /// learner's choice, or its greedy action for a strategy that intends
     /// greedily.
-    fn intent(&mut self, index: usize, state: &State) -> Action {
+    fn intent(&mut self, at: Seen<'_>) -> Action {
         if self.strategy.intends_greedy() {
-            let at = Seen {
-                state,
-                index: Some(index),
-            };
             greedy_random(&self.learner.values(at).q, &mut self.rng)
         } else {
-            self.choose(index, state)
+            self.choose(at)
         }
     }
 
     /// Its learner's own choice in a training state with the ball.
-    fn choose(&mut self, index: usize, state: &State) -> Action {
-        let at = Seen {
-            state,
-            index: Some(index),
-        };
+    fn choose(&mut self, at: Seen<'_>) -> Action {
         self.learner.choose(at, &mut self.rng)
     }
 
@@ -861,11 +911,7 @@ impl Agent {
     /// kick action's value where it chose among them (its own action's if it
     /// learned none), its action's value where it could only move.
     fn state_value(&mut self, step: &OpenStep) -> f64 {
-        let at = Seen {
-            state: &step.state,
-            index: Some(step.index),
-        };
-        let values = self.learner.values(at);
+        let values = self.learner.values(step.at());
         let own = values.q[step.action.index()];
         if !step.action.is_kick() {
             return own;

@@ -53,6 +53,12 @@ impl Algorithm {
         self.0.communicates
     }
 
+    /// Whether its agents learn from the episodes others share (which
+    /// carry the paper's states only).
+    pub fn shares_episodes(self) -> bool {
+        self.0.shares_episodes
+    }
+
     /// Whether its decisions are given from outside: `external`, made by a
     /// strategy process (a team file's `strategy_process`) or, in process,
     /// [`Agent::with_strategy`](crate::Agent::with_strategy).

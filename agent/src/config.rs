@@ -10,7 +10,7 @@ use crate::advises::Advises;
 use crate::algorithm_settings::AlgorithmSettings;
 use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
-use crate::learner_settings::LearnerSettings;
+use crate::learner_settings::{LearnerSettings, ObservationSet};
 use crate::link::NetworkConditions;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
@@ -103,6 +103,15 @@ impl AgentConfig {
         }
         self.learner.validate()?;
         let algorithm = self.algorithm.name();
+        if self.learner.observation() == ObservationSet::Hfo && algorithm.shares_episodes() {
+            return Err(AgentConfigError::new(
+                "observation",
+                format!(
+                    "`hfo` cannot learn from algorithm {algorithm}'s shared episodes, which \
+                     carry the paper's six features only: use `paper`"
+                ),
+            ));
+        }
         if !self.learner.meets(algorithm.learner_need()) {
             return Err(AgentConfigError::new(
                 "learner",

@@ -16,12 +16,12 @@
 use std::sync::Once;
 
 use candle_core::{D, DType, Device, Tensor, Var};
-use proto::{Action, State};
+use proto::{Action, Features};
 use rand::{Rng, SeedableRng};
 use serde::{Deserialize, Serialize};
 
 use crate::learner::{ActionValues, Experience, Learner, Seen};
-use crate::learner_settings::DqnSettings;
+use crate::learner_settings::{DqnSettings, ObservationSet};
 use crate::selection::{AgentRng, epsilon_greedy};
 
 /// The kick actions the network values, in its output order.
@@ -40,9 +40,10 @@ const BETA1: f64 = 0.9;
 const BETA2: f64 = 0.999;
 const ADAM_EPSILON: f64 = 1e-8;
 
-/// What a saved state starts with, and its layout's version.
+/// What a saved state starts with, and its layout's version (2: the
+/// observation set it reads).
 const STATE_TAG: &str = "adhoc-advising dqn";
-const STATE_VERSION: u16 = 1;
+const STATE_VERSION: u16 = 2;
 
 /// Whether `state`, a learner's own saved bytes, is a DQN's.
 pub(crate) fn holds_dqn_state(state: &[u8]) -> bool {
@@ -54,9 +55,10 @@ fn kick_slot(action: Action) -> Option<usize> {
     KICKS.iter().position(|&a| a == action)
 }
 
-/// A state as the network reads it.
-fn features(state: &State) -> [f32; proto::STATE_FEATURES] {
-    state.map(|x| x as f32)
+/// Whether `a` and `b` hold the same bits.
+fn same_bits(a: &Features, b: &Features) -> bool {
+    let (a, b) = (a.as_slice(), b.as_slice());
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// Any candle failure: only a shape this module got wrong can cause one.
@@ -283,17 +285,19 @@ pub struct Dqn {
     stored: u64,
     /// Gradient steps taken.
     updates: u64,
-    /// The last state valued and every head's outputs there.
-    cache: Option<([u64; proto::STATE_FEATURES], Vec<f32>)>,
+    /// The last input valued and every head's outputs there.
+    cache: Option<(Features, Vec<f32>)>,
 }
 
 impl Dqn {
-    /// A DQN of `settings` over the six features, discounting by `gamma`
-    /// per frame, its weights and draws seeded by `seed`.
-    pub fn new(settings: &DqnSettings, gamma: f64, seed: u64) -> Self {
+    /// A DQN of `settings` over `inputs` numbers of its observation set
+    /// (its [`width`](ObservationSet::width) in the agent's team),
+    /// discounting by `gamma` per frame, its weights and draws seeded by
+    /// `seed`.
+    pub fn new(settings: &DqnSettings, gamma: f64, inputs: usize, seed: u64) -> Self {
         single_threaded_products();
         let mut rng = AgentRng::seed_from_u64(seed);
-        let width = proto::STATE_FEATURES;
+        let width = inputs;
         let heads = settings.heads.max(1) as usize;
         let params = Self::initial(settings, width, heads, &mut rng);
         let target: candle_core::Result<Vec<Tensor>> =
@@ -349,18 +353,29 @@ impl Dqn {
         self.updates > 0
     }
 
-    /// Every head's four kick values in `state`, head by head.
-    fn outputs(&mut self, state: &State) -> Vec<f32> {
-        let key = state.map(f64::to_bits);
-        if let Some((_, out)) = self.cache.as_ref().filter(|(k, _)| *k == key) {
+    /// What the network reads of `at`: the paper's six features, or HFO's;
+    /// none where it reads HFO's and `at` has not as many (the state of an
+    /// asker whose observations do not carry them).
+    fn input(&self, at: Seen<'_>) -> Option<Features> {
+        match self.settings.observation {
+            ObservationSet::Paper => Features::from_f64(at.state),
+            ObservationSet::Hfo => {
+                Features::new(at.features).filter(|_| at.features.len() == self.width)
+            }
+        }
+    }
+
+    /// Every head's four kick values for input `x`, head by head.
+    fn outputs(&mut self, x: &Features) -> Vec<f32> {
+        if let Some((_, out)) = self.cache.as_ref().filter(|(k, _)| same_bits(k, x)) {
             return out.clone();
         }
-        let x = Tensor::from_slice(&features(state), (1, self.width), &Device::Cpu);
-        let out = x
+        let x_tensor = Tensor::from_slice(x.as_slice(), (1, self.width), &Device::Cpu);
+        let out = x_tensor
             .and_then(|x| forward(self.online(), &x))
             .and_then(|y| y.flatten_all()?.to_vec1::<f32>())
             .unwrap_or_else(|e| panic!("{}", fault(e)));
-        self.cache = Some((key, out.clone()));
+        self.cache = Some((*x, out.clone()));
         out
     }
 
@@ -391,12 +406,13 @@ impl Dqn {
     }
 
     /// Folds one frame of an episode into `open`, storing the decision it
-    /// closes; whether it closed one.
+    /// closes; whether it closed one. A kick whose input it cannot read (a
+    /// shared state without HFO's features) is not learned.
     fn fold(&mut self, open: &mut Option<Open>, experience: Experience<'_>) -> bool {
         let (from, reward, next) = experience;
         if let Some(slot) = kick_slot(from.action) {
-            *open = Some(Open {
-                state: features(from.at.state).to_vec(),
+            *open = self.input(from.at).map(|x| Open {
+                state: x.as_slice().to_vec(),
                 slot,
                 reward: 0.0,
                 discount: 1.0,
@@ -408,7 +424,13 @@ impl Dqn {
         kick.fold(reward, self.gamma);
         let next = match next {
             None => None,
-            Some(n) if n.action.is_kick() => Some(features(n.at.state)),
+            Some(n) if n.action.is_kick() => match self.input(n.at) {
+                Some(x) => Some(x),
+                None => {
+                    *open = None;
+                    return false;
+                }
+            },
             Some(_) => return false,
         };
         let kick = open.take().expect("an open kick");
@@ -418,7 +440,7 @@ impl Dqn {
             slot: kick.slot,
             reward: kick.reward,
             discount: if next.is_some() { kick.discount } else { 0.0 },
-            next: next.as_ref().map(|n| &n[..]),
+            next: next.as_ref().map(Features::as_slice),
             mask,
         });
         self.stored += 1;
@@ -495,6 +517,7 @@ impl Dqn {
         Ok(Saved {
             tag: STATE_TAG.into(),
             version: STATE_VERSION,
+            observation: self.settings.observation,
             shape: self.shape(),
             params: all(&params)?,
             target: all(&self.target)?,
@@ -519,6 +542,18 @@ impl Dqn {
 
     /// Takes `saved` as its state once it checked it fits.
     fn load(&mut self, saved: Saved) -> Result<(), String> {
+        let (theirs, ours) = (saved.observation, self.settings.observation);
+        if theirs != ours {
+            return Err(format!(
+                "the snapshot's DQN reads observation `{}` ({} inputs), this agent's reads `{}` \
+                 ({} inputs): load it into an agent of observation = \"{}\"",
+                theirs.name(),
+                saved.shape.first().copied().unwrap_or_default(),
+                ours.name(),
+                self.width,
+                theirs.name()
+            ));
+        }
         if saved.shape != self.shape() {
             return Err(format!(
                 "the snapshot's network has layers {:?} (inputs, hidden, heads x 4 kicks), \
@@ -581,6 +616,7 @@ impl Dqn {
 struct Saved {
     tag: String,
     version: u16,
+    observation: ObservationSet,
     shape: Vec<u32>,
     params: Vec<Vec<f32>>,
     target: Vec<Vec<f32>>,
@@ -597,11 +633,12 @@ struct Saved {
 impl Learner for Dqn {
     /// The heads' mean of each kick action, every kick learned once it has
     /// taken a gradient step; nothing learned before (Move never is).
+    /// None where it cannot read `at` (see [`Dqn::input`]).
     fn values(&mut self, at: Seen<'_>) -> ActionValues {
-        if !self.trained() {
+        let Some(x) = self.input(at).filter(|_| self.trained()) else {
             return ActionValues::default();
-        }
-        let out = self.outputs(at.state);
+        };
+        let out = self.outputs(&x);
         let mut values = ActionValues {
             learned: ALL_KICKS,
             ..ActionValues::default()
@@ -667,27 +704,27 @@ impl Learner for Dqn {
                         load a snapshot saved by a dqn agent"
                 .into());
         }
-        let saved: Saved =
-            postcard::from_bytes(state).map_err(|e| format!("the DQN's saved state: {e}"))?;
-        if saved.version != STATE_VERSION {
+        if let Ok(((_, version), _)) = postcard::take_from_bytes::<(String, u16)>(state)
+            && version != STATE_VERSION
+        {
             return Err(format!(
-                "the DQN's saved state is of version {}, this build reads {STATE_VERSION}",
-                saved.version
+                "the DQN's saved state is of version {version}, this build reads {STATE_VERSION}"
             ));
         }
+        let saved: Saved =
+            postcard::from_bytes(state).map_err(|e| format!("the DQN's saved state: {e}"))?;
         self.load(saved)
     }
 
     /// The mean over the kick actions of the heads' variance there;
-    /// infinite before it trained; none for a single head.
+    /// infinite before it trained; none for a single head or where it
+    /// cannot read `at`.
     fn uncertainty(&mut self, at: Seen<'_>) -> Option<f64> {
-        if self.heads < 2 {
-            return None;
-        }
+        let x = self.input(at).filter(|_| self.heads >= 2)?;
         if !self.trained() {
             return Some(f64::INFINITY);
         }
-        let out = self.outputs(at.state);
+        let out = self.outputs(&x);
         let k = self.heads as f64;
         let variance = |slot: usize| {
             let each = (0..self.heads).map(|h| f64::from(out[h * KICKS.len() + slot]));
@@ -703,6 +740,7 @@ mod tests {
     use super::*;
     use crate::learner::Step;
     use Action::*;
+    use proto::State;
 
     /// Small and quick to train.
     fn small() -> DqnSettings {
@@ -721,7 +759,11 @@ mod tests {
 
     fn step(state: &State, action: Action) -> Step<'_> {
         Step {
-            at: Seen { state, index: None },
+            at: Seen {
+                state,
+                features: &[],
+                index: None,
+            },
             action,
         }
     }
@@ -738,7 +780,11 @@ mod tests {
             } else {
                 (&B, PassFar)
             };
-            let at = Seen { state, index: None };
+            let at = Seen {
+                state,
+                features: &[],
+                index: None,
+            };
             let action = dqn.choose(at, rng);
             let reward = if action == best { 1.0 } else { 0.0 };
             dqn.learn((step(state, action), reward, None));
@@ -752,8 +798,12 @@ mod tests {
 
     #[test]
     fn it_learns_a_one_step_bandit_and_knows_nothing_before() {
-        let mut dqn = Dqn::new(&small(), 0.9, 7);
-        let at = |state| Seen { state, index: None };
+        let mut dqn = Dqn::new(&small(), 0.9, 6, 7);
+        let at = |state| Seen {
+            state,
+            features: &[],
+            index: None,
+        };
         assert_eq!(dqn.values(at(&A)), ActionValues::default());
         let mut rng = AgentRng::seed_from_u64(1);
         bandit(&mut dqn, 600, &mut rng);
@@ -771,7 +821,7 @@ mod tests {
             warmup: 1000,
             ..small()
         };
-        let mut dqn = Dqn::new(&settings, 0.5, 1);
+        let mut dqn = Dqn::new(&settings, 0.5, 6, 1);
         // Kick, two moves, a kick, a move, the end.
         dqn.learn((step(&A, Dribble), 1.0, Some(step(&B, Move))));
         dqn.learn((step(&B, Move), 2.0, Some(step(&B, Move))));
@@ -784,8 +834,8 @@ mod tests {
         // 1 + 0.5 * 2 + 0.25 * 4 = 3, then 0.125 to the next kick.
         assert_eq!(r.reward, [3.0, 16.0]);
         assert_eq!(r.discount, [0.125, 0.0]);
-        assert_eq!(r.state[..6], features(&A));
-        assert_eq!(r.next_state[..6], features(&A));
+        assert_eq!(r.state[..6], A.map(|x| x as f32));
+        assert_eq!(r.next_state[..6], A.map(|x| x as f32));
         assert_eq!(r.next_state[6..], [0.0; 6]);
         assert_eq!(dqn.decisions, 2);
         // Moves before any kick teach nothing.
@@ -795,7 +845,7 @@ mod tests {
 
     #[test]
     fn adams_moments_keep_no_step_graph() {
-        let mut dqn = Dqn::new(&small(), 0.9, 3);
+        let mut dqn = Dqn::new(&small(), 0.9, 6, 3);
         bandit(&mut dqn, 50, &mut AgentRng::seed_from_u64(2));
         assert!(dqn.trained());
         // A graph in a moment would chain every gradient step's to it.
@@ -805,11 +855,12 @@ mod tests {
     #[test]
     fn a_seed_gives_the_same_bits_and_another_seed_others() {
         let run = |seed| {
-            let mut dqn = Dqn::new(&small(), 0.9, seed);
+            let mut dqn = Dqn::new(&small(), 0.9, 6, seed);
             bandit(&mut dqn, 200, &mut AgentRng::seed_from_u64(3));
             (
                 bits(dqn.values(Seen {
                     state: &A,
+                    features: &[],
                     index: None,
                 })),
                 dqn.save_state(),
@@ -825,10 +876,10 @@ mod tests {
             heads: 3,
             ..small()
         };
-        let mut saved = Dqn::new(&settings, 0.9, 11);
+        let mut saved = Dqn::new(&settings, 0.9, 6, 11);
         bandit(&mut saved, 100, &mut AgentRng::seed_from_u64(4));
         let bytes = saved.save_state().unwrap();
-        let mut loaded = Dqn::new(&settings, 0.9, 99);
+        let mut loaded = Dqn::new(&settings, 0.9, 6, 99);
         loaded.load_state(&bytes).unwrap();
         assert_eq!(loaded.save_state().unwrap(), bytes);
         for dqn in [&mut saved, &mut loaded] {
@@ -836,6 +887,7 @@ mod tests {
         }
         let at = Seen {
             state: &B,
+            features: &[],
             index: None,
         };
         assert_eq!(bits(saved.values(at)), bits(loaded.values(at)));
@@ -845,7 +897,7 @@ mod tests {
 
     #[test]
     fn another_learners_snapshot_is_refused() {
-        let mut dqn = Dqn::new(&small(), 0.9, 1);
+        let mut dqn = Dqn::new(&small(), 0.9, 6, 1);
         let table = dqn.restore(vec![ActionValues::default()]).unwrap_err();
         assert!(table.contains("Q-table"), "{table}");
         let other = dqn.load_state(b"\x93NUMPY weights").unwrap_err();
@@ -856,6 +908,7 @@ mod tests {
                 ..small()
             },
             0.9,
+            6,
             1,
         );
         let shape = dqn.load_state(&wider.save_state().unwrap()).unwrap_err();
@@ -871,13 +924,14 @@ mod tests {
             heads: 5,
             ..small()
         };
-        let mut dqn = Dqn::new(&settings, 0.9, 2);
+        let mut dqn = Dqn::new(&settings, 0.9, 6, 2);
         let at = Seen {
             state: &A,
+            features: &[],
             index: None,
         };
         assert_eq!(dqn.uncertainty(at), Some(f64::INFINITY));
-        assert_eq!(Dqn::new(&small(), 0.9, 2).uncertainty(at), None);
+        assert_eq!(Dqn::new(&small(), 0.9, 6, 2).uncertainty(at), None);
         let mut seen = Vec::new();
         for e in 0..400 {
             let action = KICKS[e % 4];
@@ -888,5 +942,94 @@ mod tests {
             }
         }
         assert!(seen[1] < seen[0] / 10.0, "{seen:?}");
+    }
+
+    /// HFO's features of three attackers, scaled by `v`.
+    fn hfo_features(v: f32) -> Vec<f32> {
+        (0..27).map(|i| v * (i as f32 + 1.0) / 27.0).collect()
+    }
+
+    fn hfo_small() -> DqnSettings {
+        DqnSettings {
+            observation: ObservationSet::Hfo,
+            ..small()
+        }
+    }
+
+    #[test]
+    fn an_hfo_network_reads_hfos_features_and_not_the_papers() {
+        let width = ObservationSet::Hfo.width(3);
+        let mut dqn = Dqn::new(&hfo_small(), 0.9, width, 7);
+        assert_eq!((width, dqn.shape()[0]), (27, 27), "its first layer");
+        // One paper state, two feature vectors: Shoot pays in the first,
+        // PassFar in the second.
+        let (fa, fb) = (hfo_features(0.5), hfo_features(-0.5));
+        let at = |features| Seen {
+            state: &A,
+            features,
+            index: None,
+        };
+        // A paper network of the same seed learns the same experience.
+        let mut paper = Dqn::new(&small(), 0.9, 6, 7);
+        let mut rng = AgentRng::seed_from_u64(1);
+        for e in 0..600 {
+            let (features, best) = if e % 2 == 0 {
+                (&fa[..], Shoot)
+            } else {
+                (&fb[..], PassFar)
+            };
+            let action = dqn.choose(at(features), &mut rng);
+            let reward = if action == best { 1.0 } else { 0.0 };
+            for learner in [&mut dqn, &mut paper] {
+                let step = Step {
+                    at: at(features),
+                    action,
+                };
+                learner.learn((step, reward, None));
+                learner.end_episode();
+            }
+        }
+        let (a, b) = (dqn.values(at(&fa)), dqn.values(at(&fb)));
+        assert_eq!(crate::selection::greedy_first(&a.q), Shoot, "{a:?}");
+        assert_eq!(crate::selection::greedy_first(&b.q), PassFar, "{b:?}");
+        // The paper's state changes nothing; without features it knows nothing.
+        let elsewhere = Seen {
+            state: &B,
+            ..at(&fa)
+        };
+        assert_eq!(bits(dqn.values(elsewhere)), bits(a));
+        // The paper network cannot tell the two apart.
+        assert_eq!(bits(paper.values(at(&fa))), bits(paper.values(at(&fb))));
+        assert_ne!(bits(paper.values(at(&fa))), bits(a));
+        assert_eq!(dqn.values(at(&[])), ActionValues::default());
+        assert_eq!(dqn.values(at(&fa[..26])), ActionValues::default());
+        // A kick without features is not learned.
+        let stored = dqn.replay.len();
+        dqn.learn((step(&A, Shoot), 1.0, None));
+        assert_eq!(dqn.replay.len(), stored);
+    }
+
+    #[test]
+    fn a_snapshot_of_another_observation_or_version_is_refused() {
+        let hfo = Dqn::new(&hfo_small(), 0.9, 27, 1).save_state().unwrap();
+        let mut paper = Dqn::new(&small(), 0.9, 6, 1);
+        assert_eq!(
+            paper.load_state(&hfo).unwrap_err(),
+            "the snapshot's DQN reads observation `hfo` (27 inputs), this agent's reads `paper` \
+             (6 inputs): load it into an agent of observation = \"hfo\""
+        );
+        let mut back = Dqn::new(&hfo_small(), 0.9, 27, 2);
+        let e = back.load_state(&paper.save_state().unwrap()).unwrap_err();
+        assert!(e.starts_with("the snapshot's DQN reads observation `paper` (6 inputs), this agent's reads `hfo` (27 inputs)"), "{e}");
+        back.load_state(&hfo).unwrap();
+        // Version 1 (before the observation was recorded) says so.
+        let tag = STATE_TAG.len() + 1;
+        let mut old = hfo.clone();
+        assert_eq!(old[tag], 2);
+        old[tag] = 1;
+        assert_eq!(
+            back.load_state(&old).unwrap_err(),
+            "the DQN's saved state is of version 1, this build reads 2"
+        );
     }
 }

@@ -160,6 +160,7 @@ mod tests {
         const STATE: [f64; 6] = [0.0; 6];
         Seen {
             state: &STATE,
+            features: &[],
             index: Some(index),
         }
     }

@@ -3,7 +3,7 @@
 //! Budgets, probabilities and votes live in the agent ([`crate::Agent::advise`],
 //! [`crate::Agent::receive_shared`]); an exchange only carries messages.
 
-use proto::{Action, AdviceAnswer, Along, SharedValues, State, ValuesAnswer};
+use proto::{Action, AdviceAnswer, Along, Features, SharedValues, State, ValuesAnswer};
 
 /// One step of a shared episode, `(s, a, r, s', a')`: the wire type itself,
 /// so that a transport ships shared episodes as they are.
@@ -117,8 +117,9 @@ impl Answers {
 
 /// Carries advice requests and shared episodes between agents.
 pub trait AdviceExchange {
-    /// Asks every agent of `to`, in order, for advice on `state` (with what
-    /// the request carries `along`: the asker's intended action in Mistake
+    /// Asks every agent of `to`, in order, for advice on `state` (with the
+    /// asker's HFO `features` of it, where it has them, and what the
+    /// request carries `along`: the asker's intended action in Mistake
     /// Correcting mode, its visits for PSAF) and appends each answer to
     /// `answers`; returns the replies that arrived, with or without advice
     /// (an advisor without advice replies all the same).
@@ -127,6 +128,7 @@ pub trait AdviceExchange {
         from: usize,
         to: &[usize],
         state: &State,
+        features: &Features,
         along: Along,
         answers: &mut Answers,
     ) -> u64;
@@ -140,7 +142,15 @@ pub trait AdviceExchange {
 pub struct Isolated;
 
 impl AdviceExchange for Isolated {
-    fn ask(&mut self, _: usize, _: &[usize], _: &State, _: Along, _: &mut Answers) -> u64 {
+    fn ask(
+        &mut self,
+        _: usize,
+        _: &[usize],
+        _: &State,
+        _: &Features,
+        _: Along,
+        _: &mut Answers,
+    ) -> u64 {
         0
     }
 

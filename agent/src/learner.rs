@@ -55,13 +55,17 @@ impl ActionValues {
 }
 
 /// One state as the framework hands it to its learner: the paper's six
-/// features, and the framework's index of its tile-coded key (0, 1, 2, ...
-/// in the order training first met the states; `None` for a state training
-/// never met, as in an evaluation).
+/// features, HFO's where the agent's observations carry them, and the
+/// framework's index of its tile-coded key (0, 1, 2, ... in the order
+/// training first met the states; `None` for a state training never met,
+/// as in an evaluation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Seen<'a> {
-    /// The features.
+    /// The paper's features.
     pub state: &'a State,
+    /// HFO's features ([`proto::Features`]); empty where the agent (or the
+    /// asker it advises) is not given them.
+    pub features: &'a [f32],
     /// The framework's index of the state, if training met it.
     pub index: Option<usize>,
 }

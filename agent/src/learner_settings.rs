@@ -53,9 +53,28 @@ pub enum ObservationSet {
     /// The paper's six features (docs/algorithms.md section 1).
     #[default]
     Paper,
-    /// HFO's high-level feature set (docs/python.md "The `hfo` set"); not
-    /// delivered to agents yet, so refused.
+    /// Today's HFO high-level feature set (docs/python.md "The `hfo` set",
+    /// `env_server::Env::current_features`), which the transports deliver
+    /// to the agents that read it.
     Hfo,
+}
+
+impl ObservationSet {
+    /// Its name in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ObservationSet::Paper => "paper",
+            ObservationSet::Hfo => "hfo",
+        }
+    }
+
+    /// The numbers it holds for an agent of a team of `team_size`.
+    pub fn width(self, team_size: usize) -> usize {
+        match self {
+            ObservationSet::Paper => proto::STATE_FEATURES,
+            ObservationSet::Hfo => proto::hfo_feature_count(team_size),
+        }
+    }
 }
 
 /// A DQN's settings, under the names the DQN literature gives them
@@ -94,7 +113,8 @@ pub struct DqnSettings {
     /// With heads: the probability that a head learns a transition (its
     /// bootstrap mask), in (0, 1].
     pub mask_probability: f64,
-    /// What the network reads: `paper`, the six features.
+    /// What the network reads: `paper`, the six features, or `hfo`, HFO's
+    /// high-level set.
     pub observation: ObservationSet,
 }
 
@@ -187,15 +207,7 @@ impl DqnSettings {
             ));
         }
         let p = self.mask_probability;
-        require("mask_probability", p, "in (0, 1]", p > 0.0 && p <= 1.0)?;
-        if self.observation == ObservationSet::Hfo {
-            return Err(AgentConfigError::new(
-                "observation",
-                "`hfo` is not delivered to agents yet: the env computes HFO's feature set for \
-                 Python's environments only; use `paper`",
-            ));
-        }
-        Ok(())
+        require("mask_probability", p, "in (0, 1]", p > 0.0 && p <= 1.0)
     }
 }
 
@@ -253,6 +265,15 @@ impl LearnerSettings {
             LearnerNeed::Uncertainty => "ensemble",
         };
         Self::named(name).expect("a learner of NAMES")
+    }
+
+    /// What it reads of a state: the tabular learners the paper's six
+    /// features (their tiles), a DQN its `observation`.
+    pub fn observation(&self) -> ObservationSet {
+        match self {
+            LearnerSettings::Dqn(dqn) => dqn.observation,
+            _ => ObservationSet::Paper,
+        }
     }
 
     /// Whether it measures its uncertainty in a state.

@@ -11,13 +11,18 @@
 //! Driving a [`Team`]: one training episode, then one evaluation episode
 //! (frozen: greedy play, nothing learned, asked or given).
 //! ```
-//! use agent::{Agent, AgentConfig, Mode, Observation, Profile, Team};
+//! use agent::{Agent, AgentConfig, Features, Mode, Observation, Profile, Team};
 //! use proto::Action;
 //!
 //! let config = AgentConfig::of("adhoc-td".parse()?, Profile::Paper);
 //! let agents = (0..3).map(|i| Agent::new(i, 3, config.clone(), 100 + i as u64)).collect::<Result<_, _>>()?;
 //! let mut team = Team::new(agents)?;
-//! let obs = |kicker: bool| Observation { state: [0.0; 6], can_kick: kicker, position: [0.0, 0.0] };
+//! let obs = |kicker: bool| Observation {
+//!     state: [0.0; 6],
+//!     features: Features::NONE, // HFO's features, for a learner that reads them
+//!     can_kick: kicker,
+//!     position: [0.0, 0.0],
+//! };
 //! for mode in [Mode::Training, Mode::Evaluation] {
 //!     team.begin_episode(mode);
 //!     let mut frame = [obs(true), obs(false), obs(false)]; // the simulator's reset
@@ -87,7 +92,7 @@ pub use learner_settings::{
 pub use link::{Latency, Leg, Link, Message, NetworkConditions};
 pub use method::LearnerNeed;
 pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapshot_file};
-pub use proto::Mode;
+pub use proto::{Features, Mode};
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{

@@ -49,6 +49,9 @@ pub(crate) trait Method: 'static {
     const LEARNER: LearnerNeed = LearnerNeed::Values;
     /// Whether its agents exchange anything (advice, values, episodes).
     const COMMUNICATES: bool = true;
+    /// Whether its agents learn from the episodes others share, which
+    /// carry the paper's states only.
+    const SHARES_EPISODES: bool = false;
     /// Whether its decisions are given from outside (a strategy process or
     /// object) rather than made from its settings.
     const EXTERNAL: bool = false;
@@ -75,6 +78,7 @@ pub struct Registration {
     pub(crate) written_when_true: &'static [&'static str],
     pub(crate) learner: LearnerNeed,
     pub(crate) communicates: bool,
+    pub(crate) shares_episodes: bool,
     pub(crate) external: bool,
     pub(crate) defaults: fn(Profile) -> Box<dyn MethodSettings>,
     pub(crate) from_table: fn(Table) -> Result<Box<dyn MethodSettings>, serde_json::Error>,
@@ -90,6 +94,7 @@ impl Registration {
             written_when_true: M::WRITTEN_WHEN_TRUE,
             learner: M::LEARNER,
             communicates: M::COMMUNICATES,
+            shares_episodes: M::SHARES_EPISODES,
             external: M::EXTERNAL,
             defaults: |profile| Box::new(Typed::<M>(M::defaults(profile))),
             from_table: |table| {

@@ -2,8 +2,8 @@
 //! in a fixed order, so a run is bit-for-bit deterministic.
 
 use proto::{
-    Action, AdviceReply, AdviceRequest, Along, Body, Envelope, Exhausted, Header, Mode,
-    SharedEpisode, State, ValuesReply,
+    Action, AdviceReply, AdviceRequest, Along, Body, Envelope, Exhausted, FeaturedRequest,
+    Features, Header, Mode, SharedEpisode, State, ValuesReply,
 };
 
 use crate::agent::{Agent, Observation};
@@ -275,17 +275,25 @@ impl AdviceExchange for Peers<'_> {
         from: usize,
         to: &[usize],
         state: &State,
+        features: &Features,
         along: Along,
         answers: &mut Answers,
     ) -> u64 {
         let delay = |link: Option<&Link>, message| link.map_or(Some(0.0), |l| l.delay(message));
         let asker = self.link;
         let header = self.header();
-        let request = Body::AdviceRequest(AdviceRequest {
+        let request = AdviceRequest {
             from: from as u8,
             state: *state,
             along,
-        });
+        };
+        let request = match features.is_empty() {
+            true => Body::AdviceRequest(request),
+            false => Body::FeaturedRequest(FeaturedRequest {
+                request,
+                features: *features,
+            }),
+        };
         let mut replies = 0;
         for &j in to {
             self.traffic[from].count(header, request.clone());
@@ -296,7 +304,7 @@ impl AdviceExchange for Peers<'_> {
             let Some(advisor) = self.get(j) else {
                 continue;
             };
-            let answer = advisor.answer(state, along);
+            let answer = advisor.answer(state, features.as_slice(), along);
             let arrives = delay(advisor.link(), back)
                 .is_some_and(|b| asker.is_none_or(|l| sent + b <= l.timeout_ms()));
             let from = j as u8;

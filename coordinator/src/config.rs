@@ -4,7 +4,7 @@
 use std::ops::RangeInclusive;
 use std::path::Path;
 
-use agent::{Algorithm, Profile};
+use agent::{Algorithm, ObservationSet, Profile};
 use env_server::EnvConfig;
 use proto::Simulator;
 use serde::{Deserialize, Serialize};
@@ -160,10 +160,16 @@ impl ExperimentConfig {
         Ok(())
     }
 
-    /// An agent's learner and strategy, processes or objects, can run as
-    /// given; errors name the agent's key.
+    /// An agent's learner and strategy, processes or objects, and what it
+    /// observes can run as given; errors name the agent's key.
     fn check_children(&self, spec: &AgentSpec) -> Result<(), ConfigError> {
         let in_process = self.transport == Transport::InProcess;
+        let real_hfo = self.transport.zenoh().map(|z| z.simulator) == Some(Simulator::RealHfo);
+        if real_hfo && spec.config.learner.observation() == ObservationSet::Hfo {
+            let reason = "`hfo`: the real HFO's backend gives the paper's state only; use `paper`, \
+                          or our simulator";
+            return Err(ConfigError::new("observation", reason));
+        }
         let plugin = spec.plugin.clone().unwrap_or_default();
         if spec.learner.is_some() && in_process {
             let reason = "a learner process is its agent's: run with --transport zenoh";

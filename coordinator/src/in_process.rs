@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use agent::{AdvisingTraffic, Agent, Mode, Observation, Snapshot, Team};
+use agent::{AdvisingTraffic, Agent, Features, Mode, Observation, ObservationSet, Snapshot, Team};
 use analysis::AgentStats;
 use env_server::{Env, Outcome, RunEnvs};
 
@@ -118,10 +118,12 @@ impl Players<'_> {
         let mut reward = 0.0;
         loop {
             observations.clear();
+            let agents = self.team.agents();
             observations.extend(env.states().enumerate().map(|(i, state)| {
                 let pos = env.world().offense[i].pos;
                 Observation {
                     state,
+                    features: features_of(&agents[i], env, i),
                     can_kick: env.can_kick(i),
                     position: [pos.x, pos.y],
                 }
@@ -137,6 +139,15 @@ impl Players<'_> {
             }
             reward = outcome.reward();
         }
+    }
+}
+
+/// HFO's features of player `i` on `env` (today's set, as env-server sends
+/// them) if `agent`'s learner reads them, else none.
+fn features_of(agent: &Agent, env: &Env, i: usize) -> Features {
+    match agent.config().learner.observation() {
+        ObservationSet::Hfo => Features::from_f64(&env.current_features(i)).unwrap_or_default(),
+        ObservationSet::Paper => Features::NONE,
     }
 }
 

@@ -285,6 +285,81 @@ fn a_dqn_run_is_byte_identical_whatever_the_threads() {
     assert_ne!(csv(&untrained, 0), csv(&one, 0));
 }
 
+/// `dqn_team`'s agents reading HFO's features (27 for three attackers).
+fn hfo_team(dir: &Path) -> PathBuf {
+    let paper = fs::read_to_string(dqn_team(dir, 8)).unwrap();
+    let team = dir.join("dqn-hfo.toml");
+    fs::write(
+        &team,
+        paper.replace("[[agent]]\n", "[[agent]]\nobservation = \"hfo\"\n"),
+    )
+    .unwrap();
+    team
+}
+
+#[test]
+fn a_dqn_reading_hfos_features_is_byte_identical_whatever_the_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let team = hfo_team(tmp.path());
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    let agents = tmp.path().join("agents");
+    let save = ["--save-agents", agents.to_str().unwrap()];
+    ok(&run_team(
+        &team,
+        &one,
+        &[&["--threads", "1"][..], &save].concat(),
+    ));
+    ok(&run_team(&team, &two, &["--threads", "2"]));
+    assert_eq!(
+        common::without_times(&one.join("summary.json")),
+        common::without_times(&two.join("summary.json"))
+    );
+    for run in 0..2 {
+        let csv = format!("run-{run}.csv");
+        assert_eq!(
+            fs::read(one.join(&csv)).unwrap(),
+            fs::read(two.join(&csv)).unwrap()
+        );
+        let json = format!("run-{run}.json");
+        assert_eq!(
+            run_without_timing(&one.join(&json)),
+            run_without_timing(&two.join(&json))
+        );
+    }
+    let s = summary(&one);
+    for agent in s["config"]["team"].as_array().unwrap() {
+        assert_eq!(agent["observation"], "hfo", "{agent}");
+    }
+    // The paper's observation plays otherwise. The advisors, which read
+    // the features too, value the askers' states: they give advice.
+    let paper = tmp.path().join("paper");
+    ok(&run_team(&dqn_team(tmp.path(), 8), &paper, &[]));
+    let csv = |dir: &Path| fs::read(dir.join("run-0.csv")).unwrap();
+    assert_ne!(csv(&one), csv(&paper));
+    let run = run_without_timing(&one.join("run-0.json"));
+    let last = run["points"].as_array().unwrap().last().unwrap();
+    for agent in last["agents"].as_array().unwrap() {
+        assert!(agent["advice_given"].as_u64().unwrap() > 0, "{agent}");
+    }
+    // Its snapshot goes to a DQN reading the same, and no other.
+    let out = tmp.path().join("loaded");
+    let load_into = |observation: &str| {
+        let text = fs::read_to_string(&team).unwrap().replace(
+            "observation = \"hfo\"\n",
+            &format!("observation = \"{observation}\"\nload = \"agents/run-0-agent-0.snapshot\"\n"),
+        );
+        fs::write(tmp.path().join("load.toml"), text).unwrap();
+        run_team(&tmp.path().join("load.toml"), &out, &["--runs", "1"])
+    };
+    refused(
+        &load_into("paper"),
+        "the snapshot's DQN reads observation `hfo` (27 inputs), this agent's reads `paper` \
+         (6 inputs)",
+    );
+    assert!(!out.exists(), "nothing written for bad input");
+    ok(&load_into("hfo"));
+}
+
 #[test]
 fn dqn_snapshots_are_saved_and_loaded_and_other_learners_refused() {
     let tmp = tempfile::tempdir().unwrap();
@@ -667,6 +742,25 @@ fn a_dqn_learner_is_chosen_by_name_and_its_bad_settings_are_refused() {
     }
     fs::write(&team, "[[agent]]\nlearner = \"dqnn\"\n").unwrap();
     refused(&coordinator(&team_args()), "unknown learner `dqnn`");
+    // HFO's features: a DQN's observation, not the tabular learner's, and
+    // not one that learns from shared episodes.
+    fs::write(
+        &team,
+        "[[agent]]\n[[agent]]\n[[agent]]\nobservation = \"hfo\"\n",
+    )
+    .unwrap();
+    refused(
+        &coordinator(&team_args()),
+        "`observation`: does not apply to learner sarsa; it belongs to learner dqn",
+    );
+    let sharing = "[[agent]]\nalgorithm = \"episode-sharing\"\nlearner = \"dqn\"\n\
+                   observation = \"hfo\"\n";
+    fs::write(&team, sharing.repeat(3)).unwrap();
+    refused(
+        &coordinator(&team_args()),
+        "`team[0].observation`: `hfo` cannot learn from algorithm episode-sharing's shared \
+         episodes",
+    );
     assert!(!out.exists(), "nothing written for bad input");
 }
 

@@ -128,6 +128,11 @@ mod tests {
         prop::array::uniform6(-1.0f64..=1.0)
     }
 
+    fn features() -> impl Strategy<Value = Features> {
+        prop::collection::vec(-1.0f32..=11.0, 0..=MAX_FEATURES)
+            .prop_map(|v| Features::new(&v).expect("at most MAX_FEATURES"))
+    }
+
     fn mode() -> impl Strategy<Value = Mode> {
         prop::sample::select(vec![Mode::Training, Mode::Evaluation])
     }
@@ -144,14 +149,16 @@ mod tests {
                     any::<bool>(),
                     prop::collection::vec(prop::array::uniform2(-60.0f64..60.0), 0..5),
                     -1.0f64..=1.0,
-                    any::<bool>()
+                    any::<bool>(),
+                    features(),
                 )
                     .prop_map(
-                        |(agent, mode, state, can_kick, positions, reward, terminal)| {
+                        |(agent, mode, state, can_kick, positions, reward, terminal, features)| {
                             AgentFrame {
                                 agent,
                                 mode,
                                 state,
+                                features,
                                 can_kick,
                                 positions,
                                 reward,
@@ -178,6 +185,14 @@ mod tests {
                     state,
                     along
                 })),
+            (any::<u8>(), state(), features()).prop_map(|(from, state, features)| {
+                let request = AdviceRequest {
+                    from,
+                    state,
+                    along: Along::Nothing,
+                };
+                Body::FeaturedRequest(FeaturedRequest { request, features })
+            }),
             (
                 any::<u8>(),
                 prop::option::of(action()),
@@ -233,6 +248,7 @@ mod tests {
                     } else {
                         Simulator::RealHfo
                     },
+                    features: (seed % 16) as u8,
                 })
             }),
             (

@@ -9,6 +9,7 @@
 
 mod action;
 pub mod codec;
+mod features;
 pub mod keys;
 pub mod message;
 pub mod parts;
@@ -18,5 +19,6 @@ pub use action::{Action, STATE_FEATURES, State};
 pub use codec::{
     DecodeError, SettingsError, decode, decode_settings, encode, encode_settings, version_refusal,
 };
+pub use features::{Features, MAX_FEATURE_TEAM, MAX_FEATURES, hfo_feature_count};
 pub use message::*;
 pub use traffic::{Direction, DropReason, MessageCounters, MessageKind};

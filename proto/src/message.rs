@@ -6,6 +6,7 @@ use std::hash::Hasher;
 use serde::{Deserialize, Serialize};
 
 use crate::action::{Action, State};
+use crate::features::Features;
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
@@ -114,6 +115,10 @@ pub enum Body {
     /// advisor -> every agent: its give budget is spent; it will answer no
     /// more requests (with `announce_exhausted`).
     Exhausted(Exhausted),
+    /// agent -> agents in G: a request for advice with HFO's features of
+    /// the state, from an agent whose observations carry them (query
+    /// payload).
+    FeaturedRequest(FeaturedRequest),
 }
 
 /// One agent's observation of a frame.
@@ -125,6 +130,9 @@ pub struct AgentFrame {
     pub mode: Mode,
     /// The paper's 6 features.
     pub state: State,
+    /// HFO's features of the state, for an agent whose learner reads them
+    /// (env-server's `Reset` names those agents); none for the others.
+    pub features: Features,
     /// Whether the agent can kick (and so has a decision to make).
     pub can_kick: bool,
     /// Field positions of every offense agent, by id (for distance-based G).
@@ -156,6 +164,15 @@ pub struct AdviceRequest {
     pub state: State,
     /// What the request carries beside the state.
     pub along: Along,
+}
+
+/// A request for advice about a state, with HFO's features of it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FeaturedRequest {
+    /// The request.
+    pub request: AdviceRequest,
+    /// The asker's features of its state.
+    pub features: Features,
 }
 
 /// What a request carries beside the state. (Encoded as the
@@ -320,6 +337,9 @@ pub enum Control {
         /// env-server: the simulator the experiment was configured for,
         /// refused when the server plays another. Agents ignore it.
         simulator: Simulator,
+        /// env-server: the agents whose observations carry HFO's
+        /// features, bit i for agent i. Agents ignore it.
+        features: u8,
     },
     /// env-server: play episode `header.episode` in `mode` and report its result.
     PlayEpisode {
@@ -360,6 +380,7 @@ impl fmt::Debug for Control {
                 wait_ms,
                 stall_ms,
                 simulator,
+                features,
             } => f
                 .debug_struct("Reset")
                 .field("seed", seed)
@@ -367,6 +388,7 @@ impl fmt::Debug for Control {
                 .field("wait_ms", wait_ms)
                 .field("stall_ms", stall_ms)
                 .field("simulator", simulator)
+                .field("features", features)
                 .finish(),
             Control::PlayEpisode { mode, seed } => f
                 .debug_struct("PlayEpisode")
@@ -493,7 +515,7 @@ impl MessageKind {
         match body {
             Body::Observations(_) => MessageKind::Observation,
             Body::Action(_) => MessageKind::Action,
-            Body::AdviceRequest(_) => MessageKind::AdviceRequest,
+            Body::AdviceRequest(_) | Body::FeaturedRequest(_) => MessageKind::AdviceRequest,
             Body::AdviceReply(_) => MessageKind::AdviceReply,
             Body::ValuesReply(_) => MessageKind::ValuesReply,
             Body::Exhausted(_) => MessageKind::Exhausted,
@@ -524,10 +546,12 @@ mod tests {
             wait_ms: 5,
             stall_ms: 10,
             simulator: Simulator::Ours,
+            features: 0b101,
         };
         assert_eq!(
             format!("{reset:?}"),
-            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5, stall_ms: 10, simulator: Ours }"
+            "Reset { seed: 3, config: <2 bytes>, wait_ms: 5, stall_ms: 10, simulator: Ours, \
+             features: 5 }"
         );
         let load = Control::Load {
             part: 0,

@@ -3,8 +3,8 @@
 
 use agent::{Answer, Leg};
 use proto::{
-    AdviceAnswer, AdviceReply, Body, DropReason, Envelope, Exhausted, Header, MessageKind,
-    ValuesReply,
+    AdviceAnswer, AdviceReply, Body, DropReason, Envelope, Exhausted, FeaturedRequest, Features,
+    Header, MessageKind, ValuesReply,
 };
 use zenoh::Wait;
 use zenoh::query::Query;
@@ -21,10 +21,12 @@ pub fn answer(ctx: &Context, query: Query, runtime: &tokio::runtime::Handle) {
     let Some(Envelope { header, body }) = ctx.decode(&bytes) else {
         return;
     };
-    let Body::AdviceRequest(request) = body else {
-        return ctx.dropped(DropReason::Malformed, Some(&header));
+    let (request, features) = match body {
+        Body::AdviceRequest(request) => (request, Features::NONE),
+        Body::FeaturedRequest(FeaturedRequest { request, features }) => (request, features),
+        _ => return ctx.dropped(DropReason::Malformed, Some(&header)),
     };
-    let answer = match ctx.learner().advise(&header, &request) {
+    let answer = match ctx.learner().advise(&header, &request, &features) {
         Ok(answer) => {
             ctx.accepted(MessageKind::AdviceRequest, bytes.len());
             answer

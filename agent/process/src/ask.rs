@@ -99,7 +99,7 @@ pub async fn ask(ctx: &Context, header: Header, ask: &Ask) -> Collector {
         let request = Request {
             session: ctx.session.clone(),
             key: ctx.keys.advice(j),
-            bytes: ctx.encode(header, Body::AdviceRequest(ask.request)),
+            bytes: ctx.encode(header, ask.body()),
             advisor: j,
             asked,
             deadline,

@@ -76,6 +76,7 @@ async fn execute(ctx: &Context, header: Header, control: Control) -> ControlRepl
             wait_ms,
             stall_ms: _,
             simulator: _,
+            features: _,
         } => {
             if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
                 return ControlReply::Error(format!(

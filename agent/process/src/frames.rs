@@ -38,7 +38,7 @@ struct Backlog {
 /// A message's frames from one that asks for advice (or from the first),
 /// left to the stream task.
 struct Pending {
-    ask: Option<(Header, Ask)>,
+    ask: Option<(Header, Box<Ask>)>,
     frames: Frames,
 }
 
@@ -160,7 +160,7 @@ impl Stream {
     }
 
     /// Asks for advice and publishes the action the learner then takes.
-    async fn advised(&self, header: Header, request: Ask) {
+    async fn advised(&self, header: Header, request: Box<Ask>) {
         let ctx = &self.ctx;
         let replies = ask(ctx, header, &request).await;
         let action = ctx

@@ -3,7 +3,9 @@
 //! it. Pure state, driven by the tasks that hold it under a lock.
 
 use agent::{Agent, AgentConfig, Answer, Answers, Decision, Observation, Snapshot, Transition};
-use proto::{Action, AdviceRequest, DropReason, Header, Mode, SharedEpisode};
+use proto::{
+    Action, AdviceRequest, Body, DropReason, FeaturedRequest, Features, Header, Mode, SharedEpisode,
+};
 
 use crate::child::ChildCommands;
 use crate::learner_pipe::PipeLearner;
@@ -16,8 +18,9 @@ use crate::strategy_pipe::PipeStrategy;
 pub enum Step {
     /// Publish this action (a kicker's choice), or nothing.
     Act(Option<Action>),
-    /// Ask for advice, then call [`Learning::complete`].
-    Ask(Ask),
+    /// Ask for advice, then call [`Learning::complete`] (boxed: the rare
+    /// step that carries a state and its features).
+    Ask(Box<Ask>),
     /// The episode ended: publish these shared episodes (receiver, transitions).
     End(Vec<(usize, Vec<Transition>)>),
 }
@@ -29,8 +32,24 @@ pub struct Ask {
     pub to: Vec<u8>,
     /// The request.
     pub request: AdviceRequest,
+    /// HFO's features of the state, where the observation carried them.
+    pub features: Features,
     /// Which learner asked (see [`Learning::complete`]).
     epoch: u64,
+}
+
+impl Ask {
+    /// The message sent to each advisor: the request, with the features
+    /// where there are some.
+    pub fn body(&self) -> Body {
+        match self.features.is_empty() {
+            true => Body::AdviceRequest(self.request),
+            false => Body::FeaturedRequest(FeaturedRequest {
+                request: self.request,
+                features: self.features,
+            }),
+        }
+    }
 }
 
 /// How far the observations of the current run were processed.
@@ -161,7 +180,7 @@ impl Learning {
         obs: &proto::AgentFrame,
         reachable: &dyn Fn(usize) -> bool,
     ) -> Result<Step, DropReason> {
-        if obs.agent != self.id {
+        if obs.agent != self.id || !self.fits(&obs.features) {
             return Err(DropReason::Malformed);
         }
         let agent = match self.agent.as_mut() {
@@ -183,6 +202,7 @@ impl Learning {
         }
         let me = Observation {
             state: obs.state,
+            features: obs.features,
             can_kick: obs.can_kick,
             position: obs
                 .positions
@@ -193,7 +213,12 @@ impl Learning {
         Ok(
             match agent.act_begin(&me, obs.reward, &obs.positions, reachable) {
                 Decision::Act(action) => Step::Act(obs.can_kick.then_some(action)),
-                Decision::Ask { to, state, along } => Step::Ask(Ask {
+                Decision::Ask {
+                    to,
+                    state,
+                    features,
+                    along,
+                } => Step::Ask(Box::new(Ask {
                     // Ids come from a team of at most u8::MAX agents.
                     to: to
                         .into_iter()
@@ -204,8 +229,9 @@ impl Learning {
                         state,
                         along,
                     },
+                    features,
                     epoch: self.epoch,
-                }),
+                })),
             },
         )
     }
@@ -264,19 +290,31 @@ impl Learning {
         }
     }
 
-    /// The answer to a request of the current run.
+    /// The answer to a request of the current run, with the asker's HFO
+    /// `features` of its state if it sent them.
     pub fn advise(
         &mut self,
         header: &Header,
         request: &AdviceRequest,
+        features: &Features,
     ) -> Result<Answer, DropReason> {
-        if request.from == self.id || request.from >= self.team_size {
+        if request.from == self.id || request.from >= self.team_size || !self.fits(features) {
             return Err(DropReason::Malformed);
         }
+        let (state, features) = (&request.state, features.as_slice());
         match self.agent.as_mut() {
-            Some(a) if header.run == self.run => Ok(a.answer(&request.state, request.along)),
+            Some(a) if header.run == self.run => Ok(a.answer(state, features, request.along)),
             _ => Err(DropReason::Stale),
         }
+    }
+
+    /// Whether `features` are none, or HFO's set of this team: as many as
+    /// its size gives, every one finite.
+    fn fits(&self, features: &Features) -> bool {
+        let values = features.as_slice();
+        values.is_empty()
+            || values.len() == proto::hfo_feature_count(self.team_size.into())
+                && values.iter().all(|x| x.is_finite())
     }
 }
 
@@ -320,6 +358,7 @@ mod tests {
             agent,
             mode: Mode::Training,
             state: [0.1, 0.2, 0.3, 0.4, 0.5, if kick { 0.6 } else { -0.6 }],
+            features: Features::NONE,
             can_kick: kick,
             positions: vec![[0.0, 0.0], [1.0, 1.0]],
             reward,
@@ -498,20 +537,62 @@ mod tests {
             state: [0.0; 6],
             along: Along::Nothing,
         };
+        let none = Features::NONE;
         assert_eq!(
-            l.advise(&header(3, 0, 0), &request(1)),
+            l.advise(&header(3, 0, 0), &request(1), &none),
             Ok(Answer::Action(proto::AdviceAnswer::Declined))
         );
         assert_eq!(
-            l.advise(&header(2, 0, 0), &request(1)),
+            l.advise(&header(2, 0, 0), &request(1), &none),
             Err(DropReason::Stale)
         );
         assert_eq!(
-            l.advise(&header(3, 0, 0), &request(0)),
+            l.advise(&header(3, 0, 0), &request(0), &none),
             Err(DropReason::Malformed)
         );
         assert_eq!(
-            l.advise(&header(3, 0, 0), &request(2)),
+            l.advise(&header(3, 0, 0), &request(2), &none),
+            Err(DropReason::Malformed)
+        );
+        // HFO's features of a team of two are 21 finite numbers.
+        let features = |n, x| Features::new(&vec![x; n]).unwrap();
+        assert!(
+            l.advise(&header(3, 0, 0), &request(1), &features(21, 0.5))
+                .is_ok()
+        );
+        for odd in [features(27, 0.5), features(21, f32::INFINITY)] {
+            assert_eq!(
+                l.advise(&header(3, 0, 0), &request(1), &odd),
+                Err(DropReason::Malformed)
+            );
+        }
+    }
+
+    #[test]
+    fn an_hfo_learner_asks_with_the_features_it_observed() {
+        let config = config(r#"{"strategy": "torrey", "learner": "dqn", "observation": "hfo"}"#);
+        let mut l = Learning::new(0, 2, ChildCommands::default());
+        l.reset(0, 1, &config).unwrap();
+        let features = Features::new(&[0.25; 21]).unwrap();
+        let kick = proto::AgentFrame {
+            features,
+            ..obs(0, true, false, 0.0)
+        };
+        let Ok(Step::Ask(ask)) = l.observe(&header(0, 0, 0), &kick, &|_| true) else {
+            panic!("no request");
+        };
+        let request = FeaturedRequest {
+            request: ask.request,
+            features,
+        };
+        assert_eq!(ask.body(), Body::FeaturedRequest(request));
+        // Another team's features are dropped, the frame unseen.
+        let odd = proto::AgentFrame {
+            features: Features::new(&[0.25; 27]).unwrap(),
+            ..kick
+        };
+        assert_eq!(
+            l.observe(&header(0, 0, 1), &odd, &|_| true),
             Err(DropReason::Malformed)
         );
     }

@@ -136,6 +136,7 @@ impl Fake {
                     wait_ms: 200,
                     stall_ms: 10_000,
                     simulator: proto::Simulator::Ours,
+                    features: 0,
                 },
             )
             .await;
@@ -228,6 +229,7 @@ fn observation(
         agent: id,
         mode,
         state: [f, 0.5 - f, f64::from(id) / 2.0, 0.1, -0.2, 0.3],
+        features: proto::Features::NONE,
         can_kick: kick,
         positions: vec![[0.0, 0.0], [1.0, 0.0]],
         reward,
@@ -354,6 +356,7 @@ async fn bad_messages_change_nothing(fake: &Fake, before: &AgentReport) {
         agent: 0,
         mode: Mode::Training,
         state: [0.9; 6],
+        features: proto::Features::NONE,
         can_kick: true,
         positions: vec![],
         reward: 1.0,
@@ -379,11 +382,21 @@ async fn bad_messages_change_nothing(fake: &Fake, before: &AgentReport) {
     fake.publish(0, good(old)).await;
     fake.publish(0, good(fake.header(0, 1, 2))).await; // an ended episode
     fake.publish(0, good(fake.header(5, 2, 0))).await; // another run
+    // HFO's features of another team size (21 for two agents), or not finite.
+    for features in [vec![0.5; 27], [vec![0.5; 20], vec![f32::NAN]].concat()] {
+        let features = proto::Features::new(&features).unwrap();
+        let odd = AgentFrame {
+            features,
+            ..frame.clone()
+        };
+        fake.publish(0, observations(fake.header(0, 2, 0), vec![odd]))
+            .await;
+    }
     let r = fake
-        .report_until(0, 1, |r| r.messages.dropped.total() == 8)
+        .report_until(0, 1, |r| r.messages.dropped.total() == 10)
         .await;
     let d = r.messages.dropped;
-    assert_eq!((d.malformed, d.foreign, d.version, d.stale), (4, 1, 1, 2));
+    assert_eq!((d.malformed, d.foreign, d.version, d.stale), (6, 1, 1, 2));
     assert_eq!(r.digest, before.digest);
     assert_eq!(received(&r, MessageKind::Observation), 6);
     // A command in another protocol version is refused, naming both.
@@ -486,6 +499,7 @@ async fn episode_sharing_travels_as_published_messages() {
                 let o = observation(id as u8, frame, Mode::Training, false, false, 0.0);
                 let me = agent::Observation {
                     state: o.state,
+                    features: o.features,
                     can_kick: false,
                     position: o.positions[id],
                 };

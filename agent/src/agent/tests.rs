@@ -27,6 +27,7 @@ fn move_state(k: usize) -> State {
 fn obs(state: State) -> Observation {
     Observation {
         state,
+        features: Features::NONE,
         can_kick: state[0] > 0.0,
         position: [0.0, 0.0],
     }
@@ -89,6 +90,7 @@ impl AdviceExchange for Script {
         from: usize,
         to: &[usize],
         _: &State,
+        _: &Features,
         along: Along,
         answers: &mut Answers,
     ) -> u64 {
@@ -217,12 +219,12 @@ fn advisor_needs_visits_and_budget() {
             (kick_state(1), known(q, 0)),
         ],
     );
-    assert_eq!(a.advise(&kick_state(1), None), None, "n(s) = 0");
-    assert_eq!(a.advise(&kick_state(2), None), None, "unknown state");
-    assert_eq!(a.advise(&kick_state(0), None), Some(PassFar));
-    assert_eq!(a.advise(&kick_state(0), None), Some(PassFar));
+    assert_eq!(a.advise(&kick_state(1), &[], None), None, "n(s) = 0");
+    assert_eq!(a.advise(&kick_state(2), &[], None), None, "unknown state");
+    assert_eq!(a.advise(&kick_state(0), &[], None), Some(PassFar));
+    assert_eq!(a.advise(&kick_state(0), &[], None), Some(PassFar));
     assert_eq!(
-        a.advise(&kick_state(0), None),
+        a.advise(&kick_state(0), &[], None),
         None,
         "give budget of 2 spent"
     );
@@ -238,7 +240,7 @@ fn visit_based_advisor_uses_log2_visits() {
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
     );
-    assert_eq!(a.advise(&kick_state(0), None), None);
+    assert_eq!(a.advise(&kick_state(0), &[], None), None);
     // n = 2: Psi = 1; v_g = 1e9: P_give = 1 - 1e-9 (a draw above it is vanishingly rare).
     let mut b = agent(
         0,
@@ -251,7 +253,7 @@ fn visit_based_advisor_uses_log2_visits() {
         &mut b,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 2))],
     );
-    assert_eq!(b.advise(&kick_state(0), None), Some(Dribble));
+    assert_eq!(b.advise(&kick_state(0), &[], None), Some(Dribble));
 }
 
 #[test]
@@ -265,9 +267,12 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
         &mut advisor,
         &[(kick_state(0), known([0.0, 1.0, 0.0, 0.0, 0.0], 10_000))],
     );
-    assert_eq!(advisor.advise(&kick_state(0), Some(Shoot)), None);
+    assert_eq!(advisor.advise(&kick_state(0), &[], Some(Shoot)), None);
     assert_eq!(advisor.counters().advice_given, 0);
-    assert_eq!(advisor.advise(&kick_state(0), Some(Dribble)), Some(Shoot));
+    assert_eq!(
+        advisor.advise(&kick_state(0), &[], Some(Dribble)),
+        Some(Shoot)
+    );
     assert_eq!(advisor.counters().advice_given, 1);
 
     // Advisee side: it sends its own epsilon-greedy choice (epsilon 0: greedy
@@ -322,9 +327,13 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
             (kick_state(1), known([0.0, 0.0, 0.0, 0.02, 0.0], 0)),
         ],
     );
-    assert_eq!(t.advise(&kick_state(0), None), None);
-    assert_eq!(t.advise(&kick_state(1), None), Some(PassNear));
-    assert_eq!(t.advise(&kick_state(1), None), None, "budget of 1 spent");
+    assert_eq!(t.advise(&kick_state(0), &[], None), None);
+    assert_eq!(t.advise(&kick_state(1), &[], None), Some(PassNear));
+    assert_eq!(
+        t.advise(&kick_state(1), &[], None),
+        None,
+        "budget of 1 spent"
+    );
 
     // In a team, agent 0's teacher is agent 1 (agent 2 knows too, but is not asked).
     let mut agents: Vec<Agent> = (0..3).map(|i| agent(i, 3, config("torrey"))).collect();
@@ -496,7 +505,7 @@ fn random_baseline_never_learns_nor_advises() {
     }
     assert_eq!(seen, [false, true, true, true, true]);
     assert!(a.states_met() == 0);
-    assert_eq!(a.advise(&kick_state(0), None), None);
+    assert_eq!(a.advise(&kick_state(0), &[], None), None);
 }
 
 /// Plays `episodes` episodes of random frames over 9 kick and 9 move states.
@@ -517,6 +526,7 @@ fn play(team: &mut Team, rng: &mut AgentRng, episodes: usize, mode: Mode) -> Vec
                     let position = [rng.random_range(0.0..10.0), 0.0];
                     Observation {
                         state: s,
+                        features: Features::NONE,
                         can_kick: i == kicker,
                         position,
                     }
@@ -771,6 +781,7 @@ fn random_episodes(rng: &mut AgentRng, episodes: usize) -> Vec<(Vec<Vec<Observat
                             s[0] = if i == kicker { 1.0 } else { -1.0 };
                             Observation {
                                 state: s,
+                                features: Features::NONE,
                                 can_kick: i == kicker,
                                 position: [rng.random_range(0.0..10.0), 0.0],
                             }
@@ -798,11 +809,13 @@ fn play_two_phase(
             for (i, obs) in frame.iter().enumerate() {
                 let action = match agents[i].act_begin(obs, 0.0, &positions, &|_| true) {
                     Decision::Act(action) => action,
-                    Decision::Ask { to, state, along } => {
+                    Decision::Ask {
+                        to, state, along, ..
+                    } => {
                         let advice = to
                             .iter()
                             .filter_map(|&j| {
-                                let action = agents[j].advise(&state, along.intended())?;
+                                let action = agents[j].advise(&state, &[], along.intended())?;
                                 Some(Advice { advisor: j, action })
                             })
                             .collect();
@@ -899,6 +912,7 @@ fn unreachable_advisors_are_left_out_and_nobody_reachable_asks_nobody() {
         Decision::Ask {
             to: vec![2],
             state: kick_state(0),
+            features: Features::NONE,
             along: Along::Nothing
         }
     );
@@ -949,7 +963,7 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
     let paper = config("torrey");
     let mut t = agent(1, 3, paper.clone());
     teach(&mut t, &[]);
-    assert_eq!(t.advise(&kick_state(0), None), None);
+    assert_eq!(t.advise(&kick_state(0), &[], None), None);
     // The authors': unseen states and states without a kick entry are
     // advised, each answer a uniformly random kick, one budget unit each.
     let mut t = agent(1, 3, authors(config("torrey")));
@@ -968,7 +982,7 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
     let mut seen = [0u32; ACTIONS];
     for _ in 0..200 {
         for s in [kick_state(0), kick_state(1)] {
-            seen[t.advise(&s, None).expect("advised").index()] += 1;
+            seen[t.advise(&s, &[], None).expect("advised").index()] += 1;
         }
     }
     assert_eq!(seen[Move.index()], 0);
@@ -978,7 +992,7 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
     );
     assert_eq!(t.counters().advice_given, 400);
     // One tried kick action: spread 0, no advice.
-    assert_eq!(t.advise(&kick_state(2), None), None);
+    assert_eq!(t.advise(&kick_state(2), &[], None), None);
 }
 
 #[test]
@@ -1045,7 +1059,7 @@ fn an_authors_advisor_breaks_ties_at_random() {
         let mut t = agent(1, 3, config);
         teach(&mut t, &[(kick_state(0), known(q, 1))]);
         (0..100)
-            .map(|_| t.advise(&kick_state(0), None).expect("advised"))
+            .map(|_| t.advise(&kick_state(0), &[], None).expect("advised"))
             .collect::<Vec<_>>()
     };
     let torrey = config("torrey");
@@ -1154,8 +1168,8 @@ fn a_method_defined_outside_the_core_makes_every_decision() {
     assert_eq!(a.counters().ask_spent, 2);
     // As an advisor it answers about a state it visited, with its greedy
     // action, and about nothing else.
-    assert!(a.advise(&kick_state(0), None).is_some());
-    assert_eq!(a.advise(&kick_state(4), None), None);
+    assert!(a.advise(&kick_state(0), &[], None).is_some());
+    assert_eq!(a.advise(&kick_state(4), &[], None), None);
     assert_eq!(a.spent_budget(), 1);
 }
 
@@ -1222,9 +1236,9 @@ fn budgeted_advisors_answer_about_visited_states_within_their_budget() {
         &mut a,
         &[(kick_state(0), known([0.0, 0.1, 0.9, 0.2, 0.0], 1))],
     );
-    assert_eq!(a.advise(&kick_state(1), None), None, "never visited");
-    assert_eq!(a.advise(&kick_state(0), None), Some(Dribble));
-    assert_eq!(a.advise(&kick_state(0), None), None, "budget spent");
+    assert_eq!(a.advise(&kick_state(1), &[], None), None, "never visited");
+    assert_eq!(a.advise(&kick_state(0), &[], None), Some(Dribble));
+    assert_eq!(a.advise(&kick_state(0), &[], None), None, "budget spent");
 }
 
 #[test]
@@ -1369,7 +1383,7 @@ fn psaf_rows_are_shared_and_the_partaker_takes_the_most_visited() {
     };
     let mut values = Vec::new();
     for (advisor, a) in [(1, &mut sharer), (2, &mut novice)] {
-        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(&state, Along::Nothing) else {
+        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(&state, &[], Along::Nothing) else {
             panic!("a sharer answers with its values");
         };
         values.push(ValuesAdvice { advisor, values: v });
@@ -1415,8 +1429,8 @@ fn psaf_shares_the_best_value_where_more_confident_and_the_partaker_plays_it() {
     // The sharer's confidence, 40 visits of Dribble x (1 - 1 / (0.9 + 1)),
     // beats the partaker's 0; the novice's values do not spread.
     let mut answers = Answers::default();
-    answers.take(1, sharer.answer(&state, along));
-    answers.take(2, novice.answer(&state, along));
+    answers.take(1, sharer.answer(&state, &[], along));
+    answers.take(2, novice.answer(&state, &[], along));
     assert_eq!(answers.best.len(), 1);
     assert_eq!(
         (answers.best[0].action, answers.best[0].value),
@@ -1522,13 +1536,42 @@ fn the_announcement_is_taken_once_and_again_after_a_restore() {
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
     );
     assert!(!a.take_announcement());
-    assert_eq!(a.advise(&kick_state(0), None), Some(Dribble));
+    assert_eq!(a.advise(&kick_state(0), &[], None), Some(Dribble));
     assert!(a.take_announcement());
     assert!(!a.take_announcement(), "once");
     assert_eq!(
-        a.answer(&kick_state(0), Along::Nothing),
+        a.answer(&kick_state(0), &[], Along::Nothing),
         Answer::Action(proto::AdviceAnswer::Exhausted)
     );
     a.restore(a.snapshot()).unwrap();
     assert!(a.take_announcement(), "a restored agent tells again");
+}
+
+#[test]
+fn an_hfo_agent_asks_with_its_features_for_teams_of_up_to_four() {
+    let hfo = AgentConfig {
+        learner: crate::LearnerSettings::Dqn(crate::DqnSettings {
+            observation: ObservationSet::Hfo,
+            ..crate::DqnSettings::default()
+        }),
+        ..config("adhoc-td")
+    };
+    let mut a = agent(0, 3, hfo.clone());
+    finish_one_episode(&mut a);
+    let features = Features::new(&[0.25; 27]).unwrap();
+    let seen = Observation {
+        features,
+        ..obs(kick_state(0))
+    };
+    // Unvisited state: P_ask = 1, and the request carries the features.
+    let Decision::Ask { features: sent, .. } = a.act_begin(&seen, 0.0, &[], &|_| true) else {
+        panic!("an unvisited state asks");
+    };
+    assert_eq!(sent, features);
+    let e = Agent::new(0, 5, hfo, 1).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid agent config `observation`: `hfo` is given to teams of at most 4 agents, this \
+         one has 5"
+    );
 }

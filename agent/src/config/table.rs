@@ -218,6 +218,7 @@ mod tests {
     use super::*;
     use crate::advice::Reachable;
     use crate::fidelity::{AdvisorTies, VoteTies};
+    use crate::learner_settings::ObservationSet;
     use crate::link::Latency;
     use crate::method::LearnerNeed;
     use crate::strategy::{AdHoc, AdviceReuse, ReuseRule, Torrey};
@@ -509,7 +510,30 @@ mod tests {
         refused("target_every = 0", "target_every", "at least 1, got 0");
         refused("train_every = 0", "train_every", "at least 1, got 0");
         refused("heads = 17", "heads", "1 to 16, got 17");
-        refused("observation = \"hfo\"", "observation", "use `paper`");
+        // HFO's features: for a DQN, not for the tabular learners, nor with
+        // shared episodes, which carry the paper's state only.
+        let hfo = read("learner = \"dqn\"\nobservation = \"hfo\"\n").unwrap();
+        hfo.validate().unwrap();
+        assert_eq!(hfo.learner.observation(), ObservationSet::Hfo);
+        let e = read("observation = \"hfo\"\n").unwrap_err().to_string();
+        assert_eq!(
+            e.trim_end(),
+            "invalid agent config `observation`: does not apply to learner sarsa; it belongs \
+             to learner dqn"
+        );
+        let sharing = "algorithm = \"episode-sharing\"\nlearner = \"dqn\"\nobservation = \"hfo\"\n";
+        let e = read(sharing).unwrap().validate().unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "invalid agent config `observation`: `hfo` cannot learn from algorithm \
+             episode-sharing's shared episodes, which carry the paper's six features only: use \
+             `paper`"
+        );
+        refused(
+            "observation = \"authors\"",
+            "observation",
+            "unknown variant `authors`",
+        );
         let e = read("learner = \"dqnn\"\n").unwrap_err().to_string();
         assert!(
             e.contains("`learner`: unknown learner `dqnn` (expected one of: sarsa, ensemble, dqn)"),

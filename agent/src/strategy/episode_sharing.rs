@@ -27,6 +27,7 @@ impl Method for EpisodeSharingMethod {
     type Settings = EpisodeSharing;
     const NAME: &'static str = "episode-sharing";
     const ABOUT: &'static str = "Tan's episode sharing after goal episodes";
+    const SHARES_EPISODES: bool = true;
 
     fn defaults(_: Profile) -> EpisodeSharing {
         EpisodeSharing {

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use agent::{Agent, AgentConfig, Decision, Mode, Observation, Snapshot};
+use agent::{Agent, AgentConfig, Decision, Features, Mode, Observation, Snapshot};
 use proto::{Action, STATE_FEATURES};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -62,6 +62,7 @@ impl GreedyAgent {
         }
         let obs = Observation {
             state,
+            features: Features::NONE,
             can_kick,
             position: [0.0, 0.0],
         };

@@ -128,6 +128,30 @@ def test_a_bad_learner_setting_is_a_value_error_and_writes_nothing(
     assert not out.exists()
 
 
+def test_a_dqn_reads_hfos_features_where_a_table_says_so(tmp_path: Path) -> None:
+    """``observation="hfo"`` in a DQN's table is the team file's; with the
+    tabular learner it is a ValueError naming the key, and nothing is
+    written."""
+    options = {"runs": 1, "episodes": 40, "eval_every": 20, "eval_episodes": 5, "seed": 3}
+    dqn = {"algorithm": "adhoc-td", "learner": "dqn", "warmup": 8, "batch": 8}
+    hfo = [{**dqn, "observation": "hfo"}] * 3
+    adhoc_advising.run(out=tmp_path / "py", team=hfo, **options)
+    team = tmp_path / "team.toml"
+    agent = '[[agent]]\nalgorithm = "adhoc-td"\nlearner = "dqn"\nwarmup = 8\nbatch = 8\n'
+    team.write_text((agent + 'observation = "hfo"\n\n') * 3)
+    run_command_line(tmp_path / "cli", f"--team={team}", **options)
+    assert_same_results(tmp_path / "py", tmp_path / "cli")
+    config = json.loads((tmp_path / "py" / "config.json").read_text())
+    assert [a["observation"] for a in config["config"]["team"]] == ["hfo"] * 3
+    adhoc_advising.run(out=tmp_path / "paper", team=[dqn] * 3, **options)
+    paper = (tmp_path / "paper" / "run-0.csv").read_bytes()
+    assert paper != (tmp_path / "py" / "run-0.csv").read_bytes()
+    message = "`observation`: does not apply to learner sarsa; it belongs to learner dqn"
+    with pytest.raises(ValueError, match=re.escape(message)):
+        adhoc_advising.run(out=tmp_path / "bad", team=[{"observation": "hfo"}] * 3, **options)
+    assert not (tmp_path / "bad").exists()
+
+
 def test_a_team_file_and_its_tables_give_the_same_results(tmp_path: Path) -> None:
     team = tmp_path / "team.toml"
     team.write_text(

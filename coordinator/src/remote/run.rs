@@ -3,7 +3,7 @@
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use agent::{Mode, Snapshot};
+use agent::{Mode, ObservationSet, Snapshot};
 use env_server::Outcome;
 use node::sync::lock;
 use proto::MessageKind;
@@ -12,7 +12,7 @@ use proto::{AgentReport, Control, ControlReply, EpisodeOutcome, Header};
 
 use super::{StartedAgain, ZenohTeam};
 use crate::backend::{Backend, EpisodeEnd};
-use crate::config::AgentSpec;
+use crate::config::{AgentSpec, ExperimentConfig};
 use crate::error::Error;
 use crate::experiment::Experiment;
 use analysis::{AgentStats, Restart, SimulatorRestart};
@@ -86,6 +86,7 @@ impl<'a> RemoteBackend<'a> {
                 wait_ms: network.settings().step_timeout_ms,
                 stall_ms: network.settings().stall_limit_ms,
                 simulator: network.settings().simulator,
+                features: hfo_features(config),
             },
         )?;
         for (i, spec) in config.team.iter().enumerate() {
@@ -118,6 +119,7 @@ impl<'a> RemoteBackend<'a> {
                 wait_ms: settings.advice_timeout_ms,
                 stall_ms: settings.stall_limit_ms,
                 simulator: settings.simulator,
+                features: 0,
             },
             CONTROL_TIMEOUT,
         )?;
@@ -474,6 +476,17 @@ impl Backend for RemoteBackend<'_> {
     }
 }
 
+/// The slots whose agent, or a newcomer to it, reads HFO's features (bit
+/// `i` for slot `i`): env-server sends them with those slots' observations
+/// for the whole run.
+fn hfo_features(config: &ExperimentConfig) -> u8 {
+    let newcomers = (config.events.iter()).map(|e| (e.slot, e.newcomer(&config.team[e.slot])));
+    (config.team.iter().cloned().enumerate())
+        .chain(newcomers)
+        .filter(|(_, spec)| spec.config.learner.observation() == ObservationSet::Hfo)
+        .fold(0, |mask, (slot, _)| mask | 1 << slot)
+}
+
 /// The coordinator's view of an agent's report.
 fn stats_of(r: &AgentReport) -> AgentStats {
     let sent = r.messages.total(proto::Direction::Sent);
@@ -498,5 +511,40 @@ fn stats_of(r: &AgentReport) -> AgentStats {
         futile_requests: futile,
         lost_requests: lost,
         reused_advice: reused,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use agent::{AgentConfig, DqnSettings, LearnerSettings};
+
+    use super::*;
+    use crate::membership::MembershipEvent;
+
+    #[test]
+    fn hfos_features_go_to_the_slots_whose_agent_or_newcomer_reads_them() {
+        let hfo = AgentSpec {
+            config: AgentConfig {
+                learner: LearnerSettings::Dqn(DqnSettings {
+                    observation: ObservationSet::Hfo,
+                    ..DqnSettings::default()
+                }),
+                ..AgentConfig::default()
+            },
+            ..AgentSpec::default()
+        };
+        let mut config = ExperimentConfig {
+            team: vec![AgentSpec::default(), hfo.clone(), AgentSpec::default()],
+            ..ExperimentConfig::default()
+        };
+        assert_eq!(hfo_features(&config), 0b010);
+        let joins = |slot, newcomer| MembershipEvent {
+            episode: 1,
+            slot,
+            newcomer,
+        };
+        // A newcomer reading them, and the fresh copy of an agent that does.
+        config.events = vec![joins(2, Some(hfo)), joins(1, None), joins(0, None)];
+        assert_eq!(hfo_features(&config), 0b110);
     }
 }

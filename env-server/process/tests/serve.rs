@@ -176,6 +176,7 @@ impl Harness {
             wait_ms: self.step_timeout_ms,
             stall_ms: proto::MAX_STALL_MS,
             simulator: proto::Simulator::Ours,
+            features: 0,
         };
         let reply = self.control(run, 0, reset).await;
         assert_eq!(reply, ControlReply::Ok);
@@ -477,6 +478,7 @@ async fn an_agent_silent_for_the_stall_limit_ends_the_episode_with_an_error() {
         wait_ms: 20,
         stall_ms: 100,
         simulator: proto::Simulator::Ours,
+        features: 0,
     };
     assert_eq!(h.control(0, 0, reset).await, ControlReply::Ok);
     let reply = h
@@ -538,6 +540,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
         wait_ms: 10_000,
         stall_ms: proto::MAX_STALL_MS,
         simulator: proto::Simulator::Ours,
+        features: 0,
     };
     let nine = EnvConfig {
         offense: 9,
@@ -547,6 +550,18 @@ async fn bad_commands_get_errors_and_change_nothing() {
     assert!(error(h.control(0, 0, reset(&nine)).await).contains("offense"));
     assert!(error(h.control(0, 0, reset(b"{")).await).contains("invalid env config"));
     let good = proto::encode_settings(&EnvConfig::default()).expect("settings");
+    let fourth = Control::Reset {
+        seed: 1,
+        config: good.clone(),
+        wait_ms: 10_000,
+        stall_ms: proto::MAX_STALL_MS,
+        simulator: proto::Simulator::Ours,
+        features: 0b1000,
+    };
+    assert_eq!(
+        error(h.control(0, 0, fourth).await),
+        "HFO's features are asked for agents 0b1000 of a team of 3"
+    );
     for wait_ms in [0, proto::MAX_WAIT_MS + 1] {
         let unbounded = Control::Reset {
             seed: 1,
@@ -554,6 +569,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
             wait_ms,
             stall_ms: proto::MAX_STALL_MS,
             simulator: proto::Simulator::Ours,
+            features: 0,
         };
         assert!(error(h.control(0, 0, unbounded).await).contains("step timeout"));
     }
@@ -564,6 +580,7 @@ async fn bad_commands_get_errors_and_change_nothing() {
             wait_ms: 1000,
             stall_ms,
             simulator: proto::Simulator::Ours,
+            features: 0,
         };
         assert!(error(h.control(0, 0, unbounded).await).contains("stall limit"));
     }

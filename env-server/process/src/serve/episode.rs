@@ -8,8 +8,8 @@
 use env_server::MAX_OFFENSE;
 use env_server::{EnvConfig, Outcome, RunEnvs};
 use proto::{
-    Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Header, Mode,
-    Simulator,
+    Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Features,
+    Header, Mode, Simulator,
 };
 
 use super::real_hfo::{RealHfo, RealHfoInstall};
@@ -33,12 +33,13 @@ impl ServedRun {
     /// The simulators of a run with settings `config` (an `EnvConfig`
     /// encoded with `proto::encode_settings`), the training one seeded with
     /// `seed`, on the simulator `kind`, which must be the one this server
-    /// plays (the real HFO when `real_hfo` says where it is); the error is
-    /// one line.
+    /// plays (the real HFO when `real_hfo` says where it is), whose agents
+    /// of `features` (bit `i` for agent `i`) are given HFO's features,
+    /// which only ours computes; the error is one line.
     pub fn new(
         config: &[u8],
         seed: u64,
-        kind: Simulator,
+        (kind, features): (Simulator, u8),
         real_hfo: Option<&RealHfoInstall>,
     ) -> Result<Self, String> {
         let config: EnvConfig =
@@ -46,6 +47,17 @@ impl ServedRun {
         config
             .validate()
             .map_err(|e| format!("invalid env config: {e}"))?;
+        if u32::from(features) >> config.offense != 0 {
+            return Err(format!(
+                "HFO's features are asked for agents {features:#b} of a team of {}",
+                config.offense
+            ));
+        }
+        if features != 0 && kind == Simulator::RealHfo {
+            return Err("the real HFO's backend gives the paper's state only: \
+                        observation = \"hfo\" needs our simulator"
+                .to_owned());
+        }
         match (kind, real_hfo) {
             (Simulator::Ours, None) => RunEnvs::new(config, seed)
                 .map(ServedRun::Ours)
@@ -128,6 +140,8 @@ pub struct Episode {
     /// Training or evaluation.
     pub mode: Mode,
     offense: usize,
+    /// Agents given HFO's features (bit `i` for agent `i`).
+    features: u8,
     /// Agents that can kick this frame (bit `i` for agent `i`).
     kickers: u8,
     /// Kickers whose action has not arrived yet.
@@ -141,17 +155,21 @@ pub struct Episode {
 }
 
 impl Episode {
-    /// Starts an episode on `env` (which resets it) at frame 0 of `header`.
+    /// Starts an episode on `env` (which resets it) at frame 0 of `header`,
+    /// giving the agents of `features` (bit `i` for agent `i`) HFO's
+    /// features.
     pub fn start(
         env: &mut dyn ServedSimulator,
         header: Header,
         mode: Mode,
+        features: u8,
     ) -> Result<Self, String> {
         env.reset()?;
         let mut episode = Episode {
             header: Header { frame: 0, ..header },
             mode,
             offense: env.offense(),
+            features,
             kickers: 0,
             awaited: 0,
             actions: [Action::Move; MAX_OFFENSE],
@@ -185,12 +203,19 @@ impl Episode {
         self.awaited = 0;
     }
 
-    /// Agent `agent`'s observation of the current frame. The terminal frame carries the final reward and no decision.
+    /// Agent `agent`'s observation of the current frame, with HFO's
+    /// features if it is given them. The terminal frame carries the final
+    /// reward and no decision.
     pub fn observe(&self, env: &dyn ServedSimulator, agent: usize) -> AgentFrame {
+        let features = match self.features >> agent & 1 {
+            1 => env.features(agent).unwrap_or_default(),
+            _ => Features::NONE,
+        };
         AgentFrame {
             agent: agent as u8,
             mode: self.mode,
             state: env.state(agent),
+            features,
             can_kick: self.kickers & (1 << agent) != 0,
             positions: env.positions(),
             reward: self.reward,
@@ -322,7 +347,7 @@ mod tests {
     /// An episode on a fresh simulator, stepped until some agent can kick.
     fn episode_with_kicker() -> (Env, Episode, usize) {
         let mut env = Env::new(EnvConfig::default(), 5).unwrap();
-        let mut episode = Episode::start(&mut env, header(2, 3, 0), Mode::Training).unwrap();
+        let mut episode = Episode::start(&mut env, header(2, 3, 0), Mode::Training, 0).unwrap();
         while !episode.is_waiting() {
             assert!(!episode.is_over(), "no kicker before the episode ended");
             episode.step(&mut env).unwrap();
@@ -366,7 +391,7 @@ mod tests {
         // simulator directly with the same seed. The frames are batched up
         // to each decision, as the server sends them.
         let mut env = Env::new(EnvConfig::default(), 11).unwrap();
-        let mut e = Episode::start(&mut env, header(0, 0, 0), Mode::Training).unwrap();
+        let mut e = Episode::start(&mut env, header(0, 0, 0), Mode::Training, 0).unwrap();
         let mut direct = Env::new(EnvConfig::default(), 11).unwrap();
         direct.reset();
         let mut batches = Batches::default();
@@ -430,9 +455,40 @@ mod tests {
     }
 
     #[test]
+    fn hfos_features_go_to_the_agents_named_only() {
+        let mut env = Env::new(EnvConfig::default(), 5).unwrap();
+        let e = Episode::start(&mut env, header(0, 0, 0), Mode::Training, 0b010).unwrap();
+        let seen: Vec<AgentFrame> = (0..3).map(|i| e.observe(&env, i)).collect();
+        assert!(seen[0].features.is_empty() && seen[2].features.is_empty());
+        let hfo: Vec<f32> = (env.current_features(1).iter())
+            .map(|&x| x as f32)
+            .collect();
+        assert_eq!(seen[1].features.as_slice(), &hfo[..]);
+        assert_eq!(seen[1].state, env.state(1));
+        // proto's count is the simulator's, for every team it plays.
+        assert_eq!(proto::MAX_FEATURE_TEAM, MAX_OFFENSE);
+        for n in 1..=MAX_OFFENSE {
+            let count = env_server::features::current_feature_count(n);
+            assert_eq!(proto::hfo_feature_count(n), count);
+        }
+        // Agents beyond the team, and the real HFO, are refused.
+        let default = settings(&EnvConfig::default());
+        let e = ServedRun::new(&default, 1, (Simulator::Ours, 0b1000), None).unwrap_err();
+        assert_eq!(
+            e,
+            "HFO's features are asked for agents 0b1000 of a team of 3"
+        );
+        let e = ServedRun::new(&default, 1, (Simulator::RealHfo, 0b1), None).unwrap_err();
+        assert!(
+            e.contains("observation = \"hfo\" needs our simulator"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn a_batch_is_full_at_the_message_limit() {
         let mut env = Env::new(EnvConfig::default(), 3).unwrap();
-        let e = Episode::start(&mut env, header(1, 2, 0), Mode::Evaluation).unwrap();
+        let e = Episode::start(&mut env, header(1, 2, 0), Mode::Evaluation, 0).unwrap();
         let mut batches = Batches::default();
         for _ in 0..proto::MAX_FRAMES_PER_MESSAGE {
             assert!(!batches.is_full());
@@ -445,7 +501,7 @@ mod tests {
     }
 
     fn ours(config: &[u8]) -> Result<ServedRun, String> {
-        ServedRun::new(config, 1, Simulator::Ours, None)
+        ServedRun::new(config, 1, (Simulator::Ours, 0), None)
     }
 
     fn settings(config: &EnvConfig) -> Vec<u8> {

@@ -12,7 +12,7 @@ use std::sync::mpsc::{Receiver, RecvTimeoutError, sync_channel};
 use std::time::{Duration, Instant};
 
 use env_server::{EnvConfig, Outcome};
-use proto::{Action, State};
+use proto::{Action, Features, State};
 use serde::Deserialize;
 
 use super::simulator::ServedSimulator;
@@ -355,6 +355,11 @@ impl ServedSimulator for RealHfo {
 
     fn state(&self, agent: usize) -> State {
         self.current().states[agent]
+    }
+
+    /// None: the backend sends the paper's state only.
+    fn features(&self, _agent: usize) -> Option<Features> {
+        None
     }
 
     fn positions(&self) -> Vec<[f64; 2]> {

@@ -49,6 +49,8 @@ struct Play {
 struct CurrentRun {
     run: u32,
     envs: ServedRun,
+    /// The agents given HFO's features, bit `i` for agent `i`.
+    features: u8,
     /// The last episode played in this run.
     last_episode: Option<u32>,
 }
@@ -152,10 +154,14 @@ impl Server {
                 wait_ms,
                 stall_ms,
                 simulator,
-            } => (
-                self.reset(header, seed, &config, (wait_ms, stall_ms), simulator)?,
-                Flow::Continue,
-            ),
+                features,
+            } => {
+                let run = (seed, &config[..], simulator, features);
+                (
+                    self.reset(header, run, (wait_ms, stall_ms))?,
+                    Flow::Continue,
+                )
+            }
             Control::Report => (
                 ControlReply::Server(Box::new(self.report())),
                 Flow::Continue,
@@ -174,17 +180,15 @@ impl Server {
     }
 
     /// Starts run `header.run` with a training simulator seeded with
-    /// `seed`, waiting `wait_ms` for actions and abandoning an episode after
-    /// `stall_ms` of silence; an in-progress episode is abandoned. A bad
-    /// config, or another simulator than this server plays, changes
-    /// nothing.
+    /// `seed`, giving the agents of `features` HFO's features, waiting
+    /// `wait_ms` for actions and abandoning an episode after `stall_ms` of
+    /// silence; an in-progress episode is abandoned. A bad config, or
+    /// another simulator than this server plays, changes nothing.
     fn reset(
         &mut self,
         header: Header,
-        seed: u64,
-        config: &[u8],
+        (seed, config, simulator, features): (u64, &[u8], Simulator, u8),
         (wait_ms, stall_ms): (u64, u64),
-        simulator: Simulator,
     ) -> Result<ControlReply> {
         if !(1..=proto::MAX_WAIT_MS).contains(&wait_ms) {
             return Ok(ControlReply::Error(format!(
@@ -198,7 +202,8 @@ impl Server {
                 proto::MAX_STALL_MS
             )));
         }
-        let envs = match ServedRun::new(config, seed, simulator, self.real_hfo.as_ref()) {
+        let kind = (simulator, features);
+        let envs = match ServedRun::new(config, seed, kind, self.real_hfo.as_ref()) {
             Ok(s) => s,
             Err(text) => return Ok(ControlReply::Error(text)),
         };
@@ -210,6 +215,7 @@ impl Server {
         self.run = Some(CurrentRun {
             run: header.run,
             envs,
+            features,
             last_episode: None,
         });
         Ok(ControlReply::Ok)
@@ -261,7 +267,7 @@ impl Server {
         };
         run.last_episode = Some(header.episode);
         let start = Header::new(self.experiment, header.run, header.episode, 0);
-        let episode = match Episode::start(env, start, mode) {
+        let episode = match Episode::start(env, start, mode, run.features) {
             Ok(episode) => episode,
             Err(text) => {
                 warn!(run = header.run, episode = header.episode, "{text}");

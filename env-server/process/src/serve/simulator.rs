@@ -3,7 +3,7 @@
 //! HFO behind a pipe ([`super::real_hfo`]).
 
 use env_server::{Env, Outcome};
-use proto::{Action, State};
+use proto::{Action, Features, State};
 
 /// A simulator as the server steps it. Ours cannot fail; the real HFO, a
 /// child process, can, and says why in one line.
@@ -20,6 +20,10 @@ pub trait ServedSimulator {
     fn can_kick(&self, agent: usize) -> bool;
     /// The paper's state of `agent` this frame.
     fn state(&self, agent: usize) -> State;
+    /// HFO's features of `agent` this frame (today's set, docs/python.md
+    /// "The `hfo` set"); none where the simulator gives the paper's state
+    /// only.
+    fn features(&self, agent: usize) -> Option<Features>;
     /// Every offense agent's field position (m), by id.
     fn positions(&self) -> Vec<[f64; 2]>;
 }
@@ -48,6 +52,10 @@ impl ServedSimulator for Env {
 
     fn state(&self, agent: usize) -> State {
         Env::state(self, agent)
+    }
+
+    fn features(&self, agent: usize) -> Option<Features> {
+        Features::from_f64(&self.current_features(agent))
     }
 
     fn positions(&self) -> Vec<[f64; 2]> {
