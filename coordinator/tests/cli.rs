@@ -248,24 +248,16 @@ fn run_team(team: &Path, out: &Path, extra: &[&str]) -> Output {
     coordinator(&args)
 }
 
-#[test]
-fn a_dqn_run_is_byte_identical_whatever_the_threads() {
-    let tmp = tempfile::tempdir().unwrap();
-    let team = dqn_team(tmp.path(), 8);
-    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
-    ok(&run_team(&team, &one, &["--threads", "1"]));
-    ok(&run_team(&team, &two, &["--threads", "2"]));
+/// The two runs' files in `one` and `two` are the same but for measured times.
+fn assert_same_runs(one: &Path, two: &Path) {
     assert_eq!(
         common::without_times(&one.join("summary.json")),
         common::without_times(&two.join("summary.json"))
     );
     for run in 0..2 {
         let csv = format!("run-{run}.csv");
-        assert_eq!(
-            fs::read(one.join(&csv)).unwrap(),
-            fs::read(two.join(&csv)).unwrap(),
-            "{csv}"
-        );
+        let read = |dir: &Path| fs::read(dir.join(&csv)).unwrap();
+        assert_eq!(read(one), read(two), "{csv}");
         let json = format!("run-{run}.json");
         assert_eq!(
             run_without_timing(&one.join(&json)),
@@ -273,6 +265,16 @@ fn a_dqn_run_is_byte_identical_whatever_the_threads() {
             "{json}"
         );
     }
+}
+
+#[test]
+fn a_dqn_run_is_byte_identical_whatever_the_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let team = dqn_team(tmp.path(), 8);
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    ok(&run_team(&team, &one, &["--threads", "1"]));
+    ok(&run_team(&team, &two, &["--threads", "2"]));
+    assert_same_runs(&one, &two);
     // The runs differ from each other, with another seed, and from DQNs
     // that never train: the files compared hold what the training did.
     let csv = |dir: &Path, run: u64| fs::read(dir.join(format!("run-{run}.csv"))).unwrap();
@@ -310,22 +312,7 @@ fn a_dqn_reading_hfos_features_is_byte_identical_whatever_the_threads() {
         &[&["--threads", "1"][..], &save].concat(),
     ));
     ok(&run_team(&team, &two, &["--threads", "2"]));
-    assert_eq!(
-        common::without_times(&one.join("summary.json")),
-        common::without_times(&two.join("summary.json"))
-    );
-    for run in 0..2 {
-        let csv = format!("run-{run}.csv");
-        assert_eq!(
-            fs::read(one.join(&csv)).unwrap(),
-            fs::read(two.join(&csv)).unwrap()
-        );
-        let json = format!("run-{run}.json");
-        assert_eq!(
-            run_without_timing(&one.join(&json)),
-            run_without_timing(&two.join(&json))
-        );
-    }
+    assert_same_runs(&one, &two);
     let s = summary(&one);
     for agent in s["config"]["team"].as_array().unwrap() {
         assert_eq!(agent["observation"], "hfo", "{agent}");
