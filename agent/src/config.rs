@@ -112,7 +112,10 @@ impl AgentConfig {
                 ),
             ));
         }
-        if !self.learner.meets(algorithm.learner_need()) {
+        // An agent that never asks (an expert's ask budget of 0) needs no
+        // uncertainty.
+        let asks = self.algorithm.setting("ask_budget") != Some(0.into());
+        if asks && !self.learner.meets(algorithm.learner_need()) {
             return Err(AgentConfigError::new(
                 "learner",
                 format!(

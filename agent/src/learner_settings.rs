@@ -1,6 +1,7 @@
 //! Which learner an agent learns with (team key `learner`), chosen by its
-//! settings: SARSA(lambda) by default, an ensemble of its heads for an
-//! algorithm that asks by uncertainty, or a Double DQN (docs/learners.md).
+//! settings: SARSA(lambda) by default, a Double DQN with 5 heads for an
+//! algorithm that asks by uncertainty, or on request a DQN or a tabular
+//! ensemble (docs/learners.md).
 
 use serde::{Deserialize, Serialize};
 
@@ -258,13 +259,15 @@ impl LearnerSettings {
         }
     }
 
-    /// The default learner of an algorithm that needs `need`.
+    /// The default learner of an algorithm that needs `need`: SARSA(lambda),
+    /// or for one that asks by uncertainty the DQN with 5 heads (RCMP's
+    /// learner in its paper; the tabular `ensemble` is named).
     pub fn for_need(need: LearnerNeed) -> Self {
         let name = match need {
             LearnerNeed::Values => "sarsa",
-            LearnerNeed::Uncertainty => "ensemble",
+            LearnerNeed::Uncertainty => "dqn",
         };
-        Self::named(name).expect("a learner of NAMES")
+        Self::named_for(name, need).expect("a learner of NAMES")
     }
 
     /// What it reads of a state: the tabular learners the paper's six

@@ -190,7 +190,7 @@ struct RunArgs {
     mistake_correcting: bool,
     /// The learner of every agent with --algorithm, with its defaults
     /// (docs/learners.md); default: the one the algorithm needs (sarsa, or
-    /// ensemble for rcmp). A team file names each agent's.
+    /// dqn with 5 heads for rcmp). A team file names each agent's.
     #[arg(long, value_name = "NAME", value_parser = agent::LearnerSettings::NAMES,
           conflicts_with = "team")]
     learner: Option<String>,

@@ -1340,9 +1340,14 @@ fn reused_advice_saves_requests() {
 
 #[test]
 fn rcmp_asks_while_its_heads_disagree() {
-    let rcmp = with("rcmp", |r: &mut Rcmp| {
+    let mut rcmp = with("rcmp", |r: &mut Rcmp| {
         r.ask_budget = 10_000;
     });
+    // The tabular variant.
+    rcmp.learner = crate::LearnerSettings::Ensemble {
+        heads: 5,
+        mask_probability: 0.5,
+    };
     let mut a = agent(0, 3, rcmp);
     // Nobody answers: the agent learns alone, one kick per episode that
     // always scores, and asks while its heads disagree about the state.

@@ -359,13 +359,24 @@ mod tests {
             keys("rcmp"),
             [
                 "ask_budget",
+                "batch",
+                "epsilon_decay",
+                "epsilon_end",
+                "epsilon_start",
                 "give_budget",
                 "heads",
+                "hidden",
                 "learner",
+                "lr",
                 "mask_probability",
                 "mistake_correcting",
+                "observation",
                 "reachable",
-                "uncertainty_threshold"
+                "replay",
+                "target_every",
+                "train_every",
+                "uncertainty_threshold",
+                "warmup"
             ]
         );
     }
@@ -409,7 +420,8 @@ mod tests {
 
     #[test]
     fn the_learner_is_the_agents_setting() {
-        let c: AgentConfig = toml::from_str("algorithm = \"rcmp\"\nheads = 3\n").unwrap();
+        let c: AgentConfig =
+            toml::from_str("algorithm = \"rcmp\"\nlearner = \"ensemble\"\nheads = 3\n").unwrap();
         assert_eq!(
             c.learner,
             LearnerSettings::Ensemble {
@@ -417,6 +429,9 @@ mod tests {
                 mask_probability: 0.5
             }
         );
+        // RCMP learns with a DQN of 5 heads unless told otherwise.
+        let c: AgentConfig = toml::from_str("algorithm = \"rcmp\"\n").unwrap();
+        assert!(matches!(&c.learner, LearnerSettings::Dqn(d) if d.heads == 5));
         let c: AgentConfig =
             toml::from_str("algorithm = \"adhoc-td\"\nlearner = \"ensemble\"\n").unwrap();
         assert_eq!(c.learner.name(), "ensemble");

@@ -1,8 +1,12 @@
 //! RCMP (da Silva, Hernandez-Leal, Kartal & Taylor, "Uncertainty-Aware
 //! Action Advising for Deep Reinforcement Learning Agents", AAAI 2020;
 //! docs/algorithms.md section 7): an agent asks where its epistemic
-//! uncertainty, the disagreement of its ensemble's heads
-//! ([`EnsembleSarsa`](crate::EnsembleSarsa)), is above a threshold.
+//! uncertainty, the disagreement of its learner's heads, is above a
+//! threshold. As the paper, on a network with heads: the DQN with 5 heads
+//! by default, whose uncertainty is the mean over actions of the heads'
+//! variance ([`Dqn`](crate::Dqn)); the tabular variant, `learner =
+//! "ensemble"` ([`EnsembleSarsa`](crate::EnsembleSarsa)), measures the
+//! variance of the action it would play.
 
 use serde::{Deserialize, Serialize};
 
@@ -15,11 +19,13 @@ use crate::method::{LearnerNeed, Method};
 use crate::selection::AgentRng;
 
 /// The settings of RCMP (da Silva et al., AAAI 2020): ask where the
-/// learner's uncertainty (an ensemble's, `learner = "ensemble"`) is high.
+/// learner's uncertainty (its heads' disagreement) is high.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Rcmp {
     /// Ask where the heads' variance exceeds it, finite and >= 0 (default
-    /// 0.001: a first update of a head, alpha 0.1, leaves 0.0025).
+    /// 0.001: a first update of a tabular head, alpha 0.1, leaves 0.0025;
+    /// the DQN's asks go on past its warm-up, where 0.01 stops them
+    /// within 500 episodes: docs/algorithms.md).
     pub uncertainty_threshold: f64,
     /// Advisee budget: steps acted on advice (default 1000).
     pub ask_budget: u64,
@@ -44,14 +50,14 @@ impl Default for Rcmp {
     }
 }
 
-/// `rcmp`: ask by the uncertainty of an ensemble.
+/// `rcmp`: ask by the uncertainty of a learner with heads.
 pub(crate) struct RcmpMethod;
 
 impl Method for RcmpMethod {
     type Settings = Rcmp;
     const NAME: &'static str = "rcmp";
     const ABOUT: &'static str =
-        "ask where an ensemble's heads disagree (da Silva et al., AAAI 2020)";
+        "ask where the learner's heads disagree (da Silva et al., AAAI 2020)";
     const LEARNER: LearnerNeed = LearnerNeed::Uncertainty;
 
     fn defaults(_: Profile) -> Rcmp {

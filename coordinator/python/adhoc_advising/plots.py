@@ -128,8 +128,8 @@ def frontier(study: Study, cost: str = "messages", ax: Axes | None = None) -> Ax
         raise ValueError(f'cost must be "messages" or "bytes", got {cost!r}')
     if study.frontier.empty:
         raise ValueError(
-            f"{study.path} has no frontier in significance.json: it needs a baseline and a "
-            "group of two or more entries (an older study's comes from `analyse DIR`)"
+            f"{study.path} has no frontier in significance.json: it needs a baseline and "
+            "two or more entries compared with it (an older study's comes from `analyse DIR`)"
         )
     ax = _axes(ax)
     for group, points in study.frontier.groupby("group", sort=False):

@@ -14,7 +14,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 15] = [
+pub const PRESETS: [(&str, &str); 17] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -57,6 +57,14 @@ pub const PRESETS: [(&str, &str); 15] = [
         include_str!("../../presets/methods-sensitivity.toml"),
     ),
     ("neural", include_str!("../../presets/neural.toml")),
+    (
+        "deep-advising",
+        include_str!("../../presets/deep-advising.toml"),
+    ),
+    (
+        "deep-advising-expert",
+        include_str!("../../presets/deep-advising-expert.toml"),
+    ),
 ];
 
 /// What a study runs.
@@ -111,7 +119,6 @@ fn default_seed() -> u64 {
 
 /// Pretraining: one run of a homogeneous team whose agent `expert` is saved.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct Pretrain {
     /// The pretraining team's algorithm.
     pub algorithm: Algorithm,
@@ -119,6 +126,12 @@ pub struct Pretrain {
     pub episodes: u64,
     /// Index of the agent saved as the expert.
     pub expert: usize,
+    /// Its agents' settings beyond the study profile's defaults, as an
+    /// entry's (any key of a team file's `[[agent]]` table). With a
+    /// `learner`, the expert keeps that learner in every entry, whatever
+    /// the entry's agents learn with.
+    #[serde(flatten)]
+    pub settings: Map<String, Value>,
 }
 
 /// One experiment of the study.
@@ -259,6 +272,18 @@ impl StudyConfig {
                 "a study needs at least one [[entry]]",
             ));
         }
+        if let Some(p) = &self.pretrain {
+            if p.expert >= TEAM {
+                return Err(ConfigError::new(
+                    "pretrain.expert",
+                    format!("must be below the team size {TEAM}, got {}", p.expert),
+                ));
+            }
+            check_range("pretrain.episodes", p.episodes, 1..=*EPISODES.end())?;
+            agent_config(p.algorithm, &p.settings, self.profile)
+                .and_then(|config| config.validate())
+                .map_err(|err| ConfigError::new(format!("pretrain.{}", err.key), err.reason))?;
+        }
         for (i, e) in self.entries.iter().enumerate() {
             if self.entries[..i].iter().any(|o| o.name == e.name) {
                 return Err(ConfigError::new(
@@ -294,15 +319,6 @@ impl StudyConfig {
                 .map_err(|err| ConfigError::new(format!("entry[{i}].{}", err.key), err.reason))?;
         }
         (self.record().check_baselines()).map_err(|e| ConfigError::new(e.key, e.reason))?;
-        if let Some(p) = &self.pretrain {
-            if p.expert >= TEAM {
-                return Err(ConfigError::new(
-                    "pretrain.expert",
-                    format!("must be below the team size {TEAM}, got {}", p.expert),
-                ));
-            }
-            check_range("pretrain.episodes", p.episodes, 1..=*EPISODES.end())?;
-        }
         Ok(())
     }
 
@@ -319,6 +335,9 @@ impl StudyConfig {
         }
         if let (true, Some(p)) = (entry.expert, &self.pretrain) {
             let agent = &mut team[p.expert];
+            if p.settings.contains_key("learner") {
+                agent.config.learner = self.pretrained(p).config.learner;
+            }
             // The expert never asks: an algorithm that asks has an ask budget.
             if agent.config.algorithm.setting("ask_budget").is_some() {
                 (agent.config.algorithm)
@@ -345,6 +364,15 @@ impl StudyConfig {
         config
     }
 
+    /// An agent of the pretraining team (its settings checked by `validate`).
+    fn pretrained(&self, p: &Pretrain) -> AgentSpec {
+        let mut spec = AgentSpec::of(p.algorithm, self.profile);
+        if let Ok(config) = agent_config(p.algorithm, &p.settings, self.profile) {
+            spec.config = config;
+        }
+        spec
+    }
+
     /// The pretraining experiment: one run, evaluated only at its start and end.
     pub fn pretraining(&self, p: &Pretrain) -> ExperimentConfig {
         let mut config = ExperimentConfig {
@@ -355,7 +383,7 @@ impl StudyConfig {
             seed: self.seed,
             ci_level: self.ci_level(),
             transport: self.transport.clone(),
-            team: vec![AgentSpec::of(p.algorithm, self.profile); TEAM],
+            team: vec![self.pretrained(p); TEAM],
             ..ExperimentConfig::default()
         };
         config.env.evaluation_memory = self.evaluation_memory;
@@ -363,18 +391,29 @@ impl StudyConfig {
     }
 }
 
+/// The configuration of an agent of `algorithm` under `profile`'s
+/// defaults with `settings` (an error naming a key the algorithm does not
+/// have). A key whose value is null is not given.
+fn agent_config(
+    algorithm: Algorithm,
+    settings: &Map<String, Value>,
+    profile: Profile,
+) -> Result<AgentConfig, agent::AgentConfigError> {
+    let mut table = Map::new();
+    table.insert("algorithm".into(), algorithm.name().into());
+    table.insert("profile".into(), profile.name().into());
+    for (key, value) in settings.iter().filter(|(_, v)| !v.is_null()) {
+        table.insert(key.clone(), value.clone());
+    }
+    AgentConfig::from_table(table)
+}
+
 impl StudyEntry {
     /// Its agents' configuration: the defaults of `profile` for its
     /// algorithm, with the entry's own keys (an error naming a key the
     /// algorithm does not have). A key whose value is null is not given.
     pub fn config(&self, profile: Profile) -> Result<AgentConfig, agent::AgentConfigError> {
-        let mut table = Map::new();
-        table.insert("algorithm".into(), self.algorithm.name().into());
-        table.insert("profile".into(), profile.name().into());
-        for (key, value) in self.settings.iter().filter(|(_, v)| !v.is_null()) {
-            table.insert(key.clone(), value.clone());
-        }
-        AgentConfig::from_table(table)
+        agent_config(self.algorithm, &self.settings, profile)
     }
 
     /// The entries this one stands for: itself, or one per swept value.
@@ -660,6 +699,39 @@ mod tests {
             learner(2),
             paper.experiment(&paper.entries[2], None).team[0]
         );
+    }
+
+    #[test]
+    fn a_pretrained_expert_keeps_the_learner_its_pretraining_names() {
+        let study = StudyConfig::preset("deep-advising-expert").unwrap();
+        let dqn = |spec: &AgentSpec| match &spec.config.learner {
+            agent::LearnerSettings::Dqn(d) => d.heads,
+            other => panic!("{other:?}"),
+        };
+        let pretraining = study.pretraining(study.pretrain.as_ref().unwrap());
+        assert!(pretraining.team.iter().all(|a| dqn(a) == 1));
+        let rcmp = study.entries.iter().find(|e| e.name == "rcmp").unwrap();
+        let team = study.experiment(rcmp, None).team;
+        // rcmp's learners have 5 heads; the expert keeps its one-head DQN.
+        assert_eq!(team.iter().map(dqn).collect::<Vec<_>>(), [5, 5, 1]);
+        assert_eq!(
+            team[2].config.algorithm.setting("ask_budget"),
+            Some(0.into())
+        );
+        // Without a learner in [pretrain], the expert learns as its team.
+        let methods = StudyConfig::preset("methods-expert").unwrap();
+        let rcmp = methods.entries.iter().find(|e| e.name == "rcmp").unwrap();
+        let team = methods.experiment(rcmp, None).team;
+        assert!(team.iter().all(|a| a.config.learner.name() == "ensemble"));
+        // A bad key of the pretraining names it.
+        let text = "name = \"t\"\nruns = 2\nepisodes = 100\neval_every = 20\neval_episodes = 10\n\
+                    [pretrain]\nalgorithm = \"no-advice\"\nepisodes = 10\nexpert = 2\nhidden = [0]\n\
+                    learner = \"dqn\"\n[[entry]]\nalgorithm = \"no-advice\"\nexpert = true\n";
+        let e = StudyConfig::parse(text, "t")
+            .unwrap()
+            .validate()
+            .unwrap_err();
+        assert!(e.to_string().contains("pretrain.hidden"), "{e}");
     }
 
     #[test]

@@ -90,6 +90,9 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
     if let Some(against) = against {
         at_a_glance(&mut md, against, entries, &gains, &aggregate);
     }
+    if let Some(frontier) = &frontier {
+        frontier_section(&mut md, frontier);
+    }
     first_evaluation(&mut md, against, entries, &gains, &aggregate);
     final_performance(&mut md, study, entries);
     if let Some(against) = against {
@@ -97,9 +100,6 @@ pub fn write_report(out: &Path, study: &Study, entries: &[EntryResults]) -> Resu
         aggregate_table(&mut md, against, &aggregate);
         significance_against(&mut md, against, &pairs, comparisons);
         holm_table(&mut md, against, &holm);
-    }
-    if let Some(frontier) = &frontier {
-        frontier_section(&mut md, frontier);
     }
     sweeps_section(&mut md, &sweeps, 1.0 - level);
     requests(&mut md, entries);

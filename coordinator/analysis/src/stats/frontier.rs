@@ -132,7 +132,9 @@ impl Frontier {
 }
 
 /// The frontier of `pairs`' entries against their baselines, with
-/// intervals at `level`; none without a group of two or more of them.
+/// intervals at `level`; none with fewer than two of them. Each group of
+/// two or more (a swept entry's values) is also a curve, read at equal
+/// cost.
 pub fn frontier(pairs: &[Pair], level: f64) -> Option<Frontier> {
     let mut points: Vec<FrontierPoint> = (pairs.iter())
         .map(|p| {
@@ -183,11 +185,11 @@ pub fn frontier(pairs: &[Pair], level: f64) -> Option<Frontier> {
             }
         }
     }
-    frontier.points = points;
-    let groups = frontier.groups();
-    if groups.iter().all(|(_, points)| points.len() < 2) {
+    if points.len() < 2 {
         return None;
     }
+    frontier.points = points;
+    let groups = frontier.groups();
     let curves: Vec<(String, Vec<Curve>)> = (groups.into_iter())
         .map(|(group, points)| (group.to_owned(), curve(&points)))
         .filter(|(_, curve)| curve.len() >= 2)
@@ -449,9 +451,20 @@ mod tests {
     }
 
     #[test]
-    fn no_frontier_without_a_baseline_or_a_swept_group() {
+    fn no_frontier_without_a_baseline_or_two_entries() {
         let single = [baseline(), entry("a", None, [1.0; 3], [600; 3])];
         assert_eq!(frontier(&against(&single, "base"), 0.95), None);
+        // Two methods at one budget each: points, no curve.
+        let two = [
+            baseline(),
+            entry("a", None, [1.0; 3], [600; 3]),
+            entry("b", None, [2.0; 3], [900; 3]),
+        ];
+        let f = frontier(&against(&two, "base"), 0.95).unwrap();
+        assert_eq!(
+            (f.points.len(), f.rates.len(), f.equal_cost.len()),
+            (2, 0, 0)
+        );
         let swept = [
             entry("a-1", Some("a"), [1.0; 3], [600; 3]),
             entry("a-2", Some("a"), [2.0; 3], [900; 3]),
