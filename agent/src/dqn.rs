@@ -25,7 +25,7 @@ use crate::learner_settings::{DqnSettings, ObservationSet};
 use crate::selection::{AgentRng, epsilon_greedy};
 
 /// The kick actions the network values, in its output order.
-const KICKS: [Action; 4] = [
+pub(crate) const KICKS: [Action; 4] = [
     Action::Shoot,
     Action::Dribble,
     Action::PassNear,
@@ -51,7 +51,7 @@ pub(crate) fn holds_dqn_state(state: &[u8]) -> bool {
 }
 
 /// The network's output position of a kick action.
-fn kick_slot(action: Action) -> Option<usize> {
+pub(crate) fn kick_slot(action: Action) -> Option<usize> {
     KICKS.iter().position(|&a| a == action)
 }
 
@@ -176,13 +176,13 @@ struct Adam {
 }
 
 /// `tensors` flattened and laid end to end.
-fn flat(tensors: &[Tensor]) -> candle_core::Result<Tensor> {
+pub(crate) fn flat(tensors: &[Tensor]) -> candle_core::Result<Tensor> {
     let each = tensors.iter().map(Tensor::flatten_all);
     Tensor::cat(&each.collect::<candle_core::Result<Vec<_>>>()?, 0)
 }
 
 /// The parts of `flat` in the shapes of `params`, in their order.
-fn parts(flat: &Tensor, params: &[Var]) -> candle_core::Result<Vec<Tensor>> {
+pub(crate) fn parts(flat: &Tensor, params: &[Var]) -> candle_core::Result<Vec<Tensor>> {
     let mut at = 0;
     let mut parts = Vec::with_capacity(params.len());
     for p in params {
@@ -260,7 +260,7 @@ fn forward<'a>(
 /// runs (the `gemm` crate's, above a size): a DQN's products are small, a
 /// study already runs its runs on its threads, and one thread per product
 /// keeps every sum in one order.
-fn single_threaded_products() {
+pub(crate) fn single_threaded_products() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| gemm_common::gemm::set_threading_threshold(usize::MAX));
 }
