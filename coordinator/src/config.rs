@@ -255,6 +255,17 @@ pub struct TeamSpec {
     pub events: Vec<MembershipEvent>,
 }
 
+/// A TOML error of `text` with the line it points at.
+pub(crate) fn toml_error(text: &str, e: &toml::de::Error) -> String {
+    match e.span() {
+        Some(span) => {
+            let line = 1 + text[..span.start.min(text.len())].matches('\n').count();
+            format!("line {line}: {}", e.message())
+        }
+        None => e.message().to_owned(),
+    }
+}
+
 /// Reads a team file (TOML, or JSON when the name ends in `.json`): one
 /// `agent` entry per agent, by id, and its `event`s. Relative `load` paths
 /// are taken from the file's directory.
@@ -268,13 +279,7 @@ pub fn load_team_file(path: &Path) -> Result<TeamSpec, ConfigError> {
     let parsed: Result<TeamFile, String> = if is_json {
         serde_json::from_str(&text).map_err(|e| e.to_string())
     } else {
-        toml::from_str(&text).map_err(|e: toml::de::Error| match e.span() {
-            Some(span) => {
-                let line = 1 + text[..span.start.min(text.len())].matches('\n').count();
-                format!("line {line}: {}", e.message())
-            }
-            None => e.message().to_owned(),
-        })
+        toml::from_str(&text).map_err(|e| toml_error(&text, &e))
     };
     let file = parsed.map_err(|e| {
         let e = e.split_whitespace().collect::<Vec<_>>().join(" ");

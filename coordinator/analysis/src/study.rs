@@ -181,6 +181,18 @@ impl EntryResults {
         })
     }
 
+    /// Its method: the algorithm's name, with its first agent's learner's
+    /// when that is not SARSA(λ) (`rcmp (dqn)`, `adhoc-td (process)` for
+    /// a learner process).
+    pub fn method(&self) -> String {
+        let algorithm = self.entry.algorithm.name();
+        match self.learners().first() {
+            Some(Value::String(name)) => format!("{algorithm} ({name})"),
+            Some(Value::Object(_)) => format!("{algorithm} (process)"),
+            _ => algorithm.to_owned(),
+        }
+    }
+
     /// What its runs cost.
     pub fn cost(&self) -> Cost {
         Cost::of(&self.results)
@@ -197,5 +209,26 @@ impl EntryResults {
             .filter_map(|r| r.points.last().and_then(metric))
             .collect();
         estimate(&samples, level)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::fixtures::entry_results;
+
+    #[test]
+    fn a_method_is_named_with_its_learner_unless_sarsa() {
+        let with = |config: serde_json::Value| {
+            let mut e = entry_results("e", None, Vec::new());
+            e.config = config;
+            e.method()
+        };
+        let team = |learner: serde_json::Value| serde_json::json!({"config": {"team": [learner]}});
+        assert_eq!(with(serde_json::Value::Null), "no-advice");
+        assert_eq!(with(team(serde_json::json!({}))), "no-advice");
+        let dqn = team(serde_json::json!({"learner": "dqn"}));
+        assert_eq!(with(dqn), "no-advice (dqn)");
+        let process = team(serde_json::json!({"learner": {"command": ["python3"]}}));
+        assert_eq!(with(process), "no-advice (process)");
     }
 }

@@ -97,12 +97,12 @@ fn condition_sets(entries: &[EntryResults], condition: Condition, level: f64) ->
             goal_pct: EPISODES.iter().map(|&ep| goal_at(e, ep)).collect(),
             advised: advised(e, level),
         };
-        let label = e.entry.algorithm.name();
+        let label = e.method();
         match sets.iter_mut().find(|s| s.label == label) {
             Some(s) if s.points.iter().all(|p| p.x != x) => s.points.push(point),
             Some(_) => {}
             None => sets.push(ConditionSet {
-                label: label.to_owned(),
+                label,
                 runs: e.runs(),
                 ci_level: level,
                 points: vec![point],

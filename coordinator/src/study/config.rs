@@ -201,8 +201,10 @@ impl StudyConfig {
     }
 
     fn parse(text: &str, origin: &str) -> Result<Self, ConfigError> {
-        let mut config: Self = toml::from_str(text)
-            .map_err(|e| ConfigError::new("config", format!("{origin}: {}", e.message())))?;
+        let mut config: Self = toml::from_str(text).map_err(|e| {
+            let e = crate::config::toml_error(text, &e);
+            ConfigError::new("config", format!("{origin}: {e}"))
+        })?;
         config.ci_level = Some(config.ci_level());
         let entries = std::mem::take(&mut config.entries);
         for (i, entry) in entries.into_iter().enumerate() {
@@ -698,6 +700,17 @@ mod tests {
         assert_eq!(
             learner(2),
             paper.experiment(&paper.entries[2], None).team[0]
+        );
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_type_names_its_line() {
+        let text = "name = \"t\"\nruns = 2\nepisodes = 100\neval_every = 20\neval_episodes = 10\n\
+                    [[entry]]\nname = \"a\"\nbaseline = 3\nalgorithm = \"no-advice\"\n";
+        let e = StudyConfig::parse(text, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("s.toml: line 8: invalid type: integer `3`"),
+            "{e}"
         );
     }
 
