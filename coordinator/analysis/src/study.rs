@@ -214,14 +214,21 @@ impl EntryResults {
 
 #[cfg(test)]
 mod tests {
-    use crate::fixtures::entry_results;
+    use super::*;
 
     #[test]
     fn a_method_is_named_with_its_learner_unless_sarsa() {
-        let with = |config: serde_json::Value| {
-            let mut e = entry_results("e", None, Vec::new());
-            e.config = config;
-            e.method()
+        let with = |config: Value| {
+            let entry = Entry {
+                name: "e".into(),
+                algorithm: "no-advice".parse().unwrap(),
+                group: None,
+                baseline: None,
+                expert: false,
+                network: None,
+                events: Vec::new(),
+            };
+            EntryResults::new(entry, config, Vec::new(), 0.95).method()
         };
         let team = |learner: serde_json::Value| serde_json::json!({"config": {"team": [learner]}});
         assert_eq!(with(serde_json::Value::Null), "no-advice");
