@@ -51,7 +51,7 @@ fn play(team: &mut Team, frames: &[[Observation; AGENTS]], mode: Mode) {
         for f in episode {
             black_box(team.act(f, 0.0).unwrap());
         }
-        team.end_episode(1.0);
+        team.end_episode(agent::EpisodeOutcome::Goal);
     }
 }
 

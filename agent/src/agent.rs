@@ -1,13 +1,16 @@
 //! One learning agent: its per-frame API (advisee side), its advisor side and
 //! its learned state.
 
-use proto::{Action, AdviceAnswer, Along, Features, Mode, SharedValues, State, ValuesAnswer};
+use proto::{
+    Action, AdviceAnswer, Along, EpisodeOutcome, Features, MAX_BATCH, Mode, SharedValues, State,
+    ValuesAnswer,
+};
 use rand::{Rng, SeedableRng};
 
 use crate::advice_counters::{AdviceCounters, RequestOutcomes};
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
-use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
+use crate::exchange::{Advice, AdviceExchange, AdviceReport, Answer, Answers, Share, Transition};
 use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::learner_settings::ObservationSet;
@@ -127,7 +130,10 @@ struct Known {
 /// at the terminal frame, then [`share_episode`](Self::share_episode).
 /// A transport that cannot call the advisors in place splits each frame in
 /// [`act_begin`](Self::act_begin) and [`act_complete`](Self::act_complete)
-/// and ships shared episodes from [`take_shared`](Self::take_shared).
+/// and ships shared episodes and batches from
+/// [`take_shared`](Self::take_shared); reports of advice outcomes, from a
+/// strategy that sends them, from [`take_reports`](Self::take_reports)
+/// after every frame.
 #[derive(Debug)]
 pub struct Agent {
     id: usize,
@@ -149,6 +155,14 @@ pub struct Agent {
     answers: Answers,
     /// What it sends unasked after the episode that just ended.
     outbox: Sends,
+    /// The sum of the rewards of this episode's frames after the first;
+    /// `None` before its first frame.
+    episode_return: Option<f64>,
+    /// The advice that arrived for the open step, for a strategy that
+    /// reports advice outcomes.
+    open_advice: Vec<Advice>,
+    /// Reports of advice outcomes to send.
+    reports: Vec<AdviceReport>,
     training_episodes: u64,
     counters: AdviceCounters,
     /// What became of its requests.
@@ -225,6 +239,9 @@ impl Agent {
             reach: Vec::with_capacity(team_size),
             answers: Answers::default(),
             outbox: Sends::new(),
+            episode_return: None,
+            open_advice: Vec::new(),
+            reports: Vec::new(),
             training_episodes: 0,
             counters: AdviceCounters::default(),
             outcomes: RequestOutcomes::default(),
@@ -344,11 +361,12 @@ impl Agent {
     }
 
     /// Starts an episode in `mode`; forgets the previous episode's trace,
-    /// advised states and unsent shares.
+    /// advised states, unsent shares and reports.
     pub fn begin_episode(&mut self, mode: Mode) {
         self.mode = mode;
         self.reset_episode();
         self.outbox.clear();
+        self.reports.clear();
         self.strategy.begin_episode(mode);
     }
 
@@ -357,6 +375,8 @@ impl Agent {
         self.in_flight = None;
         self.learner.end_episode();
         self.advised.clear();
+        self.episode_return = None;
+        self.open_advice.clear();
     }
 
     fn training(&self) -> bool {
@@ -416,6 +436,7 @@ impl Agent {
         reachable: &dyn Fn(usize) -> bool,
     ) -> Decision {
         self.in_flight = None;
+        self.episode_return = Some(self.episode_return.map_or(0.0, |r| r + reward));
         if !self.strategy.learns() {
             return Decision::Act(self.random_action(obs.can_kick));
         }
@@ -543,6 +564,9 @@ impl Agent {
             advisor: followed.map(|advice| advice.advisor),
         };
         self.step(this, f.reward);
+        if self.strategy.reports_advice_outcomes() {
+            self.open_advice.extend_from_slice(&answers.advice);
+        }
         action
     }
 
@@ -586,24 +610,34 @@ impl Agent {
         self.pending = Some(this);
     }
 
-    /// The terminal frame: a training episode learns its last step with
-    /// target `final_reward` alone, counts as finished, and gets ready what
-    /// its strategy sends unasked (one unit of sharing per transition per
-    /// receiver).
-    pub fn end_episode(&mut self, final_reward: f64) {
+    /// The terminal frame of an episode that ended with `outcome`: a
+    /// training episode learns its last step with target the outcome's
+    /// reward alone, counts as finished, and gets ready what its strategy
+    /// sends unasked (one unit of sharing per transition per receiver); an
+    /// evaluation episode's end is told to its strategy.
+    pub fn end_episode(&mut self, outcome: EpisodeOutcome) {
+        let final_reward = outcome.reward();
+        if self.training()
+            && let Some(prev) = self.pending.take()
+        {
+            self.learn(prev, final_reward, None);
+        }
+        let end = EndContext {
+            final_reward,
+            outcome,
+            episode_return: self.episode_return.unwrap_or(0.0) + final_reward,
+            me: self.id,
+            team_size: self.team_size,
+            counters: &self.counters,
+        };
         if self.training() {
-            if let Some(prev) = self.pending.take() {
-                self.learn(prev, final_reward, None);
-            }
-            let end = EndContext {
-                final_reward,
-                me: self.id,
-                team_size: self.team_size,
-                counters: &self.counters,
-            };
-            self.outbox = self.strategy.end_episode(&end);
-            let sent: usize = self.outbox.iter().map(|(_, t)| t.len()).sum();
+            self.outbox = bounded(self.strategy.end_episode(&end));
+            let sent: usize = (self.outbox.iter())
+                .map(|(_, share)| share.transitions().len())
+                .sum();
             self.counters.shared_sent += sent as u64;
+        } else if self.mode == Mode::Evaluation {
+            self.strategy.end_evaluation(&end);
         }
         if self.mode == Mode::Training {
             self.training_episodes += 1;
@@ -612,43 +646,62 @@ impl Agent {
     }
 
     /// After [`end_episode`](Self::end_episode): sends what its strategy
-    /// sends unasked (EpisodeSharing's goal episodes).
+    /// sends unasked (EpisodeSharing's goal episodes, batches).
     pub fn share_episode(&mut self, exchange: &mut dyn AdviceExchange) {
-        for (to, transitions) in self.take_shared() {
-            exchange.share(self.id, to, &transitions);
+        for (to, share) in self.take_shared() {
+            exchange.share(self.id, to, &share);
         }
     }
 
-    /// What [`share_episode`](Self::share_episode) sends, as data: the
-    /// transitions for each receiver, in order; counted as shared when the
-    /// episode ended. Empty unless a training episode just ended with
-    /// something to send.
+    /// What [`share_episode`](Self::share_episode) sends, as data: what
+    /// goes to each receiver, in order; counted as shared when the episode
+    /// ended. Empty unless a training episode just ended with something to
+    /// send.
     pub fn take_shared(&mut self) -> Sends {
         std::mem::take(&mut self.outbox)
     }
 
-    /// Advisor side: its answer to a request about `state` (with the
-    /// asker's HFO `features` of it, if it sent them), as its method
-    /// answers: an action ([`advise`](Self::advise)) or, for a value-sharing
-    /// method, its values ([`share_values`](Self::share_values)); none, and
-    /// why, otherwise.
-    pub fn answer(&mut self, state: &State, features: &[f32], along: Along) -> Answer {
+    /// The reports of advice outcomes to send, one per advisor whose advice
+    /// arrived for a decision learned since the last call (a strategy that
+    /// [`reports_advice_outcomes`](AdvisingStrategy::reports_advice_outcomes)).
+    pub fn take_reports(&mut self) -> Vec<AdviceReport> {
+        std::mem::take(&mut self.reports)
+    }
+
+    /// Advisor side: agent `asker` reports how a decision on its advice
+    /// turned out; its strategy is told.
+    pub fn hear_advice_outcome(&mut self, asker: usize, followed: bool, advantage: f64) {
+        self.strategy.advice_outcome(asker, followed, advantage);
+    }
+
+    /// Advisor side: its answer to agent `asker`'s request about `state`
+    /// (with the asker's HFO `features` of it, if it sent them), as its
+    /// method answers: an action ([`advise`](Self::advise)) or, for a
+    /// value-sharing method, its values ([`share_values`](Self::share_values));
+    /// none, and why, otherwise.
+    pub fn answer(
+        &mut self,
+        asker: usize,
+        state: &State,
+        features: &[f32],
+        along: Along,
+    ) -> Answer {
         let exhausted = self.training() && self.strategy.exhausted(&self.counters);
         match (self.strategy.shares_values(), exhausted) {
             (true, true) => Answer::Values(ValuesAnswer::Exhausted),
             (false, true) => Answer::Action(AdviceAnswer::Exhausted),
             (true, false) => {
-                Answer::Values(self.share_values(state, features, along.action_visits()))
+                Answer::Values(self.share_values(asker, state, features, along.action_visits()))
             }
-            (false, false) => {
-                Answer::Action(match self.advise(state, features, along.intended()) {
+            (false, false) => Answer::Action(
+                match self.advise(asker, state, features, along.intended()) {
                     None => AdviceAnswer::Declined,
                     Some(action) => match self.strategy.advisor_value() {
                         Some(value) => AdviceAnswer::Recommendation(action, value as f32),
                         None => AdviceAnswer::Advice(action),
                     },
-                })
-            }
+                },
+            ),
         }
     }
 
@@ -672,14 +725,15 @@ impl Agent {
     }
 
     /// What it knows of `state` (nothing where training never met it) when
-    /// its strategy is willing to give about it now to an asker that took
-    /// each action there `asker` times (if it says); `None` outside
-    /// training or when it is not.
+    /// its strategy is willing to give about it now to agent `asker`, which
+    /// took each action there `asker_visits` times (if it says); `None`
+    /// outside training or when it is not.
     fn willing(
         &mut self,
+        asker: usize,
         state: &State,
         features: &[f32],
-        asker: Option<[u32; ACTIONS]>,
+        asker_visits: Option<[u32; ACTIONS]>,
     ) -> Option<Known> {
         if !self.training() {
             return None;
@@ -699,27 +753,31 @@ impl Agent {
             None => Known::default(),
         };
         let at = GiveContext {
+            asker,
+            state,
+            features,
             visits: known.visits,
             action_visits: known.action_visits,
             values: &known.values,
-            asker_visits: asker,
+            asker_visits,
             counters: &self.counters,
         };
         self.strategy.gives(&at, &mut self.rng).then_some(known)
     }
 
-    /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for an
-    /// advisee's `state` (with its HFO features, if it sent them), or
-    /// `None`. The answer is its greedy kick action, ties broken as its
+    /// Advisor side (Algorithm 2, or Torrey's teacher): the advice for
+    /// advisee `asker`'s `state` (with its HFO features, if it sent them),
+    /// or `None`. The answer is its greedy kick action, ties broken as its
     /// fidelity says. With `intended` (Mistake Correcting) it answers, and
     /// spends budget, only when its action differs.
     pub fn advise(
         &mut self,
+        asker: usize,
         state: &State,
         features: &[f32],
         intended: Option<Action>,
     ) -> Option<Action> {
-        let known = self.willing(state, features, None)?;
+        let known = self.willing(asker, state, features, None)?;
         let ties = self.config.fidelity.advisor_ties;
         let honest = if self.strategy.suggests_its_choice() {
             let at = Seen {
@@ -742,18 +800,19 @@ impl Agent {
         Some(answer)
     }
 
-    /// Sharer side (a value-sharing method): its values and visits of an
-    /// advisee's `state` and HFO features (or only its best action and that
-    /// action's value, as its strategy shares; `asker`: the advisee's
-    /// visits by action, if sent), or why none; one unit of its give
-    /// budget.
+    /// Sharer side (a value-sharing method): its values and visits of
+    /// advisee `asker`'s `state` and HFO features (or only its best action
+    /// and that action's value, as its strategy shares; `asker_visits`: the
+    /// advisee's visits by action, if sent), or why none; one unit of its
+    /// give budget.
     pub fn share_values(
         &mut self,
+        asker: usize,
         state: &State,
         features: &[f32],
-        asker: Option<[u32; ACTIONS]>,
+        asker_visits: Option<[u32; ACTIONS]>,
     ) -> ValuesAnswer {
-        let Some(known) = self.willing(state, features, asker) else {
+        let Some(known) = self.willing(asker, state, features, asker_visits) else {
             return ValuesAnswer::Declined;
         };
         self.gave();
@@ -816,6 +875,39 @@ impl Agent {
         self.learner.replay(&episode);
     }
 
+    /// Takes a batch of agent `from`'s experience in training: its strategy
+    /// is told, then its learner learns it as one batch (each state indexed
+    /// where training met it, the sender's next actions as they were);
+    /// counted as transitions received. Whether its learner learned it
+    /// (false outside training, or for a learner that cannot).
+    pub fn receive_batch(&mut self, from: usize, transitions: &[Transition]) -> bool {
+        if !self.training() {
+            return false;
+        }
+        self.counters.shared_received += transitions.len() as u64;
+        self.strategy.received(from, transitions);
+        let index = |s: &State| self.states.get(self.tiling.key(s));
+        let seen = |state, index| Seen {
+            state,
+            features: &[],
+            index,
+        };
+        let batch: Vec<Experience<'_>> = (transitions.iter())
+            .map(|t| {
+                let from = Step {
+                    at: seen(&t.state, index(&t.state)),
+                    action: t.action,
+                };
+                let next = (t.next.as_ref()).map(|(s, a)| Step {
+                    at: seen(s, index(s)),
+                    action: *a,
+                });
+                (from, t.reward, next)
+            })
+            .collect();
+        self.learner.learn_batch(&batch)
+    }
+
     /// The advice its strategy reuses instead of asking, if any.
     fn reused(&mut self, key: u64, at: Seen<'_>) -> Option<Action> {
         let learner = &mut self.learner;
@@ -833,7 +925,11 @@ impl Agent {
         } else {
             None
         };
+        let values = (self.strategy.asks_by_values()).then(|| self.learner.values(at));
         let at = AskContext {
+            state: at.state,
+            features: at.features,
+            values,
             uncertainty,
             fresh: !self.advised.contains(&key),
             visits: self.states.visits(index),
@@ -876,12 +972,16 @@ impl Agent {
         }
     }
 
-    /// Learns one step, and tells its strategy when it wants to know.
+    /// Learns one step, and tells its strategy (and the advisors whose
+    /// advice arrived for it, if it reports to them) when it wants to know.
     fn learn(&mut self, prev: OpenStep, reward: f64, next: Option<OpenStep>) {
         self.learner
             .learn((prev.step(), reward, next.as_ref().map(OpenStep::step)));
         if prev.action.is_kick() && self.strategy.learns_from_outcomes() {
             self.tell_outcome(&prev, reward, next.as_ref());
+        }
+        if !self.open_advice.is_empty() {
+            self.report_outcomes(&prev, reward, next.as_ref());
         }
         if self.strategy.records_transitions(&self.counters) {
             self.strategy.learned(&Transition {
@@ -898,13 +998,30 @@ impl Agent {
     /// Eq. 8 with `use_advantage`), so that an action worse than the best
     /// one known there counts against whoever advised it.
     fn tell_outcome(&mut self, prev: &OpenStep, reward: f64, next: Option<&OpenStep>) {
-        let ahead = next.map_or(0.0, |n| self.state_value(n));
-        let advantage = reward + self.config.gamma * ahead - self.state_value(prev);
         let outcome = Outcome {
             advisor: prev.advisor,
-            advantage,
+            advantage: self.advantage(prev, reward, next),
         };
         self.strategy.learn_outcome(&outcome);
+    }
+
+    /// Readies a report for every advisor whose advice arrived for `prev`:
+    /// whether it played that advice, and the decision's advantage.
+    fn report_outcomes(&mut self, prev: &OpenStep, reward: f64, next: Option<&OpenStep>) {
+        let advantage = self.advantage(prev, reward, next);
+        let reports = std::mem::take(&mut self.open_advice).into_iter();
+        self.reports.extend(reports.map(|a| AdviceReport {
+            advisor: a.advisor,
+            followed: a.action == prev.action,
+            advantage,
+        }));
+    }
+
+    /// A decision's advantage under the values just learned, r + gamma
+    /// V(s') - V(s).
+    fn advantage(&mut self, prev: &OpenStep, reward: f64, next: Option<&OpenStep>) -> f64 {
+        let ahead = next.map_or(0.0, |n| self.state_value(n));
+        reward + self.config.gamma * ahead - self.state_value(prev)
     }
 
     /// V of a step's state under its learner's values: the best learned
@@ -1002,6 +1119,24 @@ impl Agent {
     pub fn digest(&self) -> u64 {
         self.framework_state().digest()
     }
+}
+
+/// What a strategy sends, within the wire's bounds: a batch cut to its
+/// first [`MAX_BATCH`] transitions, a second batch to the same receiver
+/// dropped.
+fn bounded(sends: Sends) -> Sends {
+    let mut batched = Vec::new();
+    (sends.into_iter())
+        .filter_map(|(to, share)| match share {
+            Share::Batch(_) if batched.contains(&to) => None,
+            Share::Batch(mut transitions) => {
+                batched.push(to);
+                transitions.truncate(MAX_BATCH);
+                Some((to, Share::Batch(transitions)))
+            }
+            episode => Some((to, episode)),
+        })
+        .collect()
 }
 
 #[cfg(test)]

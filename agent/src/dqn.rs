@@ -86,6 +86,48 @@ struct Replay {
     mask: Vec<u16>,
 }
 
+/// Decisions laid out for one gradient step: their states, next states,
+/// kick slots (one per head), rewards, discounts and heads' masks.
+struct Batch {
+    heads: usize,
+    n: usize,
+    s: Vec<f32>,
+    s2: Vec<f32>,
+    a: Vec<u32>,
+    rew: Vec<f32>,
+    disc: Vec<f32>,
+    mask: Vec<f32>,
+}
+
+impl Batch {
+    /// Room for `n` decisions of `width` inputs learned by `heads` heads.
+    fn with_capacity(n: usize, width: usize, heads: usize) -> Self {
+        Self {
+            heads,
+            n: 0,
+            s: Vec::with_capacity(n * width),
+            s2: Vec::with_capacity(n * width),
+            a: Vec::new(),
+            rew: Vec::new(),
+            disc: Vec::new(),
+            mask: Vec::with_capacity(n * heads),
+        }
+    }
+
+    /// Adds one decision: its state, next state, kick slot, reward and
+    /// discount, and which heads learn it (a bit each).
+    fn push(&mut self, s: &[f32], s2: &[f32], slot: u8, (rew, disc): (f32, f32), mask: u16) {
+        let k = self.heads;
+        self.n += 1;
+        self.s.extend_from_slice(s);
+        self.s2.extend_from_slice(s2);
+        self.a.extend(std::iter::repeat_n(u32::from(slot), k));
+        self.rew.push(rew);
+        self.disc.push(disc);
+        (self.mask).extend((0..k).map(|h| f32::from(u8::from(mask >> h & 1 == 1))));
+    }
+}
+
 /// One decision, closed.
 struct Decision<'a> {
     state: &'a [f32],
@@ -406,34 +448,11 @@ impl Dqn {
     }
 
     /// Folds one frame of an episode into `open`, storing the decision it
-    /// closes; whether it closed one. A kick whose input it cannot read (a
-    /// shared state without HFO's features) is not learned.
+    /// closes; whether it closed one.
     fn fold(&mut self, open: &mut Option<Open>, experience: Experience<'_>) -> bool {
-        let (from, reward, next) = experience;
-        if let Some(slot) = kick_slot(from.action) {
-            *open = self.input(from.at).map(|x| Open {
-                state: x.as_slice().to_vec(),
-                slot,
-                reward: 0.0,
-                discount: 1.0,
-            });
-        }
-        let Some(kick) = open.as_mut() else {
-            return false; // moving before its first kick of the episode
+        let Some((kick, next)) = self.close(open, experience) else {
+            return false;
         };
-        kick.fold(reward, self.gamma);
-        let next = match next {
-            None => None,
-            Some(n) if n.action.is_kick() => match self.input(n.at) {
-                Some(x) => Some(x),
-                None => {
-                    *open = None;
-                    return false;
-                }
-            },
-            Some(_) => return false,
-        };
-        let kick = open.take().expect("an open kick");
         let mask = self.mask();
         self.replay.push(&Decision {
             state: &kick.state,
@@ -447,29 +466,78 @@ impl Dqn {
         let s = &self.settings;
         let ready = self.replay.len() as u64 >= s.warmup.max(u64::from(s.batch));
         if ready && self.stored.is_multiple_of(s.train_every) {
-            self.train().unwrap_or_else(|e| panic!("{}", fault(e)));
+            let batch = self.sample();
+            self.train(batch).unwrap_or_else(|e| panic!("{}", fault(e)));
         }
         true
     }
 
-    /// One gradient step on a batch drawn from the replay, then the target's
-    /// copy when it is due.
-    fn train(&mut self) -> candle_core::Result<()> {
-        let (n, w, k) = (self.settings.batch as usize, self.width, self.heads);
-        let r = &self.replay;
-        let mut s = Vec::with_capacity(n * w);
-        let mut s2 = Vec::with_capacity(n * w);
-        let (mut a, mut rew, mut disc) = (Vec::new(), Vec::new(), Vec::new());
-        let mut mask = Vec::with_capacity(n * k);
-        for _ in 0..n {
-            let i = self.rng.random_range(0..r.len());
-            s.extend_from_slice(&r.state[i * w..(i + 1) * w]);
-            s2.extend_from_slice(&r.next_state[i * w..(i + 1) * w]);
-            a.extend(std::iter::repeat_n(u32::from(r.action[i]), k));
-            rew.push(r.reward[i]);
-            disc.push(r.discount[i]);
-            mask.extend((0..k).map(|h| f32::from(u8::from(r.mask[i] >> h & 1 == 1))));
+    /// Folds one frame of an episode into `open`: the decision it closes,
+    /// with the next decision's input (none at the episode's end), if it
+    /// closes one. A kick whose input it cannot read (a shared state
+    /// without HFO's features) is not learned.
+    fn close(
+        &self,
+        open: &mut Option<Open>,
+        experience: Experience<'_>,
+    ) -> Option<(Open, Option<Features>)> {
+        let (from, reward, next) = experience;
+        if let Some(slot) = kick_slot(from.action) {
+            *open = self.input(from.at).map(|x| Open {
+                state: x.as_slice().to_vec(),
+                slot,
+                reward: 0.0,
+                discount: 1.0,
+            });
         }
+        let Some(kick) = open.as_mut() else {
+            return None; // moving before its first kick of the episode
+        };
+        kick.fold(reward, self.gamma);
+        let next = match next {
+            None => None,
+            Some(n) if n.action.is_kick() => match self.input(n.at) {
+                Some(x) => Some(x),
+                None => {
+                    *open = None;
+                    return None;
+                }
+            },
+            Some(_) => return None,
+        };
+        open.take().map(|kick| (kick, next))
+    }
+
+    /// A batch drawn from the replay.
+    fn sample(&mut self) -> Batch {
+        let mut batch = Batch::with_capacity(self.settings.batch as usize, self.width, self.heads);
+        let (w, r) = (self.width, &self.replay);
+        for _ in 0..self.settings.batch {
+            let i = self.rng.random_range(0..r.len());
+            batch.push(
+                &r.state[i * w..(i + 1) * w],
+                &r.next_state[i * w..(i + 1) * w],
+                r.action[i],
+                (r.reward[i], r.discount[i]),
+                r.mask[i],
+            );
+        }
+        batch
+    }
+
+    /// One gradient step on `batch`, then the target's copy when it is due.
+    fn train(&mut self, batch: Batch) -> candle_core::Result<()> {
+        let w = self.width;
+        let Batch {
+            heads: k,
+            n,
+            s,
+            s2,
+            a,
+            rew,
+            disc,
+            mask,
+        } = batch;
         let cpu = &Device::Cpu;
         let s = Tensor::from_vec(s, (n, w), cpu)?;
         let s2 = Tensor::from_vec(s2, (n, w), cpu)?;
@@ -680,6 +748,39 @@ impl Learner for Dqn {
         }
     }
 
+    /// A teammate's experience, folded from kick to kick as a shared
+    /// episode is (its transitions read in order as steps of the sender's
+    /// episodes), learned by one gradient step on exactly the decisions it
+    /// closes, every head on each; nothing stored in its replay, no draw
+    /// made. False if it closes none it can read.
+    fn learn_batch(&mut self, batch: &[Experience<'_>]) -> bool {
+        let mut open = None;
+        let decisions: Vec<(Open, Option<Features>)> = (batch.iter())
+            .filter_map(|&experience| self.close(&mut open, experience))
+            .collect();
+        if decisions.is_empty() {
+            return false;
+        }
+        let (w, heads) = (self.width, self.heads);
+        let every_head = u16::MAX >> (16 - heads);
+        let zeros = vec![0.0; w];
+        let mut laid = Batch::with_capacity(decisions.len(), w, heads);
+        for (kick, next) in &decisions {
+            let discount = if next.is_some() { kick.discount } else { 0.0 };
+            let s2 = next.as_ref().map_or(&zeros[..], Features::as_slice);
+            let (reward, discount) = (kick.reward as f32, discount as f32);
+            laid.push(
+                &kick.state,
+                s2,
+                kick.slot as u8,
+                (reward, discount),
+                every_head,
+            );
+        }
+        self.train(laid).unwrap_or_else(|e| panic!("{}", fault(e)));
+        true
+    }
+
     /// None: it keeps its network itself ([`save_state`](Learner::save_state)).
     fn table(&self) -> Option<Vec<ActionValues>> {
         None
@@ -841,6 +942,37 @@ mod tests {
         // Moves before any kick teach nothing.
         dqn.learn((step(&A, Move), 1.0, None));
         assert_eq!(dqn.replay.len(), 2);
+    }
+
+    #[test]
+    fn a_batch_is_one_gradient_step_kept_out_of_the_replay() {
+        let mut dqn = Dqn::new(&small(), 0.9, 6, 5);
+        bandit(&mut dqn, 100, &mut AgentRng::seed_from_u64(4));
+        let at = Seen {
+            state: &A,
+            features: &[],
+            index: None,
+        };
+        let before = dqn.values(at);
+        let (stored, updates, length, rng) =
+            (dqn.stored, dqn.updates, dqn.replay.len(), dqn.rng.clone());
+        // In A, PassNear pays 5 (a kick, two moves folded in, the end).
+        let batch = [
+            (step(&A, PassNear), 1.0, Some(step(&B, Move))),
+            (step(&B, Move), 4.0, None),
+        ];
+        assert!(dqn.learn_batch(&batch));
+        let after = dqn.values(at);
+        assert!(
+            after.q[PassNear.index()] > before.q[PassNear.index()],
+            "{before:?} -> {after:?}"
+        );
+        assert_eq!((dqn.stored, dqn.updates), (stored, updates + 1));
+        assert_eq!(dqn.replay.len(), length);
+        assert_eq!(dqn.rng, rng, "no draw");
+        // Moves alone close no decision: nothing to learn.
+        assert!(!dqn.learn_batch(&[(step(&B, Move), 1.0, None)]));
+        assert_eq!(dqn.updates, updates + 1);
     }
 
     #[test]

@@ -9,6 +9,30 @@ use proto::{Action, AdviceAnswer, Along, Features, SharedValues, State, ValuesAn
 /// so that a transport ships shared episodes as they are.
 pub use proto::SharedTransition as Transition;
 
+/// What an agent sends one teammate unasked at an episode's end, and how
+/// the receiver learns it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Share {
+    /// An episode's transitions, replayed step by step (EpisodeSharing's
+    /// goal episodes): [`Learner::replay`](crate::Learner::replay).
+    Episode(Vec<Transition>),
+    /// Experience learned as one batch
+    /// ([`Learner::learn_batch`](crate::Learner::learn_batch)), at most
+    /// [`proto::MAX_BATCH`] transitions (the framework keeps the first that
+    /// many) and one batch per receiver and episode (the framework drops a
+    /// second).
+    Batch(Vec<Transition>),
+}
+
+impl Share {
+    /// The transitions it carries.
+    pub fn transitions(&self) -> &[Transition] {
+        match self {
+            Share::Episode(t) | Share::Batch(t) => t,
+        }
+    }
+}
+
 /// One piece of advice and who gave it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Advice {
@@ -16,6 +40,19 @@ pub struct Advice {
     pub advisor: usize,
     /// The action it advises.
     pub action: Action,
+}
+
+/// An advisee's report to an advisor of how a decision on which the
+/// advisor's advice arrived turned out (a strategy that
+/// [`reports_advice_outcomes`](crate::AdvisingStrategy::reports_advice_outcomes)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdviceReport {
+    /// The advisor's id.
+    pub advisor: usize,
+    /// Whether the advisee played the action it advised.
+    pub followed: bool,
+    /// The decision's advantage (as [`Outcome::advantage`](crate::Outcome::advantage)).
+    pub advantage: f64,
 }
 
 /// One sharer's values of a state (a value-sharing method's answer).
@@ -115,7 +152,7 @@ impl Answers {
     }
 }
 
-/// Carries advice requests and shared episodes between agents.
+/// Carries advice requests, shared episodes and batches between agents.
 pub trait AdviceExchange {
     /// Asks every agent of `to`, in order, for advice on `state` (with the
     /// asker's HFO `features` of it, where it has them, and what the
@@ -133,8 +170,9 @@ pub trait AdviceExchange {
         answers: &mut Answers,
     ) -> u64;
 
-    /// Delivers transitions of `from`'s goal episode to agent `to`, in order.
-    fn share(&mut self, from: usize, to: usize, transitions: &[Transition]);
+    /// Delivers what `from` sends agent `to` unasked at an episode's end (a
+    /// goal episode's transitions, in order, or a batch).
+    fn share(&mut self, from: usize, to: usize, share: &Share);
 }
 
 /// An exchange that reaches nobody: no advice arrives and shares are dropped.
@@ -154,5 +192,5 @@ impl AdviceExchange for Isolated {
         0
     }
 
-    fn share(&mut self, _: usize, _: usize, _: &[Transition]) {}
+    fn share(&mut self, _: usize, _: usize, _: &Share) {}
 }

@@ -103,6 +103,14 @@ pub trait Learner: fmt::Debug + Send {
     /// steps; every state is indexed.
     fn replay(&mut self, episode: &[Experience<'_>]);
 
+    /// Learns a teammate's experience as one batch (one update on all of
+    /// it), apart from its own; a state is indexed where the agent's
+    /// training met it. False for a learner that cannot learn a batch (by
+    /// default).
+    fn learn_batch(&mut self, _batch: &[Experience<'_>]) -> bool {
+        false
+    }
+
     /// Its values of every indexed state in index order, for a snapshot;
     /// `None` for a learner that keeps its learned state itself.
     fn table(&self) -> Option<Vec<ActionValues>>;

@@ -6,12 +6,13 @@
 //! transport: agents reach each other through [`AdviceExchange`], which
 //! [`Team`] implements in process with direct calls. A networked agent
 //! splits each frame in [`Agent::act_begin`] and [`Agent::act_complete`]
-//! around its advice requests and ships [`Agent::take_shared`]'s episodes.
+//! around its advice requests and ships [`Agent::take_shared`]'s episodes
+//! and batches and [`Agent::take_reports`]' reports.
 //!
 //! Driving a [`Team`]: one training episode, then one evaluation episode
 //! (frozen: greedy play, nothing learned, asked or given).
 //! ```
-//! use agent::{Agent, AgentConfig, Features, Mode, Observation, Profile, Team};
+//! use agent::{Agent, AgentConfig, EpisodeOutcome, Features, Mode, Observation, Profile, Team};
 //! use proto::Action;
 //!
 //! let config = AgentConfig::of("adhoc-td".parse()?, Profile::Paper);
@@ -34,7 +35,7 @@
 //!         // the shared reward (0 until the terminal step).
 //!         (frame, reward) = ([obs(false), obs(true), obs(false)], 0.0);
 //!     }
-//!     team.end_episode(1.0); // terminal reward: +1 goal, -1 captured or out, 0 time-out
+//!     team.end_episode(EpisodeOutcome::Goal); // its reward: +1 goal, -1 captured or out, 0 time-out
 //! }
 //! let spent: Vec<u64> = team.agents().iter().map(Agent::spent_budget).collect();
 //! # assert_eq!(spent.len(), 3);
@@ -83,7 +84,8 @@ pub use config_error::AgentConfigError;
 pub use dqn::Dqn;
 pub use ensemble::EnsembleSarsa;
 pub use exchange::{
-    Advice, AdviceExchange, Answer, Answers, BestValue, Isolated, Transition, ValuesAdvice,
+    Advice, AdviceExchange, AdviceReport, Answer, Answers, BestValue, Isolated, Share, Transition,
+    ValuesAdvice,
 };
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
@@ -96,7 +98,7 @@ pub use learner_settings::{
 pub use link::{Latency, Leg, Link, Message, NetworkConditions};
 pub use method::LearnerNeed;
 pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapshot_file};
-pub use proto::{Features, Mode};
+pub use proto::{EpisodeOutcome, Features, MAX_BATCH, Mode};
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{

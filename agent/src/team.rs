@@ -2,12 +2,13 @@
 //! in a fixed order, so a run is bit-for-bit deterministic.
 
 use proto::{
-    Action, AdviceReply, AdviceRequest, Along, Body, Envelope, Exhausted, FeaturedRequest,
-    Features, Header, Mode, SharedEpisode, State, ValuesReply,
+    Action, AdviceOutcome, AdviceReply, AdviceRequest, Along, Body, Envelope, EpisodeOutcome,
+    Exhausted, ExperienceBatch, FeaturedRequest, Features, Header, Mode, SharedEpisode, State,
+    ValuesReply,
 };
 
 use crate::agent::{Agent, Observation};
-use crate::exchange::{AdviceExchange, Answer, Answers, Transition};
+use crate::exchange::{AdviceExchange, Answer, Answers, Share};
 use crate::link::{Leg, Link, Message};
 
 /// A team that does not fit together, or a frame of the wrong size.
@@ -61,8 +62,9 @@ pub struct Team {
     traffic: Vec<AdvisingTraffic>,
 }
 
-/// The advising messages an agent sent (advice requests, replies and shared
-/// episodes) and their bytes, encoded as the zenoh transport sends them.
+/// The advising messages an agent sent (advice requests, replies,
+/// announcements, shared episodes, batches and reports of advice outcomes)
+/// and their bytes, encoded as the zenoh transport sends them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct AdvisingTraffic {
     /// Messages sent.
@@ -170,6 +172,7 @@ impl Team {
             peers.link = me.link().copied();
             self.actions[i] = me.act(obs, reward, &self.positions, &mut peers);
             self.announce((episode, frame));
+            self.report(i, (episode, frame));
         }
         self.frame += 1;
         Ok(&self.actions)
@@ -193,13 +196,35 @@ impl Team {
         }
     }
 
-    /// The terminal frame: every agent learns its last step, then the agents
-    /// that share episodes send them, in id order.
-    pub fn end_episode(&mut self, final_reward: f64) {
+    /// Delivers agent `i`'s reports of advice outcomes to their advisors,
+    /// one message each.
+    fn report(&mut self, i: usize, (episode, frame): (u32, u32)) {
+        for r in self.agents[i].take_reports() {
+            let header = Header::new(proto::experiment_id("in-process"), 0, episode, frame);
+            let report = Body::AdviceOutcome(AdviceOutcome {
+                from: i as u8,
+                to: r.advisor as u8,
+                followed: r.followed,
+                advantage: r.advantage,
+            });
+            self.traffic[i].count(header, report);
+            if let Some(advisor) = self.agents.get_mut(r.advisor) {
+                advisor.hear_advice_outcome(i, r.followed, r.advantage);
+            }
+        }
+    }
+
+    /// The terminal frame of an episode that ended with `outcome`: every
+    /// agent learns its last step, then, in id order, the agents send their
+    /// reports of advice outcomes and what they share.
+    pub fn end_episode(&mut self, outcome: EpisodeOutcome) {
         for a in &mut self.agents {
-            a.end_episode(final_reward);
+            a.end_episode(outcome);
         }
         let episode = self.episodes.saturating_sub(1);
+        for i in 0..self.agents.len() {
+            self.report(i, (episode, self.frame));
+        }
         for i in 0..self.agents.len() {
             let (me, mut peers) = Peers::split(&mut self.agents, &mut self.traffic, i);
             peers.clock = (episode, self.frame);
@@ -304,7 +329,7 @@ impl AdviceExchange for Peers<'_> {
             let Some(advisor) = self.get(j) else {
                 continue;
             };
-            let answer = advisor.answer(state, features.as_slice(), along);
+            let answer = advisor.answer(from, state, features.as_slice(), along);
             let arrives = delay(advisor.link(), back)
                 .is_some_and(|b| asker.is_none_or(|l| sent + b <= l.timeout_ms()));
             let from = j as u8;
@@ -321,16 +346,29 @@ impl AdviceExchange for Peers<'_> {
         replies
     }
 
-    fn share(&mut self, from: usize, to: usize, transitions: &[Transition]) {
-        let share = SharedEpisode {
-            from: from as u8,
-            to: to as u8,
-            transitions: transitions.to_vec(),
+    fn share(&mut self, from: usize, to: usize, share: &Share) {
+        let (sender, receiver, transitions) = (from as u8, to as u8, share.transitions().to_vec());
+        let body = match share {
+            Share::Episode(_) => Body::SharedEpisode(SharedEpisode {
+                from: sender,
+                to: receiver,
+                transitions,
+            }),
+            Share::Batch(_) => Body::ExperienceBatch(ExperienceBatch {
+                from: sender,
+                to: receiver,
+                transitions,
+            }),
         };
         let header = self.header();
-        self.traffic[from].count(header, Body::SharedEpisode(share));
+        self.traffic[from].count(header, body);
         if let Some(a) = self.get(to) {
-            a.receive_shared(transitions);
+            match share {
+                Share::Episode(t) => a.receive_shared(t),
+                Share::Batch(t) => {
+                    a.receive_batch(from, t);
+                }
+            }
         }
     }
 }

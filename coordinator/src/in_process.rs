@@ -132,8 +132,8 @@ impl Players<'_> {
             check(self.plugins, run)?;
             let outcome = env.step(actions);
             observe(env);
-            if outcome.is_terminal() {
-                self.team.end_episode(outcome.reward());
+            if let Some(ended) = outcome.ended() {
+                self.team.end_episode(ended);
                 check(self.plugins, run)?;
                 return Ok(outcome);
             }

@@ -1,7 +1,7 @@
 //! Encoding and checked decoding of [`Envelope`]s, and of the settings a
 //! `Control::Reset` carries.
 
-use crate::message::{Envelope, Header, PROTOCOL_VERSION};
+use crate::message::{Body, Envelope, Header, MAX_BATCH, PROTOCOL_VERSION};
 use crate::traffic::{DropReason, MessageCounters};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -32,8 +32,9 @@ pub fn encode(envelope: &Envelope) -> Vec<u8> {
     postcard::to_allocvec(envelope).unwrap_or_default()
 }
 
-/// Decodes a message of `experiment`, checking version and experiment first;
-/// never panics, whatever the bytes.
+/// Decodes a message of `experiment`, checking version and experiment first
+/// and then what a body may hold (an experience batch's bound, finite
+/// numbers where a learner takes them); never panics, whatever the bytes.
 pub fn decode(bytes: &[u8], experiment: u64) -> Result<Envelope, DecodeError> {
     let (header, _) = postcard::take_from_bytes::<Header>(bytes)
         .map_err(|e| DecodeError::Malformed(e.to_string()))?;
@@ -54,7 +55,25 @@ pub fn decode(bytes: &[u8], experiment: u64) -> Result<Envelope, DecodeError> {
             rest.len()
         )));
     }
+    check(&envelope.body).map_err(DecodeError::Malformed)?;
     Ok(envelope)
+}
+
+/// Why a decoded body cannot be taken, if it cannot.
+fn check(body: &Body) -> Result<(), String> {
+    match body {
+        Body::ExperienceBatch(b) if b.transitions.len() > MAX_BATCH => Err(format!(
+            "an experience batch of {} transitions, more than {MAX_BATCH}",
+            b.transitions.len()
+        )),
+        Body::ExperienceBatch(b) if !b.transitions.iter().all(|t| t.is_finite()) => {
+            Err("an experience batch with a number that is not finite".into())
+        }
+        Body::AdviceOutcome(o) if !o.advantage.is_finite() => {
+            Err(format!("an advice outcome of advantage {}", o.advantage))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// Settings that could not be encoded, or bytes that are not the settings
@@ -133,6 +152,33 @@ mod tests {
             .prop_map(|v| Features::new(&v).expect("at most MAX_FEATURES"))
     }
 
+    fn outcome() -> impl Strategy<Value = EpisodeOutcome> {
+        prop::sample::select(vec![
+            EpisodeOutcome::Goal,
+            EpisodeOutcome::Captured,
+            EpisodeOutcome::OutOfBounds,
+            EpisodeOutcome::OutOfTime,
+        ])
+    }
+
+    fn transitions(max: usize) -> impl Strategy<Value = Vec<SharedTransition>> {
+        prop::collection::vec(
+            (
+                state(),
+                action(),
+                -1.0f64..=1.0,
+                prop::option::of((state(), action())),
+            )
+                .prop_map(|(state, action, reward, next)| SharedTransition {
+                    state,
+                    action,
+                    reward,
+                    next,
+                }),
+            0..max,
+        )
+    }
+
     fn mode() -> impl Strategy<Value = Mode> {
         prop::sample::select(vec![Mode::Training, Mode::Evaluation])
     }
@@ -149,11 +195,11 @@ mod tests {
                     any::<bool>(),
                     prop::collection::vec(prop::array::uniform2(-60.0f64..60.0), 0..5),
                     -1.0f64..=1.0,
-                    any::<bool>(),
+                    prop::option::of(outcome()),
                     features(),
                 )
                     .prop_map(
-                        |(agent, mode, state, can_kick, positions, reward, terminal, features)| {
+                        |(agent, mode, state, can_kick, positions, reward, outcome, features)| {
                             AgentFrame {
                                 agent,
                                 mode,
@@ -162,7 +208,7 @@ mod tests {
                                 can_kick,
                                 positions,
                                 reward,
-                                terminal,
+                                outcome,
                             }
                         }
                     ),
@@ -211,32 +257,28 @@ mod tests {
                     }
                 )),
             any::<u8>().prop_map(|from| Body::Exhausted(Exhausted { from })),
-            (
-                any::<u8>(),
-                any::<u8>(),
-                prop::collection::vec(
-                    (
-                        state(),
-                        action(),
-                        -1.0f64..=1.0,
-                        prop::option::of((state(), action()))
-                    ),
-                    0..20
-                )
-            )
-                .prop_map(|(from, to, t)| Body::SharedEpisode(SharedEpisode {
+            (any::<u8>(), any::<u8>(), transitions(20)).prop_map(|(from, to, transitions)| {
+                Body::SharedEpisode(SharedEpisode {
                     from,
                     to,
-                    transitions: t
-                        .into_iter()
-                        .map(|(state, action, reward, next)| SharedTransition {
-                            state,
-                            action,
-                            reward,
-                            next
-                        })
-                        .collect()
-                })),
+                    transitions,
+                })
+            }),
+            (any::<u8>(), any::<u8>(), transitions(20)).prop_map(|(from, to, transitions)| {
+                Body::ExperienceBatch(ExperienceBatch {
+                    from,
+                    to,
+                    transitions,
+                })
+            }),
+            (any::<u8>(), any::<u8>(), any::<bool>(), -10.0f64..10.0).prop_map(
+                |(from, to, followed, advantage)| Body::AdviceOutcome(AdviceOutcome {
+                    from,
+                    to,
+                    followed,
+                    advantage,
+                })
+            ),
             (any::<u64>(), prop::collection::vec(any::<u8>(), 0..40)).prop_map(|(seed, config)| {
                 Body::Control(Control::Reset {
                     seed,
@@ -373,6 +415,53 @@ mod tests {
         });
         bytes.push(0);
         assert!(matches!(decode(&bytes, 1), Err(DecodeError::Malformed(_))));
+    }
+
+    #[test]
+    fn oversized_or_unfinite_batches_and_outcomes_are_malformed() {
+        let t = SharedTransition {
+            state: [0.5; 6],
+            action: Action::Shoot,
+            reward: 1.0,
+            next: Some(([0.25; 6], Action::Move)),
+        };
+        let batch = |transitions: Vec<SharedTransition>| {
+            encode(&Envelope {
+                header: Header::new(1, 0, 0, 0),
+                body: Body::ExperienceBatch(ExperienceBatch {
+                    from: 0,
+                    to: 1,
+                    transitions,
+                }),
+            })
+        };
+        assert!(decode(&batch(vec![t; MAX_BATCH]), 1).is_ok());
+        let long = decode(&batch(vec![t; MAX_BATCH + 1]), 1);
+        assert!(matches!(long, Err(DecodeError::Malformed(e)) if e.contains("4097 transitions")));
+        let nan = SharedTransition {
+            next: Some(([f64::NAN; 6], Action::Move)),
+            ..t
+        };
+        assert!(matches!(
+            decode(&batch(vec![t, nan]), 1),
+            Err(DecodeError::Malformed(_))
+        ));
+        let outcome = |advantage| {
+            encode(&Envelope {
+                header: Header::new(1, 0, 0, 0),
+                body: Body::AdviceOutcome(AdviceOutcome {
+                    from: 1,
+                    to: 0,
+                    followed: true,
+                    advantage,
+                }),
+            })
+        };
+        assert!(decode(&outcome(-0.5), 1).is_ok());
+        assert!(matches!(
+            decode(&outcome(f64::INFINITY), 1),
+            Err(DecodeError::Malformed(_))
+        ));
     }
 
     #[test]

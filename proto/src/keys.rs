@@ -75,7 +75,8 @@ impl Keys {
         format!("{}/advice/{id}", self.prefix)
     }
 
-    /// Episodes shared with agent `id`.
+    /// What agents send agent `id` unasked: shared episodes, experience
+    /// batches, reports of how its advice turned out.
     pub fn share(&self, id: u8) -> String {
         format!("{}/share/{id}", self.prefix)
     }

@@ -10,7 +10,7 @@ use crate::features::Features;
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 11;
+pub const PROTOCOL_VERSION: u16 = 12;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -119,6 +119,13 @@ pub enum Body {
     /// the state, from an agent whose observations carry them (query
     /// payload).
     FeaturedRequest(FeaturedRequest),
+    /// agent -> agent: experience its strategy sends unasked at an
+    /// episode's end, learned as one batch (at most [`MAX_BATCH`]
+    /// transitions).
+    ExperienceBatch(ExperienceBatch),
+    /// advisee -> advisor: how a decision on its advice turned out (sent
+    /// only by a strategy that reports advice outcomes).
+    AdviceOutcome(AdviceOutcome),
 }
 
 /// One agent's observation of a frame.
@@ -139,8 +146,16 @@ pub struct AgentFrame {
     pub positions: Vec<[f64; 2]>,
     /// Reward of the transition that led here.
     pub reward: f64,
-    /// Whether this frame ends the episode (no action expected).
-    pub terminal: bool,
+    /// How the episode ended, on the frame that ends it (no action
+    /// expected then); `None` before.
+    pub outcome: Option<EpisodeOutcome>,
+}
+
+impl AgentFrame {
+    /// Whether this frame ends the episode.
+    pub fn is_terminal(&self) -> bool {
+        self.outcome.is_some()
+    }
 }
 
 /// The most frames one observation message may carry.
@@ -307,6 +322,76 @@ pub struct SharedEpisode {
     pub transitions: Vec<SharedTransition>,
 }
 
+impl SharedTransition {
+    /// A transition from its parts as a program outside Rust writes them
+    /// (actions by [`Action::index`]), or why it is none: an action out of
+    /// range, a next state without a next action or the reverse, a number
+    /// that is not finite.
+    pub fn from_parts(
+        state: State,
+        action: usize,
+        reward: f64,
+        (next_state, next_action): (Option<State>, Option<usize>),
+    ) -> Result<Self, String> {
+        let action_of = |a: usize| {
+            (Action::ALL.get(a).copied())
+                .ok_or_else(|| format!("action {a}, not one of 0 to {}", Action::ALL.len() - 1))
+        };
+        let next = match (next_state, next_action) {
+            (Some(s), Some(a)) => Some((s, action_of(a)?)),
+            (None, None) => None,
+            _ => return Err("a next state without a next action, or the reverse".into()),
+        };
+        let transition = SharedTransition {
+            state,
+            action: action_of(action)?,
+            reward,
+            next,
+        };
+        match transition.is_finite() {
+            true => Ok(transition),
+            false => Err("a state or reward that is not a finite number".into()),
+        }
+    }
+
+    /// Whether its states and reward are finite numbers.
+    pub fn is_finite(&self) -> bool {
+        let next = self.next.iter().flat_map(|(s, _)| s);
+        (self.state.iter().chain(next)).all(|x| x.is_finite()) && self.reward.is_finite()
+    }
+}
+
+/// The most transitions one [`ExperienceBatch`] may carry; a longer one is
+/// malformed.
+pub const MAX_BATCH: usize = 4096;
+
+/// Experience one agent sends another unasked, which the receiver's learner
+/// learns as one batch.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ExperienceBatch {
+    /// The sending agent.
+    pub from: u8,
+    /// The receiver.
+    pub to: u8,
+    /// The transitions, at most [`MAX_BATCH`], every number finite.
+    pub transitions: Vec<SharedTransition>,
+}
+
+/// An advisee's report to an advisor of how a decision on which it gave
+/// advice turned out.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AdviceOutcome {
+    /// The advisee.
+    pub from: u8,
+    /// The advisor.
+    pub to: u8,
+    /// Whether the advisee played the action it advised.
+    pub followed: bool,
+    /// The decision's advantage, r + gamma V(s') - V(s) under the
+    /// advisee's values (finite).
+    pub advantage: f64,
+}
+
 /// The longest wait a [`Control::Reset`] may set (ms): a minute.
 pub const MAX_WAIT_MS: u64 = 60_000;
 
@@ -456,6 +541,28 @@ pub enum EpisodeOutcome {
     OutOfTime,
 }
 
+impl EpisodeOutcome {
+    /// Its name as a strategy written outside Rust reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            EpisodeOutcome::Goal => "goal",
+            EpisodeOutcome::Captured => "captured",
+            EpisodeOutcome::OutOfBounds => "out_of_bounds",
+            EpisodeOutcome::OutOfTime => "out_of_time",
+        }
+    }
+
+    /// The paper's team reward at the end: +1 goal, -1 captured or out of
+    /// bounds, 0 out of time.
+    pub fn reward(self) -> f64 {
+        match self {
+            EpisodeOutcome::Goal => 1.0,
+            EpisodeOutcome::Captured | EpisodeOutcome::OutOfBounds => -1.0,
+            EpisodeOutcome::OutOfTime => 0.0,
+        }
+    }
+}
+
 /// Result of one episode played by env-server.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct EpisodeResult {
@@ -520,6 +627,8 @@ impl MessageKind {
             Body::ValuesReply(_) => MessageKind::ValuesReply,
             Body::Exhausted(_) => MessageKind::Exhausted,
             Body::SharedEpisode(_) => MessageKind::SharedEpisode,
+            Body::ExperienceBatch(_) => MessageKind::ExperienceBatch,
+            Body::AdviceOutcome(_) => MessageKind::AdviceOutcome,
             Body::Control(_) => MessageKind::Control,
             Body::ControlReply(_) => MessageKind::ControlReply,
         }

@@ -23,11 +23,15 @@ pub enum MessageKind {
     ValuesReply,
     /// Announcements of a spent give budget.
     Exhausted,
+    /// Experience batches.
+    ExperienceBatch,
+    /// Reports of advice outcomes.
+    AdviceOutcome,
 }
 
 impl MessageKind {
     /// Every kind, in counter order.
-    pub const ALL: [MessageKind; 9] = [
+    pub const ALL: [MessageKind; 11] = [
         MessageKind::Observation,
         MessageKind::Action,
         MessageKind::AdviceRequest,
@@ -37,16 +41,21 @@ impl MessageKind {
         MessageKind::ControlReply,
         MessageKind::ValuesReply,
         MessageKind::Exhausted,
+        MessageKind::ExperienceBatch,
+        MessageKind::AdviceOutcome,
     ];
 
     /// The kinds an advising method's traffic is made of: requests,
-    /// replies, shared episodes and announcements.
-    pub const ADVISING: [MessageKind; 5] = [
+    /// replies, shared episodes, announcements, experience batches and
+    /// advice outcomes.
+    pub const ADVISING: [MessageKind; 7] = [
         MessageKind::AdviceRequest,
         MessageKind::AdviceReply,
         MessageKind::ValuesReply,
         MessageKind::SharedEpisode,
         MessageKind::Exhausted,
+        MessageKind::ExperienceBatch,
+        MessageKind::AdviceOutcome,
     ];
 
     /// Snake-case name used in reports.
@@ -61,6 +70,8 @@ impl MessageKind {
             MessageKind::ControlReply => "control_reply",
             MessageKind::ValuesReply => "values_reply",
             MessageKind::Exhausted => "exhausted",
+            MessageKind::ExperienceBatch => "experience_batch",
+            MessageKind::AdviceOutcome => "advice_outcome",
         }
     }
 }

@@ -6,10 +6,11 @@
 
 use std::sync::{Arc, Mutex};
 
-use agent::Transition;
+use agent::{Sends, Share};
 use node::sync::lock;
 use proto::{
-    ActionChoice, AgentFrame, Body, DropReason, Envelope, Header, MessageKind, SharedEpisode,
+    ActionChoice, AdviceOutcome, AgentFrame, Body, DropReason, Envelope, ExperienceBatch, Header,
+    MessageKind, SharedEpisode,
 };
 use tokio::runtime::Handle;
 use tokio::sync::mpsc::{UnboundedReceiver, UnboundedSender, unbounded_channel};
@@ -141,6 +142,7 @@ impl Stream {
         let alive = self.ctx.alive();
         let reachable = |j: usize| u8::try_from(j).is_ok_and(|j| alive.contains(&j));
         while let Some((header, step)) = frames.step(&self.ctx, &reachable) {
+            self.publish_reports(header);
             match step {
                 Step::Act(action) => self.publish_action(header, action),
                 Step::Ask(request) => {
@@ -167,6 +169,7 @@ impl Stream {
             .learner()
             .complete(&request, &replies.answers, replies.replies());
         ctx.traffic().rtt_ms.extend_from_slice(&replies.rtt_ms);
+        self.publish_reports(header);
         self.publish_action(header, action);
     }
 
@@ -183,27 +186,60 @@ impl Stream {
         }
     }
 
-    /// Publishes an ended episode's transitions, one message per receiver,
+    /// Publishes what an ended episode sends unasked (its transitions, a
+    /// batch), one message per receiver.
+    fn publish_shares(&self, header: Header, shares: Sends) {
+        let from = self.ctx.id;
+        for (to, share) in shares {
+            let Ok(to) = u8::try_from(to) else { continue };
+            let body = match share {
+                Share::Episode(transitions) => Body::SharedEpisode(SharedEpisode {
+                    from,
+                    to,
+                    transitions,
+                }),
+                Share::Batch(transitions) => Body::ExperienceBatch(ExperienceBatch {
+                    from,
+                    to,
+                    transitions,
+                }),
+            };
+            self.send_to(header, to, body);
+        }
+    }
+
+    /// Publishes the agent's reports of advice outcomes, one message per
+    /// advisor.
+    fn publish_reports(&self, header: Header) {
+        let reports = self.ctx.learner().take_reports();
+        for r in reports {
+            let Ok(to) = u8::try_from(r.advisor) else {
+                continue;
+            };
+            let report = AdviceOutcome {
+                from: self.ctx.id,
+                to,
+                followed: r.followed,
+                advantage: r.advantage,
+            };
+            self.send_to(header, to, Body::AdviceOutcome(report));
+        }
+    }
+
+    /// Publishes `body` on agent `to`'s key for what it is sent unasked,
     /// from the agent's runtime: a long episode is a large message, and
     /// zenoh's callback, which may be stepping this, runs on the one thread
     /// that also sends it ([`node::net::ONE_RUNTIME`]).
-    fn publish_shares(&self, header: Header, shares: Vec<(usize, Vec<Transition>)>) {
+    fn send_to(&self, header: Header, to: u8, body: Body) {
         let ctx = &self.ctx;
-        for (to, transitions) in shares {
-            let Ok(to) = u8::try_from(to) else { continue };
-            let share = SharedEpisode {
-                from: ctx.id,
-                to,
-                transitions,
-            };
-            let bytes = ctx.encode(header, Body::SharedEpisode(share));
-            let (session, key) = (ctx.session.clone(), ctx.keys.share(to));
-            self.runtime.spawn(async move {
-                if let Err(e) = session.put(key, bytes).await {
-                    tracing::warn!(to, error = %e, "cannot publish a shared episode");
-                }
-            });
-        }
+        let kind = MessageKind::of(&body);
+        let bytes = ctx.encode(header, body);
+        let (session, key) = (ctx.session.clone(), ctx.keys.share(to));
+        self.runtime.spawn(async move {
+            if let Err(e) = session.put(key, bytes).await {
+                tracing::warn!(to, ?kind, error = %e, "cannot publish a message");
+            }
+        });
     }
 }
 
@@ -232,17 +268,21 @@ pub async fn run(stream: Arc<Stream>, Tasks(mut pending): Tasks) {
     }
 }
 
-/// One shared episode: queued, and replayed when due.
+/// One message sent to this agent unasked: a shared episode or a batch
+/// (queued, and learned when due), or a report of how its advice turned out.
 pub fn on_share(ctx: &Context, bytes: &[u8]) {
     let Some(Envelope { header, body }) = ctx.decode(bytes) else {
         return;
     };
+    let kind = MessageKind::of(&body);
     let result = match body {
         Body::SharedEpisode(share) => ctx.learner().receive_share(&header, share),
+        Body::ExperienceBatch(batch) => ctx.learner().receive_batch(&header, batch),
+        Body::AdviceOutcome(report) => ctx.learner().hear_advice_outcome(&header, &report),
         _ => Err(DropReason::Malformed),
     };
     match result {
-        Ok(()) => ctx.accepted(MessageKind::SharedEpisode, bytes.len()),
+        Ok(()) => ctx.accepted(kind, bytes.len()),
         Err(reason) => ctx.dropped(reason, Some(&header)),
     }
 }

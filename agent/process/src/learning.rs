@@ -1,10 +1,15 @@
 //! The learning side of the process: the library's agent for the current
-//! run, its position in the observation stream and the shares waiting for
-//! it. Pure state, driven by the tasks that hold it under a lock.
+//! run, its position in the observation stream and the shares and batches
+//! waiting for it. Pure state, driven by the tasks that hold it under a
+//! lock.
 
-use agent::{Agent, AgentConfig, Answer, Answers, Decision, Observation, Snapshot, Transition};
+use agent::{
+    AdviceReport, Agent, AgentConfig, Answer, Answers, Decision, Observation, Sends, Snapshot,
+    Transition,
+};
 use proto::{
-    Action, AdviceRequest, Body, DropReason, FeaturedRequest, Features, Header, Mode, SharedEpisode,
+    Action, AdviceOutcome, AdviceRequest, Body, DropReason, ExperienceBatch, FeaturedRequest,
+    Features, Header, Mode, SharedEpisode,
 };
 
 use crate::child::ChildCommands;
@@ -21,8 +26,8 @@ pub enum Step {
     /// Ask for advice, then call [`Learning::complete`] (boxed: the rare
     /// step that carries a state and its features).
     Ask(Box<Ask>),
-    /// The episode ended: publish these shared episodes (receiver, transitions).
-    End(Vec<(usize, Vec<Transition>)>),
+    /// The episode ended: publish what it sends unasked (receiver, what).
+    End(Sends),
 }
 
 /// An advice request to send.
@@ -76,6 +81,7 @@ pub struct Learning {
     epoch: u64,
     stream: ObservationOrder,
     shares: PendingShares,
+    batches: PendingShares,
 }
 
 impl Learning {
@@ -91,6 +97,7 @@ impl Learning {
             epoch: 0,
             stream: ObservationOrder::default(),
             shares: PendingShares::default(),
+            batches: PendingShares::default(),
         }
     }
 
@@ -189,15 +196,16 @@ impl Learning {
         };
         let position = self
             .stream
-            .accept(header.episode, header.frame, obs.terminal)?;
+            .accept(header.episode, header.frame, obs.is_terminal())?;
+        let finished = self.stream.finished();
         if position == Position::NewEpisode {
             agent.begin_episode(obs.mode);
-            replay(agent, &mut self.shares, self.stream.finished());
+            learn_due(agent, [&mut self.shares, &mut self.batches], finished);
         }
-        if obs.terminal {
-            agent.end_episode(obs.reward);
+        if let Some(outcome) = obs.outcome {
+            agent.end_episode(outcome);
             let shares = agent.take_shared();
-            replay(agent, &mut self.shares, self.stream.finished());
+            learn_due(agent, [&mut self.shares, &mut self.batches], finished);
             return Ok(Step::End(shares));
         }
         let me = Observation {
@@ -250,17 +258,84 @@ impl Learning {
         header: &Header,
         share: SharedEpisode,
     ) -> Result<(), DropReason> {
-        if share.to != self.id || share.from == self.id || share.from >= self.team_size {
+        let SharedEpisode {
+            from,
+            to,
+            transitions,
+        } = share;
+        self.take_in(header, (from, to), false, transitions)
+    }
+
+    /// A batch of experience: learned once this agent has finished that
+    /// episode itself and is not evaluating.
+    pub fn receive_batch(
+        &mut self,
+        header: &Header,
+        batch: ExperienceBatch,
+    ) -> Result<(), DropReason> {
+        let ExperienceBatch {
+            from,
+            to,
+            transitions,
+        } = batch;
+        self.take_in(header, (from, to), true, transitions)
+    }
+
+    /// Queues what another agent sent this one of the current run (a
+    /// `batch`, else an episode) and learns what is due.
+    fn take_in(
+        &mut self,
+        header: &Header,
+        (from, to): (u8, u8),
+        batch: bool,
+        transitions: Vec<Transition>,
+    ) -> Result<(), DropReason> {
+        if to != self.id || from == self.id || from >= self.team_size {
             return Err(DropReason::Malformed);
         }
         let agent = match self.agent.as_mut() {
             Some(a) if header.run == self.run => a,
             _ => return Err(DropReason::Stale),
         };
-        self.shares
-            .push(share.from.into(), header.episode, share.transitions)?;
-        replay(agent, &mut self.shares, self.stream.finished());
+        let queue = if batch {
+            &mut self.batches
+        } else {
+            &mut self.shares
+        };
+        queue.push(from.into(), header.episode, transitions)?;
+        learn_due(
+            agent,
+            [&mut self.shares, &mut self.batches],
+            self.stream.finished(),
+        );
         Ok(())
+    }
+
+    /// An advisee's report of how a decision on this agent's advice turned
+    /// out, in the run of `header`.
+    pub fn hear_advice_outcome(
+        &mut self,
+        header: &Header,
+        report: &AdviceOutcome,
+    ) -> Result<(), DropReason> {
+        let from = report.from;
+        if report.to != self.id || from == self.id || from >= self.team_size {
+            return Err(DropReason::Malformed);
+        }
+        match self.agent.as_mut() {
+            Some(a) if header.run == self.run => {
+                a.hear_advice_outcome(from.into(), report.followed, report.advantage);
+                Ok(())
+            }
+            _ => Err(DropReason::Stale),
+        }
+    }
+
+    /// The reports of advice outcomes the agent has to send.
+    pub fn take_reports(&mut self) -> Vec<AdviceReport> {
+        (self.agent.as_mut())
+            .map(Agent::take_reports)
+            .unwrap_or_default()
     }
 
     /// Whether the agent has its spent give budget to announce (once).
@@ -303,7 +378,9 @@ impl Learning {
         }
         let (state, features) = (&request.state, features.as_slice());
         match self.agent.as_mut() {
-            Some(a) if header.run == self.run => Ok(a.answer(state, features, request.along)),
+            Some(a) if header.run == self.run => {
+                Ok(a.answer(request.from.into(), state, features, request.along))
+            }
             _ => Err(DropReason::Stale),
         }
     }
@@ -326,18 +403,24 @@ const NO_STRATEGY: &str = "algorithm `external` takes its decisions from a strat
     and this agent runs none: start it with `--strategy` (a team file's `strategy_process`; \
     docs/strategies.md)";
 
-/// Replays the shares that are due.
-fn replay(agent: &mut Agent, shares: &mut PendingShares, finished: Option<u32>) {
+/// Learns the shared episodes, then the batches, that are due.
+fn learn_due(agent: &mut Agent, [shares, batches]: [&mut PendingShares; 2], finished: Option<u32>) {
     let training = agent.mode() == Mode::Training;
-    for transitions in shares.take_ready(finished, training) {
+    for (_, transitions) in shares.take_ready(finished, training) {
         agent.receive_shared(&transitions);
+    }
+    for (from, transitions) in batches.take_ready(finished, training) {
+        if !agent.receive_batch(from, &transitions) {
+            tracing::debug!(from, "a batch this agent's learner cannot learn");
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proto::Along;
+    use agent::Share;
+    use proto::{Along, EpisodeOutcome};
 
     /// The wire form of the `AgentConfig` these JSON settings describe.
     fn config(json: &str) -> Vec<u8> {
@@ -353,7 +436,13 @@ mod tests {
         Header::new(1, run, episode, frame)
     }
 
+    /// Agent `agent`'s frame; a `terminal` one ends the episode with a
+    /// goal (`reward` 1) or a time-out (0).
     fn obs(agent: u8, kick: bool, terminal: bool, reward: f64) -> proto::AgentFrame {
+        let ended = match reward > 0.0 {
+            true => EpisodeOutcome::Goal,
+            false => EpisodeOutcome::OutOfTime,
+        };
         proto::AgentFrame {
             agent,
             mode: Mode::Training,
@@ -362,7 +451,7 @@ mod tests {
             can_kick: kick,
             positions: vec![[0.0, 0.0], [1.0, 1.0]],
             reward,
-            terminal,
+            outcome: terminal.then_some(ended),
         }
     }
 
@@ -373,7 +462,7 @@ mod tests {
     }
 
     /// Plays a goal episode of two Move frames: the shares it produces.
-    fn goal_episode(l: &mut Learning, episode: u32) -> Vec<(usize, Vec<Transition>)> {
+    fn goal_episode(l: &mut Learning, episode: u32) -> Sends {
         let id = l.id;
         let all = |_| true;
         assert_eq!(
@@ -495,7 +584,9 @@ mod tests {
         let (mut a, mut b) = (reset(0), reset(1));
         let shares = goal_episode(&mut a, 0);
         assert_eq!(shares.len(), 1);
-        let (to, transitions) = shares.into_iter().next().unwrap();
+        let Some((to, Share::Episode(transitions))) = shares.into_iter().next() else {
+            panic!("no episode shared");
+        };
         assert_eq!((to, transitions.len()), (1, 2));
         let share = SharedEpisode {
             from: 0,
@@ -527,6 +618,60 @@ mod tests {
             .unwrap();
         assert_eq!(b.agent().unwrap().counters().shared_received, 2);
         assert_eq!(b.progress().finished, Some(0));
+    }
+
+    #[test]
+    fn batches_wait_like_shares_and_reports_are_checked() {
+        let mut b = reset(1);
+        let t = Transition {
+            state: [0.5; 6],
+            action: Action::Shoot,
+            reward: 1.0,
+            next: None,
+        };
+        let batch = |from, to| ExperienceBatch {
+            from,
+            to,
+            transitions: vec![t; 3],
+        };
+        let all = |_| true;
+        b.observe(&header(3, 0, 0), &obs(1, false, false, 0.0), &all)
+            .unwrap();
+        b.receive_batch(&header(3, 0, 0), batch(0, 1)).unwrap();
+        assert_eq!(b.agent().unwrap().counters().shared_received, 0);
+        assert_eq!(
+            b.receive_batch(&header(3, 0, 0), batch(0, 1)),
+            Err(DropReason::Duplicate)
+        );
+        for (from, to) in [(0, 0), (1, 1), (2, 1)] {
+            assert_eq!(
+                b.receive_batch(&header(3, 1, 0), batch(from, to)),
+                Err(DropReason::Malformed)
+            );
+        }
+        assert_eq!(
+            b.receive_batch(&header(4, 1, 0), batch(0, 1)),
+            Err(DropReason::Stale)
+        );
+        // Taken once its own episode 0 ends (its SARSA learner cannot learn
+        // a batch, but it counts what arrived).
+        b.observe(&header(3, 0, 1), &obs(1, false, true, 0.0), &all)
+            .unwrap();
+        assert_eq!(b.agent().unwrap().counters().shared_received, 3);
+        let mut report = |from, to, run| {
+            let r = AdviceOutcome {
+                from,
+                to,
+                followed: true,
+                advantage: 0.5,
+            };
+            b.hear_advice_outcome(&header(run, 1, 0), &r)
+        };
+        assert_eq!(report(0, 1, 3), Ok(()));
+        assert_eq!(report(1, 1, 3), Err(DropReason::Malformed));
+        assert_eq!(report(0, 0, 3), Err(DropReason::Malformed));
+        assert_eq!(report(0, 1, 4), Err(DropReason::Stale));
+        assert!(b.take_reports().is_empty());
     }
 
     #[test]

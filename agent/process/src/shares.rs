@@ -1,19 +1,21 @@
-//! Shared episodes (EpisodeSharing) waiting to be replayed.
+//! Shared episodes (EpisodeSharing) and batches of experience waiting to be
+//! learned.
 //!
-//! The in-process team replays a goal episode's transitions after every
-//! agent has ended that episode and before the next one begins. Over the
-//! network a share may overtake the receiver's own terminal frame, or arrive
-//! after it has begun an evaluation episode; so a share of episode `e` waits
-//! until the receiver has finished `e` itself and is not evaluating (frozen
-//! agents learn nothing).
+//! The in-process team learns a goal episode's transitions, or a batch,
+//! after every agent has ended that episode and before the next one begins.
+//! Over the network a share may overtake the receiver's own terminal frame,
+//! or arrive after it has begun an evaluation episode; so a share of
+//! episode `e` waits until the receiver has finished `e` itself and is not
+//! evaluating (frozen agents learn nothing).
 
 use agent::Transition;
 use proto::DropReason;
 
-/// Received shares not yet replayed, and the last episode seen per sender.
+/// Received shares of one kind not yet learned (with their episode and
+/// sender), and the last episode seen per sender.
 #[derive(Clone, Debug, Default)]
 pub struct PendingShares {
-    queue: Vec<(u32, Vec<Transition>)>,
+    queue: Vec<(u32, usize, Vec<Transition>)>,
     last: Vec<Option<u32>>,
 }
 
@@ -36,21 +38,26 @@ impl PendingShares {
             _ => {}
         }
         self.last[from] = Some(episode);
-        self.queue.push((episode, transitions));
+        self.queue.push((episode, from, transitions));
         Ok(())
     }
 
-    /// The shares to replay now, in arrival order: those of episodes up to
-    /// `finished` (the receiver's last finished episode), when `training`.
-    pub fn take_ready(&mut self, finished: Option<u32>, training: bool) -> Vec<Vec<Transition>> {
+    /// The shares to learn now, with their senders, in arrival order: those
+    /// of episodes up to `finished` (the receiver's last finished episode),
+    /// when `training`.
+    pub fn take_ready(
+        &mut self,
+        finished: Option<u32>,
+        training: bool,
+    ) -> Vec<(usize, Vec<Transition>)> {
         let Some(finished) = finished.filter(|_| training) else {
             return Vec::new();
         };
         let (ready, waiting): (Vec<_>, Vec<_>) = std::mem::take(&mut self.queue)
             .into_iter()
-            .partition(|(episode, _)| *episode <= finished);
+            .partition(|(episode, ..)| *episode <= finished);
         self.queue = waiting;
-        ready.into_iter().map(|(_, t)| t).collect()
+        ready.into_iter().map(|(_, from, t)| (from, t)).collect()
     }
 }
 
@@ -78,9 +85,9 @@ mod tests {
             "episode 4 not finished"
         );
         assert!(p.take_ready(Some(4), false).is_empty(), "evaluating");
-        assert_eq!(p.take_ready(Some(4), true), vec![transitions(1.0)]);
+        assert_eq!(p.take_ready(Some(4), true), vec![(1, transitions(1.0))]);
         assert!(p.take_ready(None, true).is_empty());
-        assert_eq!(p.take_ready(Some(6), true), vec![transitions(2.0)]);
+        assert_eq!(p.take_ready(Some(6), true), vec![(2, transitions(2.0))]);
         assert!(p.take_ready(Some(6), true).is_empty());
     }
 

@@ -8,9 +8,9 @@ use std::cell::RefCell;
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, GiveContext, Outcome, Replies, VoteTies,
+    AskContext, EndContext, GiveContext, Outcome, Replies, Sends, Share, Transition, VoteTies,
 };
-use proto::{Action, SharedValues};
+use proto::{Action, SharedValues, State};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -39,6 +39,20 @@ struct Traits {
     intends_greedy: bool,
     shares_values: bool,
     learns_from_outcomes: bool,
+    #[serde(default)]
+    asks_by_values: bool,
+    #[serde(default)]
+    records_transitions: bool,
+    #[serde(default)]
+    ends_episodes: bool,
+    #[serde(default)]
+    ends_evaluations: bool,
+    #[serde(default)]
+    receives_batches: bool,
+    #[serde(default)]
+    reports_advice_outcomes: bool,
+    #[serde(default)]
+    hears_advice_outcomes: bool,
 }
 
 impl PipeStrategy {
@@ -96,6 +110,23 @@ fn values(v: &ActionValues) -> Value {
         .map(|&a| v.is_learned(a).then_some(v.q[a.index()]))
         .collect();
     json!(q)
+}
+
+/// A transition as the strategy reads it (as learners do).
+fn transition(t: &Transition) -> Value {
+    json!({
+        "state": t.state, "action": t.action.index(), "reward": t.reward,
+        "next_state": t.next.map(|(s, _)| s), "next_action": t.next.map(|(_, a)| a.index()),
+    })
+}
+
+/// What the strategy is told at an episode's end.
+fn end(op: &str, end: &EndContext<'_>) -> Value {
+    json!({
+        "op": op, "final_reward": end.final_reward, "outcome": end.outcome.name(),
+        "episode_return": end.episode_return, "me": end.me, "team_size": end.team_size,
+        "counters": counters(end.counters),
+    })
 }
 
 /// The counters by their results names.
@@ -156,6 +187,27 @@ struct AdoptReply {
     values: Option<[Option<f64>; Action::ALL.len()]>,
 }
 
+/// What it sends at an episode's end: batches of experience.
+#[derive(Deserialize)]
+struct Ended {
+    batches: Vec<SentBatch>,
+}
+
+#[derive(Deserialize)]
+struct SentBatch {
+    to: usize,
+    transitions: Vec<SentTransition>,
+}
+
+#[derive(Deserialize)]
+struct SentTransition {
+    state: State,
+    action: usize,
+    reward: f64,
+    next_state: Option<State>,
+    next_action: Option<usize>,
+}
+
 /// The budget the results plot.
 #[derive(Deserialize)]
 struct Spent {
@@ -185,11 +237,16 @@ impl AdvisingStrategy for PipeStrategy {
         self.traits.asks_by_uncertainty
     }
 
+    fn asks_by_values(&self) -> bool {
+        self.traits.asks_by_values
+    }
+
     fn asks(&mut self, at: &AskContext<'_>, _: &mut AgentRng) -> bool {
         let request = json!({
             "op": "asks", "fresh": at.fresh, "visits": at.visits,
             "training_episodes": at.training_episodes, "counters": counters(at.counters),
-            "uncertainty": at.uncertainty,
+            "uncertainty": at.uncertainty, "state": at.state, "features": at.features,
+            "values": at.values.as_ref().map(values),
         });
         self.query::<Decision>("asks", request).decision
     }
@@ -250,7 +307,8 @@ impl AdvisingStrategy for PipeStrategy {
     fn gives(&mut self, at: &GiveContext<'_>, _: &mut AgentRng) -> bool {
         let request = json!({
             "op": "gives", "visits": at.visits, "values": values(at.values),
-            "counters": counters(at.counters),
+            "counters": counters(at.counters), "asker": at.asker, "state": at.state,
+            "features": at.features,
         });
         self.query::<Decision>("gives", request).decision
     }
@@ -292,6 +350,70 @@ impl AdvisingStrategy for PipeStrategy {
             "op": "learn_outcome", "advisor": outcome.advisor, "advantage": outcome.advantage,
         });
         self.child.get_mut().send("learn_outcome", &request);
+    }
+
+    fn reports_advice_outcomes(&self) -> bool {
+        self.traits.reports_advice_outcomes
+    }
+
+    fn advice_outcome(&mut self, asker: usize, followed: bool, advantage: f64) {
+        if self.traits.hears_advice_outcomes {
+            let request = json!({
+                "op": "advice_outcome", "asker": asker, "followed": followed,
+                "advantage": advantage,
+            });
+            self.child.get_mut().send("advice_outcome", &request);
+        }
+    }
+
+    fn records_transitions(&self, _: &AdviceCounters) -> bool {
+        self.traits.records_transitions
+    }
+
+    fn learned(&mut self, t: &Transition) {
+        let request = json!({ "op": "learned", "transition": transition(t) });
+        self.child.get_mut().send("learned", &request);
+    }
+
+    fn end_episode(&mut self, at: &EndContext<'_>) -> Sends {
+        if !self.traits.ends_episodes {
+            return Sends::new();
+        }
+        let Ended { batches } = self.query("end_episode", end("end_episode", at));
+        let mut sends = Sends::new();
+        for SentBatch { to, transitions } in batches {
+            if to >= at.team_size || to == at.me {
+                self.fail(&format!(
+                    "sent a batch to agent {to}; receivers are the other agents, 0 to {} but {}",
+                    at.team_size - 1,
+                    at.me
+                ));
+            }
+            let batch = (transitions.into_iter())
+                .map(|t| {
+                    let next = (t.next_state, t.next_action);
+                    Transition::from_parts(t.state, t.action, t.reward, next)
+                })
+                .collect::<Result<Vec<_>, _>>()
+                .unwrap_or_else(|e| self.fail(&format!("sent a transition with {e}")));
+            sends.push((to, Share::Batch(batch)));
+        }
+        sends
+    }
+
+    fn end_evaluation(&mut self, at: &EndContext<'_>) {
+        if self.traits.ends_evaluations {
+            let request = end("end_evaluation", at);
+            self.child.get_mut().send("end_evaluation", &request);
+        }
+    }
+
+    fn received(&mut self, from: usize, batch: &[Transition]) {
+        if self.traits.receives_batches {
+            let transitions: Vec<Value> = batch.iter().map(transition).collect();
+            let request = json!({ "op": "received", "from": from, "transitions": transitions });
+            self.child.get_mut().send("received", &request);
+        }
     }
 
     fn spent_budget(&self, c: &AdviceCounters) -> u64 {

@@ -11,8 +11,8 @@ use node::net::free_port;
 use node::secret::Secret;
 use proto::keys::{Keys, Role};
 use proto::{
-    ActionChoice, AgentFrame, AgentReport, Body, Control, ControlReply, Envelope, Header,
-    MessageKind, Mode, PROTOCOL_VERSION,
+    ActionChoice, AgentFrame, AgentReport, Body, Control, ControlReply, Envelope, EpisodeOutcome,
+    Header, MessageKind, Mode, PROTOCOL_VERSION,
 };
 use support::Guard;
 use zenoh::Session;
@@ -24,6 +24,11 @@ use zenoh::sample::{Sample, SampleKind};
 /// Starts agent `id` of a team of 2, connected to the fake coordinator
 /// with its secret.
 fn spawn_agent(name: &str, id: u8, fake: &Fake) -> Guard {
+    spawn_agent_with(name, id, fake, &[])
+}
+
+/// The same with the arguments `extra`.
+fn spawn_agent_with(name: &str, id: u8, fake: &Fake, extra: &[&str]) -> Guard {
     let (id, listen) = (
         id.to_string(),
         format!("tcp/127.0.0.1:{}", free_port().unwrap()),
@@ -39,7 +44,7 @@ fn spawn_agent(name: &str, id: u8, fake: &Fake) -> Guard {
         "--secret-file",
         &secret,
     ];
-    Guard::agent(&[&args[..], &network, &["--exit-with-coordinator"]].concat())
+    Guard::agent(&[&args[..], &network, &["--exit-with-coordinator"], extra].concat())
 }
 
 /// The in-test coordinator and env-server.
@@ -233,7 +238,16 @@ fn observation(
         can_kick: kick,
         positions: vec![[0.0, 0.0], [1.0, 0.0]],
         reward,
-        terminal,
+        outcome: terminal.then_some(ended(reward)),
+    }
+}
+
+/// How an episode that ended with `reward` ended.
+fn ended(reward: f64) -> EpisodeOutcome {
+    match reward {
+        r if r > 0.0 => EpisodeOutcome::Goal,
+        r if r < 0.0 => EpisodeOutcome::Captured,
+        _ => EpisodeOutcome::OutOfTime,
     }
 }
 
@@ -360,7 +374,7 @@ async fn bad_messages_change_nothing(fake: &Fake, before: &AgentReport) {
         can_kick: true,
         positions: vec![],
         reward: 1.0,
-        terminal: false,
+        outcome: None,
     };
     let good = |header: Header| observations(header, vec![frame.clone()]);
     fake.publish(0, observations(fake.header(0, 2, 0), vec![]))
@@ -505,15 +519,15 @@ async fn episode_sharing_travels_as_published_messages() {
                 };
                 a.act(&me, 0.0, &o.positions, &mut Isolated);
             }
-            a.end_episode(reward);
+            a.end_episode(ended(reward));
         }
     }
     let shares: Vec<_> = local.iter_mut().map(Agent::take_shared).collect();
     for (from, to_share) in shares.into_iter().enumerate() {
         assert_eq!(to_share.len(), 1);
-        let (to, transitions) = &to_share[0];
-        assert_eq!((*to, transitions.len()), (1 - from, 3));
-        local[*to].receive_shared(transitions);
+        let (to, share) = &to_share[0];
+        assert_eq!((*to, share.transitions().len()), (1 - from, 3));
+        local[*to].receive_shared(share.transitions());
     }
 
     for id in 0..2u8 {
@@ -597,4 +611,122 @@ async fn a_second_agent_with_the_same_id_exits_2_and_a_lost_coordinator_stops_ag
     let status = first.wait_exit(Duration::from_secs(10));
     assert_eq!(status.map(|s| s.code()), Some(Some(1)));
     assert!(first.stderr().contains("coordinator"));
+}
+
+/// A strategy process in POSIX sh (the line protocol is the language's
+/// choice): it asks agent `$1` at every step with the ball, answers every
+/// request with SHOOT, reports how advice turned out and hears the reports,
+/// and sends `$1` a batch of one transition at every episode's end.
+const BATCHER: &str = r#"other=$1
+batch='{"batches":[{"to":'$other',"transitions":[{"state":[0.1,0.2,0.3,0.4,0.5,0.6],"action":1,"reward":1.0,"next_state":null,"next_action":null}]}]}'
+while IFS= read -r line; do
+  case "$line" in
+    *'"op":"start"'*) printf '%s\n' '{"name":"batcher","learns":true,"reuses":false,"asks_by_uncertainty":false,"mistake_correcting":false,"intends_greedy":false,"shares_values":false,"learns_from_outcomes":false,"ends_episodes":true,"reports_advice_outcomes":true,"hears_advice_outcomes":true}' ;;
+    *'"op":"asks"'*|*'"op":"gives"'*) printf '%s\n' '{"decision":true}' ;;
+    *'"op":"advisors"'*) printf '%s\n' "{\"advisors\":[$other]}" ;;
+    *'"op":"advice"'*) printf '%s\n' '{"action":1}' ;;
+    *'"op":"follow"'*) printf '%s\n' '{"advice":null}' ;;
+    *'"op":"end_episode"'*) printf '%s\n' "$batch" ;;
+    *'"op":"spent_budget"'*) printf '%s\n' '{"spent":0}' ;;
+  esac
+done
+"#;
+
+#[tokio::test(flavor = "multi_thread")]
+async fn batches_and_advice_outcomes_travel_between_agent_processes_and_are_counted() {
+    let name = format!("batch-{}", std::process::id());
+    let dir = tempfile::tempdir().unwrap();
+    let script = dir.path().join("batcher.sh");
+    std::fs::write(&script, BATCHER).unwrap();
+    let fake = Fake::open(&name).await;
+    let command = |other: u8| format!("sh {} {other}", script.display());
+    let (zero, one) = (command(1), command(0));
+    let _agents = [
+        spawn_agent_with(&name, 0, &fake, &["--strategy", &zero]),
+        spawn_agent_with(&name, 1, &fake, &["--strategy", &one]),
+    ];
+    fake.wait_for_agents(&[0, 1]).await;
+    let actions = fake
+        .session
+        .declare_subscriber(fake.keys.actions())
+        .await
+        .unwrap();
+    let config = AgentConfig {
+        learner: agent::LearnerSettings::Dqn(agent::DqnSettings::default()),
+        ..AgentConfig::of("external".parse().unwrap(), Profile::Paper)
+    };
+    for id in 0..2 {
+        fake.reset(id, &config).await;
+    }
+    // Episode 0 without the ball, until both see each other; episode 1
+    // where both kick twice, asking each other, then score.
+    fake.frame(fake.header(0, 0, 0), Mode::Training, false, false, 0.0)
+        .await;
+    fake.frame(fake.header(0, 0, 1), Mode::Training, false, true, 0.0)
+        .await;
+    for id in 0..2 {
+        fake.report_until(id, 0, |r| r.alive_peers == vec![1 - id])
+            .await;
+    }
+    for frame in 0..2 {
+        let header = fake.header(0, 1, frame);
+        fake.frame(header, Mode::Training, true, false, 0.0).await;
+        both_actions(&actions, &fake, header).await;
+    }
+    fake.frame(fake.header(0, 1, 2), Mode::Training, false, true, 1.0)
+        .await;
+    // A batch per episode each way; a report per advice that arrived.
+    let mut reports = Vec::new();
+    for id in 0..2u8 {
+        let r = fake
+            .report_until(id, 1, |r| {
+                received(r, MessageKind::ExperienceBatch) == 2
+                    && sent(r, MessageKind::AdviceOutcome) == r.advice_replies_received
+            })
+            .await;
+        assert_eq!(sent(&r, MessageKind::ExperienceBatch), 2, "{r:?}");
+        assert!(r.advice_replies_received > 0, "{r:?}");
+        reports.push(r);
+    }
+    for id in 0..2 {
+        let heard = sent(&reports[1 - id], MessageKind::AdviceOutcome);
+        let r = fake
+            .report_until(id as u8, 1, |r| {
+                received(r, MessageKind::AdviceOutcome) == heard
+            })
+            .await;
+        assert_eq!(r.messages.dropped.total(), 0, "{r:?}");
+    }
+    // An oversized batch and a report of an advantage that is no number
+    // are dropped as malformed.
+    let publish = |body| {
+        let bytes = proto::encode(&Envelope {
+            header: fake.header(0, 1, 0),
+            body,
+        });
+        fake.session.put(fake.keys.share(1), bytes)
+    };
+    let t = proto::SharedTransition {
+        state: [0.5; 6],
+        action: proto::Action::Shoot,
+        reward: 1.0,
+        next: None,
+    };
+    let long = proto::ExperienceBatch {
+        from: 0,
+        to: 1,
+        transitions: vec![t; proto::MAX_BATCH + 1],
+    };
+    publish(Body::ExperienceBatch(long)).await.unwrap();
+    let nan = proto::AdviceOutcome {
+        from: 0,
+        to: 1,
+        followed: true,
+        advantage: f64::NAN,
+    };
+    publish(Body::AdviceOutcome(nan)).await.unwrap();
+    let r = fake
+        .report_until(1, 1, |r| r.messages.dropped.malformed == 2)
+        .await;
+    assert_eq!(received(&r, MessageKind::ExperienceBatch), 2);
 }

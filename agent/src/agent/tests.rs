@@ -11,7 +11,8 @@ use crate::strategy::{
 };
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
-use proto::ValuesAnswer;
+use EpisodeOutcome::{Captured, Goal, OutOfBounds, OutOfTime};
+use proto::{AdviceAnswer, Body, Envelope, Header, ValuesAnswer};
 
 /// Kick state number `k` (0..5): distinct keys through feature 2.
 fn kick_state(k: usize) -> State {
@@ -48,6 +49,9 @@ fn with<S: 'static>(name: &str, change: impl FnOnce(&mut S)) -> AgentConfig {
     );
     c
 }
+
+/// The asker of the requests these tests put to an advisor directly.
+const ASKER: usize = 2;
 
 fn agent(id: usize, team_size: usize, config: AgentConfig) -> Agent {
     Agent::new(id, team_size, config, 42 + id as u64).unwrap()
@@ -105,8 +109,8 @@ impl AdviceExchange for Script {
         to.len() as u64
     }
 
-    fn share(&mut self, from: usize, to: usize, transitions: &[Transition]) {
-        self.shared.push((from, to, transitions.to_vec()));
+    fn share(&mut self, from: usize, to: usize, share: &Share) {
+        self.shared.push((from, to, share.transitions().to_vec()));
     }
 }
 
@@ -127,7 +131,7 @@ fn only(advice: Advice) -> Answers {
 
 fn finish_one_episode(a: &mut Agent) {
     a.begin_episode(Mode::Training);
-    a.end_episode(0.0);
+    a.end_episode(OutOfTime);
     a.begin_episode(Mode::Training);
 }
 
@@ -178,7 +182,7 @@ fn asks_at_most_once_per_state_per_episode() {
     assert_eq!(a.act(&obs(kick_state(0)), 0.0, &[], &mut ex), Dribble);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
     assert_eq!(ex.asked.len(), 1);
-    a.end_episode(0.0);
+    a.end_episode(OutOfTime);
     a.begin_episode(Mode::Training);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
     assert_eq!(ex.asked.len(), 2, "a new episode may ask again");
@@ -191,7 +195,7 @@ fn no_asking_before_a_finished_episode_without_the_ball_or_when_evaluating() {
     a.begin_episode(Mode::Training);
     a.act(&obs(kick_state(0)), 0.0, &[], &mut ex);
     assert!(ex.asked.is_empty(), "no training episode finished yet");
-    a.end_episode(0.0);
+    a.end_episode(OutOfTime);
     a.begin_episode(Mode::Training);
     assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut ex), Move);
     assert!(ex.asked.is_empty(), "cannot kick");
@@ -219,12 +223,16 @@ fn advisor_needs_visits_and_budget() {
             (kick_state(1), known(q, 0)),
         ],
     );
-    assert_eq!(a.advise(&kick_state(1), &[], None), None, "n(s) = 0");
-    assert_eq!(a.advise(&kick_state(2), &[], None), None, "unknown state");
-    assert_eq!(a.advise(&kick_state(0), &[], None), Some(PassFar));
-    assert_eq!(a.advise(&kick_state(0), &[], None), Some(PassFar));
+    assert_eq!(a.advise(ASKER, &kick_state(1), &[], None), None, "n(s) = 0");
     assert_eq!(
-        a.advise(&kick_state(0), &[], None),
+        a.advise(ASKER, &kick_state(2), &[], None),
+        None,
+        "unknown state"
+    );
+    assert_eq!(a.advise(ASKER, &kick_state(0), &[], None), Some(PassFar));
+    assert_eq!(a.advise(ASKER, &kick_state(0), &[], None), Some(PassFar));
+    assert_eq!(
+        a.advise(ASKER, &kick_state(0), &[], None),
         None,
         "give budget of 2 spent"
     );
@@ -240,7 +248,7 @@ fn visit_based_advisor_uses_log2_visits() {
         &mut a,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
     );
-    assert_eq!(a.advise(&kick_state(0), &[], None), None);
+    assert_eq!(a.advise(ASKER, &kick_state(0), &[], None), None);
     // n = 2: Psi = 1; v_g = 1e9: P_give = 1 - 1e-9 (a draw above it is vanishingly rare).
     let mut b = agent(
         0,
@@ -253,7 +261,7 @@ fn visit_based_advisor_uses_log2_visits() {
         &mut b,
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 2))],
     );
-    assert_eq!(b.advise(&kick_state(0), &[], None), Some(Dribble));
+    assert_eq!(b.advise(ASKER, &kick_state(0), &[], None), Some(Dribble));
 }
 
 #[test]
@@ -267,10 +275,13 @@ fn mistake_correcting_spends_nothing_when_advice_equals_intended() {
         &mut advisor,
         &[(kick_state(0), known([0.0, 1.0, 0.0, 0.0, 0.0], 10_000))],
     );
-    assert_eq!(advisor.advise(&kick_state(0), &[], Some(Shoot)), None);
+    assert_eq!(
+        advisor.advise(ASKER, &kick_state(0), &[], Some(Shoot)),
+        None
+    );
     assert_eq!(advisor.counters().advice_given, 0);
     assert_eq!(
-        advisor.advise(&kick_state(0), &[], Some(Dribble)),
+        advisor.advise(ASKER, &kick_state(0), &[], Some(Dribble)),
         Some(Shoot)
     );
     assert_eq!(advisor.counters().advice_given, 1);
@@ -327,10 +338,10 @@ fn torrey_teacher_advises_above_the_threshold_within_its_budget() {
             (kick_state(1), known([0.0, 0.0, 0.0, 0.02, 0.0], 0)),
         ],
     );
-    assert_eq!(t.advise(&kick_state(0), &[], None), None);
-    assert_eq!(t.advise(&kick_state(1), &[], None), Some(PassNear));
+    assert_eq!(t.advise(ASKER, &kick_state(0), &[], None), None);
+    assert_eq!(t.advise(ASKER, &kick_state(1), &[], None), Some(PassNear));
     assert_eq!(
-        t.advise(&kick_state(1), &[], None),
+        t.advise(ASKER, &kick_state(1), &[], None),
         None,
         "budget of 1 spent"
     );
@@ -367,7 +378,7 @@ fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
     for s in states {
         actions.push(a.act(&obs(s), 0.0, &[], &mut ex));
     }
-    a.end_episode(1.0);
+    a.end_episode(Goal);
     a.share_episode(&mut ex);
     // Budget 5 over 2 receivers: t0->1, t0->2, t1->1, t1->2, t2->1.
     let lens: Vec<(usize, usize, usize)> = ex
@@ -393,7 +404,7 @@ fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
     // Budget spent: the next goal episode shares nothing.
     a.begin_episode(Mode::Training);
     a.act(&obs(move_state(0)), 0.0, &[], &mut ex);
-    a.end_episode(1.0);
+    a.end_episode(Goal);
     a.share_episode(&mut ex);
     assert_eq!(ex.shared.len(), 2);
 }
@@ -402,11 +413,11 @@ fn episode_sharing_spends_one_unit_per_transition_per_receiver() {
 fn only_goal_episodes_are_shared_and_the_terminal_step_has_no_next() {
     let mut a = agent(2, 3, config("episode-sharing"));
     let mut ex = script(&[]);
-    for reward in [-1.0, 0.0, 1.0] {
+    for outcome in [Captured, OutOfTime, Goal] {
         a.begin_episode(Mode::Training);
         a.act(&obs(move_state(0)), 0.0, &[], &mut ex);
         a.act(&obs(move_state(1)), 0.0, &[], &mut ex);
-        a.end_episode(reward);
+        a.end_episode(outcome);
         a.share_episode(&mut ex);
     }
     // Only the goal episode, to agents 0 and 1, two transitions each.
@@ -450,7 +461,7 @@ fn received_episode_is_replayed_with_a_fresh_trace() {
     assert_eq!(a.entry(&s0).unwrap().visits, 0, "replay is not a visit");
     assert_eq!(a.counters().shared_received, 2);
     // The own trace only holds the own step: a terminal -1 moves only Q(s4, Move).
-    a.end_episode(-1.0);
+    a.end_episode(Captured);
     assert!((q(&mut a, &move_state(4), Move) + 0.1).abs() < 1e-12);
     assert!((q(&mut a, &s0, Shoot) - 0.081).abs() < 1e-12);
 }
@@ -461,7 +472,7 @@ fn learns_move_steps_and_counts_visits() {
     a.begin_episode(Mode::Training);
     assert_eq!(a.act(&obs(move_state(0)), 0.0, &[], &mut Isolated), Move);
     assert_eq!(a.act(&obs(move_state(1)), 0.0, &[], &mut Isolated), Move);
-    a.end_episode(-1.0);
+    a.end_episode(Captured);
     // Terminal delta = -1: Q(s1,M) = -0.1, Q(s0,M) = -0.1 * 0.81 = -0.081.
     let e0 = a.entry(&move_state(0)).unwrap();
     let e1 = a.entry(&move_state(1)).unwrap();
@@ -501,11 +512,11 @@ fn random_baseline_never_learns_nor_advises() {
                 Move
             );
         }
-        a.end_episode(1.0);
+        a.end_episode(Goal);
     }
     assert_eq!(seen, [false, true, true, true, true]);
     assert!(a.states_met() == 0);
-    assert_eq!(a.advise(&kick_state(0), &[], None), None);
+    assert_eq!(a.advise(ASKER, &kick_state(0), &[], None), None);
 }
 
 /// Plays `episodes` episodes of random frames over 9 kick and 9 move states.
@@ -535,7 +546,7 @@ fn play(team: &mut Team, rng: &mut AgentRng, episodes: usize, mode: Mode) -> Vec
             log.extend_from_slice(team.act(&frame, reward).unwrap());
             reward = 0.0;
         }
-        team.end_episode([-1.0, 0.0, 1.0][rng.random_range(0..3)]);
+        team.end_episode([Captured, OutOfTime, Goal][rng.random_range(0..3)]);
     }
     log
 }
@@ -683,7 +694,7 @@ fn reachable_within_distance_filters_advisors() {
     .unwrap();
     assert_eq!(team.agents()[0].counters().ask_spent, 0);
     // A new episode with agent 2 at distance 3.
-    team.end_episode(0.0);
+    team.end_episode(OutOfTime);
     team.begin_episode(Mode::Training);
     let actions = team
         .act(
@@ -765,8 +776,11 @@ fn bad_construction_and_frames_are_errors() {
     );
 }
 
-/// Random episodes like [`play`]'s: frames of 3 observations and the final reward.
-fn random_episodes(rng: &mut AgentRng, episodes: usize) -> Vec<(Vec<Vec<Observation>>, f64)> {
+/// Random episodes like [`play`]'s: frames of 3 observations and how each ended.
+fn random_episodes(
+    rng: &mut AgentRng,
+    episodes: usize,
+) -> Vec<(Vec<Vec<Observation>>, EpisodeOutcome)> {
     let values = [-0.5, 0.0, 0.5];
     (0..episodes)
         .map(|_| {
@@ -789,7 +803,7 @@ fn random_episodes(rng: &mut AgentRng, episodes: usize) -> Vec<(Vec<Vec<Observat
                         .collect()
                 })
                 .collect();
-            (frames, [-1.0, 0.0, 1.0][rng.random_range(0..3)])
+            (frames, [Captured, OutOfTime, Goal][rng.random_range(0..3)])
         })
         .collect()
 }
@@ -798,11 +812,11 @@ fn random_episodes(rng: &mut AgentRng, episodes: usize) -> Vec<(Vec<Vec<Observat
 /// of each request and shared episodes delivered from `take_shared`.
 fn play_two_phase(
     agents: &mut [Agent],
-    episodes: &[(Vec<Vec<Observation>>, f64)],
+    episodes: &[(Vec<Vec<Observation>>, EpisodeOutcome)],
     mode: Mode,
 ) -> Vec<Action> {
     let mut log = Vec::new();
-    for (frames, final_reward) in episodes {
+    for (frames, outcome) in episodes {
         agents.iter_mut().for_each(|a| a.begin_episode(mode));
         for frame in frames {
             let positions: Vec<[f64; 2]> = frame.iter().map(|o| o.position).collect();
@@ -815,7 +829,7 @@ fn play_two_phase(
                         let advice = to
                             .iter()
                             .filter_map(|&j| {
-                                let action = agents[j].advise(&state, &[], along.intended())?;
+                                let action = agents[j].advise(i, &state, &[], along.intended())?;
                                 Some(Advice { advisor: j, action })
                             })
                             .collect();
@@ -829,10 +843,13 @@ fn play_two_phase(
                 log.push(action);
             }
         }
-        agents.iter_mut().for_each(|a| a.end_episode(*final_reward));
+        agents.iter_mut().for_each(|a| a.end_episode(*outcome));
         for i in 0..agents.len() {
-            for (to, transitions) in agents[i].take_shared() {
-                agents[to].receive_shared(&transitions);
+            for (to, share) in agents[i].take_shared() {
+                match share {
+                    Share::Episode(t) => agents[to].receive_shared(&t),
+                    Share::Batch(t) => assert!(agents[to].receive_batch(i, &t)),
+                }
             }
         }
     }
@@ -842,16 +859,16 @@ fn play_two_phase(
 /// Plays `episodes` through [`Team::act`].
 fn play_team(
     team: &mut Team,
-    episodes: &[(Vec<Vec<Observation>>, f64)],
+    episodes: &[(Vec<Vec<Observation>>, EpisodeOutcome)],
     mode: Mode,
 ) -> Vec<Action> {
     let mut log = Vec::new();
-    for (frames, final_reward) in episodes {
+    for (frames, outcome) in episodes {
         team.begin_episode(mode);
         for frame in frames {
             log.extend_from_slice(team.act(frame, 0.0).unwrap());
         }
-        team.end_episode(*final_reward);
+        team.end_episode(*outcome);
     }
     log
 }
@@ -938,7 +955,7 @@ fn an_abandoned_ask_completes_to_nothing() {
         Decision::Ask { .. }
     ));
     // The episode ends before the answers arrive: they change nothing.
-    a.end_episode(0.0);
+    a.end_episode(OutOfTime);
     let after_end = a.digest();
     let late = Advice {
         advisor: 1,
@@ -963,7 +980,7 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
     let paper = config("torrey");
     let mut t = agent(1, 3, paper.clone());
     teach(&mut t, &[]);
-    assert_eq!(t.advise(&kick_state(0), &[], None), None);
+    assert_eq!(t.advise(ASKER, &kick_state(0), &[], None), None);
     // The authors': unseen states and states without a kick entry are
     // advised, each answer a uniformly random kick, one budget unit each.
     let mut t = agent(1, 3, authors(config("torrey")));
@@ -982,7 +999,7 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
     let mut seen = [0u32; ACTIONS];
     for _ in 0..200 {
         for s in [kick_state(0), kick_state(1)] {
-            seen[t.advise(&s, &[], None).expect("advised").index()] += 1;
+            seen[t.advise(ASKER, &s, &[], None).expect("advised").index()] += 1;
         }
     }
     assert_eq!(seen[Move.index()], 0);
@@ -992,7 +1009,7 @@ fn an_authors_torrey_teacher_advises_a_random_kick_where_it_knows_no_kick() {
     );
     assert_eq!(t.counters().advice_given, 400);
     // One tried kick action: spread 0, no advice.
-    assert_eq!(t.advise(&kick_state(2), &[], None), None);
+    assert_eq!(t.advise(ASKER, &kick_state(2), &[], None), None);
 }
 
 #[test]
@@ -1059,7 +1076,7 @@ fn an_authors_advisor_breaks_ties_at_random() {
         let mut t = agent(1, 3, config);
         teach(&mut t, &[(kick_state(0), known(q, 1))]);
         (0..100)
-            .map(|_| t.advise(&kick_state(0), &[], None).expect("advised"))
+            .map(|_| t.advise(ASKER, &kick_state(0), &[], None).expect("advised"))
             .collect::<Vec<_>>()
     };
     let torrey = config("torrey");
@@ -1168,8 +1185,8 @@ fn a_method_defined_outside_the_core_makes_every_decision() {
     assert_eq!(a.counters().ask_spent, 2);
     // As an advisor it answers about a state it visited, with its greedy
     // action, and about nothing else.
-    assert!(a.advise(&kick_state(0), &[], None).is_some());
-    assert_eq!(a.advise(&kick_state(4), &[], None), None);
+    assert!(a.advise(ASKER, &kick_state(0), &[], None).is_some());
+    assert_eq!(a.advise(ASKER, &kick_state(4), &[], None), None);
     assert_eq!(a.spent_budget(), 1);
 }
 
@@ -1236,9 +1253,17 @@ fn budgeted_advisors_answer_about_visited_states_within_their_budget() {
         &mut a,
         &[(kick_state(0), known([0.0, 0.1, 0.9, 0.2, 0.0], 1))],
     );
-    assert_eq!(a.advise(&kick_state(1), &[], None), None, "never visited");
-    assert_eq!(a.advise(&kick_state(0), &[], None), Some(Dribble));
-    assert_eq!(a.advise(&kick_state(0), &[], None), None, "budget spent");
+    assert_eq!(
+        a.advise(ASKER, &kick_state(1), &[], None),
+        None,
+        "never visited"
+    );
+    assert_eq!(a.advise(ASKER, &kick_state(0), &[], None), Some(Dribble));
+    assert_eq!(
+        a.advise(ASKER, &kick_state(0), &[], None),
+        None,
+        "budget spent"
+    );
 }
 
 #[test]
@@ -1321,7 +1346,7 @@ fn reused_advice_saves_requests() {
         if a.act(&obs(kick_state(0)), 0.0, &[], &mut ex) == PassFar && ex.asked.len() == 1 {
             reused += 1;
         }
-        a.end_episode(0.0);
+        a.end_episode(OutOfTime);
     }
     assert!(reused >= 1, "reused at least once");
     assert!(ex.asked.len() > 1, "asked again once its values settled");
@@ -1357,7 +1382,7 @@ fn rcmp_asks_while_its_heads_disagree() {
         a.begin_episode(Mode::Training);
         let before = silent.asked.len();
         a.act(&obs(kick_state(0)), 0.0, &[], &mut silent);
-        a.end_episode(1.0);
+        a.end_episode(Goal);
         asked.push(silent.asked.len() > before);
     }
     assert!(asked[0], "nothing learned: infinitely uncertain");
@@ -1388,7 +1413,8 @@ fn psaf_rows_are_shared_and_the_partaker_takes_the_most_visited() {
     };
     let mut values = Vec::new();
     for (advisor, a) in [(1, &mut sharer), (2, &mut novice)] {
-        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(&state, &[], Along::Nothing) else {
+        let Answer::Values(ValuesAnswer::Values(v)) = a.answer(ASKER, &state, &[], Along::Nothing)
+        else {
             panic!("a sharer answers with its values");
         };
         values.push(ValuesAdvice { advisor, values: v });
@@ -1434,8 +1460,8 @@ fn psaf_shares_the_best_value_where_more_confident_and_the_partaker_plays_it() {
     // The sharer's confidence, 40 visits of Dribble x (1 - 1 / (0.9 + 1)),
     // beats the partaker's 0; the novice's values do not spread.
     let mut answers = Answers::default();
-    answers.take(1, sharer.answer(&state, &[], along));
-    answers.take(2, novice.answer(&state, &[], along));
+    answers.take(1, sharer.answer(ASKER, &state, &[], along));
+    answers.take(2, novice.answer(ASKER, &state, &[], along));
     assert_eq!(answers.best.len(), 1);
     assert_eq!(
         (answers.best[0].action, answers.best[0].value),
@@ -1541,11 +1567,11 @@ fn the_announcement_is_taken_once_and_again_after_a_restore() {
         &[(kick_state(0), known([0.0, 0.0, 1.0, 0.0, 0.0], 1))],
     );
     assert!(!a.take_announcement());
-    assert_eq!(a.advise(&kick_state(0), &[], None), Some(Dribble));
+    assert_eq!(a.advise(ASKER, &kick_state(0), &[], None), Some(Dribble));
     assert!(a.take_announcement());
     assert!(!a.take_announcement(), "once");
     assert_eq!(
-        a.answer(&kick_state(0), &[], Along::Nothing),
+        a.answer(ASKER, &kick_state(0), &[], Along::Nothing),
         Answer::Action(proto::AdviceAnswer::Exhausted)
     );
     a.restore(a.snapshot()).unwrap();
@@ -1579,4 +1605,323 @@ fn an_hfo_agent_asks_with_its_features_for_teams_of_up_to_four() {
         "invalid agent config `observation`: `hfo` is given to teams of at most 4 agents, this \
          one has 5"
     );
+}
+
+/// What a [`Recorder`] was shown.
+#[derive(Debug, Default)]
+struct Record {
+    /// Each `asks`: the state, HFO's features and the values.
+    asked: Vec<(State, Vec<f32>, Option<ActionValues>)>,
+    /// Each `gives`: the asker, its state and features.
+    given: Vec<(usize, State, Vec<f32>)>,
+    /// Each episode's end: its mode, outcome, final reward and return.
+    ended: Vec<(Mode, EpisodeOutcome, f64, f64)>,
+    /// Each batch received, with its sender.
+    received: Vec<(usize, Vec<Transition>)>,
+    /// Each report of an advice outcome: the asker, followed, advantage.
+    outcomes: Vec<(usize, bool, f64)>,
+    /// The advantage of each of its own decisions learned from.
+    advantages: Vec<f64>,
+}
+
+/// A strategy that records what the seam shows it: it asks `advisors` at
+/// every step with the ball, answers every request, and sends `sends` at
+/// every training episode's end.
+#[derive(Debug, Default)]
+struct Recorder {
+    record: std::sync::Arc<std::sync::Mutex<Record>>,
+    by_values: bool,
+    reports: bool,
+    advisors: Vec<usize>,
+    sends: Sends,
+}
+
+impl Recorder {
+    /// The strategy and a view of its record.
+    fn boxed(
+        self,
+    ) -> (
+        Box<dyn AdvisingStrategy>,
+        std::sync::Arc<std::sync::Mutex<Record>>,
+    ) {
+        let record = self.record.clone();
+        (Box::new(self), record)
+    }
+}
+
+impl AdvisingStrategy for Recorder {
+    fn asks_by_values(&self) -> bool {
+        self.by_values
+    }
+
+    fn asks(&mut self, at: &AskContext<'_>, _: &mut AgentRng) -> bool {
+        let seen = (*at.state, at.features.to_vec(), at.values);
+        self.record.lock().unwrap().asked.push(seen);
+        !self.advisors.is_empty()
+    }
+
+    fn advisors(&self, _: usize, _: usize, _: &[[f64; 2]], out: &mut Vec<usize>) {
+        out.clone_from(&self.advisors);
+    }
+
+    fn gives(&mut self, at: &GiveContext<'_>, _: &mut AgentRng) -> bool {
+        let seen = (at.asker, *at.state, at.features.to_vec());
+        self.record.lock().unwrap().given.push(seen);
+        true
+    }
+
+    fn reports_advice_outcomes(&self) -> bool {
+        self.reports
+    }
+
+    fn learns_from_outcomes(&self) -> bool {
+        true
+    }
+
+    fn learn_outcome(&mut self, outcome: &Outcome) {
+        self.record
+            .lock()
+            .unwrap()
+            .advantages
+            .push(outcome.advantage);
+    }
+
+    fn advice_outcome(&mut self, asker: usize, followed: bool, advantage: f64) {
+        let outcome = (asker, followed, advantage);
+        self.record.lock().unwrap().outcomes.push(outcome);
+    }
+
+    fn end_episode(&mut self, end: &EndContext<'_>) -> Sends {
+        let seen = (
+            Mode::Training,
+            end.outcome,
+            end.final_reward,
+            end.episode_return,
+        );
+        self.record.lock().unwrap().ended.push(seen);
+        self.sends.clone()
+    }
+
+    fn end_evaluation(&mut self, end: &EndContext<'_>) {
+        let seen = (
+            Mode::Evaluation,
+            end.outcome,
+            end.final_reward,
+            end.episode_return,
+        );
+        self.record.lock().unwrap().ended.push(seen);
+    }
+
+    fn received(&mut self, from: usize, batch: &[Transition]) {
+        self.record
+            .lock()
+            .unwrap()
+            .received
+            .push((from, batch.to_vec()));
+    }
+
+    fn spent_budget(&self, _: &AdviceCounters) -> u64 {
+        0
+    }
+}
+
+#[test]
+fn asking_sees_the_observation_and_the_values_only_on_demand() {
+    let features = Features::new(&[0.5, -0.25, 0.75]).unwrap();
+    let seen = Observation {
+        features,
+        ..obs(kick_state(1))
+    };
+    for by_values in [false, true] {
+        let mut a = agent(0, 3, config("no-advice"));
+        teach(
+            &mut a,
+            &[(kick_state(1), known([0.0, 0.4, 0.1, 0.3, 0.2], 3))],
+        );
+        let (strategy, record) = Recorder {
+            by_values,
+            ..Recorder::default()
+        }
+        .boxed();
+        let mut a = a.with_strategy(strategy);
+        a.act(&seen, 0.0, &[], &mut Isolated);
+        let record = record.lock().unwrap();
+        let (state, sent, values) = &record.asked[0];
+        assert_eq!(
+            (*state, sent.as_slice()),
+            (kick_state(1), features.as_slice())
+        );
+        let learned = by_values.then_some(ActionValues {
+            q: [0.0, 0.4, 0.1, 0.3, 0.2],
+            learned: 0b11110,
+        });
+        assert_eq!(*values, learned, "by values: {by_values}");
+    }
+}
+
+#[test]
+fn giving_sees_the_asker_and_its_observation() {
+    let (strategy, record) = Recorder::default().boxed();
+    let mut advisor = agent(1, 3, config("no-advice")).with_strategy(strategy);
+    finish_one_episode(&mut advisor);
+    let features = [0.5f32, 0.125];
+    let answer = advisor.answer(2, &kick_state(3), &features, Along::Nothing);
+    assert!(matches!(answer, Answer::Action(AdviceAnswer::Advice(_))));
+    let record = record.lock().unwrap();
+    assert_eq!(record.given, vec![(2, kick_state(3), features.to_vec())]);
+}
+
+#[test]
+fn an_episode_s_end_tells_its_return_and_outcome_in_both_modes() {
+    let (strategy, record) = Recorder::default().boxed();
+    let mut a = agent(0, 3, config("no-advice")).with_strategy(strategy);
+    for mode in [Mode::Training, Mode::Evaluation] {
+        a.begin_episode(mode);
+        // The first frame's reward is ignored; the others and the final
+        // reward add up: 0.5 - 0.25 + 1.
+        for (k, reward) in [7.0, 0.5, -0.25].into_iter().enumerate() {
+            a.act(&obs(move_state(k)), reward, &[], &mut Isolated);
+        }
+        a.end_episode(Goal);
+    }
+    a.begin_episode(Mode::Training);
+    a.end_episode(OutOfBounds);
+    let record = record.lock().unwrap();
+    assert_eq!(
+        record.ended,
+        vec![
+            (Mode::Training, Goal, 1.0, 1.25),
+            (Mode::Evaluation, Goal, 1.0, 1.25),
+            (Mode::Training, OutOfBounds, -1.0, -1.0),
+        ]
+    );
+}
+
+/// Agent `id` of a team of 2 learning with a small DQN.
+fn dqn_agent(id: usize) -> Agent {
+    let dqn = AgentConfig {
+        learner: crate::LearnerSettings::Dqn(crate::DqnSettings {
+            hidden: vec![8],
+            ..crate::DqnSettings::default()
+        }),
+        ..config("no-advice")
+    };
+    agent(id, 2, dqn)
+}
+
+/// `n` kick transitions, each ending its episode.
+fn kicks(n: usize) -> Vec<Transition> {
+    (0..n)
+        .map(|k| Transition {
+            state: kick_state(k % 5),
+            action: Shoot,
+            reward: 1.0,
+            next: None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_batch_sent_arrives_counted_and_its_receiver_learns_it_at_once() {
+    let batch = kicks(3);
+    let (strategy, _) = Recorder {
+        sends: vec![(1, Share::Batch(batch.clone()))],
+        ..Recorder::default()
+    }
+    .boxed();
+    let (receiver, record) = Recorder::default().boxed();
+    let agents = vec![
+        dqn_agent(0).with_strategy(strategy),
+        dqn_agent(1).with_strategy(receiver),
+    ];
+    let mut team = Team::new(agents).unwrap();
+    team.begin_episode(Mode::Training);
+    team.act(&[obs(move_state(0)), obs(move_state(1))], 0.0)
+        .unwrap();
+    let before = team.agents()[1].snapshot();
+    team.end_episode(OutOfTime);
+    let (sender, receiver) = (&team.agents()[0], &team.agents()[1]);
+    assert_eq!(sender.counters().shared_sent, 3);
+    assert_eq!(receiver.counters().shared_received, 3);
+    assert_eq!(record.lock().unwrap().received, vec![(0, batch.clone())]);
+    // One message, as the zenoh transport sends it.
+    let body = Body::ExperienceBatch(proto::ExperienceBatch {
+        from: 0,
+        to: 1,
+        transitions: batch.clone(),
+    });
+    let header = Header::new(proto::experiment_id("in-process"), 0, 0, 1);
+    let bytes = proto::encode(&Envelope { header, body }).len() as u64;
+    assert_eq!(team.traffic()[0].messages, 1);
+    assert_eq!(team.traffic()[0].bytes, bytes);
+    // The receiver's network moved (its learner's own state changed).
+    assert_ne!(receiver.snapshot().learner_state, before.learner_state);
+    // A learner that cannot learn a batch says so.
+    let mut sarsa = agent(1, 2, config("no-advice"));
+    sarsa.begin_episode(Mode::Training);
+    assert!(!sarsa.receive_batch(0, &batch));
+}
+
+#[test]
+fn a_strategy_s_batches_are_bounded_and_one_per_receiver() {
+    let (strategy, _) = Recorder {
+        sends: vec![
+            (1, Share::Batch(kicks(MAX_BATCH + 10))),
+            (2, Share::Episode(kicks(2))),
+            (1, Share::Batch(kicks(1))),
+        ],
+        ..Recorder::default()
+    }
+    .boxed();
+    let mut a = agent(0, 3, config("no-advice")).with_strategy(strategy);
+    a.begin_episode(Mode::Training);
+    a.end_episode(Goal);
+    let sent = a.take_shared();
+    assert_eq!(sent.len(), 2);
+    assert_eq!(sent[0], (1, Share::Batch(kicks(MAX_BATCH))));
+    assert_eq!(sent[1], (2, Share::Episode(kicks(2))));
+    assert_eq!(a.counters().shared_sent, MAX_BATCH as u64 + 2);
+}
+
+#[test]
+fn advisors_hear_how_their_advice_turned_out_when_the_advisee_reports() {
+    for reports in [false, true] {
+        let (advisee, own) = Recorder {
+            reports,
+            advisors: vec![1],
+            ..Recorder::default()
+        }
+        .boxed();
+        let (advisor, record) = Recorder::default().boxed();
+        let agents = vec![
+            agent(0, 2, config("no-advice")).with_strategy(advisee),
+            agent(1, 2, config("no-advice")).with_strategy(advisor),
+        ];
+        let mut team = Team::new(agents).unwrap();
+        team.begin_episode(Mode::Training);
+        // Agent 0 kicks twice, asking agent 1 each time; agent 1 moves.
+        for k in 0..2 {
+            team.act(&[obs(kick_state(k)), obs(move_state(k))], 0.0)
+                .unwrap();
+        }
+        team.end_episode(Goal);
+        let outcomes = &record.lock().unwrap().outcomes;
+        let messages = team.traffic()[0].messages;
+        if !reports {
+            assert!(outcomes.is_empty());
+            assert_eq!(messages, 2, "two requests");
+            continue;
+        }
+        // Both decisions played the advice (the majority of one), with the
+        // advantages the advisee learned from.
+        let advantages: Vec<f64> = outcomes.iter().map(|&(.., a)| a).collect();
+        assert_eq!(advantages, own.lock().unwrap().advantages);
+        assert_eq!(outcomes.len(), 2);
+        assert!(
+            outcomes
+                .iter()
+                .all(|&(asker, followed, _)| asker == 0 && followed)
+        );
+        assert_eq!(messages, 2 + 2, "two requests and two reports");
+    }
 }

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::seam::{AdvisingStrategy, EndContext, Sends};
 use crate::advice::{PAPER_BUDGET, shared_prefix};
 use crate::advice_counters::AdviceCounters;
-use crate::exchange::Transition;
+use crate::exchange::{Share, Transition};
 use crate::fidelity::{Fidelity, Profile};
 use crate::method::Method;
 use proto::Mode;
@@ -84,7 +84,7 @@ impl AdvisingStrategy for Sharer {
             .enumerate()
             .filter_map(|(k, to)| {
                 let n = shared_prefix(episode.len(), receivers, k, budget);
-                (n > 0).then(|| (to, episode[..n].to_vec()))
+                (n > 0).then(|| (to, Share::Episode(episode[..n].to_vec())))
             })
             .collect()
     }

@@ -215,6 +215,9 @@ mod tests {
             let mut theirs = [9; 5];
             theirs[Shoot.index()] = m;
             let at = GiveContext {
+                asker: 1,
+                state: &[0.0; 6],
+                features: &[],
                 visits: 6,
                 action_visits: mine,
                 values: &v,
@@ -228,6 +231,9 @@ mod tests {
         // Equal values: no spread, no confidence.
         let flat = values(0.5, 0.5);
         let at = GiveContext {
+            asker: 1,
+            state: &[0.0; 6],
+            features: &[],
             visits: 6,
             action_visits: [6; 5],
             values: &flat,

@@ -3,10 +3,10 @@
 
 use std::fmt;
 
-use proto::{Action, Mode, SharedValues};
+use proto::{Action, EpisodeOutcome, Mode, SharedValues, State};
 
 use crate::advice_counters::AdviceCounters;
-use crate::exchange::{Advice, BestValue, Transition, ValuesAdvice};
+use crate::exchange::{Advice, BestValue, Share, Transition, ValuesAdvice};
 use crate::fidelity::{AdvisorTies, VoteTies};
 use crate::learner::ActionValues;
 use crate::selection::{ACTIONS, AgentRng, greedy_first, greedy_random, majority};
@@ -14,6 +14,11 @@ use crate::selection::{ACTIONS, AgentRng, greedy_first, greedy_random, majority}
 /// What an advisee knows when it decides whether to ask about a state.
 #[derive(Clone, Copy, Debug)]
 pub struct AskContext<'a> {
+    /// The state: the paper's features.
+    pub state: &'a State,
+    /// HFO's features of it, where its observations carry them (empty
+    /// otherwise).
+    pub features: &'a [f32],
     /// The state was not advised yet in this episode.
     pub fresh: bool,
     /// Visits n(s) of the state.
@@ -26,11 +31,22 @@ pub struct AskContext<'a> {
     /// [`asks_by_uncertainty`](AdvisingStrategy::asks_by_uncertainty)
     /// (`None` otherwise, or from a learner that cannot tell).
     pub uncertainty: Option<f64>,
+    /// Its learner's values in the state, for a method that
+    /// [`asks_by_values`](AdvisingStrategy::asks_by_values) (`None`
+    /// otherwise).
+    pub values: Option<ActionValues>,
 }
 
 /// What an advisor knows when it decides whether to answer.
 #[derive(Clone, Copy, Debug)]
 pub struct GiveContext<'a> {
+    /// The asker's id.
+    pub asker: usize,
+    /// The asker's state: the paper's features.
+    pub state: &'a State,
+    /// HFO's features of it, where the request carries them (empty
+    /// otherwise).
+    pub features: &'a [f32],
     /// Its visits n(s) of the advisee's state (0 for a state it never met).
     pub visits: u64,
     /// How often it took each action there, m(s, a) by action index.
@@ -44,12 +60,18 @@ pub struct GiveContext<'a> {
     pub counters: &'a AdviceCounters,
 }
 
-/// What an agent knows when a training episode ends.
+/// What an agent knows when an episode ends.
 #[derive(Clone, Copy, Debug)]
 pub struct EndContext<'a> {
     /// The reward of its terminal step (+1 goal, -1 captured or out, 0
     /// time-out).
     pub final_reward: f64,
+    /// How the episode ended.
+    pub outcome: EpisodeOutcome,
+    /// The episode's return: the sum of the rewards the agent was given,
+    /// one per frame after the first, and `final_reward` (undiscounted; a
+    /// DQN folds the same rewards from kick to kick, discounted).
+    pub episode_return: f64,
     /// The agent's id.
     pub me: usize,
     /// Its team's size.
@@ -59,8 +81,8 @@ pub struct EndContext<'a> {
 }
 
 /// What an agent sends its teammates unasked at an episode's end: for each
-/// receiver, in order, the transitions it sends.
-pub type Sends = Vec<(usize, Vec<Transition>)>;
+/// receiver, in order, what it sends.
+pub type Sends = Vec<(usize, Share)>;
 
 /// What arrived for one request: the advice (any number, possibly none,
 /// in the order of the advisors asked) about the state of key `key`.
@@ -156,6 +178,12 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
 
     /// Whether [`asks`](Self::asks) needs its learner's uncertainty.
     fn asks_by_uncertainty(&self) -> bool {
+        false
+    }
+
+    /// Whether [`asks`](Self::asks) needs its learner's values
+    /// ([`AskContext::values`]); asking the learner costs time.
+    fn asks_by_values(&self) -> bool {
         false
     }
 
@@ -261,6 +289,18 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// What it learns about its advisors from how a decision turned out.
     fn learn_outcome(&mut self, _outcome: &Outcome) {}
 
+    /// Advisee: whether it tells each advisor whose advice arrived how the
+    /// decision turned out (one message per advisor and decision, received
+    /// by its [`advice_outcome`](Self::advice_outcome)). No, by default.
+    fn reports_advice_outcomes(&self) -> bool {
+        false
+    }
+
+    /// Advisor: `asker` reports a decision on which it gave advice:
+    /// whether it played the action advised, and the decision's advantage
+    /// under the asker's values (as [`Outcome::advantage`]).
+    fn advice_outcome(&mut self, _asker: usize, _followed: bool, _advantage: f64) {}
+
     /// The budget the paper plots (advice given, or transitions shared).
     fn spent_budget(&self, counters: &AdviceCounters) -> u64;
 
@@ -285,9 +325,16 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     fn learned(&mut self, _transition: &Transition) {}
 
     /// A training episode ended, its last step learned: what the agent
-    /// sends its teammates unasked (e.g. shared episodes), counted as
-    /// transitions shared. Nothing, by default.
+    /// sends its teammates unasked (shared episodes, batches of
+    /// experience), counted as transitions shared. Nothing, by default.
     fn end_episode(&mut self, _end: &EndContext<'_>) -> Sends {
         Sends::new()
     }
+
+    /// An evaluation episode ended (frozen: nothing is sent).
+    fn end_evaluation(&mut self, _end: &EndContext<'_>) {}
+
+    /// A batch of experience arrived from agent `from` (its learner learns
+    /// it as one batch, if it can), in a training episode's end.
+    fn received(&mut self, _from: usize, _batch: &[Transition]) {}
 }

@@ -69,6 +69,27 @@ def _replies(key: int, advice: Sequence[tuple], shared: Sequence[tuple]) -> stra
     )
 
 
+def _end(
+    final_reward: float,
+    outcome: str,
+    episode_return: float,
+    me: int,
+    team_size: int,
+    counters: Sequence[int],
+) -> strategies.EndContext:
+    return strategies.EndContext(
+        final_reward, outcome, episode_return, me, team_size, _counters(counters)
+    )
+
+
+def _tuple(t: learners.Transition) -> tuple:
+    """A transition as the native side takes it."""
+    state = tuple(float(x) for x in t.state)
+    following = None if t.next_state is None else tuple(float(x) for x in t.next_state)
+    action = None if t.next_action is None else int(t.next_action)
+    return (state, int(t.action), float(t.reward), following, action)
+
+
 class StrategyAdapter:
     """An :class:`~adhoc_advising.strategy.AdvisingStrategy` as the native
     side calls it; counters arrive in the order of
@@ -96,15 +117,37 @@ class StrategyAdapter:
         episodes: int,
         counters: Sequence[int],
         uncertainty: float | None,
+        state: learners.State,
+        features: Sequence[float],
+        values: RawValues | None,
     ) -> bool:
-        at = strategies.AskContext(fresh, visits, episodes, _counters(counters), uncertainty)
+        at = strategies.AskContext(
+            fresh,
+            visits,
+            episodes,
+            _counters(counters),
+            uncertainty,
+            state,
+            tuple(features),
+            None if values is None else strategies._values(values),
+        )
         return bool(self.strategy.asks(at))
 
     def advisors(self, me: int, team_size: int, positions: list[tuple[float, float]]) -> list[int]:
         return [int(j) for j in self.strategy.advisors(me, team_size, positions)]
 
-    def gives(self, visits: int, values: RawValues, counters: Sequence[int]) -> bool:
-        at = strategies.GiveContext(visits, strategies._values(values), _counters(counters))
+    def gives(
+        self,
+        visits: int,
+        values: RawValues,
+        counters: Sequence[int],
+        asker: int,
+        state: learners.State,
+        features: Sequence[float],
+    ) -> bool:
+        at = strategies.GiveContext(
+            visits, strategies._values(values), _counters(counters), asker, state, tuple(features)
+        )
         return bool(self.strategy.gives(at))
 
     def advice(self, values: RawValues) -> int:
@@ -124,6 +167,23 @@ class StrategyAdapter:
 
     def learn_outcome(self, advisor: int | None, advantage: float) -> None:
         self.strategy.learn_outcome(strategies.Outcome(advisor, advantage))
+
+    def advice_outcome(self, asker: int, followed: bool, advantage: float) -> None:
+        self.strategy.advice_outcome(asker, followed, advantage)
+
+    def learned(self, transition: tuple) -> None:
+        self.strategy.learned(learners.Transition(*transition))
+
+    def end_episode(self, *end: Any) -> list[tuple[int, list[tuple]]]:
+        """The batches it sends, each transition as a tuple."""
+        batches = self.strategy.end_episode(_end(*end))
+        return [(int(b.to), [_tuple(t) for t in b.transitions]) for b in batches]
+
+    def end_evaluation(self, *end: Any) -> None:
+        self.strategy.end_evaluation(_end(*end))
+
+    def received(self, from_: int, batch: list[tuple]) -> None:
+        self.strategy.received(from_, [learners.Transition(*t) for t in batch])
 
     def spent_budget(self, counters: Sequence[int]) -> int:
         return int(self.strategy.spent_budget(_counters(counters)))

@@ -14,7 +14,9 @@ line (docs/strategies.md). Standard library only.
 
 Actions are indices: 0 MOVE, 1 SHOOT, 2 DRIBBLE, 3 PASS_NEAR, 4 PASS_FAR;
 advice is a kick action (1-4). Values are Q(s, a) by action index, ``None``
-where the learner has not learned the action.
+where the learner has not learned the action. A state is the paper's six
+features; transitions are :class:`~adhoc_advising.learner.Transition`.
+A decision or hook the class does not override costs no message.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from dataclasses import dataclass
 from typing import IO, Callable, Optional
 
 from adhoc_advising._channel import serve_lines
+from adhoc_advising.learner import State, Transition
 
 #: Q(s, a) by action index, ``None`` where unlearned.
 Values = tuple[Optional[float], ...]
@@ -78,6 +81,13 @@ class AskContext:
     #: Its learner's uncertainty there, if the strategy asks by it and the
     #: learner can tell.
     uncertainty: float | None
+    #: The state: the paper's six features.
+    state: State = (0.0,) * 6
+    #: HFO's features of it, where its observations carry them (else empty).
+    features: tuple[float, ...] = ()
+    #: Its learner's values there, if the strategy asks by them
+    #: (``asks_by_values``).
+    values: Values | None = None
 
 
 @dataclass(frozen=True)
@@ -89,6 +99,39 @@ class GiveContext:
     #: Its learner's values there.
     values: Values
     counters: AdviceCounters
+    #: The asker's id.
+    asker: int = 0
+    #: The asker's state: the paper's six features.
+    state: State = (0.0,) * 6
+    #: HFO's features of it, where the request carries them (else empty).
+    features: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
+class EndContext:
+    """What an agent knows when an episode ends."""
+
+    #: The reward of its terminal step: +1 goal, -1 captured or out, 0
+    #: out of time.
+    final_reward: float
+    #: How it ended: ``"goal"``, ``"captured"``, ``"out_of_bounds"`` or
+    #: ``"out_of_time"``.
+    outcome: str
+    #: The sum of its rewards this episode (undiscounted), the final one
+    #: included.
+    episode_return: float
+    me: int
+    team_size: int
+    counters: AdviceCounters
+
+
+@dataclass(frozen=True)
+class Batch:
+    """Experience sent to teammate ``to`` at an episode's end, which its
+    learner learns as one batch (at most 4096 transitions)."""
+
+    to: int
+    transitions: tuple[Transition, ...]
 
 
 @dataclass(frozen=True)
@@ -157,6 +200,12 @@ class AdvisingStrategy:
     #: Whether its answers are its values (:meth:`adopt` takes them) instead
     #: of an action.
     shares_values: bool = False
+    #: Whether :meth:`asks` is told its learner's values
+    #: (``AskContext.values``).
+    asks_by_values: bool = False
+    #: Whether it tells each advisor whose advice arrived how the decision
+    #: turned out (that advisor's :meth:`advice_outcome` hears it).
+    reports_advice_outcomes: bool = False
 
     def reuse(self, key: int, values: Values) -> int | None:
         """Advisee, first at a training step with the ball: an action to play
@@ -203,6 +252,29 @@ class AdvisingStrategy:
         """What it learns about its advisors from a decision's outcome. Only
         sent if overridden."""
 
+    def advice_outcome(self, asker: int, followed: bool, advantage: float) -> None:
+        """Advisor: ``asker`` (whose strategy reports advice outcomes) tells
+        how a decision on which its advice arrived turned out: whether it
+        played the action advised, and the decision's advantage. Only sent if
+        overridden."""
+
+    def learned(self, transition: Transition) -> None:
+        """A training transition its agent just learned. Only sent if
+        overridden."""
+
+    def end_episode(self, end: EndContext) -> Sequence[Batch]:
+        """A training episode ended: the batches of experience it sends its
+        teammates (at most one per teammate), each transition one unit of
+        ``shared_sent``. Only asked if overridden."""
+        return ()
+
+    def end_evaluation(self, end: EndContext) -> None:
+        """An evaluation episode ended. Only sent if overridden."""
+
+    def received(self, from_: int, batch: Sequence[Transition]) -> None:
+        """A batch of experience arrived from agent ``from_`` (its learner
+        then learns it as one batch, if it can). Only sent if overridden."""
+
     def spent_budget(self, counters: AdviceCounters) -> int:
         """The budget the results plot: by default the answers given."""
         return counters.advice_given
@@ -214,6 +286,42 @@ def _counters(raw: dict) -> Counters:
 
 def _values(raw: Sequence[float | None]) -> Values:
     return tuple(None if v is None else float(v) for v in raw)
+
+
+def _state(raw: Sequence[float] | None) -> State | None:
+    return None if raw is None else tuple(float(x) for x in raw)
+
+
+def _transition(raw: dict) -> Transition:
+    return Transition(
+        state=tuple(float(x) for x in raw["state"]),
+        action=int(raw["action"]),
+        reward=float(raw["reward"]),
+        next_state=_state(raw["next_state"]),
+        next_action=_action(raw["next_action"]),
+    )
+
+
+def _wire(t: Transition) -> dict:
+    """A transition as the agent reads it."""
+    return {
+        "state": [float(x) for x in t.state],
+        "action": int(t.action),
+        "reward": float(t.reward),
+        "next_state": None if t.next_state is None else [float(x) for x in t.next_state],
+        "next_action": _action(t.next_action),
+    }
+
+
+def _end(message: dict) -> EndContext:
+    return EndContext(
+        final_reward=float(message["final_reward"]),
+        outcome=str(message["outcome"]),
+        episode_return=float(message["episode_return"]),
+        me=int(message["me"]),
+        team_size=int(message["team_size"]),
+        counters=_counters(message["counters"]),
+    )
 
 
 def _replies(message: dict) -> Replies:
@@ -243,6 +351,13 @@ def _traits(strategy: AdvisingStrategy) -> dict:
         "intends_greedy": bool(strategy.intends_greedy),
         "shares_values": bool(strategy.shares_values),
         "learns_from_outcomes": _overrides(strategy, "learn_outcome"),
+        "asks_by_values": bool(strategy.asks_by_values),
+        "records_transitions": _overrides(strategy, "learned"),
+        "ends_episodes": _overrides(strategy, "end_episode"),
+        "ends_evaluations": _overrides(strategy, "end_evaluation"),
+        "receives_batches": _overrides(strategy, "received"),
+        "reports_advice_outcomes": bool(strategy.reports_advice_outcomes),
+        "hears_advice_outcomes": _overrides(strategy, "advice_outcome"),
     }
 
 
@@ -262,6 +377,9 @@ def _answer(strategy: AdvisingStrategy, message: dict) -> dict | None:
             training_episodes=int(message["training_episodes"]),
             counters=_counters(message["counters"]),
             uncertainty=message["uncertainty"],
+            state=tuple(float(x) for x in message.get("state", (0.0,) * 6)),
+            features=tuple(float(x) for x in message.get("features", ())),
+            values=None if message.get("values") is None else _values(message["values"]),
         )
         return {"decision": bool(strategy.asks(at))}
     if op == "advisors":
@@ -273,6 +391,9 @@ def _answer(strategy: AdvisingStrategy, message: dict) -> dict | None:
             visits=int(message["visits"]),
             values=_values(message["values"]),
             counters=_counters(message["counters"]),
+            asker=int(message.get("asker", 0)),
+            state=tuple(float(x) for x in message.get("state", (0.0,) * 6)),
+            features=tuple(float(x) for x in message.get("features", ())),
         )
         return {"decision": bool(strategy.gives(at))}
     if op == "advice":
@@ -287,6 +408,27 @@ def _answer(strategy: AdvisingStrategy, message: dict) -> dict | None:
         return {"values": None if taken is None else list(_values(taken))}
     if op == "learn_outcome":
         strategy.learn_outcome(Outcome(message["advisor"], float(message["advantage"])))
+        return None
+    if op == "advice_outcome":
+        strategy.advice_outcome(
+            int(message["asker"]), bool(message["followed"]), float(message["advantage"])
+        )
+        return None
+    if op == "learned":
+        strategy.learned(_transition(message["transition"]))
+        return None
+    if op == "end_episode":
+        batches = strategy.end_episode(_end(message))
+        return {
+            "batches": [
+                {"to": int(b.to), "transitions": [_wire(t) for t in b.transitions]} for b in batches
+            ]
+        }
+    if op == "end_evaluation":
+        strategy.end_evaluation(_end(message))
+        return None
+    if op == "received":
+        strategy.received(int(message["from"]), [_transition(t) for t in message["transitions"]])
         return None
     if op == "spent_budget":
         return {"spent": int(strategy.spent_budget(_counters(message["counters"])))}

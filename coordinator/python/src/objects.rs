@@ -12,7 +12,8 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, Experience, GiveContext, Learner, Outcome, Replies, Seen, Step, VoteTies,
+    AskContext, EndContext, Experience, GiveContext, Learner, Outcome, Replies, Seen, Sends, Share,
+    Step, Transition, VoteTies,
 };
 use coordinator::plugin::{Plugin, PluginSpec, PluginStart};
 use proto::{Action, SharedValues};
@@ -257,6 +258,39 @@ fn state(at: Seen<'_>) -> (Features, Option<usize>) {
 /// next_state, next_action)`.
 type PyTransition = (Features, usize, f64, Option<Features>, Option<usize>);
 
+/// A shared transition as the adapter takes it.
+fn shared(t: &Transition) -> PyTransition {
+    (
+        features(&t.state),
+        t.action.index(),
+        t.reward,
+        t.next.map(|(s, _)| features(&s)),
+        t.next.map(|(_, a)| a.index()),
+    )
+}
+
+/// A transition the adapter answered, or why it is none.
+fn unshared((s, a, r, next_state, next_action): PyTransition) -> Result<Transition, String> {
+    let state = |s: Features| [s.0, s.1, s.2, s.3, s.4, s.5];
+    Transition::from_parts(state(s), a, r, (next_state.map(state), next_action))
+}
+
+/// What the strategy is told at an episode's end: the final reward, the
+/// outcome's name, the return, its id, the team size and the counters.
+type PyEnd = (f64, &'static str, f64, usize, usize, PyCounters);
+
+fn end(e: &EndContext<'_>) -> PyEnd {
+    let c = counters(e.counters);
+    (
+        e.final_reward,
+        e.outcome.name(),
+        e.episode_return,
+        e.me,
+        e.team_size,
+        c,
+    )
+}
+
 fn transition((from, reward, next): &Experience<'_>) -> PyTransition {
     (
         features(from.at.state),
@@ -357,6 +391,13 @@ struct Traits {
     intends_greedy: bool,
     shares_values: bool,
     learns_from_outcomes: bool,
+    asks_by_values: bool,
+    records_transitions: bool,
+    ends_episodes: bool,
+    ends_evaluations: bool,
+    receives_batches: bool,
+    reports_advice_outcomes: bool,
+    hears_advice_outcomes: bool,
 }
 
 /// A strategy adapter, with the traits it answered at its start.
@@ -374,7 +415,9 @@ fn values(v: &ActionValues) -> Vec<Option<f64>> {
 }
 
 /// Counters in the order of the package's `Counters` fields.
-fn counters(c: &AdviceCounters) -> (u64, u64, u64, u64, u64, u64) {
+type PyCounters = (u64, u64, u64, u64, u64, u64);
+
+fn counters(c: &AdviceCounters) -> PyCounters {
     (
         c.advice_requests,
         c.advice_replies_received,
@@ -447,6 +490,10 @@ impl AdvisingStrategy for PythonStrategy {
         self.traits.asks_by_uncertainty
     }
 
+    fn asks_by_values(&self) -> bool {
+        self.traits.asks_by_values
+    }
+
     fn asks(&mut self, at: &AskContext<'_>, _: &mut AgentRng) -> bool {
         let args = (
             at.fresh,
@@ -454,6 +501,9 @@ impl AdvisingStrategy for PythonStrategy {
             at.training_episodes,
             counters(at.counters),
             at.uncertainty,
+            features(at.state),
+            at.features.to_vec(),
+            at.values.as_ref().map(values),
         );
         Python::attach(|py| self.object.answer(py, "asks", args)).unwrap_or(false)
     }
@@ -510,7 +560,14 @@ impl AdvisingStrategy for PythonStrategy {
     }
 
     fn gives(&mut self, at: &GiveContext<'_>, _: &mut AgentRng) -> bool {
-        let args = (at.visits, values(at.values), counters(at.counters));
+        let args = (
+            at.visits,
+            values(at.values),
+            counters(at.counters),
+            at.asker,
+            features(at.state),
+            at.features.to_vec(),
+        );
         Python::attach(|py| self.object.answer(py, "gives", args)).unwrap_or(false)
     }
 
@@ -546,6 +603,71 @@ impl AdvisingStrategy for PythonStrategy {
             self.object
                 .call(py, "learn_outcome", (outcome.advisor, outcome.advantage));
         });
+    }
+
+    fn reports_advice_outcomes(&self) -> bool {
+        self.traits.reports_advice_outcomes
+    }
+
+    fn advice_outcome(&mut self, asker: usize, followed: bool, advantage: f64) {
+        if self.traits.hears_advice_outcomes {
+            Python::attach(|py| {
+                (self.object).call(py, "advice_outcome", (asker, followed, advantage));
+            });
+        }
+    }
+
+    fn records_transitions(&self, _: &AdviceCounters) -> bool {
+        self.traits.records_transitions
+    }
+
+    fn learned(&mut self, t: &Transition) {
+        Python::attach(|py| {
+            self.object.call(py, "learned", (shared(t),));
+        });
+    }
+
+    fn end_episode(&mut self, at: &EndContext<'_>) -> Sends {
+        if !self.traits.ends_episodes {
+            return Sends::new();
+        }
+        Python::attach(|py| {
+            let batches: Vec<(usize, Vec<PyTransition>)> =
+                self.object.answer(py, "end_episode", end(at))?;
+            let mut sends = Sends::new();
+            for (to, transitions) in batches {
+                let batch = (to < at.team_size && to != at.me)
+                    .then_some(transitions)
+                    .ok_or_else(|| format!("a batch to agent {to}, not another agent"))
+                    .and_then(|t| t.into_iter().map(unshared).collect());
+                match batch {
+                    Ok(batch) => sends.push((to, Share::Batch(batch))),
+                    Err(reason) => {
+                        self.object.refuse(py, "end_episode", reason);
+                        return None;
+                    }
+                }
+            }
+            Some(sends)
+        })
+        .unwrap_or_default()
+    }
+
+    fn end_evaluation(&mut self, at: &EndContext<'_>) {
+        if self.traits.ends_evaluations {
+            Python::attach(|py| {
+                self.object.call(py, "end_evaluation", end(at));
+            });
+        }
+    }
+
+    fn received(&mut self, from: usize, batch: &[Transition]) {
+        if self.traits.receives_batches {
+            let batch: Vec<PyTransition> = batch.iter().map(shared).collect();
+            Python::attach(|py| {
+                self.object.call(py, "received", (from, batch));
+            });
+        }
     }
 
     fn spent_budget(&self, c: &AdviceCounters) -> u64 {

@@ -11,9 +11,21 @@ import subprocess
 import sys
 from pathlib import Path
 
+from batch_strategies import Student, Teacher
 from conftest import ROOT, assert_ended_cleanly, workspace_binary
 
-from adhoc_advising.strategy import AdvisingStrategy, Outcome, Start, serve
+import adhoc_advising
+from adhoc_advising.learner import Transition
+from adhoc_advising.strategy import (
+    AdvisingStrategy,
+    AskContext,
+    Batch,
+    EndContext,
+    GiveContext,
+    Outcome,
+    Start,
+    serve,
+)
 
 EXAMPLE = ROOT / "coordinator" / "python" / "examples" / "nearest_teammate.py"
 sys.path.insert(0, str(EXAMPLE.parent))
@@ -76,12 +88,131 @@ def test_the_defaults_are_the_seams() -> None:
     traits, asks, gives, advice, follow, spent = answers
     assert traits["name"] == "python-strategy"
     assert not traits["reuses"] and not traits["learns_from_outcomes"]
+    # Nothing new overridden: no new message is sent or asked.
+    new = (
+        "asks_by_values",
+        "records_transitions",
+        "ends_episodes",
+        "ends_evaluations",
+        "receives_batches",
+        "reports_advice_outcomes",
+        "hears_advice_outcomes",
+    )
+    assert not any(traits[key] for key in new)
     assert asks == {"decision": False} and gives == {"decision": False}
     # Greedy, ties in the framework's order: DRIBBLE before PASS_NEAR.
     assert advice == {"action": 2}
     # The majority, credited to the first advisor who gave it.
     assert follow == {"advice": {"advisor": 1, "action": 2}}
     assert spent == {"spent": 3}
+
+
+TRANSITION = {
+    "state": [0.5, -0.5, 0.0, 0.25, 0.125, 1.0],
+    "action": 1,
+    "reward": 1.0,
+    "next_state": None,
+    "next_action": None,
+}
+
+
+def test_the_new_hooks_see_the_observation_the_end_and_what_arrives() -> None:
+    seen: list[object] = []
+
+    class Teacher(AdvisingStrategy):
+        asks_by_values = True
+        reports_advice_outcomes = True
+
+        def __init__(self, start: Start) -> None:
+            pass
+
+        def asks(self, at: AskContext) -> bool:
+            seen.append(at)
+            return False
+
+        def gives(self, at: GiveContext) -> bool:
+            seen.append(at)
+            return False
+
+        def learned(self, transition: Transition) -> None:
+            seen.append(transition)
+
+        def end_episode(self, end: EndContext) -> list[Batch]:
+            seen.append(end)
+            return [Batch(to=0, transitions=(seen[2],))]
+
+        def end_evaluation(self, end: EndContext) -> None:
+            seen.append(end)
+
+        def received(self, from_: int, batch: list[Transition]) -> None:
+            seen.append((from_, batch))
+
+        def advice_outcome(self, asker: int, followed: bool, advantage: float) -> None:
+            seen.append((asker, followed, advantage))
+
+    state = TRANSITION["state"]
+    values = [None, 0.5, 0.25, None, None]
+    end = {
+        "final_reward": 1.0,
+        "outcome": "goal",
+        "episode_return": 1.5,
+        "me": 2,
+        "team_size": 3,
+        "counters": COUNTERS,
+    }
+    status, answers = talk(
+        Teacher,
+        START,
+        {
+            "op": "asks",
+            "fresh": True,
+            "visits": 0,
+            "training_episodes": 3,
+            "counters": COUNTERS,
+            "uncertainty": None,
+            "state": state,
+            "features": [0.5, 0.25],
+            "values": values,
+        },
+        {
+            "op": "gives",
+            "visits": 9,
+            "values": values,
+            "counters": COUNTERS,
+            "asker": 1,
+            "state": state,
+            "features": [],
+        },
+        {"op": "learned", "transition": TRANSITION},
+        {"op": "end_episode", **end},
+        {"op": "end_evaluation", **end, "outcome": "out_of_time"},
+        {"op": "received", "from": 1, "transitions": [TRANSITION]},
+        {"op": "advice_outcome", "asker": 0, "followed": True, "advantage": -0.5},
+    )
+    assert status == 0
+    traits, asks, gives, batches = answers
+    assert all(
+        traits[key]
+        for key in (
+            "asks_by_values",
+            "records_transitions",
+            "ends_episodes",
+            "ends_evaluations",
+            "receives_batches",
+            "reports_advice_outcomes",
+            "hears_advice_outcomes",
+        )
+    )
+    assert asks == {"decision": False} and gives == {"decision": False}
+    assert batches == {"batches": [{"to": 0, "transitions": [TRANSITION]}]}
+    ask, give, learned, ended, evaluated, received, outcome = seen
+    assert (ask.state, ask.features, ask.values) == (tuple(state), (0.5, 0.25), tuple(values))
+    assert (give.asker, give.state, give.features) == (1, tuple(state), ())
+    assert learned == Transition(tuple(state), 1, 1.0, None, None)
+    assert (ended.outcome, ended.episode_return, ended.me) == ("goal", 1.5, 2)
+    assert evaluated.outcome == "out_of_time"
+    assert received == (1, [learned])
+    assert outcome == (0, True, -0.5)
 
 
 def test_the_example_asks_the_nearest_teammate_it_trusts() -> None:
@@ -206,3 +337,40 @@ def test_a_strategy_that_raises_ends_the_run_with_its_cause(tmp_path: Path) -> N
     assert_ended_cleanly(
         result, out, faulty, "ZeroDivisionError", "agent 2: its strategy", "a planned fault"
     )
+
+
+BATCHES = Path(__file__).parent / "batch_strategies.py"
+
+
+def last_agents(out: Path) -> list[dict]:
+    """Every agent's counters at the last evaluation of run 0 in `out`."""
+    return json.loads((out / "run-0.json").read_text())["points"][-1]["agents"]
+
+
+def test_a_batch_is_sent_at_an_episode_s_end_and_learned_in_process(tmp_path: Path) -> None:
+    team = [{"algorithm": Student, "learner": "dqn"}, {"algorithm": Teacher}]
+    schedule = {"runs": 1, "episodes": 40, "eval_every": 20, "eval_episodes": 5}
+    adhoc_advising.run(out=tmp_path / "out", team=team, **schedule)
+    student, teacher = last_agents(tmp_path / "out")
+    # Every transition sent arrived, one message per training episode.
+    assert 0 < student["give_spent"] == teacher["give_spent"]
+    assert 0 < teacher["advising_messages"] <= 40
+
+
+def test_a_batch_travels_over_zenoh(tmp_path: Path) -> None:
+    def agent(role: str, extra: str = "") -> str:
+        command = json.dumps([sys.executable, str(BATCHES), role])
+        return (
+            f'[[agent]]\nalgorithm = "external"\n{extra}'
+            f'strategy_process = {{ command = {command}, source = "{BATCHES}" }}\n\n'
+        )
+
+    team = tmp_path / "team.toml"
+    team.write_text(agent("student", 'learner = "dqn"\n') + agent("teacher"))
+    result = run(team, tmp_path / "out", 100)
+    assert result.returncode == 0, result.stderr
+    student, teacher = last_agents(tmp_path / "out")
+    # A batch of the last episode may still wait while the student evaluates.
+    assert 0 < student["give_spent"] <= teacher["give_spent"]
+    assert 0 < teacher["advising_messages"] <= 100
+    assert all(a["messages_dropped"] == 0 for a in (student, teacher))

@@ -218,7 +218,7 @@ impl Harness {
                 .collect();
             if of_episode
                 .iter()
-                .all(|o| o.last().is_some_and(|(_, obs)| obs.terminal))
+                .all(|o| o.last().is_some_and(|(_, obs)| obs.is_terminal()))
             {
                 return of_episode
                     .into_iter()
@@ -288,7 +288,7 @@ async fn spawn_agent(
                     ..envelope.header
                 };
                 assert_eq!(obs.agent, i);
-                let decides = obs.can_kick && !obs.terminal;
+                let decides = obs.can_kick && !obs.is_terminal();
                 assert!(!decides || k == last, "a decision ends its message");
                 if noisy {
                     noisy = false;
@@ -378,14 +378,6 @@ fn replay(env: &mut Env, kick: Action) -> EpisodeResult {
     replay_with(env, kick, false)
 }
 
-fn reward(outcome: EpisodeOutcome) -> f64 {
-    match outcome {
-        EpisodeOutcome::Goal => 1.0,
-        EpisodeOutcome::Captured | EpisodeOutcome::OutOfBounds => -1.0,
-        EpisodeOutcome::OutOfTime => 0.0,
-    }
-}
-
 /// Checks that every agent saw frames 0..=frames of an episode, the last
 /// one terminal with the final reward; returns the kicker frames seen.
 fn check_observations(seen: &[Vec<AgentFrame>], result: EpisodeResult, mode: Mode) -> u64 {
@@ -393,15 +385,16 @@ fn check_observations(seen: &[Vec<AgentFrame>], result: EpisodeResult, mode: Mod
     for (i, obs) in seen.iter().enumerate() {
         assert_eq!(obs.len() as u32, result.frames + 1, "agent {i}");
         let (last, rest) = obs.split_last().expect("observations");
-        assert!(last.terminal && !last.can_kick);
-        assert_eq!(last.reward, reward(result.outcome));
+        assert!(last.is_terminal() && !last.can_kick);
+        assert_eq!(last.reward, result.outcome.reward());
+        assert_eq!(last.outcome, Some(result.outcome));
         assert_eq!(rest[0].reward, 0.0);
         for o in obs {
             assert_eq!((o.agent as usize, o.mode), (i, mode));
             assert_eq!(o.positions.len(), AGENTS as usize);
             assert!(o.state.iter().all(|x| (-1.0..=1.0).contains(x)));
         }
-        assert!(rest.iter().all(|o| !o.terminal));
+        assert!(rest.iter().all(|o| !o.is_terminal()));
         kicks += rest.iter().filter(|o| o.can_kick).count() as u64;
     }
     kicks

@@ -36,6 +36,19 @@ impl Outcome {
             Outcome::InGame | Outcome::OutOfTime => 0.0,
         }
     }
+
+    /// How the episode ended, as the messages say it; `None` while it goes
+    /// on.
+    pub fn ended(self) -> Option<proto::EpisodeOutcome> {
+        use proto::EpisodeOutcome as Ended;
+        match self {
+            Outcome::InGame => None,
+            Outcome::Goal => Some(Ended::Goal),
+            Outcome::Captured => Some(Ended::Captured),
+            Outcome::OutOfBounds => Some(Ended::OutOfBounds),
+            Outcome::OutOfTime => Some(Ended::OutOfTime),
+        }
+    }
 }
 
 /// The referee's memory within an episode.

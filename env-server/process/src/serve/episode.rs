@@ -8,8 +8,8 @@
 use env_server::MAX_OFFENSE;
 use env_server::{EnvConfig, Outcome, RunEnvs};
 use proto::{
-    Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeOutcome, EpisodeResult, Features,
-    Header, Mode, Simulator,
+    Action, ActionChoice, AgentFrame, Body, Envelope, EpisodeResult, Features, Header, Mode,
+    Simulator,
 };
 
 use super::real_hfo::{RealHfo, RealHfoInstall};
@@ -205,7 +205,7 @@ impl Episode {
 
     /// Agent `agent`'s observation of the current frame, with HFO's
     /// features if it is given them. The terminal frame carries the final
-    /// reward and no decision.
+    /// reward, how the episode ended and no decision.
     pub fn observe(&self, env: &dyn ServedSimulator, agent: usize) -> AgentFrame {
         let features = match self.features >> agent & 1 {
             1 => env.features(agent).unwrap_or_default(),
@@ -219,7 +219,7 @@ impl Episode {
             can_kick: self.kickers & (1 << agent) != 0,
             positions: env.positions(),
             reward: self.reward,
-            terminal: self.is_over(),
+            outcome: self.outcome.ended(),
         }
     }
 
@@ -260,15 +260,8 @@ impl Episode {
 
     /// The result, once the episode is over.
     pub fn result(&self) -> Option<EpisodeResult> {
-        let outcome = match self.outcome {
-            Outcome::InGame => return None,
-            Outcome::Goal => EpisodeOutcome::Goal,
-            Outcome::Captured => EpisodeOutcome::Captured,
-            Outcome::OutOfBounds => EpisodeOutcome::OutOfBounds,
-            Outcome::OutOfTime => EpisodeOutcome::OutOfTime,
-        };
         Some(EpisodeResult {
-            outcome,
+            outcome: self.outcome.ended()?,
             frames: self.header.frame,
             actions_timed_out: self.timed_out,
         })
@@ -411,8 +404,8 @@ mod tests {
                 let expected: Vec<State> = pending.drain(..).map(|(_, s)| s).collect();
                 assert_eq!(states, expected);
                 let last = frames.last().unwrap();
-                assert!(frames[..frames.len() - 1].iter().all(|o| !o.terminal));
-                assert_eq!(last.terminal, e.is_over());
+                assert!(frames[..frames.len() - 1].iter().all(|o| !o.is_terminal()));
+                assert_eq!(last.is_terminal(), e.is_over());
                 messages += 1;
             }
             if e.is_over() {
@@ -450,7 +443,7 @@ mod tests {
         };
         let (_, frames) = decoded(&sent, 1);
         let obs = &frames[0];
-        assert!(obs.terminal && !obs.can_kick);
+        assert!(obs.is_terminal() && !obs.can_kick);
         assert_eq!(obs.reward, direct.outcome().reward());
     }
 
