@@ -10,6 +10,7 @@ use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
 use crate::config_error::AgentConfigError;
 use crate::fidelity::{Fidelity, Profile};
+use crate::learner_settings::LearnerSettings;
 use crate::method::{MethodSettings, Table};
 use crate::strategy::AdvisingStrategy;
 
@@ -88,9 +89,22 @@ impl AlgorithmSettings {
         self.settings.validate()
     }
 
-    /// Its decisions for one agent, under the fidelity rules `fidelity`.
+    /// Its decisions for one agent of its algorithm's default learner,
+    /// under the fidelity rules `fidelity` (a method that builds on the
+    /// learner's settings needs [`build_for`](Self::build_for)).
     pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
-        self.settings.strategy(fidelity)
+        let learner = LearnerSettings::for_need(self.algorithm.learner_need());
+        self.build_for(fidelity, &learner)
+    }
+
+    /// Its decisions for one agent learning with `learner`, under the
+    /// fidelity rules `fidelity`.
+    pub fn build_for(
+        &self,
+        fidelity: &Fidelity,
+        learner: &LearnerSettings,
+    ) -> Box<dyn AdvisingStrategy> {
+        self.settings.strategy(fidelity, learner)
     }
 
     /// Checks the agent ids its reachable set names against the team size.

@@ -14,6 +14,7 @@ mod ad_hoc;
 mod alone;
 mod budgeted;
 mod episode_sharing;
+mod imitation;
 mod peers;
 mod psaf;
 mod rcmp;
