@@ -89,14 +89,6 @@ impl AlgorithmSettings {
         self.settings.validate()
     }
 
-    /// Its decisions for one agent of its algorithm's default learner,
-    /// under the fidelity rules `fidelity` (a method that builds on the
-    /// learner's settings needs [`build_for`](Self::build_for)).
-    pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
-        let learner = LearnerSettings::for_need(self.algorithm.learner_need());
-        self.build_for(fidelity, &learner)
-    }
-
     /// Its decisions for one agent learning with `learner`, under the
     /// fidelity rules `fidelity`.
     pub fn build_for(

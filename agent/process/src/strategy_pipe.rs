@@ -8,7 +8,7 @@ use std::cell::RefCell;
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, GiveContext, Outcome, Replies, VoteTies,
+    AskContext, GiveContext, Outcome, Replies, ReuseContext, VoteTies,
 };
 use proto::{Action, SharedValues};
 use serde::Deserialize;
@@ -169,14 +169,14 @@ impl AdvisingStrategy for PipeStrategy {
 
     fn reuse(
         &mut self,
-        key: u64,
+        at: &ReuseContext<'_>,
         learner: &mut dyn FnMut() -> ActionValues,
         _: &mut AgentRng,
     ) -> Option<Action> {
         if !self.traits.reuses {
             return None;
         }
-        let request = json!({ "op": "reuse", "key": key, "values": values(&learner()) });
+        let request = json!({ "op": "reuse", "key": at.key, "values": values(&learner()) });
         let Chosen { action } = self.query("reuse", request);
         action.map(|a| self.kick("reuse", a))
     }

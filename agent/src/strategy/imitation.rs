@@ -39,25 +39,19 @@
 //! Every draw comes from the agent's generator (the episode's reuse draw
 //! and the cloning network's seed, drawn once) or from the network's own
 //! generator, seeded from it.
-//!
-//! Not registered yet (it waits for the seam to carry the observation to
-//! the reuse decision): see the note in [`Imitating`].
-#![allow(
-    dead_code,
-    reason = "not registered until the seam carries the observation to reuse"
-)]
 
 use proto::{Action, State};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies};
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Replies, ReuseContext};
 use crate::advice::{PAPER_BUDGET, Reachable, reachable_set};
 use crate::advice_counters::AdviceCounters;
 use crate::cloning::{Cloning, CloningSettings};
 use crate::config_error::{AgentConfigError, require_non_negative};
 use crate::exchange::Advice;
 use crate::fidelity::{Fidelity, Profile, VoteTies};
+use crate::learner::ActionValues;
 use crate::learner_settings::{DqnSettings, LearnerSettings};
 use crate::method::{LearnerNeed, Method};
 use crate::selection::{AgentRng, chance, majority};
@@ -478,12 +472,18 @@ struct Imitating {
 }
 
 impl AdvisingStrategy for Imitating {
-    // Not wired yet: the framework's `reuse` hook does not carry the
-    // observation, the counters or the training episodes. Branch
-    // `air-wired` adds them (`ReuseContext`) and implements it as
-    // `self.air.step(observation(at.state, at.features),
-    // at.counters.ask_spent, at.training_episodes, rng)`; until then the
-    // method is not registered in `ALGORITHMS`.
+    /// The round due, then the collection rule, then, where it does not
+    /// ask, the imitated kick in a reuse episode where the cloning
+    /// network is sure.
+    fn reuse(
+        &mut self,
+        at: &ReuseContext<'_>,
+        _values: &mut dyn FnMut() -> ActionValues,
+        rng: &mut AgentRng,
+    ) -> Option<Action> {
+        let x = observation(at.state, at.features);
+        (self.air).step(x, at.counters.ask_spent, at.training_episodes, rng)
+    }
 
     /// As the step in hand decided (AIR's collection rule).
     fn asks(&mut self, _at: &AskContext<'_>, _rng: &mut AgentRng) -> bool {
