@@ -21,7 +21,7 @@ use crate::selection::{ACTIONS, AgentRng, RANDOM_DRAW, greedy_first, greedy_rand
 use crate::states::StateIndex;
 use crate::strategy::{
     Adopted, AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies,
-    Sends,
+    ReuseContext, Sends,
 };
 use crate::tiles::{Tiling, TilingParams};
 
@@ -223,7 +223,9 @@ impl Agent {
         }
         Ok(Self {
             link: config.network.map(|n| Link::new(n, seed)),
-            strategy: config.algorithm.build(&config.fidelity),
+            strategy: config
+                .algorithm
+                .build_for(&config.fidelity, &config.learner),
             id,
             team_size,
             config,
@@ -910,9 +912,16 @@ impl Agent {
 
     /// The advice its strategy reuses instead of asking, if any.
     fn reused(&mut self, key: u64, at: Seen<'_>) -> Option<Action> {
+        let context = ReuseContext {
+            key,
+            state: at.state,
+            features: at.features,
+            training_episodes: self.training_episodes,
+            counters: &self.counters,
+        };
         let learner = &mut self.learner;
         let mut values = || learner.values(at);
-        let reused = self.strategy.reuse(key, &mut values, &mut self.rng);
+        let reused = self.strategy.reuse(&context, &mut values, &mut self.rng);
         self.outcomes.reused += u64::from(reused.is_some());
         reused
     }

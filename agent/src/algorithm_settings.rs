@@ -10,6 +10,7 @@ use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
 use crate::config_error::AgentConfigError;
 use crate::fidelity::{Fidelity, Profile};
+use crate::learner_settings::LearnerSettings;
 use crate::method::{MethodSettings, Table};
 use crate::strategy::AdvisingStrategy;
 
@@ -88,9 +89,14 @@ impl AlgorithmSettings {
         self.settings.validate()
     }
 
-    /// Its decisions for one agent, under the fidelity rules `fidelity`.
-    pub fn build(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
-        self.settings.strategy(fidelity)
+    /// Its decisions for one agent learning with `learner`, under the
+    /// fidelity rules `fidelity`.
+    pub fn build_for(
+        &self,
+        fidelity: &Fidelity,
+        learner: &LearnerSettings,
+    ) -> Box<dyn AdvisingStrategy> {
+        self.settings.strategy(fidelity, learner)
     }
 
     /// Checks the agent ids its reachable set names against the team size.

@@ -113,14 +113,15 @@ impl AgentConfig {
             ));
         }
         // An agent that never asks (an expert's ask budget of 0) needs no
-        // uncertainty.
+        // uncertainty nor network.
         let asks = self.algorithm.setting("ask_budget") != Some(0.into());
-        if asks && !self.learner.meets(algorithm.learner_need()) {
+        let need = algorithm.learner_need();
+        if asks && !self.learner.meets(need) {
             return Err(AgentConfigError::new(
                 "learner",
                 format!(
-                    "algorithm {algorithm} needs a learner that measures its uncertainty \
-                     (ensemble, or dqn with heads of 2 or more), not {}",
+                    "algorithm {algorithm} needs {}, not {}",
+                    need.expected(),
                     self.learner.name()
                 ),
             ));

@@ -261,11 +261,12 @@ impl LearnerSettings {
 
     /// The default learner of an algorithm that needs `need`: SARSA(lambda),
     /// or for one that asks by uncertainty the DQN with 5 heads (RCMP's
-    /// learner in its paper; the tabular `ensemble` is named).
+    /// learner in its paper; the tabular `ensemble` is named), or for one
+    /// that needs a network the DQN (one head).
     pub fn for_need(need: LearnerNeed) -> Self {
         let name = match need {
             LearnerNeed::Values => "sarsa",
-            LearnerNeed::Uncertainty => "dqn",
+            LearnerNeed::Uncertainty | LearnerNeed::Network => "dqn",
         };
         Self::named_for(name, need).expect("a learner of NAMES")
     }
@@ -279,10 +280,12 @@ impl LearnerSettings {
         }
     }
 
-    /// Whether it measures its uncertainty in a state.
+    /// Whether it meets `need`: it measures its uncertainty in a state, or
+    /// it is a network.
     pub fn meets(&self, need: LearnerNeed) -> bool {
         match need {
             LearnerNeed::Values => true,
+            LearnerNeed::Network => matches!(self, LearnerSettings::Dqn(_)),
             LearnerNeed::Uncertainty => match self {
                 LearnerSettings::Sarsa => false,
                 LearnerSettings::Ensemble { .. } => true,

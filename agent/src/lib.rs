@@ -102,9 +102,10 @@ pub use proto::{EpisodeOutcome, Features, MAX_BATCH, Mode};
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
-    AdHoc, Adopted, AdviceReuse, AdvisingStrategy, AskContext, Confidence, EarlyAdvising,
-    EndContext, EpisodeSharing, GiveContext, NoSettings, Outcome, OwnChoice, PeerLearning, Psaf,
-    PsafShares, RandomAdvising, Rcmp, Replies, ReuseRule, Sends, Torrey,
+    AdHoc, Adopted, AdviceImitation, AdviceReuse, AdvisingStrategy, AskContext, Collection,
+    Confidence, EarlyAdvising, EndContext, EpisodeSharing, GiveContext, NoSettings, Outcome,
+    OwnChoice, PeerLearning, Psaf, PsafShares, RandomAdvising, Rcmp, Replies, ReuseContext,
+    ReuseRule, Sends, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

@@ -14,6 +14,7 @@ use serde_json::{Map, Value};
 
 use crate::config_error::AgentConfigError;
 use crate::fidelity::{Fidelity, Profile};
+use crate::learner_settings::LearnerSettings;
 use crate::strategy::AdvisingStrategy;
 
 /// A method's settings as a flat table: key to value.
@@ -27,6 +28,22 @@ pub enum LearnerNeed {
     /// Also its uncertainty in a state (an ensemble's): the algorithm asks
     /// by uncertainty.
     Uncertainty,
+    /// A neural network over the agent's observation (the DQN): the
+    /// algorithm learns a network of its own from what the learner reads.
+    Network,
+}
+
+impl LearnerNeed {
+    /// What a learner must be to meet it, as an error says.
+    pub fn expected(self) -> &'static str {
+        match self {
+            LearnerNeed::Values => "any learner",
+            LearnerNeed::Uncertainty => {
+                "a learner that measures its uncertainty (ensemble, or dqn with heads of 2 or more)"
+            }
+            LearnerNeed::Network => "a neural learner (dqn)",
+        }
+    }
 }
 
 /// An advising method: everything the framework needs to know of it.
@@ -66,6 +83,17 @@ pub(crate) trait Method: 'static {
 
     /// Its decisions for one agent, under the fidelity rules `fidelity`.
     fn strategy(settings: &Self::Settings, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy>;
+
+    /// Its decisions for one agent learning with `learner`: those of
+    /// [`strategy`](Self::strategy), unless they build on the learner's
+    /// settings (a network of the method's own beside the learner's).
+    fn strategy_for(
+        settings: &Self::Settings,
+        fidelity: &Fidelity,
+        _learner: &LearnerSettings,
+    ) -> Box<dyn AdvisingStrategy> {
+        Self::strategy(settings, fidelity)
+    }
 }
 
 /// A [`Method`] as the list of algorithms holds it: its constants and its
@@ -111,8 +139,9 @@ pub(crate) trait MethodSettings: Debug + Send + Sync {
     fn table(&self) -> Table;
     /// The first invalid setting, naming its key.
     fn validate(&self) -> Result<(), AgentConfigError>;
-    /// Its decisions for one agent.
-    fn strategy(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy>;
+    /// Its decisions for one agent learning with `learner`.
+    fn strategy(&self, fidelity: &Fidelity, learner: &LearnerSettings)
+    -> Box<dyn AdvisingStrategy>;
     /// A copy.
     fn boxed_clone(&self) -> Box<dyn MethodSettings>;
     /// The typed settings, to downcast.
@@ -145,8 +174,12 @@ impl<M: Method> MethodSettings for Typed<M> {
         M::validate(&self.0)
     }
 
-    fn strategy(&self, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
-        M::strategy(&self.0, fidelity)
+    fn strategy(
+        &self,
+        fidelity: &Fidelity,
+        learner: &LearnerSettings,
+    ) -> Box<dyn AdvisingStrategy> {
+        M::strategy_for(&self.0, fidelity, learner)
     }
 
     fn boxed_clone(&self) -> Box<dyn MethodSettings> {

@@ -14,6 +14,7 @@ mod ad_hoc;
 mod alone;
 mod budgeted;
 mod episode_sharing;
+mod imitation;
 mod peers;
 mod psaf;
 mod rcmp;
@@ -28,13 +29,14 @@ pub use ad_hoc::{AdHoc, Confidence};
 pub use alone::NoSettings;
 pub use budgeted::{EarlyAdvising, RandomAdvising};
 pub use episode_sharing::EpisodeSharing;
+pub use imitation::{AdviceImitation, Collection};
 pub use peers::PeerLearning;
 pub use psaf::{Psaf, PsafShares};
 pub use rcmp::Rcmp;
 pub use reuse::{AdviceReuse, ReuseRule};
 pub use seam::{
     Adopted, AdvisingStrategy, AskContext, EndContext, GiveContext, Outcome, OwnChoice, Replies,
-    Sends,
+    ReuseContext, Sends,
 };
 pub use torrey::Torrey;
 
@@ -54,5 +56,6 @@ pub(crate) static ALGORITHMS: &[Registration] = &[
     Registration::of::<peers::PeerLearningMethod>(),
     Registration::of::<rcmp::RcmpMethod>(),
     Registration::of::<psaf::PsafMethod>(),
+    Registration::of::<imitation::AdviceImitationMethod>(),
     Registration::of::<alone::External>(),
 ];

@@ -108,6 +108,39 @@ fn advice_reuse_plays_kept_advice_without_a_message() {
 }
 
 #[test]
+fn advice_imitation_collects_advice_and_reuses_its_imitation() {
+    let tmp = tempfile::tempdir().unwrap();
+    // A budget of 40 (an imitation round every 4 samples), short rounds,
+    // and reuse in half the episodes throughout; small DQNs.
+    let extra = "ask_budget = 40\ninitial_iterations_per_advice = 2.0\n\
+                 periodic_iterations_per_advice = 1.0\nreuse_decay_from = 1000\n\
+                 reuse_decay_to = 1000\nhidden = [16]\nwarmup = 32\n";
+    for transport in ["in-process", "zenoh"] {
+        let agents = played(
+            tmp.path(),
+            transport,
+            "imitation",
+            "advice-imitation",
+            extra,
+        );
+        for agent in &agents {
+            let spent = agent["ask_spent"].as_u64().unwrap();
+            // Its first imitation round comes after 4 samples.
+            assert!((4..=40).contains(&spent), "{transport}: {agent}");
+        }
+        let reused = team_total(&agents, "reused_advice");
+        let requests = team_total(&agents, "advice_requests");
+        let outcomes: u64 = ["answered", "declined", "futile", "lost"]
+            .iter()
+            .map(|o| team_total(&agents, &format!("{o}_requests")))
+            .sum();
+        assert!(reused > 0, "{transport}: nothing reused: {agents:?}");
+        // Reusing the imitation sends nothing.
+        assert_eq!(outcomes, requests, "{transport}: {agents:?}");
+    }
+}
+
+#[test]
 fn psaf_partakers_take_the_values_sharers_more_confident_send() {
     let tmp = tempfile::tempdir().unwrap();
     for transport in ["in-process", "zenoh"] {

@@ -8,7 +8,8 @@ use std::cell::RefCell;
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, EndContext, GiveContext, Outcome, Replies, Sends, Share, Transition, VoteTies,
+    AskContext, EndContext, GiveContext, Outcome, Replies, ReuseContext, Sends, Share, Transition,
+    VoteTies,
 };
 use proto::{Action, SharedValues, State};
 use serde::Deserialize;
@@ -221,14 +222,14 @@ impl AdvisingStrategy for PipeStrategy {
 
     fn reuse(
         &mut self,
-        key: u64,
+        at: &ReuseContext<'_>,
         learner: &mut dyn FnMut() -> ActionValues,
         _: &mut AgentRng,
     ) -> Option<Action> {
         if !self.traits.reuses {
             return None;
         }
-        let request = json!({ "op": "reuse", "key": key, "values": values(&learner()) });
+        let request = json!({ "op": "reuse", "key": at.key, "values": values(&learner()) });
         let Chosen { action } = self.query("reuse", request);
         action.map(|a| self.kick("reuse", a))
     }

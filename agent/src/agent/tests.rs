@@ -2,12 +2,13 @@ use super::*;
 use crate::advice::Reachable;
 use crate::exchange::{Advice, Answer, Answers, Isolated, ValuesAdvice};
 use crate::fidelity::{Fidelity, Profile};
+use crate::learner_settings::LearnerSettings;
 use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
 use crate::strategy::{
-    AdHoc, AdviceReuse, EarlyAdvising, EpisodeSharing, Psaf, PsafShares, RandomAdvising, Rcmp,
-    ReuseRule, Torrey,
+    AdHoc, AdviceImitation, AdviceReuse, EarlyAdvising, EpisodeSharing, Psaf, PsafShares,
+    RandomAdvising, Rcmp, ReuseRule, Torrey,
 };
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
@@ -608,6 +609,57 @@ fn same_seed_same_run_bit_for_bit() {
             "{strategy:?}"
         );
     }
+}
+
+/// A team of three advice-imitation agents with a budget of 40 and short
+/// imitation rounds, on small DQNs.
+fn imitating(seed: u64) -> Team {
+    let mut c = with("advice-imitation", |s: &mut AdviceImitation| {
+        s.ask_budget = 40;
+        s.initial_iterations_per_advice = 2.0;
+        s.periodic_iterations_per_advice = 1.0;
+    });
+    let LearnerSettings::Dqn(dqn) = &mut c.learner else {
+        panic!(
+            "advice-imitation learns with the DQN by default: {:?}",
+            c.learner
+        );
+    };
+    dqn.hidden = vec![16];
+    dqn.warmup = 32;
+    let agents = (0..3).map(|i| Agent::new(i, 3, c.clone(), seed + i as u64).unwrap());
+    Team::new(agents.collect()).unwrap()
+}
+
+#[test]
+fn advice_imitation_collects_imitates_and_reuses_for_free() {
+    let run = |seed| {
+        let mut t = imitating(seed);
+        let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 150, Mode::Training);
+        let counters: Vec<_> = t.agents().iter().map(|a| *a.counters()).collect();
+        let reused: Vec<u64> = t
+            .agents()
+            .iter()
+            .map(|a| a.request_outcomes().reused)
+            .collect();
+        (log, counters, reused)
+    };
+    let (log, counters, reused) = run(5);
+    for c in &counters {
+        // It asked unconditionally for its first 4 samples (a tenth of the
+        // budget), then only where its imitation was unsure, and answered
+        // its teammates.
+        assert!(c.ask_spent >= 4 && c.ask_spent <= 40, "{c:?}");
+        assert!(
+            c.advice_requests >= c.ask_spent && c.advice_given > 0,
+            "{c:?}"
+        );
+    }
+    // Reuse comes only after an imitation round, in reuse episodes, and
+    // spends nothing.
+    assert!(reused.iter().all(|&r| r > 0), "reused {reused:?}");
+    // One seed, one run.
+    assert_eq!(run(5), (log, counters, reused));
 }
 
 #[test]

@@ -10,7 +10,7 @@ use proto::Action;
 use serde::{Deserialize, Serialize};
 
 use super::ad_hoc::{AdHoc, AdHocAdvising, Confidence};
-use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies};
+use super::seam::{AdvisingStrategy, AskContext, GiveContext, Outcome, Replies, ReuseContext};
 use crate::advice::Reachable;
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::{AgentConfigError, require_non_negative, require_unit};
@@ -164,10 +164,11 @@ impl AdvisingStrategy for ReusingAdvice {
     /// that shrinks at every reuse.
     fn reuse(
         &mut self,
-        key: u64,
+        at: &ReuseContext<'_>,
         values: &mut dyn FnMut() -> ActionValues,
         rng: &mut AgentRng,
     ) -> Option<Action> {
+        let key = at.key;
         let kept = self.kept.get_mut(&key)?;
         let threshold = self.rule.q_change_threshold;
         match self.rule.reuse_rule {
@@ -286,7 +287,15 @@ mod tests {
             v.q[Shoot.index()] = q;
             v
         };
-        s.reuse(7, &mut values, &mut AgentRng::seed_from_u64(1))
+        let counters = AdviceCounters::default();
+        let at = ReuseContext {
+            key: 7,
+            state: &[0.0; 6],
+            features: &[],
+            training_episodes: 1,
+            counters: &counters,
+        };
+        s.reuse(&at, &mut values, &mut AgentRng::seed_from_u64(1))
             .is_some()
     }
 

@@ -37,6 +37,23 @@ pub struct AskContext<'a> {
     pub values: Option<ActionValues>,
 }
 
+/// What an advisee knows at a training step with the ball, before it
+/// decides whether to ask: where it is and how far it got.
+#[derive(Clone, Copy, Debug)]
+pub struct ReuseContext<'a> {
+    /// The key of the state (the tile-coded state).
+    pub key: u64,
+    /// The state: the paper's features.
+    pub state: &'a State,
+    /// HFO's features of it, where its observations carry them (empty
+    /// otherwise).
+    pub features: &'a [f32],
+    /// Training episodes finished so far.
+    pub training_episodes: u64,
+    /// The agent's counters.
+    pub counters: &'a AdviceCounters,
+}
+
 /// What an advisor knows when it decides whether to answer.
 #[derive(Clone, Copy, Debug)]
 pub struct GiveContext<'a> {
@@ -164,12 +181,12 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     }
 
     /// Advisee: an action to play without asking at a training step with
-    /// the ball in the state of key `key` (advice it stored and reuses);
+    /// the ball, `at` (advice it stored, or imitated, and reuses);
     /// `values()` asks its learner for its values there, only if needed;
     /// `None` goes on to [`asks`](Self::asks).
     fn reuse(
         &mut self,
-        _key: u64,
+        _at: &ReuseContext<'_>,
         _values: &mut dyn FnMut() -> ActionValues,
         _rng: &mut AgentRng,
     ) -> Option<Action> {

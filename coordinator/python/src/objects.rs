@@ -12,8 +12,8 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, EndContext, Experience, GiveContext, Learner, Outcome, Replies, Seen, Sends, Share,
-    Step, Transition, VoteTies,
+    AskContext, EndContext, Experience, GiveContext, Learner, Outcome, Replies, ReuseContext, Seen,
+    Sends, Share, Step, Transition, VoteTies,
 };
 use coordinator::plugin::{Plugin, PluginSpec, PluginStart};
 use proto::{Action, SharedValues};
@@ -472,13 +472,14 @@ impl AdvisingStrategy for PythonStrategy {
 
     fn reuse(
         &mut self,
-        key: u64,
+        at: &ReuseContext<'_>,
         learner: &mut dyn FnMut() -> ActionValues,
         _: &mut AgentRng,
     ) -> Option<Action> {
         if !self.traits.reuses {
             return None;
         }
+        let key = at.key;
         let v = values(&learner());
         Python::attach(|py| {
             let action: Option<usize> = self.object.answer(py, "reuse", (key, v))?;
