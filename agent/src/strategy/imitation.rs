@@ -111,6 +111,11 @@ pub struct AdviceImitation {
     /// Iterations of the periodic rounds per unit of `ask_budget`, finite
     /// and >= 0 (default 2: the paper's 50,000 for 25,000).
     pub periodic_iterations_per_advice: f64,
+    /// The most iterations of a round trained at one step with the ball,
+    /// at least 1 (default 200, about 60 ms here): a round is spread over
+    /// the steps that follow it, so that an agent process answers within
+    /// the env's step timeout; the authors train a round at once.
+    pub iterations_per_step: u64,
 }
 
 impl Default for AdviceImitation {
@@ -124,6 +129,7 @@ impl Default for AdviceImitation {
             reuse_decay_to: 2000,
             initial_iterations_per_advice: PAPER_INITIAL_ITERATIONS / PAPER_AIR_BUDGET,
             periodic_iterations_per_advice: PAPER_PERIODIC_ITERATIONS / PAPER_AIR_BUDGET,
+            iterations_per_step: 200,
         }
     }
 }
@@ -139,6 +145,12 @@ impl AdviceImitation {
             "periodic_iterations_per_advice",
             self.periodic_iterations_per_advice,
         )?;
+        if self.iterations_per_step == 0 {
+            return Err(AgentConfigError::new(
+                "iterations_per_step",
+                "must be at least 1 (the iterations of a round trained at one step)",
+            ));
+        }
         if self.reuse_decay_to < self.reuse_decay_from {
             return Err(AgentConfigError::new(
                 "reuse_decay_to",
@@ -333,6 +345,8 @@ pub(crate) struct Imitator {
     step: Option<(Vec<f32>, bool)>,
     /// The observation of a request in flight, kept for its advice.
     pending: Option<Vec<f32>>,
+    /// The iterations left of the round in progress.
+    owed: Option<u64>,
 }
 
 impl Imitator {
@@ -358,6 +372,7 @@ impl Imitator {
             reuse_episode: None,
             step: None,
             pending: None,
+            owed: None,
         }
     }
 
@@ -397,13 +412,7 @@ impl Imitator {
             self.seed = Some(rng.random());
         }
         self.schedule.stepped();
-        if let Some(iterations) = self.schedule.due()
-            && let Some(cloning) = self.cloning.as_mut()
-        {
-            cloning.train(iterations);
-            cloning.autoset_threshold(THRESHOLD_PERCENTILE);
-            self.schedule.round_done();
-        }
+        self.imitate();
         let mut uncertainty = None;
         let asks = spent < self.settings.ask_budget
             && match self.settings.collection {
@@ -432,6 +441,23 @@ impl Imitator {
         };
         self.step = Some((x, asks));
         reused
+    }
+
+    /// The round due trains, at most `iterations_per_step` of its
+    /// iterations at this step; once all are done, the threshold is
+    /// autoset and the round counts.
+    fn imitate(&mut self) {
+        let owed = self.owed.or_else(|| self.schedule.due());
+        let Some((owed, cloning)) = owed.zip(self.cloning.as_mut()) else {
+            return;
+        };
+        let now = owed.min(self.settings.iterations_per_step);
+        cloning.train(now);
+        self.owed = (owed > now).then_some(owed - now);
+        if self.owed.is_none() {
+            cloning.autoset_threshold(THRESHOLD_PERCENTILE);
+            self.schedule.round_done();
+        }
     }
 
     /// Whether the step in hand asks (as [`step`](Self::step) decided);
@@ -642,6 +668,30 @@ mod tests {
     }
 
     #[test]
+    fn a_round_is_spread_over_the_steps_that_follow() {
+        // A budget of 10: the first round (80 iterations) after one sample,
+        // 30 iterations at most per step: done at the third step.
+        let s = AdviceImitation {
+            ask_budget: 10,
+            iterations_per_step: 30,
+            ..AdviceImitation::default()
+        };
+        let mut air = Imitator::new(&s, &[8]);
+        let mut rng = AgentRng::seed_from_u64(3);
+        let x = vec![0.1; 6];
+        air.step(x.clone(), 0, 0, &mut rng);
+        assert!(air.asks());
+        air.advised(Some(Action::Shoot));
+        for _ in 0..2 {
+            air.step(x.clone(), 1, 0, &mut rng);
+            assert!(!air.schedule().imitated());
+        }
+        air.step(x, 1, 0, &mut rng);
+        assert!(air.schedule().imitated());
+        assert_eq!(air.owed, None);
+    }
+
+    #[test]
     fn it_reads_hfos_features_where_given_else_the_six() {
         let state = [0.5, -0.25, 0.0, 1.0, -1.0, 0.125];
         assert_eq!(
@@ -691,6 +741,13 @@ mod tests {
         );
         assert_eq!(
             key(AdviceImitation {
+                iterations_per_step: 0,
+                ..d()
+            }),
+            "iterations_per_step"
+        );
+        assert_eq!(
+            key(AdviceImitation {
                 reachable: Reachable::WithinDistance(-1.0),
                 ..d()
             }),
@@ -713,6 +770,8 @@ mod tests {
             ask_budget: budget,
             initial_iterations_per_advice: 300.0 / budget as f64,
             periodic_iterations_per_advice: 50.0 / budget as f64,
+            // A round at once, as the authors train it.
+            iterations_per_step: 300,
             ..AdviceImitation::default()
         }
     }
