@@ -39,9 +39,9 @@ use proto::Action;
 use rand::{Rng, SeedableRng};
 use serde::{Deserialize, Serialize};
 
-use crate::dqn::{KICKS, flat, kick_slot, single_threaded_products};
+use crate::dqn::{KICKS, kick_slot};
 use crate::learner_settings::DqnSettings;
-use crate::net;
+use crate::net::{self, flat, single_threaded_products};
 use crate::selection::AgentRng;
 
 /// Adam's constants: TensorFlow's beta defaults and the authors' epsilon

@@ -13,8 +13,6 @@
 //! backend with the matrix product's threading turned off), so a seed gives
 //! the same bits whatever the study's threads.
 
-use std::sync::Once;
-
 use candle_core::{D, DType, Device, Tensor, Var};
 use proto::{Action, Features};
 use rand::{Rng, SeedableRng};
@@ -22,6 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::learner::{ActionValues, Experience, Learner, Seen};
 use crate::learner_settings::{DqnSettings, ObservationSet};
+use crate::net::{self, flat, single_threaded_products};
 use crate::selection::{AgentRng, epsilon_greedy};
 
 /// The kick actions the network values, in its output order.
@@ -217,23 +216,6 @@ struct Adam {
     t: u64,
 }
 
-/// `tensors` flattened and laid end to end.
-pub(crate) fn flat(tensors: &[Tensor]) -> candle_core::Result<Tensor> {
-    let each = tensors.iter().map(Tensor::flatten_all);
-    Tensor::cat(&each.collect::<candle_core::Result<Vec<_>>>()?, 0)
-}
-
-/// The parts of `flat` in the shapes of `params`, in their order.
-pub(crate) fn parts(flat: &Tensor, params: &[Var]) -> candle_core::Result<Vec<Tensor>> {
-    let mut at = 0;
-    let mut parts = Vec::with_capacity(params.len());
-    for p in params {
-        parts.push(flat.narrow(0, at, p.elem_count())?.reshape(p.shape())?);
-        at += p.elem_count();
-    }
-    Ok(parts)
-}
-
 impl Adam {
     fn new(lr: f64, params: &[Var]) -> candle_core::Result<Self> {
         let n = params.iter().map(|p| p.elem_count()).sum::<usize>();
@@ -255,22 +237,13 @@ impl Adam {
         self.t += 1;
         let t = self.t as i32;
         let (c1, c2) = (1.0 - BETA1.powi(t), 1.0 - BETA2.powi(t));
-        let g = (params.iter())
-            .map(|p| grads.get(p.as_tensor()).cloned())
-            .collect::<Option<Vec<_>>>()
-            .ok_or_else(|| candle_core::Error::msg("a parameter without a gradient"))?;
-        // Detached: a variable's gradient holds the step's graph, which
-        // the moments would otherwise chain from step to step.
-        let g = flat(&g)?.detach();
+        let g = net::gradient(params, grads)?;
         self.m = ((&self.m * BETA1)? + (&g * (1.0 - BETA1))?)?;
         self.v = ((&self.v * BETA2)? + (g.sqr()? * (1.0 - BETA2))?)?;
         let m_hat = (&self.m / c1)?;
         let v_hat = (&self.v / c2)?;
         let step = ((m_hat / (v_hat.sqrt()? + ADAM_EPSILON)?)? * self.lr)?;
-        for (p, step) in params.iter().zip(parts(&step, params)?) {
-            p.set(&(p.as_tensor() - step)?)?;
-        }
-        Ok(())
+        net::descend(params, &step)
     }
 }
 
@@ -296,15 +269,6 @@ fn forward<'a>(
         }
     }
     Ok(h)
-}
-
-/// Turns off the threading of the matrix products candle's CPU backend
-/// runs (the `gemm` crate's, above a size): a DQN's products are small, a
-/// study already runs its runs on its threads, and one thread per product
-/// keeps every sum in one order.
-pub(crate) fn single_threaded_products() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| gemm_common::gemm::set_threading_threshold(usize::MAX));
 }
 
 /// The agent's Double DQN (or ensemble of heads on one torso).
@@ -362,27 +326,12 @@ impl Dqn {
         }
     }
 
-    /// PyTorch's default initialisation of a linear layer, drawn from `rng`:
-    /// weights and biases uniform in +-1/sqrt(fan_in).
+    /// Its network's parameters, drawn from `rng` ([`net::layers`]).
     fn initial(settings: &DqnSettings, width: usize, heads: usize, rng: &mut AgentRng) -> Vec<Var> {
         let mut sizes = vec![width];
         sizes.extend(settings.hidden.iter().map(|&w| w as usize));
         sizes.push(heads * KICKS.len());
-        let mut params = Vec::with_capacity(2 * (sizes.len() - 1));
-        for pair in sizes.windows(2) {
-            let (fan_in, out) = (pair[0], pair[1]);
-            let bound = 1.0 / (fan_in as f32).sqrt();
-            let mut draw = |n: usize| -> Vec<f32> {
-                (0..n)
-                    .map(|_| (rng.random::<f32>() * 2.0 - 1.0) * bound)
-                    .collect()
-            };
-            let w = Var::from_vec(draw(fan_in * out), (fan_in, out), &Device::Cpu);
-            let b = Var::from_vec(draw(out), out, &Device::Cpu);
-            params.push(w.expect("a weight of its own shape"));
-            params.push(b.expect("a bias of its own shape"));
-        }
-        params
+        net::layers(&sizes, rng)
     }
 
     /// The online network's parameters.
@@ -579,18 +528,15 @@ impl Dqn {
 
     /// Its state for a snapshot.
     fn saved(&self) -> candle_core::Result<Saved> {
-        let flat = |t: &Tensor| t.flatten_all()?.to_vec1::<f32>();
-        let all = |ts: &[Tensor]| ts.iter().map(flat).collect::<candle_core::Result<Vec<_>>>();
-        let params: Vec<Tensor> = self.params.iter().map(|p| p.as_tensor().clone()).collect();
         Ok(Saved {
             tag: STATE_TAG.into(),
             version: STATE_VERSION,
             observation: self.settings.observation,
             shape: self.shape(),
-            params: all(&params)?,
-            target: all(&self.target)?,
-            adam_m: all(&parts(&self.adam.m, &self.params)?)?,
-            adam_v: all(&parts(&self.adam.v, &self.params)?)?,
+            params: net::lists(self.online())?,
+            target: net::lists(self.target.iter())?,
+            adam_m: net::flat_lists(&self.adam.m, &self.params)?,
+            adam_v: net::flat_lists(&self.adam.v, &self.params)?,
             adam_t: self.adam.t,
             decisions: self.decisions,
             stored: self.stored,
@@ -639,23 +585,7 @@ impl Dqn {
         if !saved.replay.consistent(self.width, self.heads) {
             return Err("the snapshot's replay buffer is inconsistent".into());
         }
-        let shapes: Vec<Vec<usize>> = self.params.iter().map(|p| p.dims().to_vec()).collect();
-        let tensors = |lists: Vec<Vec<f32>>, what: &str| -> Result<Vec<Tensor>, String> {
-            if lists.len() != shapes.len() {
-                return Err(format!("the snapshot's {what} has {} tensors", lists.len()));
-            }
-            lists
-                .into_iter()
-                .zip(&shapes)
-                .map(|(values, shape)| {
-                    if values.iter().any(|x| !x.is_finite()) {
-                        return Err(format!("the snapshot's {what} holds a non-finite number"));
-                    }
-                    Tensor::from_vec(values, shape.as_slice(), &Device::Cpu)
-                        .map_err(|e| format!("the snapshot's {what}: {e}"))
-                })
-                .collect()
-        };
+        let tensors = |lists, what| net::tensors(lists, &self.params, what);
         let params = tensors(saved.params, "network")?;
         let target = tensors(saved.target, "target network")?;
         let m = tensors(saved.adam_m, "optimiser state")?;

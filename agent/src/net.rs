@@ -1,16 +1,41 @@
-//! What the advising methods' own small networks share: advice imitation's
-//! behavioural cloning ([`crate::cloning`]) and EF-OnTL's sars-RND
-//! ([`crate::rnd`]). MLPs of candle tensors whose products run on one
-//! thread, as the DQN's (dqn.rs, whose initialisation and forward pass
-//! these repeat, the forward pass here with dropout).
-#![cfg_attr(not(test), allow(dead_code))]
+//! What the networks share: the DQN's ([`crate::dqn`]), advice
+//! imitation's behavioural cloning ([`crate::cloning`]) and EF-OnTL's
+//! sars-RND ([`crate::rnd`]). MLPs of candle tensors whose products run on
+//! one thread (the DQN has its own forward pass, with a cache).
 
 use candle_core::backprop::GradStore;
+use std::sync::Once;
+
 use candle_core::{Device, Tensor, Var};
 use rand::Rng;
 
-use crate::dqn::{flat, parts};
 use crate::selection::AgentRng;
+
+/// Turns off the threading of the matrix products candle's CPU backend
+/// runs (the `gemm` crate's, above a size): a DQN's products are small, a
+/// study already runs its runs on its threads, and one thread per product
+/// keeps every sum in one order.
+pub(crate) fn single_threaded_products() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| gemm_common::gemm::set_threading_threshold(usize::MAX));
+}
+
+/// `tensors` flattened and laid end to end.
+pub(crate) fn flat(tensors: &[Tensor]) -> candle_core::Result<Tensor> {
+    let each = tensors.iter().map(Tensor::flatten_all);
+    Tensor::cat(&each.collect::<candle_core::Result<Vec<_>>>()?, 0)
+}
+
+/// The parts of `flat` in the shapes of `params`, in their order.
+pub(crate) fn parts(flat: &Tensor, params: &[Var]) -> candle_core::Result<Vec<Tensor>> {
+    let mut at = 0;
+    let mut parts = Vec::with_capacity(params.len());
+    for p in params {
+        parts.push(flat.narrow(0, at, p.elem_count())?.reshape(p.shape())?);
+        at += p.elem_count();
+    }
+    Ok(parts)
+}
 
 /// The layers from `sizes[0]` inputs through `sizes[1..]`, each a weight
 /// (in x out) then a bias, drawn from `rng` as PyTorch's `nn.Linear`

@@ -29,8 +29,8 @@ use candle_core::{DType, Device, Tensor, Var};
 use rand::SeedableRng;
 use serde::{Deserialize, Serialize};
 
-use crate::dqn::{flat, single_threaded_products};
 use crate::net;
+use crate::net::{flat, single_threaded_products};
 use crate::selection::AgentRng;
 
 /// PyTorch's RMSprop defaults.
