@@ -12,6 +12,7 @@ use crate::config_error::{AgentConfigError, require, require_unit};
 use crate::fidelity::Fidelity;
 use crate::learner_settings::{LearnerSettings, ObservationSet};
 use crate::link::NetworkConditions;
+use crate::method::LearnerNeed;
 
 /// Lower edge of the first tile: features are normalised to [-1, 1].
 pub const TILE_ORIGIN: f64 = -1.0;
@@ -115,12 +116,20 @@ impl AgentConfig {
         // An agent that never asks (an expert's ask budget of 0) needs no
         // uncertainty.
         let asks = self.algorithm.setting("ask_budget") != Some(0.into());
-        if asks && !self.learner.meets(algorithm.learner_need()) {
+        let need = algorithm.learner_need();
+        if asks && !self.learner.meets(need) {
+            let what = match need {
+                LearnerNeed::Network => {
+                    "a neural learner that learns a batch by a gradient step (dqn)"
+                }
+                _ => {
+                    "a learner that measures its uncertainty (ensemble, or dqn with heads of 2 or more)"
+                }
+            };
             return Err(AgentConfigError::new(
                 "learner",
                 format!(
-                    "algorithm {algorithm} needs a learner that measures its uncertainty \
-                     (ensemble, or dqn with heads of 2 or more), not {}",
+                    "algorithm {algorithm} needs {what}, not {}",
                     self.learner.name()
                 ),
             ));

@@ -260,12 +260,13 @@ impl LearnerSettings {
     }
 
     /// The default learner of an algorithm that needs `need`: SARSA(lambda),
-    /// or for one that asks by uncertainty the DQN with 5 heads (RCMP's
-    /// learner in its paper; the tabular `ensemble` is named).
+    /// for one that asks by uncertainty the DQN with 5 heads (RCMP's
+    /// learner in its paper; the tabular `ensemble` is named), for one that
+    /// needs a network the DQN.
     pub fn for_need(need: LearnerNeed) -> Self {
         let name = match need {
             LearnerNeed::Values => "sarsa",
-            LearnerNeed::Uncertainty => "dqn",
+            LearnerNeed::Uncertainty | LearnerNeed::Network => "dqn",
         };
         Self::named_for(name, need).expect("a learner of NAMES")
     }
@@ -279,7 +280,9 @@ impl LearnerSettings {
         }
     }
 
-    /// Whether it measures its uncertainty in a state.
+    /// Whether it meets `need`: any learner has values, `ensemble` and a
+    /// DQN of 2 heads or more measure their uncertainty, a DQN is a
+    /// network.
     pub fn meets(&self, need: LearnerNeed) -> bool {
         match need {
             LearnerNeed::Values => true,
@@ -288,6 +291,7 @@ impl LearnerSettings {
                 LearnerSettings::Ensemble { .. } => true,
                 LearnerSettings::Dqn(dqn) => dqn.heads >= 2,
             },
+            LearnerNeed::Network => matches!(self, LearnerSettings::Dqn(_)),
         }
     }
 

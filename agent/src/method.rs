@@ -27,6 +27,9 @@ pub enum LearnerNeed {
     /// Also its uncertainty in a state (an ensemble's): the algorithm asks
     /// by uncertainty.
     Uncertainty,
+    /// A network that learns a batch of experience by a gradient step (the
+    /// DQN): the algorithm transfers experience (ef-ontl).
+    Network,
 }
 
 /// An advising method: everything the framework needs to know of it.
