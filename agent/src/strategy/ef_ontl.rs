@@ -22,16 +22,20 @@
 //! to kick: the frames it moves without the ball folded into the kick's
 //! discounted reward), so the agent folds the frames it learns as its DQN
 //! does.
-#![cfg_attr(not(test), allow(dead_code))]
+#![allow(dead_code)] // until it is registered, once the seam carries its messages
 
 use std::collections::VecDeque;
 
 use proto::{Action, State};
 use serde::{Deserialize, Serialize};
 
+use super::seam::AdvisingStrategy;
+use crate::advice_counters::AdviceCounters;
 use crate::config_error::AgentConfigError;
 use crate::dqn::{KICKS, kick_slot};
 use crate::exchange::Transition;
+use crate::fidelity::{Fidelity, Profile};
+use crate::method::{LearnerNeed, Method};
 use crate::rnd::{Rnd, RndSettings, Sars};
 use crate::transfer::TransferBuffer;
 
@@ -133,6 +137,68 @@ impl EfOntl {
     /// The tuples the teacher sends each receiver.
     fn sent(&self) -> usize {
         self.candidates.unwrap_or(self.buffer) as usize
+    }
+}
+
+/// `ef-ontl`: expert-free online transfer learning.
+pub(crate) struct EfOntlMethod;
+
+impl Method for EfOntlMethod {
+    type Settings = EfOntl;
+    const NAME: &'static str = "ef-ontl";
+    const ABOUT: &'static str = "expert-free online transfer: every interval episodes the surest \
+                                 agent sends the experience its teammates are least sure of \
+                                 (Castagna & Dusparic, 2023)";
+    const LEARNER: LearnerNeed = LearnerNeed::Network;
+    /// What it sends carries the paper's six features only.
+    const SHARES_EPISODES: bool = true;
+
+    fn defaults(_: Profile) -> EfOntl {
+        EfOntl::default()
+    }
+
+    fn validate(settings: &EfOntl) -> Result<(), AgentConfigError> {
+        settings.validate()
+    }
+
+    fn strategy(settings: &EfOntl, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        Box::new(Transferrer {
+            settings: settings.clone(),
+            transfers: None,
+        })
+    }
+}
+
+/// An EF-OnTL agent's decisions: its side of the transfers once it is
+/// seated (its discount and seed known).
+#[derive(Debug)]
+struct Transferrer {
+    settings: EfOntl,
+    transfers: Option<Transfers>,
+}
+
+impl AdvisingStrategy for Transferrer {
+    /// The tuples it received (candidates, of which it learned
+    /// `transfer_batch` at each transfer).
+    fn spent_budget(&self, counters: &AdviceCounters) -> u64 {
+        counters.shared_received
+    }
+
+    fn begin_episode(&mut self, _mode: proto::Mode) {
+        if let Some(t) = self.transfers.as_mut() {
+            t.begin_episode();
+        }
+    }
+
+    /// Always: its sars-RND learns every decision.
+    fn records_transitions(&self, _counters: &AdviceCounters) -> bool {
+        true
+    }
+
+    fn learned(&mut self, transition: &Transition) {
+        if let Some(t) = self.transfers.as_mut() {
+            t.learned(transition);
+        }
     }
 }
 
