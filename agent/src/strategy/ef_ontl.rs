@@ -743,6 +743,68 @@ mod tests {
         }
     }
 
+    /// The frames as the framework hands them to a learner.
+    fn experiences(frames: &[Transition]) -> Vec<crate::learner::Experience<'_>> {
+        use crate::learner::{Seen, Step};
+        let step = |state, action| Step {
+            at: Seen {
+                state,
+                features: &[],
+                index: None,
+            },
+            action,
+        };
+        (frames.iter())
+            .map(|t| {
+                let next = t.next.as_ref().map(|(s, a)| step(s, *a));
+                (step(&t.state, t.action), t.reward, next)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_tuples_frames_make_the_dqn_store_the_decision_its_own_frames_did() {
+        use crate::learner::Learner;
+        use Action::*;
+        let gamma = 0.9;
+        let f = |v: f64| [v, -v, v / 2.0, 0.3, -0.7, v * v];
+        let (s0, s1, s2) = (f(0.1), f(0.37), f(-0.55));
+        let m = f(0.9);
+        // Kick, three moves, kick, one move, kick, the end.
+        let episode = [
+            (s0, Dribble, 0.0, Some((m, Move))),
+            (m, Move, 0.25, Some((m, Move))),
+            (m, Move, -0.5, Some((m, Move))),
+            (m, Move, 0.125, Some((s1, PassNear))),
+            (s1, PassNear, 0.0, Some((m, Move))),
+            (m, Move, 0.5, Some((s2, Shoot))),
+            (s2, Shoot, 1.0, None),
+        ]
+        .map(|(state, action, reward, next)| Transition {
+            state,
+            action,
+            reward,
+            next,
+        });
+        let mut folder = Folder::new(gamma);
+        let tuples: Vec<Tuple> = episode.iter().filter_map(|t| folder.fold(t)).collect();
+        assert_eq!(
+            tuples.iter().map(|t| t.frames).collect::<Vec<_>>(),
+            [4, 2, 1]
+        );
+        let settings = crate::learner_settings::DqnSettings::default();
+        let mut own = crate::Dqn::new(&settings, gamma, 6, 3);
+        let mut sent = crate::Dqn::new(&settings, gamma, 6, 3);
+        own.replay(&experiences(&episode));
+        let frames: Vec<Transition> = tuples.iter().flat_map(Tuple::frames).collect();
+        sent.replay(&experiences(&frames));
+        assert_eq!(own.save_state(), sent.save_state());
+        assert_ne!(
+            own.save_state(),
+            crate::Dqn::new(&settings, gamma, 6, 3).save_state()
+        );
+    }
+
     /// A team's agent with interval `f` and `edit`ed settings.
     fn transfers(f: u64, seed: u64, edit: impl FnOnce(&mut EfOntl)) -> Transfers {
         let mut s = EfOntl {
