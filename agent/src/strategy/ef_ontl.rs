@@ -22,7 +22,20 @@
 //! to kick: the frames it moves without the ball folded into the kick's
 //! discounted reward), so the agent folds the frames it learns as its DQN
 //! does.
-#![allow(dead_code)] // until it is registered, once the seam carries its messages
+//!
+//! Not registered yet: it waits for the seam (branch `seam`: batches sent
+//! at an episode's end, `Learner::learn_batch`, the receiver's hook, the
+//! episode's return). What remains, once that is on main:
+//! - the batch carries, per transition, the frames it spans and the
+//!   sender's uncertainty ([`Tuple`]), and a [`Standing`] (protocol
+//!   bump, codec checks: as many notes as transitions or none, finite);
+//! - the receiver's hook returns what its learner learns instead of the
+//!   batch ([`Transfers::received`], each tuple's [`Tuple::frames`]);
+//! - the strategy is seated with its agent's `gamma` and seed (for
+//!   [`Transfers::new`]);
+//! - one line in `ALGORITHMS`; the team test in process, the zenoh test,
+//!   the refusal test and the measurement.
+#![allow(dead_code)] // until it is registered
 
 use std::collections::VecDeque;
 
