@@ -29,7 +29,8 @@ pub enum LearnerNeed {
     /// by uncertainty.
     Uncertainty,
     /// A neural network over the agent's observation (the DQN): the
-    /// algorithm learns a network of its own from what the learner reads.
+    /// algorithm learns a network of its own from what the learner reads,
+    /// or has its learner learn a batch by a gradient step (ef-ontl).
     Network,
 }
 

@@ -13,6 +13,7 @@
 mod ad_hoc;
 mod alone;
 mod budgeted;
+mod ef_ontl;
 mod episode_sharing;
 mod imitation;
 mod peers;

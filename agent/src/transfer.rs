@@ -87,6 +87,11 @@ impl TransferBuffer {
         (Sars::of(row), self.discount[at])
     }
 
+    /// The stored uncertainty of the `i`th oldest transition.
+    pub(crate) fn uncertainty(&self, i: usize) -> f64 {
+        self.uncertainty[self.place(i)]
+    }
+
     /// The mean of the stored uncertainties (the teacher choice
     /// `avg_uncertainty`, `transferBuffer.py` l.31-32); none when empty.
     pub(crate) fn mean_uncertainty(&self) -> Option<f64> {
