@@ -47,6 +47,30 @@ impl LearnerNeed {
     }
 }
 
+/// The agent a strategy is built for: its learner's settings, its
+/// discount factor and its seed.
+#[derive(Clone, Copy, Debug)]
+pub struct Seat<'a> {
+    /// Its learner's settings.
+    pub learner: &'a LearnerSettings,
+    /// Its discount factor per frame.
+    pub gamma: f64,
+    /// The seed of its generator.
+    pub seed: u64,
+}
+
+impl<'a> Seat<'a> {
+    /// An agent learning with `learner` under the default discount (0.9)
+    /// and seed 0.
+    pub(crate) fn of(learner: &'a LearnerSettings) -> Self {
+        Self {
+            learner,
+            gamma: 0.9,
+            seed: 0,
+        }
+    }
+}
+
 /// An advising method: everything the framework needs to know of it.
 /// Registered once, in `strategy::ALGORITHMS` (docs/strategies.md).
 pub(crate) trait Method: 'static {
@@ -85,13 +109,14 @@ pub(crate) trait Method: 'static {
     /// Its decisions for one agent, under the fidelity rules `fidelity`.
     fn strategy(settings: &Self::Settings, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy>;
 
-    /// Its decisions for one agent learning with `learner`: those of
-    /// [`strategy`](Self::strategy), unless they build on the learner's
-    /// settings (a network of the method's own beside the learner's).
+    /// Its decisions for the agent of `seat`: those of
+    /// [`strategy`](Self::strategy), unless they build on the agent's
+    /// learner (a network of the method's own beside the learner's,
+    /// decisions folded as the learner folds them).
     fn strategy_for(
         settings: &Self::Settings,
         fidelity: &Fidelity,
-        _learner: &LearnerSettings,
+        _seat: &Seat<'_>,
     ) -> Box<dyn AdvisingStrategy> {
         Self::strategy(settings, fidelity)
     }
@@ -140,9 +165,8 @@ pub(crate) trait MethodSettings: Debug + Send + Sync {
     fn table(&self) -> Table;
     /// The first invalid setting, naming its key.
     fn validate(&self) -> Result<(), AgentConfigError>;
-    /// Its decisions for one agent learning with `learner`.
-    fn strategy(&self, fidelity: &Fidelity, learner: &LearnerSettings)
-    -> Box<dyn AdvisingStrategy>;
+    /// Its decisions for the agent of `seat`.
+    fn strategy(&self, fidelity: &Fidelity, seat: &Seat<'_>) -> Box<dyn AdvisingStrategy>;
     /// A copy.
     fn boxed_clone(&self) -> Box<dyn MethodSettings>;
     /// The typed settings, to downcast.
@@ -175,12 +199,8 @@ impl<M: Method> MethodSettings for Typed<M> {
         M::validate(&self.0)
     }
 
-    fn strategy(
-        &self,
-        fidelity: &Fidelity,
-        learner: &LearnerSettings,
-    ) -> Box<dyn AdvisingStrategy> {
-        M::strategy_for(&self.0, fidelity, learner)
+    fn strategy(&self, fidelity: &Fidelity, seat: &Seat<'_>) -> Box<dyn AdvisingStrategy> {
+        M::strategy_for(&self.0, fidelity, seat)
     }
 
     fn boxed_clone(&self) -> Box<dyn MethodSettings> {

@@ -3,7 +3,6 @@
 //! ([`crate::rnd`]). MLPs of candle tensors whose products run on one
 //! thread, as the DQN's (dqn.rs, whose initialisation and forward pass
 //! these repeat, the forward pass here with dropout).
-#![cfg_attr(not(test), allow(dead_code))]
 
 use candle_core::backprop::GradStore;
 use candle_core::{Device, Tensor, Var};

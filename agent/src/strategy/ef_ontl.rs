@@ -23,37 +23,29 @@
 //! discounted reward), so the agent folds the frames it learns as its DQN
 //! does.
 //!
-//! Not registered yet: it waits for the seam (branch `seam`: batches sent
-//! at an episode's end, `Learner::learn_batch`, the receiver's hook, the
-//! episode's return). What remains, once that is on main:
-//! - the batch carries, per transition, the frames it spans and the
-//!   sender's uncertainty ([`Tuple`]), and a [`Standing`] (protocol
-//!   bump, codec checks: as many notes as transitions or none, finite);
-//! - the receiver's hook returns what its learner learns instead of the
-//!   batch ([`Transfers::received`], each tuple's [`Tuple::frames`]);
-//! - the strategy is seated with its agent's `gamma` and seed (for
-//!   [`Transfers::new`]);
-//! - one line in `ALGORITHMS`; the team test in process, the zenoh test,
-//!   the refusal test and the measurement.
-#![allow(dead_code)] // until it is registered
+//! What travels is a batch message (`proto::ExperienceBatch`): the tuples
+//! as transitions, each with its note (the frames it spans, the sender's
+//! uncertainty), and the sender's standing; the receiver's DQN learns the
+//! chosen tuples' frames ([`Tuple::frames`]) by one gradient step.
 
 use std::collections::VecDeque;
 
-use proto::{Action, State};
+use proto::{Action, MAX_BATCH, MAX_BATCH_FRAMES, Standing, State, TransitionNote};
 use serde::{Deserialize, Serialize};
 
-use super::seam::AdvisingStrategy;
+use super::seam::{AdvisingStrategy, EndContext, Sends};
 use crate::advice_counters::AdviceCounters;
 use crate::config_error::AgentConfigError;
 use crate::dqn::{KICKS, kick_slot};
-use crate::exchange::Transition;
+use crate::exchange::{Batch, Share, Transition};
 use crate::fidelity::{Fidelity, Profile};
-use crate::method::{LearnerNeed, Method};
+use crate::learner_settings::LearnerSettings;
+use crate::method::{LearnerNeed, Method, Seat};
 use crate::rnd::{Rnd, RndSettings, Sars};
 use crate::transfer::TransferBuffer;
 
 /// The most tuples one message carries (the wire's bound on a batch).
-pub(crate) const MAX_TUPLES: usize = 4096;
+const MAX_TUPLES: usize = MAX_BATCH;
 
 /// The most tuples an agent keeps.
 pub(crate) const MAX_BUFFER: u64 = 1_000_000;
@@ -174,21 +166,21 @@ impl Method for EfOntlMethod {
         settings.validate()
     }
 
-    fn strategy(settings: &EfOntl, _: &Fidelity) -> Box<dyn AdvisingStrategy> {
-        Box::new(Transferrer {
-            settings: settings.clone(),
-            transfers: None,
-        })
+    fn strategy(settings: &EfOntl, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
+        let learner = LearnerSettings::for_need(LearnerNeed::Network);
+        Self::strategy_for(settings, fidelity, &Seat::of(&learner))
+    }
+
+    /// It folds decisions with its agent's discount; its sars-RND's
+    /// weights come from its agent's seed.
+    fn strategy_for(settings: &EfOntl, _: &Fidelity, seat: &Seat<'_>) -> Box<dyn AdvisingStrategy> {
+        Box::new(Transferrer(Transfers::new(settings, seat.gamma, seat.seed)))
     }
 }
 
-/// An EF-OnTL agent's decisions: its side of the transfers once it is
-/// seated (its discount and seed known).
+/// An EF-OnTL agent's decisions: its side of the transfers.
 #[derive(Debug)]
-struct Transferrer {
-    settings: EfOntl,
-    transfers: Option<Transfers>,
-}
+struct Transferrer(Transfers);
 
 impl AdvisingStrategy for Transferrer {
     /// The tuples it received (candidates, of which it learned
@@ -198,9 +190,7 @@ impl AdvisingStrategy for Transferrer {
     }
 
     fn begin_episode(&mut self, _mode: proto::Mode) {
-        if let Some(t) = self.transfers.as_mut() {
-            t.begin_episode();
-        }
+        self.0.begin_episode();
     }
 
     /// Always: its sars-RND learns every decision.
@@ -209,22 +199,24 @@ impl AdvisingStrategy for Transferrer {
     }
 
     fn learned(&mut self, transition: &Transition) {
-        if let Some(t) = self.transfers.as_mut() {
-            t.learned(transition);
-        }
+        self.0.learned(transition);
     }
-}
 
-/// What an agent tells its teammates at a transfer event.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Standing {
-    /// Its training episodes so far.
-    pub(crate) episodes: u64,
-    /// The mean stored uncertainty of the tuples it keeps; none while it
-    /// keeps none.
-    pub(crate) uncertainty: Option<f64>,
-    /// Its mean episode return over its last `interval` training episodes.
-    pub(crate) mean_return: f64,
+    fn end_episode(&mut self, end: &EndContext<'_>) -> Sends {
+        (self
+            .0
+            .end_episode(end.me, end.team_size, end.episode_return))
+        .into_iter()
+        .map(|(to, batch)| (to, Share::Batch(batch)))
+        .collect()
+    }
+
+    /// The frames of the tuples it chose, for its DQN to fold as its own
+    /// decisions and learn by one step.
+    fn received(&mut self, from: usize, batch: &Batch) -> Option<Vec<Transition>> {
+        let chosen = self.0.received(from, batch);
+        Some(chosen.iter().flat_map(Tuple::frames).collect())
+    }
 }
 
 /// The teacher among `standings` (each with its agent's id, in any order)
@@ -265,6 +257,35 @@ pub(crate) struct Tuple {
 }
 
 impl Tuple {
+    /// A tuple that arrived: `t` with its `note`; none unless its action
+    /// and the next decision's are kicks.
+    fn arrived(t: &Transition, note: &TransitionNote) -> Option<Self> {
+        let kicks = t.action.is_kick() && t.next.is_none_or(|(_, a)| a.is_kick());
+        kicks.then_some(Tuple {
+            state: t.state,
+            action: t.action,
+            reward: t.reward,
+            next: t.next,
+            frames: note.frames,
+            uncertainty: note.uncertainty,
+        })
+    }
+
+    /// It as it travels: a transition and its note.
+    fn sent(&self) -> (Transition, TransitionNote) {
+        let t = Transition {
+            state: self.state,
+            action: self.action,
+            reward: self.reward,
+            next: self.next,
+        };
+        let note = TransitionNote {
+            frames: self.frames,
+            uncertainty: self.uncertainty,
+        };
+        (t, note)
+    }
+
     /// Its sars-RND input, as the DQN reads it (numbers as `f32`, the
     /// next state zeros at the episode's end).
     fn row(&self) -> Vec<f32> {
@@ -376,7 +397,7 @@ impl Folder {
         let open = self.open.as_mut()?;
         open.reward += open.discount * t.reward;
         open.discount *= self.gamma;
-        open.frames += 1;
+        open.frames = open.frames.saturating_add(1);
         let next = match t.next {
             None => None,
             Some((state, action)) if action.is_kick() => Some((state, action)),
@@ -392,14 +413,6 @@ impl Folder {
             uncertainty: 0.0,
         })
     }
-}
-
-/// What an agent sends one teammate at an episode's end: its standing at
-/// a transfer event, and, from the teacher, the tuples it sends.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub(crate) struct Parcel {
-    pub(crate) standing: Option<Standing>,
-    pub(crate) tuples: Vec<Tuple>,
 }
 
 /// Mixed into an agent's seed for its sars-RND's weights.
@@ -493,8 +506,10 @@ impl Transfers {
     }
 
     /// The tuples the teacher sends: its lowest-uncertainty `candidates`
-    /// (all it keeps by default), oldest first; none while it keeps fewer
-    /// than `transfer_batch` (the library skips such a transfer).
+    /// (all it keeps by default), oldest first, as many as span at most
+    /// [`MAX_BATCH_FRAMES`] frames in all (the wire's bound, which 4096
+    /// tuples reach only at 64 frames each on average); none while it keeps
+    /// fewer than `transfer_batch` (the library skips such a transfer).
     fn candidates(&self) -> Vec<Tuple> {
         let n = self.buffer.len();
         if n < self.settings.transfer_batch as usize {
@@ -509,7 +524,14 @@ impl Transfers {
             chosen.truncate(self.settings.sent());
             chosen.sort_unstable();
         }
-        chosen.into_iter().map(|i| self.tuple(i)).collect()
+        let mut frames = 0;
+        (chosen.into_iter())
+            .map(|i| self.tuple(i))
+            .take_while(|t| {
+                frames += u64::from(t.frames);
+                frames <= MAX_BATCH_FRAMES
+            })
+            .collect()
     }
 
     /// A training episode of return `episode_return` ended for agent `me`
@@ -517,81 +539,86 @@ impl Transfers {
     /// the episode after an event, the teacher chosen from the standings
     /// held sends its candidates (if it is the teacher); at an event
     /// (every `interval` episodes) it sends its standing. Both go in one
-    /// parcel per receiver.
+    /// batch per receiver.
     pub(crate) fn end_episode(
         &mut self,
         me: usize,
         team_size: usize,
         episode_return: f64,
-    ) -> Vec<(usize, Parcel)> {
+    ) -> Vec<(usize, Batch)> {
         let f = self.settings.interval;
         self.episodes += 1;
         self.returns.push_back(episode_return);
         if self.returns.len() > f as usize {
             self.returns.pop_front();
         }
-        let mut parcels: Vec<(usize, Parcel)> = (0..team_size)
-            .filter(|&j| j != me)
-            .map(|j| (j, Parcel::default()))
-            .collect();
+        let mut batch = Batch::default();
         let after_event = self.episodes > f && (self.episodes - 1).is_multiple_of(f);
         if after_event {
             let held = std::mem::take(&mut self.standings);
             if teacher(self.settings.selection, &held, f) == Some(me) {
-                let tuples = self.candidates();
-                for (_, parcel) in &mut parcels {
-                    parcel.tuples.clone_from(&tuples);
-                }
+                let sent = self.candidates().iter().map(Tuple::sent).unzip();
+                (batch.transitions, batch.notes) = sent;
             }
         }
         if self.episodes.is_multiple_of(f) {
             let standing = self.standing();
             self.standings = vec![(me, standing)];
-            for (_, parcel) in &mut parcels {
-                parcel.standing = Some(standing);
-            }
+            batch.standing = Some(standing);
         }
-        parcels.retain(|(_, p)| p.standing.is_some() || !p.tuples.is_empty());
-        parcels
+        if batch.standing.is_none() && batch.transitions.is_empty() {
+            return Vec::new();
+        }
+        (0..team_size)
+            .filter(|&j| j != me)
+            .map(|j| (j, batch.clone()))
+            .collect()
     }
 
-    /// A parcel arrived from agent `from`: its standing is held for the
+    /// A batch arrived from agent `from`: its standing is held for the
     /// coming choice (in place of an older one of the same agent), and of
-    /// its tuples the `transfer_batch` with the lowest sender's minus own
-    /// uncertainty are returned, in that order, to learn as one batch
-    /// (none if it brought fewer). The sars-RND does not learn them.
-    pub(crate) fn received(&mut self, from: usize, parcel: &Parcel) -> Vec<Tuple> {
-        if let Some(standing) = parcel.standing {
+    /// its tuples (its transitions with their notes; those whose action or
+    /// next action is no kick left out) the `transfer_batch` with the
+    /// lowest sender's minus own uncertainty are returned, in that order,
+    /// to learn as one batch (none if it brought fewer). The sars-RND does
+    /// not learn them.
+    pub(crate) fn received(&mut self, from: usize, batch: &Batch) -> Vec<Tuple> {
+        if let Some(standing) = batch.standing {
             self.standings.retain(|(id, _)| *id != from);
             self.standings.push((from, standing));
         }
-        if parcel.tuples.is_empty() {
+        let tuples: Vec<Tuple> = (batch.transitions.iter().zip(&batch.notes))
+            .filter_map(|(t, note)| Tuple::arrived(t, note))
+            .collect();
+        if tuples.is_empty() {
             return Vec::new();
         }
-        let mut arrived = TransferBuffer::new(parcel.tuples.len(), proto::STATE_FEATURES);
-        for t in &parcel.tuples {
+        let mut arrived = TransferBuffer::new(tuples.len(), proto::STATE_FEATURES);
+        for t in &tuples {
             arrived.push(&t.row(), 0.0, t.uncertainty);
         }
         (arrived.select_by_delta(&self.rnd, self.settings.transfer_batch as usize))
             .into_iter()
-            .map(|i| parcel.tuples[i])
+            .map(|i| tuples[i])
             .collect()
-    }
-
-    /// The tuples it keeps.
-    pub(crate) fn kept(&self) -> usize {
-        self.buffer.len()
-    }
-
-    /// Its sars-RND's uncertainty of a tuple now.
-    pub(crate) fn uncertainty_of(&self, tuple: &Tuple) -> f64 {
-        self.rnd.uncertainty(&tuple.row())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    impl Transfers {
+        /// The tuples it keeps.
+        fn kept(&self) -> usize {
+            self.buffer.len()
+        }
+
+        /// Its sars-RND's uncertainty of a tuple now.
+        fn uncertainty_of(&self, tuple: &Tuple) -> f64 {
+            self.rnd.uncertainty(&tuple.row())
+        }
+    }
 
     fn standing(episodes: u64, uncertainty: Option<f64>, mean_return: f64) -> Standing {
         Standing {
@@ -902,9 +929,9 @@ mod tests {
                     from,
                     to,
                     parcel.standing.is_some(),
-                    parcel.tuples.len(),
+                    parcel.transitions.len(),
                 ));
-                assert!(learned.len() == 3 || parcel.tuples.is_empty());
+                assert!(learned.len() == 3 || parcel.transitions.is_empty());
             }
         }
         let of = |e: u64| -> Vec<(usize, usize, bool, usize)> {
@@ -943,7 +970,7 @@ mod tests {
         };
         // Agent 1 held no standing of agent 0: it chose itself.
         assert!(parcel.standing.is_some());
-        assert_eq!(parcel.tuples.len(), 7);
+        assert_eq!(parcel.transitions.len(), 7);
     }
 
     #[test]
@@ -953,16 +980,19 @@ mod tests {
         play(&mut a, 0.1, 3);
         a.end_episode(0, 3, 0.0);
         // Agent 1, surer, is heard of; agent 2, surest, is lost.
-        let heard = Parcel {
+        let heard = Batch {
             standing: Some(standing(1, Some(1e-9), 0.0)),
-            tuples: Vec::new(),
+            ..Batch::default()
         };
         a.received(1, &heard);
         let sent = a.end_episode(0, 3, 0.0);
-        assert!(sent.iter().all(|(_, p)| p.tuples.is_empty()));
+        assert!(sent.iter().all(|(_, p)| p.transitions.is_empty()));
         // Next time nobody else is heard of: it teaches.
         let sent = a.end_episode(0, 3, 0.0);
-        assert!(sent.iter().all(|(_, p)| p.tuples.len() == 3), "{sent:?}");
+        assert!(
+            sent.iter().all(|(_, p)| p.transitions.len() == 3),
+            "{sent:?}"
+        );
     }
 
     #[test]
@@ -985,6 +1015,16 @@ mod tests {
         assert!(few.candidates().is_empty());
     }
 
+    /// `tuples` as a batch carries them.
+    fn batch_of(tuples: &[Tuple]) -> Batch {
+        let (transitions, notes) = tuples.iter().map(Tuple::sent).unzip();
+        Batch {
+            transitions,
+            notes,
+            standing: None,
+        }
+    }
+
     #[test]
     fn the_receiver_learns_the_b_most_negative_gaps_by_its_own_rnd() {
         let mut receiver = transfers(1, 9, |s| s.transfer_batch = 2);
@@ -998,10 +1038,7 @@ mod tests {
                 ..*t
             })
             .collect();
-        let parcel = Parcel {
-            standing: None,
-            tuples: sent.clone(),
-        };
+        let parcel = batch_of(&sent);
         let learned = receiver.received(0, &parcel);
         // Deltas -0.5 (index 3), then -0.2 (index 1).
         assert_eq!(learned, vec![sent[3], sent[1]]);
@@ -1009,10 +1046,7 @@ mod tests {
         let after: Vec<f64> = tuples.iter().map(|t| receiver.uncertainty_of(t)).collect();
         assert_eq!(after, theirs);
         // Fewer than B arrived: none learned.
-        let one = Parcel {
-            standing: None,
-            tuples: sent[..1].to_vec(),
-        };
+        let one = batch_of(&sent[..1]);
         assert!(receiver.received(0, &one).is_empty());
     }
 }
