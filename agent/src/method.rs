@@ -14,38 +14,12 @@ use serde_json::{Map, Value};
 
 use crate::config_error::AgentConfigError;
 use crate::fidelity::{Fidelity, Profile};
+pub use crate::learner_settings::LearnerNeed;
 use crate::learner_settings::LearnerSettings;
 use crate::strategy::AdvisingStrategy;
 
 /// A method's settings as a flat table: key to value.
 pub(crate) type Table = Map<String, Value>;
-
-/// What an algorithm needs of its agents' learner.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LearnerNeed {
-    /// Values and a choice: any learner.
-    Values,
-    /// Also its uncertainty in a state (an ensemble's): the algorithm asks
-    /// by uncertainty.
-    Uncertainty,
-    /// A neural network over the agent's observation (the DQN): the
-    /// algorithm learns a network of its own from what the learner reads,
-    /// or has its learner learn a batch by a gradient step (ef-ontl).
-    Network,
-}
-
-impl LearnerNeed {
-    /// What a learner must be to meet it, as an error says.
-    pub fn expected(self) -> &'static str {
-        match self {
-            LearnerNeed::Values => "any learner",
-            LearnerNeed::Uncertainty => {
-                "a learner that measures its uncertainty (ensemble, or dqn with heads of 2 or more)"
-            }
-            LearnerNeed::Network => "a neural learner (dqn)",
-        }
-    }
-}
 
 /// The agent a strategy is built for: its learner's settings, its
 /// discount factor and its seed.
