@@ -150,18 +150,22 @@ fn ef_ontl_transfers_experience_between_its_agents() {
     for transport in ["in-process", "zenoh"] {
         let out = tmp.path().join(format!("ef-ontl-{transport}"));
         let agents = last_counters(&team, transport, &out);
-        let sent = team_total(&agents, "shared_sent");
-        let received = team_total(&agents, "shared_received");
-        // Five transfers, each of at most 64 tuples to two receivers.
+        // Its budget is the tuples received: five transfers, each of at
+        // most 64 tuples (its buffer) to each of two receivers.
+        let received = team_total(&agents, "give_spent");
         assert!(
-            received > 0 && received <= sent && sent <= 5 * 2 * 64,
+            (1..=5 * 2 * 64).contains(&received),
             "{transport}: {agents:?}"
         );
+        // Standings after episodes 20, 40, ..., 120 (six messages each),
+        // candidates after 21, 41, 61, 81 and 101 (two each).
+        let messages = team_total(&agents, "advising_messages");
+        assert_eq!(messages, 6 * 6 + 5 * 2, "{transport}: {agents:?}");
         // Nobody asks or answers.
         assert_eq!(team_total(&agents, "advice_requests"), 0);
         assert_eq!(team_total(&agents, "advice_given"), 0);
         if transport == "in-process" {
-            assert_eq!(received, sent, "{agents:?}");
+            assert!(received >= 5 * 2 * 8, "{agents:?}");
         }
     }
     // One seed, the same run files.
