@@ -10,12 +10,15 @@ use rand::{Rng, SeedableRng};
 use crate::advice_counters::{AdviceCounters, RequestOutcomes};
 use crate::config::AgentConfig;
 use crate::config_error::AgentConfigError;
-use crate::exchange::{Advice, AdviceExchange, AdviceReport, Answer, Answers, Share, Transition};
+use crate::exchange::{
+    Advice, AdviceExchange, AdviceReport, Answer, Answers, Batch, Share, Transition,
+};
 use crate::fidelity::SharedBootstrap;
 use crate::learner::{ActionValues, Experience, Learner, Seen, Step};
 use crate::learner_settings::ObservationSet;
 use crate::learners::learner_of;
 use crate::link::Link;
+use crate::method::Seat;
 use crate::persist::{Entry, PersistError, Snapshot};
 use crate::selection::{ACTIONS, AgentRng, RANDOM_DRAW, greedy_first, greedy_random};
 use crate::states::StateIndex;
@@ -221,11 +224,14 @@ impl Agent {
         if let Some(network) = &config.network {
             network.validate()?;
         }
+        let seat = Seat {
+            learner: &config.learner,
+            gamma: config.gamma,
+            seed,
+        };
         Ok(Self {
             link: config.network.map(|n| Link::new(n, seed)),
-            strategy: config
-                .algorithm
-                .build_for(&config.fidelity, &config.learner),
+            strategy: config.algorithm.build_for(&config.fidelity, &seat),
             id,
             team_size,
             config,
@@ -878,16 +884,23 @@ impl Agent {
     }
 
     /// Takes a batch of agent `from`'s experience in training: its strategy
-    /// is told, then its learner learns it as one batch (each state indexed
+    /// is told, then its learner learns as one batch what the strategy
+    /// chooses (by default the batch's transitions; each state indexed
     /// where training met it, the sender's next actions as they were);
     /// counted as transitions received. Whether its learner learned it
-    /// (false outside training, or for a learner that cannot).
-    pub fn receive_batch(&mut self, from: usize, transitions: &[Transition]) -> bool {
+    /// (false outside training, for a learner that cannot, or when its
+    /// strategy chose nothing).
+    pub fn receive_batch(&mut self, from: usize, batch: &Batch) -> bool {
         if !self.training() {
             return false;
         }
-        self.counters.shared_received += transitions.len() as u64;
-        self.strategy.received(from, transitions);
+        self.counters.shared_received += batch.transitions.len() as u64;
+        let chosen = self.strategy.received(from, batch);
+        let transitions = match chosen.as_deref() {
+            Some([]) => return false,
+            Some(chosen) => chosen,
+            None => &batch.transitions,
+        };
         let index = |s: &State| self.states.get(self.tiling.key(s));
         let seen = |state, index| Seen {
             state,
@@ -1131,17 +1144,28 @@ impl Agent {
 }
 
 /// What a strategy sends, within the wire's bounds: a batch cut to its
-/// first [`MAX_BATCH`] transitions, a second batch to the same receiver
-/// dropped.
+/// first [`MAX_BATCH`] transitions (and notes), its notes dropped unless
+/// the wire takes them (one per transition, each of a frame or more,
+/// [`proto::MAX_BATCH_FRAMES`] in all, finite), its standing dropped
+/// unless finite; a second batch to the same receiver dropped.
 fn bounded(sends: Sends) -> Sends {
     let mut batched = Vec::new();
     (sends.into_iter())
         .filter_map(|(to, share)| match share {
             Share::Batch(_) if batched.contains(&to) => None,
-            Share::Batch(mut transitions) => {
+            Share::Batch(mut batch) => {
                 batched.push(to);
-                transitions.truncate(MAX_BATCH);
-                Some((to, Share::Batch(transitions)))
+                batch.transitions.truncate(MAX_BATCH);
+                batch.notes.truncate(MAX_BATCH);
+                let frames: u64 = batch.notes.iter().map(|n| u64::from(n.frames)).sum();
+                let notes_fit = batch.notes.len() == batch.transitions.len()
+                    && frames <= proto::MAX_BATCH_FRAMES
+                    && (batch.notes.iter()).all(|n| n.frames > 0 && n.uncertainty.is_finite());
+                if !notes_fit {
+                    batch.notes.clear();
+                }
+                batch.standing = batch.standing.filter(proto::Standing::is_finite);
+                Some((to, Share::Batch(batch)))
             }
             episode => Some((to, episode)),
         })

@@ -161,7 +161,7 @@ mod tests {
             e,
             "unknown algorithm `best` (expected one of: no-advice, adhoc-visit, adhoc-td, \
              torrey, episode-sharing, random, early-advising, random-advising, advice-reuse, peer-learning, rcmp, psaf, \
-             advice-imitation, external)"
+             advice-imitation, ef-ontl, external)"
         );
     }
 

@@ -10,8 +10,7 @@ use crate::advice::Reachable;
 use crate::algorithm::Algorithm;
 use crate::config_error::AgentConfigError;
 use crate::fidelity::{Fidelity, Profile};
-use crate::learner_settings::LearnerSettings;
-use crate::method::{MethodSettings, Table};
+use crate::method::{MethodSettings, Seat, Table};
 use crate::strategy::AdvisingStrategy;
 
 /// An algorithm and its settings (e.g. `adhoc-td` with `v_a`, `v_g`,
@@ -89,14 +88,10 @@ impl AlgorithmSettings {
         self.settings.validate()
     }
 
-    /// Its decisions for one agent learning with `learner`, under the
-    /// fidelity rules `fidelity`.
-    pub fn build_for(
-        &self,
-        fidelity: &Fidelity,
-        learner: &LearnerSettings,
-    ) -> Box<dyn AdvisingStrategy> {
-        self.settings.strategy(fidelity, learner)
+    /// Its decisions for the agent of `seat`, under the fidelity rules
+    /// `fidelity`.
+    pub fn build_for(&self, fidelity: &Fidelity, seat: &Seat<'_>) -> Box<dyn AdvisingStrategy> {
+        self.settings.strategy(fidelity, seat)
     }
 
     /// Checks the agent ids its reachable set names against the team size.

@@ -3,7 +3,10 @@
 //! Budgets, probabilities and votes live in the agent ([`crate::Agent::advise`],
 //! [`crate::Agent::receive_shared`]); an exchange only carries messages.
 
-use proto::{Action, AdviceAnswer, Along, Features, SharedValues, State, ValuesAnswer};
+use proto::{
+    Action, AdviceAnswer, Along, Features, SharedValues, Standing, State, TransitionNote,
+    ValuesAnswer,
+};
 
 /// One step of a shared episode, `(s, a, r, s', a')`: the wire type itself,
 /// so that a transport ships shared episodes as they are.
@@ -21,14 +24,37 @@ pub enum Share {
     /// [`proto::MAX_BATCH`] transitions (the framework keeps the first that
     /// many) and one batch per receiver and episode (the framework drops a
     /// second).
-    Batch(Vec<Transition>),
+    Batch(Batch),
 }
 
 impl Share {
     /// The transitions it carries.
     pub fn transitions(&self) -> &[Transition] {
         match self {
-            Share::Episode(t) | Share::Batch(t) => t,
+            Share::Episode(t) => t,
+            Share::Batch(b) => &b.transitions,
+        }
+    }
+}
+
+/// A batch of experience and what its sender says with it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Batch {
+    /// The transitions.
+    pub transitions: Vec<Transition>,
+    /// What the sender notes of each transition: one per transition, or
+    /// none (the framework drops notes that are neither).
+    pub notes: Vec<TransitionNote>,
+    /// The sender's standing, if it tells one.
+    pub standing: Option<Standing>,
+}
+
+impl From<Vec<Transition>> for Batch {
+    /// The transitions alone.
+    fn from(transitions: Vec<Transition>) -> Self {
+        Batch {
+            transitions,
+            ..Batch::default()
         }
     }
 }

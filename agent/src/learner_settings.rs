@@ -6,7 +6,33 @@
 use serde::{Deserialize, Serialize};
 
 use crate::config_error::{AgentConfigError, require, require_unit};
-use crate::method::LearnerNeed;
+
+/// What an algorithm needs of its agents' learner.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LearnerNeed {
+    /// Values and a choice: any learner.
+    Values,
+    /// Also its uncertainty in a state (an ensemble's): the algorithm asks
+    /// by uncertainty.
+    Uncertainty,
+    /// A neural network over the agent's observation (the DQN): the
+    /// algorithm learns a network of its own from what the learner reads,
+    /// or has its learner learn a batch by a gradient step (ef-ontl).
+    Network,
+}
+
+impl LearnerNeed {
+    /// What a learner must be to meet it, as an error says.
+    pub fn expected(self) -> &'static str {
+        match self {
+            LearnerNeed::Values => "any learner",
+            LearnerNeed::Uncertainty => {
+                "a learner that measures its uncertainty (ensemble, or dqn with heads of 2 or more)"
+            }
+            LearnerNeed::Network => "a neural learner (dqn)",
+        }
+    }
+}
 
 /// A learner and its own settings. In team files, `learner = "<name>"` and
 /// its keys beside it (`heads`, `mask_probability`); the learner's shared

@@ -84,8 +84,8 @@ pub use config_error::AgentConfigError;
 pub use dqn::Dqn;
 pub use ensemble::EnsembleSarsa;
 pub use exchange::{
-    Advice, AdviceExchange, AdviceReport, Answer, Answers, BestValue, Isolated, Share, Transition,
-    ValuesAdvice,
+    Advice, AdviceExchange, AdviceReport, Answer, Answers, Batch, BestValue, Isolated, Share,
+    Transition, ValuesAdvice,
 };
 pub use fidelity::{
     AdvisorTies, Fidelity, Profile, SharedBootstrap, TorreyIntent, TorreyUnknownState, VoteTies,
@@ -96,16 +96,16 @@ pub use learner_settings::{
     ObservationSet,
 };
 pub use link::{Latency, Leg, Link, Message, NetworkConditions};
-pub use method::LearnerNeed;
+pub use method::{LearnerNeed, Seat};
 pub use persist::{Entry, PersistError, SNAPSHOT_FORMAT_VERSION, Snapshot, snapshot_file};
-pub use proto::{EpisodeOutcome, Features, MAX_BATCH, Mode};
+pub use proto::{EpisodeOutcome, Features, MAX_BATCH, Mode, Standing, TransitionNote};
 pub use sarsa::TabularSarsa;
 pub use selection::{ACTIONS, AgentRng};
 pub use strategy::{
     AdHoc, Adopted, AdviceImitation, AdviceReuse, AdvisingStrategy, AskContext, Collection,
-    Confidence, EarlyAdvising, EndContext, EpisodeSharing, GiveContext, NoSettings, Outcome,
-    OwnChoice, PeerLearning, Psaf, PsafShares, RandomAdvising, Rcmp, Replies, ReuseContext,
-    ReuseRule, Sends, Torrey,
+    Confidence, EarlyAdvising, EfOntl, EndContext, EpisodeSharing, GiveContext, NoSettings,
+    Outcome, OwnChoice, PeerLearning, Psaf, PsafShares, RandomAdvising, Rcmp, Replies,
+    ReuseContext, ReuseRule, Sends, TeacherRule, Torrey,
 };
 pub use team::{AdvisingTraffic, Team, TeamError};
 pub use tiles::TilingParams;

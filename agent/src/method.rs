@@ -14,34 +14,33 @@ use serde_json::{Map, Value};
 
 use crate::config_error::AgentConfigError;
 use crate::fidelity::{Fidelity, Profile};
+pub use crate::learner_settings::LearnerNeed;
 use crate::learner_settings::LearnerSettings;
 use crate::strategy::AdvisingStrategy;
 
 /// A method's settings as a flat table: key to value.
 pub(crate) type Table = Map<String, Value>;
 
-/// What an algorithm needs of its agents' learner.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LearnerNeed {
-    /// Values and a choice: any learner.
-    Values,
-    /// Also its uncertainty in a state (an ensemble's): the algorithm asks
-    /// by uncertainty.
-    Uncertainty,
-    /// A neural network over the agent's observation (the DQN): the
-    /// algorithm learns a network of its own from what the learner reads.
-    Network,
+/// The agent a strategy is built for: its learner's settings, its
+/// discount factor and its seed.
+#[derive(Clone, Copy, Debug)]
+pub struct Seat<'a> {
+    /// Its learner's settings.
+    pub learner: &'a LearnerSettings,
+    /// Its discount factor per frame.
+    pub gamma: f64,
+    /// The seed of its generator.
+    pub seed: u64,
 }
 
-impl LearnerNeed {
-    /// What a learner must be to meet it, as an error says.
-    pub fn expected(self) -> &'static str {
-        match self {
-            LearnerNeed::Values => "any learner",
-            LearnerNeed::Uncertainty => {
-                "a learner that measures its uncertainty (ensemble, or dqn with heads of 2 or more)"
-            }
-            LearnerNeed::Network => "a neural learner (dqn)",
+impl<'a> Seat<'a> {
+    /// An agent learning with `learner` under the default discount (0.9)
+    /// and seed 0.
+    pub(crate) fn of(learner: &'a LearnerSettings) -> Self {
+        Self {
+            learner,
+            gamma: 0.9,
+            seed: 0,
         }
     }
 }
@@ -84,13 +83,14 @@ pub(crate) trait Method: 'static {
     /// Its decisions for one agent, under the fidelity rules `fidelity`.
     fn strategy(settings: &Self::Settings, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy>;
 
-    /// Its decisions for one agent learning with `learner`: those of
-    /// [`strategy`](Self::strategy), unless they build on the learner's
-    /// settings (a network of the method's own beside the learner's).
+    /// Its decisions for the agent of `seat`: those of
+    /// [`strategy`](Self::strategy), unless they build on the agent's
+    /// learner (a network of the method's own beside the learner's,
+    /// decisions folded as the learner folds them).
     fn strategy_for(
         settings: &Self::Settings,
         fidelity: &Fidelity,
-        _learner: &LearnerSettings,
+        _seat: &Seat<'_>,
     ) -> Box<dyn AdvisingStrategy> {
         Self::strategy(settings, fidelity)
     }
@@ -139,9 +139,8 @@ pub(crate) trait MethodSettings: Debug + Send + Sync {
     fn table(&self) -> Table;
     /// The first invalid setting, naming its key.
     fn validate(&self) -> Result<(), AgentConfigError>;
-    /// Its decisions for one agent learning with `learner`.
-    fn strategy(&self, fidelity: &Fidelity, learner: &LearnerSettings)
-    -> Box<dyn AdvisingStrategy>;
+    /// Its decisions for the agent of `seat`.
+    fn strategy(&self, fidelity: &Fidelity, seat: &Seat<'_>) -> Box<dyn AdvisingStrategy>;
     /// A copy.
     fn boxed_clone(&self) -> Box<dyn MethodSettings>;
     /// The typed settings, to downcast.
@@ -174,12 +173,8 @@ impl<M: Method> MethodSettings for Typed<M> {
         M::validate(&self.0)
     }
 
-    fn strategy(
-        &self,
-        fidelity: &Fidelity,
-        learner: &LearnerSettings,
-    ) -> Box<dyn AdvisingStrategy> {
-        M::strategy_for(&self.0, fidelity, learner)
+    fn strategy(&self, fidelity: &Fidelity, seat: &Seat<'_>) -> Box<dyn AdvisingStrategy> {
+        M::strategy_for(&self.0, fidelity, seat)
     }
 
     fn boxed_clone(&self) -> Box<dyn MethodSettings> {

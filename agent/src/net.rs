@@ -3,9 +3,9 @@
 //! sars-RND ([`crate::rnd`]). MLPs of candle tensors whose products run on
 //! one thread (the DQN has its own forward pass, with a cache).
 
-use candle_core::backprop::GradStore;
 use std::sync::Once;
 
+use candle_core::backprop::GradStore;
 use candle_core::{Device, Tensor, Var};
 use rand::Rng;
 

@@ -21,16 +21,13 @@
 //!   142).
 //!
 //! Its only draws are its initial weights, from a generator seeded at
-//! construction; products run on one thread. The method ef-ontl calls all
-//! of its `pub(crate)` items.
-#![cfg_attr(not(test), allow(dead_code))]
+//! construction; products run on one thread. The method ef-ontl keeps one
+//! per agent (not in its snapshot).
 
 use candle_core::{DType, Device, Tensor, Var};
 use rand::SeedableRng;
-use serde::{Deserialize, Serialize};
 
-use crate::net;
-use crate::net::{flat, single_threaded_products};
+use crate::net::{self, single_threaded_products};
 use crate::selection::AgentRng;
 
 /// PyTorch's RMSprop defaults.
@@ -44,9 +41,6 @@ const RMS_EPSILON: f64 = 1e-8;
 /// the arithmetic (10,000 rows of 14 inputs: about 60 ms in chunks of 16,
 /// 300 ms in chunks of 256, on a loaded machine).
 const CHUNK: usize = 16;
-
-const STATE_TAG: &str = "adhoc-advising sars-rnd";
-const STATE_VERSION: u16 = 1;
 
 /// A sars-RND's settings; the library's defaults.
 #[derive(Clone, Debug, PartialEq)]
@@ -173,6 +167,7 @@ impl Rnd {
 
     /// Its uncertainty at input `x` (a [`Sars::row`]): the mean over the
     /// outputs of the squared difference.
+    #[cfg(test)]
     pub(crate) fn uncertainty(&self, x: &[f32]) -> f64 {
         self.uncertainties(x)[0]
     }
@@ -190,55 +185,6 @@ impl Rnd {
             .flat_map(|u| u.into_iter().map(f64::from))
             .collect()
     }
-
-    /// Its state: both networks and RMSprop's mean squares (it draws
-    /// nothing after its construction, so it keeps no generator).
-    pub(crate) fn save(&self) -> Vec<u8> {
-        let saved = self.saved().unwrap_or_else(|e| panic!("{}", fault(e)));
-        postcard::to_allocvec(&saved).expect("a sars-RND's state serialises")
-    }
-
-    fn saved(&self) -> candle_core::Result<Saved> {
-        Ok(Saved {
-            tag: STATE_TAG.into(),
-            version: STATE_VERSION,
-            shape: self.shape(),
-            target: net::lists(self.target.iter())?,
-            predictor: net::lists(self.predictor.iter().map(Var::as_tensor))?,
-            square: net::flat_lists(&self.square, &self.predictor)?,
-        })
-    }
-
-    fn shape(&self) -> Vec<u32> {
-        sizes(&self.settings, self.width)
-            .iter()
-            .map(|&s| s as u32)
-            .collect()
-    }
-
-    /// Takes `state` (from [`save`](Self::save)) as its own, refused with
-    /// why if it is not a sars-RND's of its layers; its settings stay its
-    /// own.
-    pub(crate) fn load(&mut self, state: &[u8]) -> Result<(), String> {
-        net::check_header(state, STATE_TAG, STATE_VERSION)?;
-        let saved: Saved = postcard::from_bytes(state).map_err(|e| format!("{STATE_TAG}: {e}"))?;
-        if saved.shape != self.shape() {
-            return Err(format!(
-                "the snapshot's sars-RND has layers {:?}, this one {:?}",
-                saved.shape,
-                self.shape()
-            ));
-        }
-        let target = net::tensors(saved.target, &self.predictor, "sars-RND target")?;
-        let predictor = net::tensors(saved.predictor, &self.predictor, "sars-RND predictor")?;
-        let square = net::tensors(saved.square, &self.predictor, "optimiser state")?;
-        for (var, value) in self.predictor.iter().zip(&predictor) {
-            var.set(value).map_err(fault)?;
-        }
-        self.target = target;
-        self.square = flat(&square).map_err(fault)?;
-        Ok(())
-    }
 }
 
 /// The layer sizes: inputs, hidden, outputs.
@@ -247,17 +193,6 @@ fn sizes(settings: &RndSettings, width: usize) -> Vec<usize> {
     sizes.extend(settings.hidden.iter().map(|&w| w as usize));
     sizes.push(settings.outputs as usize);
     sizes
-}
-
-/// A sars-RND's snapshot bytes (postcard).
-#[derive(Serialize, Deserialize)]
-struct Saved {
-    tag: String,
-    version: u16,
-    shape: Vec<u32>,
-    target: Vec<Vec<f32>>,
-    predictor: Vec<Vec<f32>>,
-    square: Vec<Vec<f32>>,
 }
 
 #[cfg(test)]
@@ -299,7 +234,13 @@ mod tests {
             let learned: Vec<u64> = (0..20)
                 .map(|i| rnd.learn(&row(i as f32 / 10.0, i % 4)).to_bits())
                 .collect();
-            (learned, rnd.save())
+            let probes: Vec<f32> = (0..4).flat_map(|k| row(0.05 * k as f32, k)).collect();
+            let after: Vec<u64> = rnd
+                .uncertainties(&probes)
+                .iter()
+                .map(|u| u.to_bits())
+                .collect();
+            (learned, after)
         };
         assert_eq!(run(3), run(3));
         let (a, b) = (run(3), run(4));
@@ -337,36 +278,6 @@ mod tests {
             seen_after < seen_before / 10.0 && unseen_after > unseen_before / 2.0,
             "seen {seen_before} -> {seen_after}, unseen {unseen_before} -> {unseen_after}"
         );
-    }
-
-    #[test]
-    fn a_snapshot_goes_on_as_the_saved_network_would() {
-        let settings = RndSettings {
-            hidden: vec![16],
-            outputs: 32,
-            ..RndSettings::default()
-        };
-        let mut saved = Rnd::new(&settings, 6, 7);
-        for i in 0..10 {
-            saved.learn(&row(i as f32 / 10.0, i % 4));
-        }
-        let bytes = saved.save();
-        let mut loaded = Rnd::new(&settings, 6, 8);
-        loaded.load(&bytes).unwrap();
-        assert_eq!(loaded.save(), bytes);
-        let x = row(0.3, 0);
-        assert_eq!(saved.learn(&x).to_bits(), loaded.learn(&x).to_bits());
-        assert_eq!(saved.save(), loaded.save());
-        let e = Rnd::new(&RndSettings::default(), 6, 1)
-            .load(&bytes)
-            .unwrap_err();
-        assert_eq!(
-            e,
-            "the snapshot's sars-RND has layers [14, 16, 32], this one [14, 1024]"
-        );
-        let mut cut = bytes.clone();
-        cut.truncate(cut.len() / 2);
-        assert!(loaded.load(&cut).is_err());
     }
 
     /// Times one learn step and one uncertainty at the default sizes, and a

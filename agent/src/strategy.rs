@@ -13,6 +13,7 @@
 mod ad_hoc;
 mod alone;
 mod budgeted;
+mod ef_ontl;
 mod episode_sharing;
 mod imitation;
 mod peers;
@@ -28,6 +29,7 @@ use crate::method::Registration;
 pub use ad_hoc::{AdHoc, Confidence};
 pub use alone::NoSettings;
 pub use budgeted::{EarlyAdvising, RandomAdvising};
+pub use ef_ontl::{EfOntl, TeacherRule};
 pub use episode_sharing::EpisodeSharing;
 pub use imitation::{AdviceImitation, Collection};
 pub use peers::PeerLearning;
@@ -57,5 +59,6 @@ pub(crate) static ALGORITHMS: &[Registration] = &[
     Registration::of::<rcmp::RcmpMethod>(),
     Registration::of::<psaf::PsafMethod>(),
     Registration::of::<imitation::AdviceImitationMethod>(),
+    Registration::of::<ef_ontl::EfOntlMethod>(),
     Registration::of::<alone::External>(),
 ];

@@ -354,10 +354,12 @@ impl AdviceExchange for Peers<'_> {
                 to: receiver,
                 transitions,
             }),
-            Share::Batch(_) => Body::ExperienceBatch(ExperienceBatch {
+            Share::Batch(batch) => Body::ExperienceBatch(ExperienceBatch {
                 from: sender,
                 to: receiver,
                 transitions,
+                notes: batch.notes.clone(),
+                standing: batch.standing,
             }),
         };
         let header = self.header();
@@ -365,8 +367,8 @@ impl AdviceExchange for Peers<'_> {
         if let Some(a) = self.get(to) {
             match share {
                 Share::Episode(t) => a.receive_shared(t),
-                Share::Batch(t) => {
-                    a.receive_batch(from, t);
+                Share::Batch(batch) => {
+                    a.receive_batch(from, batch);
                 }
             }
         }

@@ -4,9 +4,7 @@
 //! with the uncertainty its sars-RND had of it when it learned it (stale
 //! since), and the choice of the B a receiver is sent by the gap between
 //! the sender's stored uncertainty and the receiver's now. The method
-//! ef-ontl calls all of its `pub(crate)` items; it saves the buffer in its
-//! snapshot (serde).
-#![cfg_attr(not(test), allow(dead_code))]
+//! ef-ontl keeps one per agent (not in its snapshot).
 
 use serde::{Deserialize, Serialize};
 
@@ -52,11 +50,6 @@ impl TransferBuffer {
         self.uncertainty.len()
     }
 
-    /// Whether it holds none.
-    pub(crate) fn is_empty(&self) -> bool {
-        self.uncertainty.is_empty()
-    }
-
     /// Stores a transition, its input `row` (a [`Sars::row`]), its
     /// `discount` and `uncertainty` (what [`Rnd::learn`] returned for it),
     /// dropping the oldest when full.
@@ -85,6 +78,11 @@ impl TransferBuffer {
         let at = self.place(i);
         let row = &self.rows[at * self.width..(at + 1) * self.width];
         (Sars::of(row), self.discount[at])
+    }
+
+    /// The stored uncertainty of the `i`th oldest transition.
+    pub(crate) fn uncertainty(&self, i: usize) -> f64 {
+        self.uncertainty[self.place(i)]
     }
 
     /// The mean of the stored uncertainties (the teacher choice
@@ -145,7 +143,7 @@ mod tests {
     #[test]
     fn it_keeps_the_last_n_oldest_first() {
         let mut buffer = TransferBuffer::new(3, 2);
-        assert!(buffer.is_empty() && buffer.mean_uncertainty().is_none());
+        assert!(buffer.len() == 0 && buffer.mean_uncertainty().is_none());
         for i in 1..=5 {
             buffer.push(&row(i as f32), 0.5 * i as f32, f64::from(i));
         }

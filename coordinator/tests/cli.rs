@@ -774,6 +774,29 @@ fn advice_imitation_refuses_a_tabular_learner() {
     assert!(!out.exists(), "nothing written for bad input");
 }
 
+#[test]
+fn ef_ontl_refuses_a_tabular_learner() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let expected = "algorithm ef-ontl needs a neural learner (dqn), not";
+    for learner in ["sarsa", "ensemble"] {
+        let output = run_tiny("ef-ontl", &out, &["--learner", learner]);
+        refused(&output, &format!("learner`: {expected} {learner}"));
+    }
+    let team = tmp.path().join("team.toml");
+    let agent = "[[agent]]\nalgorithm = \"ef-ontl\"\n";
+    fs::write(&team, format!("{agent}{agent}learner = \"sarsa\"\n{agent}")).unwrap();
+    let o = out.to_str().unwrap();
+    let mut args = vec!["run", "--team", team.to_str().unwrap()];
+    args.extend(TINY);
+    args.extend(["--transport", "in-process", "--quiet", "--out", o]);
+    refused(
+        &coordinator(&args),
+        &format!("`team[1].learner`: {expected} sarsa"),
+    );
+    assert!(!out.exists(), "nothing written for bad input");
+}
+
 /// NoAdvice learns: over 4 runs, the mean goal percentage after 600
 /// training episodes is clearly above the one before training (about 5%
 /// before, 30% after with this simulator).

@@ -1,7 +1,7 @@
 //! Encoding and checked decoding of [`Envelope`]s, and of the settings a
 //! `Control::Reset` carries.
 
-use crate::message::{Body, Envelope, Header, MAX_BATCH, PROTOCOL_VERSION};
+use crate::message::{Body, Envelope, Header, PROTOCOL_VERSION};
 use crate::traffic::{DropReason, MessageCounters};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -62,13 +62,7 @@ pub fn decode(bytes: &[u8], experiment: u64) -> Result<Envelope, DecodeError> {
 /// Why a decoded body cannot be taken, if it cannot.
 fn check(body: &Body) -> Result<(), String> {
     match body {
-        Body::ExperienceBatch(b) if b.transitions.len() > MAX_BATCH => Err(format!(
-            "an experience batch of {} transitions, more than {MAX_BATCH}",
-            b.transitions.len()
-        )),
-        Body::ExperienceBatch(b) if !b.transitions.iter().all(|t| t.is_finite()) => {
-            Err("an experience batch with a number that is not finite".into())
-        }
+        Body::ExperienceBatch(b) => b.check(),
         Body::AdviceOutcome(o) if !o.advantage.is_finite() => {
             Err(format!("an advice outcome of advantage {}", o.advantage))
         }
@@ -264,13 +258,34 @@ mod tests {
                     transitions,
                 })
             }),
-            (any::<u8>(), any::<u8>(), transitions(20)).prop_map(|(from, to, transitions)| {
-                Body::ExperienceBatch(ExperienceBatch {
-                    from,
-                    to,
-                    transitions,
-                })
-            }),
+            (
+                any::<u8>(),
+                any::<u8>(),
+                transitions(20),
+                any::<bool>(),
+                prop::option::of((any::<u64>(), prop::option::of(0.0f64..1.0), -10.0f64..10.0)),
+            )
+                .prop_map(|(from, to, transitions, noted, standing)| {
+                    let notes = (transitions.iter().enumerate())
+                        .filter(|_| noted)
+                        .map(|(k, _)| TransitionNote {
+                            frames: k as u32 + 1,
+                            uncertainty: k as f64 / 8.0,
+                        })
+                        .collect();
+                    let standing = standing.map(|(episodes, uncertainty, mean_return)| Standing {
+                        episodes,
+                        uncertainty,
+                        mean_return,
+                    });
+                    Body::ExperienceBatch(ExperienceBatch {
+                        from,
+                        to,
+                        transitions,
+                        notes,
+                        standing,
+                    })
+                }),
             (any::<u8>(), any::<u8>(), any::<bool>(), -10.0f64..10.0).prop_map(
                 |(from, to, followed, advantage)| Body::AdviceOutcome(AdviceOutcome {
                     from,
@@ -432,6 +447,8 @@ mod tests {
                     from: 0,
                     to: 1,
                     transitions,
+                    notes: Vec::new(),
+                    standing: None,
                 }),
             })
         };
@@ -462,6 +479,110 @@ mod tests {
             decode(&outcome(f64::INFINITY), 1),
             Err(DecodeError::Malformed(_))
         ));
+    }
+
+    /// A batch of `n` transitions with `notes` and `standing`, encoded
+    /// under protocol `version`.
+    fn noted(n: usize, notes: Vec<TransitionNote>, standing: Option<Standing>) -> Vec<u8> {
+        let t = SharedTransition {
+            state: [0.5; 6],
+            action: Action::Dribble,
+            reward: 0.25,
+            next: Some(([0.25; 6], Action::Shoot)),
+        };
+        encode(&Envelope {
+            header: Header::new(1, 0, 0, 0),
+            body: Body::ExperienceBatch(ExperienceBatch {
+                from: 2,
+                to: 0,
+                transitions: vec![t; n],
+                notes,
+                standing,
+            }),
+        })
+    }
+
+    #[test]
+    fn a_batch_s_notes_are_one_per_transition_or_none_and_finite() {
+        let note = |frames, uncertainty| TransitionNote {
+            frames,
+            uncertainty,
+        };
+        let standing = |uncertainty, mean_return| Standing {
+            episodes: 100,
+            uncertainty,
+            mean_return,
+        };
+        let malformed = |bytes: Vec<u8>, says: &str| match decode(&bytes, 1) {
+            Err(DecodeError::Malformed(e)) => assert!(e.contains(says), "{e}"),
+            other => panic!("{other:?}"),
+        };
+        let fine = standing(Some(0.5), -0.25);
+        let ok = decode(&noted(3, vec![note(2, 0.5); 3], Some(fine)), 1).unwrap();
+        let Body::ExperienceBatch(b) = ok.body else {
+            panic!("{ok:?}")
+        };
+        assert_eq!((b.notes.len(), b.standing), (3, Some(fine)));
+        // None at all, or a standing alone (no transition), are fine too.
+        assert!(decode(&noted(3, Vec::new(), None), 1).is_ok());
+        assert!(decode(&noted(0, Vec::new(), Some(standing(None, 0.0))), 1).is_ok());
+        // Neither one per transition nor none.
+        malformed(
+            noted(3, vec![note(2, 0.5); 2], None),
+            "3 transitions with 2 notes",
+        );
+        malformed(
+            noted(1, vec![note(2, 0.5); 2], None),
+            "1 transitions with 2 notes",
+        );
+        malformed(
+            noted(0, vec![note(2, 0.5)], None),
+            "0 transitions with 1 notes",
+        );
+        // Numbers that are not finite, a note of no frame, too many frames.
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            malformed(
+                noted(2, vec![note(1, 0.5), note(1, bad)], None),
+                "not finite",
+            );
+            malformed(
+                noted(2, Vec::new(), Some(standing(Some(bad), 0.0))),
+                "not finite",
+            );
+            malformed(
+                noted(2, Vec::new(), Some(standing(None, bad))),
+                "not finite",
+            );
+        }
+        malformed(noted(2, vec![note(1, 0.5), note(0, 0.5)], None), "no frame");
+        let most = (MAX_BATCH_FRAMES / 2) as u32;
+        assert!(decode(&noted(2, vec![note(most, 0.5); 2], None), 1).is_ok());
+        let over = vec![note(most, 0.5), note(most + 1, 0.5)];
+        malformed(noted(2, over, None), "more than 262144");
+        let longest = vec![note(u32::MAX, 0.5); 4];
+        malformed(noted(4, longest, None), "frames, more than");
+    }
+
+    #[test]
+    fn a_batch_from_an_older_peer_is_refused_by_its_version() {
+        let mut bytes = noted(2, Vec::new(), None);
+        // The header comes first: a version 12 sender (no notes, no
+        // standing) is refused before its body is read.
+        let old = postcard::to_allocvec(&Header {
+            version: 12,
+            ..Header::new(1, 0, 0, 0)
+        })
+        .unwrap();
+        let new = postcard::to_allocvec(&Header::new(1, 0, 0, 0)).unwrap();
+        assert_eq!(bytes[..new.len()], new[..]);
+        bytes.splice(..new.len(), old);
+        assert_eq!(
+            decode(&bytes, 1),
+            Err(DecodeError::Version {
+                found: 12,
+                expected: 13
+            })
+        );
     }
 
     #[test]

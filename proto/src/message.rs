@@ -10,7 +10,7 @@ use crate::features::Features;
 use crate::traffic::{MessageCounters, MessageKind};
 
 /// Version of the wire protocol; bumped on every incompatible change.
-pub const PROTOCOL_VERSION: u16 = 12;
+pub const PROTOCOL_VERSION: u16 = 13;
 
 /// Where a message belongs: protocol version, experiment, run, episode, frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -375,6 +375,81 @@ pub struct ExperienceBatch {
     pub to: u8,
     /// The transitions, at most [`MAX_BATCH`], every number finite.
     pub transitions: Vec<SharedTransition>,
+    /// What the sender notes of each transition: one per transition, or
+    /// none.
+    pub notes: Vec<TransitionNote>,
+    /// The sender's standing, if it tells one.
+    pub standing: Option<Standing>,
+}
+
+impl ExperienceBatch {
+    /// Why it cannot be taken, if it cannot: more than [`MAX_BATCH`]
+    /// transitions, notes neither one per transition nor none, notes
+    /// spanning more than [`MAX_BATCH_FRAMES`] frames in all or a note of
+    /// no frame, or a number that is not finite.
+    pub fn check(&self) -> Result<(), String> {
+        let (n, notes) = (self.transitions.len(), self.notes.len());
+        if n > MAX_BATCH {
+            return Err(format!(
+                "an experience batch of {n} transitions, more than {MAX_BATCH}"
+            ));
+        }
+        if notes != 0 && notes != n {
+            return Err(format!(
+                "an experience batch of {n} transitions with {notes} notes"
+            ));
+        }
+        if self.notes.iter().any(|t| t.frames == 0) {
+            return Err("an experience batch with a note of no frame".into());
+        }
+        let frames: u64 = self.notes.iter().map(|t| u64::from(t.frames)).sum();
+        if frames > MAX_BATCH_FRAMES {
+            return Err(format!(
+                "an experience batch whose notes span {frames} frames, more than \
+                 {MAX_BATCH_FRAMES}"
+            ));
+        }
+        let finite = self.transitions.iter().all(SharedTransition::is_finite)
+            && self.notes.iter().all(|t| t.uncertainty.is_finite())
+            && self.standing.is_none_or(|s| s.is_finite());
+        match finite {
+            true => Ok(()),
+            false => Err("an experience batch with a number that is not finite".into()),
+        }
+    }
+}
+
+/// The most frames the notes of one [`ExperienceBatch`] may span in all.
+pub const MAX_BATCH_FRAMES: u64 = 1 << 18;
+
+/// What a sender notes of one transition of a batch (EF-OnTL's tuple): the
+/// frames the decision spans, and its uncertainty of it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TransitionNote {
+    /// The frames from its kick to the next decision, at least 1.
+    pub frames: u32,
+    /// The sender's uncertainty of it (finite).
+    pub uncertainty: f64,
+}
+
+/// What an agent tells its teammates of itself at a transfer event
+/// (EF-OnTL).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Standing {
+    /// Its training episodes so far.
+    pub episodes: u64,
+    /// The mean uncertainty of the experience it keeps; none while it keeps
+    /// none.
+    pub uncertainty: Option<f64>,
+    /// Its mean episode return over its recent training episodes.
+    pub mean_return: f64,
+}
+
+impl Standing {
+    /// Whether its numbers are finite.
+    pub fn is_finite(&self) -> bool {
+        self.uncertainty.is_none_or(f64::is_finite) && self.mean_return.is_finite()
+    }
 }
 
 /// An advisee's report to an advisor of how a decision on which it gave

@@ -141,6 +141,50 @@ fn advice_imitation_collects_advice_and_reuses_its_imitation() {
 }
 
 #[test]
+fn ef_ontl_transfers_experience_between_its_agents() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Transfers every 20 episodes (at the ends of 21, 41, 61, 81 and 101),
+    // 8 tuples learned of up to 64 sent; small DQNs.
+    let extra = "interval = 20\nbuffer = 64\ntransfer_batch = 8\nhidden = [16]\nwarmup = 32\n";
+    let team = homogeneous(tmp.path(), "ef-ontl", "ef-ontl", extra);
+    for transport in ["in-process", "zenoh"] {
+        let out = tmp.path().join(format!("ef-ontl-{transport}"));
+        let agents = last_counters(&team, transport, &out);
+        // Its budget is the tuples received: five transfers, each of at
+        // most 64 tuples (its buffer) to each of two receivers.
+        let received = team_total(&agents, "give_spent");
+        assert!(
+            (1..=5 * 2 * 64).contains(&received),
+            "{transport}: {agents:?}"
+        );
+        // Standings after episodes 20, 40, ..., 120 (six messages each),
+        // candidates after 21, 41, 61, 81 and 101 (two each).
+        let messages = team_total(&agents, "advising_messages");
+        assert_eq!(messages, 6 * 6 + 5 * 2, "{transport}: {agents:?}");
+        // Nobody asks or answers.
+        assert_eq!(team_total(&agents, "advice_requests"), 0);
+        assert_eq!(team_total(&agents, "advice_given"), 0);
+        if transport == "in-process" {
+            assert!(received >= 5 * 2 * 8, "{agents:?}");
+        }
+    }
+    // One seed, the same run files.
+    let schedule = [
+        "--episodes",
+        "60",
+        "--eval-every",
+        "30",
+        "--eval-episodes",
+        "5",
+    ];
+    let [a, b] = ["a", "b"].map(|n| tmp.path().join(format!("ef-ontl-{n}")));
+    assert_eq!(
+        team_run(&team, "in-process", &schedule, &a),
+        team_run(&team, "in-process", &schedule, &b)
+    );
+}
+
+#[test]
 fn psaf_partakers_take_the_values_sharers_more_confident_send() {
     let tmp = tempfile::tempdir().unwrap();
     for transport in ["in-process", "zenoh"] {

@@ -198,10 +198,12 @@ impl Stream {
                     to,
                     transitions,
                 }),
-                Share::Batch(transitions) => Body::ExperienceBatch(ExperienceBatch {
+                Share::Batch(batch) => Body::ExperienceBatch(ExperienceBatch {
                     from,
                     to,
-                    transitions,
+                    transitions: batch.transitions,
+                    notes: batch.notes,
+                    standing: batch.standing,
                 }),
             };
             self.send_to(header, to, body);

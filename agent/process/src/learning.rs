@@ -4,8 +4,8 @@
 //! lock.
 
 use agent::{
-    AdviceReport, Agent, AgentConfig, Answer, Answers, Decision, Observation, Sends, Snapshot,
-    Transition,
+    AdviceReport, Agent, AgentConfig, Answer, Answers, Batch, Decision, Observation, Sends,
+    Snapshot,
 };
 use proto::{
     Action, AdviceOutcome, AdviceRequest, Body, DropReason, ExperienceBatch, FeaturedRequest,
@@ -81,7 +81,7 @@ pub struct Learning {
     epoch: u64,
     stream: ObservationOrder,
     shares: PendingShares,
-    batches: PendingShares,
+    batches: PendingShares<Batch>,
 }
 
 impl Learning {
@@ -200,12 +200,12 @@ impl Learning {
         let finished = self.stream.finished();
         if position == Position::NewEpisode {
             agent.begin_episode(obs.mode);
-            learn_due(agent, [&mut self.shares, &mut self.batches], finished);
+            learn_due(agent, &mut self.shares, &mut self.batches, finished);
         }
         if let Some(outcome) = obs.outcome {
             agent.end_episode(outcome);
             let shares = agent.take_shared();
-            learn_due(agent, [&mut self.shares, &mut self.batches], finished);
+            learn_due(agent, &mut self.shares, &mut self.batches, finished);
             return Ok(Step::End(shares));
         }
         let me = Observation {
@@ -263,7 +263,10 @@ impl Learning {
             to,
             transitions,
         } = share;
-        self.take_in(header, (from, to), false, transitions)
+        self.check_share(header, from, to)?;
+        self.shares.push(from.into(), header.episode, transitions)?;
+        self.learn_due();
+        Ok(())
     }
 
     /// A batch of experience: learned once this agent has finished that
@@ -277,38 +280,38 @@ impl Learning {
             from,
             to,
             transitions,
+            notes,
+            standing,
         } = batch;
-        self.take_in(header, (from, to), true, transitions)
+        self.check_share(header, from, to)?;
+        let batch = Batch {
+            transitions,
+            notes,
+            standing,
+        };
+        self.batches.push(from.into(), header.episode, batch)?;
+        self.learn_due();
+        Ok(())
     }
 
-    /// Queues what another agent sent this one of the current run (a
-    /// `batch`, else an episode) and learns what is due.
-    fn take_in(
-        &mut self,
-        header: &Header,
-        (from, to): (u8, u8),
-        batch: bool,
-        transitions: Vec<Transition>,
-    ) -> Result<(), DropReason> {
+    /// Whether what agent `from` sent agent `to` unasked is for this agent
+    /// in the current run.
+    fn check_share(&self, header: &Header, from: u8, to: u8) -> Result<(), DropReason> {
         if to != self.id || from == self.id || from >= self.team_size {
             return Err(DropReason::Malformed);
         }
-        let agent = match self.agent.as_mut() {
-            Some(a) if header.run == self.run => a,
-            _ => return Err(DropReason::Stale),
-        };
-        let queue = if batch {
-            &mut self.batches
-        } else {
-            &mut self.shares
-        };
-        queue.push(from.into(), header.episode, transitions)?;
-        learn_due(
-            agent,
-            [&mut self.shares, &mut self.batches],
-            self.stream.finished(),
-        );
-        Ok(())
+        match self.agent {
+            Some(_) if header.run == self.run => Ok(()),
+            _ => Err(DropReason::Stale),
+        }
+    }
+
+    /// Learns what is due of what others sent.
+    fn learn_due(&mut self) {
+        if let Some(agent) = self.agent.as_mut() {
+            let finished = self.stream.finished();
+            learn_due(agent, &mut self.shares, &mut self.batches, finished);
+        }
     }
 
     /// An advisee's report of how a decision on this agent's advice turned
@@ -404,13 +407,18 @@ const NO_STRATEGY: &str = "algorithm `external` takes its decisions from a strat
     docs/strategies.md)";
 
 /// Learns the shared episodes, then the batches, that are due.
-fn learn_due(agent: &mut Agent, [shares, batches]: [&mut PendingShares; 2], finished: Option<u32>) {
+fn learn_due(
+    agent: &mut Agent,
+    shares: &mut PendingShares,
+    batches: &mut PendingShares<Batch>,
+    finished: Option<u32>,
+) {
     let training = agent.mode() == Mode::Training;
     for (_, transitions) in shares.take_ready(finished, training) {
         agent.receive_shared(&transitions);
     }
-    for (from, transitions) in batches.take_ready(finished, training) {
-        if !agent.receive_batch(from, &transitions) {
+    for (from, batch) in batches.take_ready(finished, training) {
+        if !agent.receive_batch(from, &batch) {
             tracing::debug!(from, "a batch this agent's learner cannot learn");
         }
     }
@@ -419,7 +427,7 @@ fn learn_due(agent: &mut Agent, [shares, batches]: [&mut PendingShares; 2], fini
 #[cfg(test)]
 mod tests {
     use super::*;
-    use agent::Share;
+    use agent::{Share, Transition};
     use proto::{Along, EpisodeOutcome};
 
     /// The wire form of the `AgentConfig` these JSON settings describe.
@@ -633,6 +641,8 @@ mod tests {
             from,
             to,
             transitions: vec![t; 3],
+            notes: Vec::new(),
+            standing: None,
         };
         let all = |_| true;
         b.observe(&header(3, 0, 0), &obs(1, false, false, 0.0), &all)

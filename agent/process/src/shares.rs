@@ -11,24 +11,29 @@
 use agent::Transition;
 use proto::DropReason;
 
-/// Received shares of one kind not yet learned (with their episode and
-/// sender), and the last episode seen per sender.
-#[derive(Clone, Debug, Default)]
-pub struct PendingShares {
-    queue: Vec<(u32, usize, Vec<Transition>)>,
+/// Received shares of one kind (`T`: a shared episode's transitions, or a
+/// batch) not yet learned (with their episode and sender), and the last
+/// episode seen per sender.
+#[derive(Clone, Debug)]
+pub struct PendingShares<T = Vec<Transition>> {
+    queue: Vec<(u32, usize, T)>,
     last: Vec<Option<u32>>,
 }
 
-impl PendingShares {
+impl<T> Default for PendingShares<T> {
+    fn default() -> Self {
+        Self {
+            queue: Vec::new(),
+            last: Vec::new(),
+        }
+    }
+}
+
+impl<T> PendingShares<T> {
     /// Queues the share of `episode` from agent `from`; a sender shares at
     /// most once per episode, so a second share of the same or an earlier
     /// episode is a duplicate or stale.
-    pub fn push(
-        &mut self,
-        from: usize,
-        episode: u32,
-        transitions: Vec<Transition>,
-    ) -> Result<(), DropReason> {
+    pub fn push(&mut self, from: usize, episode: u32, share: T) -> Result<(), DropReason> {
         if self.last.len() <= from {
             self.last.resize(from + 1, None);
         }
@@ -38,18 +43,14 @@ impl PendingShares {
             _ => {}
         }
         self.last[from] = Some(episode);
-        self.queue.push((episode, from, transitions));
+        self.queue.push((episode, from, share));
         Ok(())
     }
 
     /// The shares to learn now, with their senders, in arrival order: those
     /// of episodes up to `finished` (the receiver's last finished episode),
     /// when `training`.
-    pub fn take_ready(
-        &mut self,
-        finished: Option<u32>,
-        training: bool,
-    ) -> Vec<(usize, Vec<Transition>)> {
+    pub fn take_ready(&mut self, finished: Option<u32>, training: bool) -> Vec<(usize, T)> {
         let Some(finished) = finished.filter(|_| training) else {
             return Vec::new();
         };

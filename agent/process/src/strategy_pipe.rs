@@ -8,8 +8,8 @@ use std::cell::RefCell;
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, EndContext, GiveContext, Outcome, Replies, ReuseContext, Sends, Share, Transition,
-    VoteTies,
+    AskContext, Batch, EndContext, GiveContext, Outcome, Replies, ReuseContext, Sends, Share,
+    Transition, VoteTies,
 };
 use proto::{Action, SharedValues, State};
 use serde::Deserialize;
@@ -397,7 +397,7 @@ impl AdvisingStrategy for PipeStrategy {
                 })
                 .collect::<Result<Vec<_>, _>>()
                 .unwrap_or_else(|e| self.fail(&format!("sent a transition with {e}")));
-            sends.push((to, Share::Batch(batch)));
+            sends.push((to, Share::Batch(batch.into())));
         }
         sends
     }
@@ -409,12 +409,13 @@ impl AdvisingStrategy for PipeStrategy {
         }
     }
 
-    fn received(&mut self, from: usize, batch: &[Transition]) {
+    fn received(&mut self, from: usize, batch: &Batch) -> Option<Vec<Transition>> {
         if self.traits.receives_batches {
-            let transitions: Vec<Value> = batch.iter().map(transition).collect();
+            let transitions: Vec<Value> = batch.transitions.iter().map(transition).collect();
             let request = json!({ "op": "received", "from": from, "transitions": transitions });
             self.child.get_mut().send("received", &request);
         }
+        None
     }
 
     fn spent_budget(&self, c: &AdviceCounters) -> u64 {

@@ -697,8 +697,8 @@ async fn batches_and_advice_outcomes_travel_between_agent_processes_and_are_coun
             .await;
         assert_eq!(r.messages.dropped.total(), 0, "{r:?}");
     }
-    // An oversized batch and a report of an advantage that is no number
-    // are dropped as malformed.
+    // An oversized batch, a batch of misplaced notes and a report of an
+    // advantage that is no number are dropped as malformed.
     let publish = |body| {
         let bytes = proto::encode(&Envelope {
             header: fake.header(0, 1, 0),
@@ -716,8 +716,23 @@ async fn batches_and_advice_outcomes_travel_between_agent_processes_and_are_coun
         from: 0,
         to: 1,
         transitions: vec![t; proto::MAX_BATCH + 1],
+        notes: Vec::new(),
+        standing: None,
     };
     publish(Body::ExperienceBatch(long)).await.unwrap();
+    // Notes that are not one per transition.
+    let note = proto::TransitionNote {
+        frames: 1,
+        uncertainty: 0.5,
+    };
+    let misnoted = proto::ExperienceBatch {
+        from: 0,
+        to: 1,
+        transitions: vec![t; 3],
+        notes: vec![note; 2],
+        standing: None,
+    };
+    publish(Body::ExperienceBatch(misnoted)).await.unwrap();
     let nan = proto::AdviceOutcome {
         from: 0,
         to: 1,
@@ -726,7 +741,7 @@ async fn batches_and_advice_outcomes_travel_between_agent_processes_and_are_coun
     };
     publish(Body::AdviceOutcome(nan)).await.unwrap();
     let r = fake
-        .report_until(1, 1, |r| r.messages.dropped.malformed == 2)
+        .report_until(1, 1, |r| r.messages.dropped.malformed == 3)
         .await;
     assert_eq!(received(&r, MessageKind::ExperienceBatch), 2);
 }

@@ -1764,12 +1764,13 @@ impl AdvisingStrategy for Recorder {
         self.record.lock().unwrap().ended.push(seen);
     }
 
-    fn received(&mut self, from: usize, batch: &[Transition]) {
+    fn received(&mut self, from: usize, batch: &Batch) -> Option<Vec<Transition>> {
         self.record
             .lock()
             .unwrap()
             .received
-            .push((from, batch.to_vec()));
+            .push((from, batch.transitions.clone()));
+        None
     }
 
     fn spent_budget(&self, _: &AdviceCounters) -> u64 {
@@ -1877,7 +1878,7 @@ fn kicks(n: usize) -> Vec<Transition> {
 fn a_batch_sent_arrives_counted_and_its_receiver_learns_it_at_once() {
     let batch = kicks(3);
     let (strategy, _) = Recorder {
-        sends: vec![(1, Share::Batch(batch.clone()))],
+        sends: vec![(1, Share::Batch(batch.clone().into()))],
         ..Recorder::default()
     }
     .boxed();
@@ -1901,6 +1902,8 @@ fn a_batch_sent_arrives_counted_and_its_receiver_learns_it_at_once() {
         from: 0,
         to: 1,
         transitions: batch.clone(),
+        notes: Vec::new(),
+        standing: None,
     });
     let header = Header::new(proto::experiment_id("in-process"), 0, 0, 1);
     let bytes = proto::encode(&Envelope { header, body }).len() as u64;
@@ -1911,16 +1914,16 @@ fn a_batch_sent_arrives_counted_and_its_receiver_learns_it_at_once() {
     // A learner that cannot learn a batch says so.
     let mut sarsa = agent(1, 2, config("no-advice"));
     sarsa.begin_episode(Mode::Training);
-    assert!(!sarsa.receive_batch(0, &batch));
+    assert!(!sarsa.receive_batch(0, &batch.into()));
 }
 
 #[test]
 fn a_strategy_s_batches_are_bounded_and_one_per_receiver() {
     let (strategy, _) = Recorder {
         sends: vec![
-            (1, Share::Batch(kicks(MAX_BATCH + 10))),
+            (1, Share::Batch(kicks(MAX_BATCH + 10).into())),
             (2, Share::Episode(kicks(2))),
-            (1, Share::Batch(kicks(1))),
+            (1, Share::Batch(kicks(1).into())),
         ],
         ..Recorder::default()
     }
@@ -1930,7 +1933,7 @@ fn a_strategy_s_batches_are_bounded_and_one_per_receiver() {
     a.end_episode(Goal);
     let sent = a.take_shared();
     assert_eq!(sent.len(), 2);
-    assert_eq!(sent[0], (1, Share::Batch(kicks(MAX_BATCH))));
+    assert_eq!(sent[0], (1, Share::Batch(kicks(MAX_BATCH).into())));
     assert_eq!(sent[1], (2, Share::Episode(kicks(2))));
     assert_eq!(a.counters().shared_sent, MAX_BATCH as u64 + 2);
 }
@@ -1976,4 +1979,113 @@ fn advisors_hear_how_their_advice_turned_out_when_the_advisee_reports() {
         );
         assert_eq!(messages, 2 + 2, "two requests and two reports");
     }
+}
+
+/// A DQN that notes the decisions each batch it learns closes (a batch's
+/// kicks: every decision begins with one).
+#[derive(Debug)]
+struct CountingDqn {
+    dqn: crate::Dqn,
+    batches: std::sync::Arc<std::sync::Mutex<Vec<usize>>>,
+}
+
+impl crate::Learner for CountingDqn {
+    fn values(&mut self, at: Seen<'_>) -> ActionValues {
+        self.dqn.values(at)
+    }
+    fn choose(&mut self, at: Seen<'_>, rng: &mut AgentRng) -> Action {
+        self.dqn.choose(at, rng)
+    }
+    fn learn(&mut self, transition: Experience<'_>) {
+        self.dqn.learn(transition);
+    }
+    fn end_episode(&mut self) {
+        self.dqn.end_episode();
+    }
+    fn replay(&mut self, episode: &[Experience<'_>]) {
+        self.dqn.replay(episode);
+    }
+    fn learn_batch(&mut self, batch: &[Experience<'_>]) -> bool {
+        let kicks = batch.iter().filter(|(s, ..)| s.action.is_kick()).count();
+        self.batches.lock().unwrap().push(kicks);
+        self.dqn.learn_batch(batch)
+    }
+    fn table(&self) -> Option<Vec<ActionValues>> {
+        self.dqn.table()
+    }
+    fn restore(&mut self, values: Vec<ActionValues>) -> Result<(), String> {
+        self.dqn.restore(values)
+    }
+    fn save_state(&self) -> Option<Vec<u8>> {
+        self.dqn.save_state()
+    }
+    fn load_state(&mut self, state: &[u8]) -> Result<(), String> {
+        self.dqn.load_state(state)
+    }
+}
+
+/// A team of three ef-ontl agents (transfers every 5 episodes, 8 tuples
+/// learned of up to 64 kept) on small DQNs that note their batches.
+fn transferring(seed: u64) -> (Team, Vec<std::sync::Arc<std::sync::Mutex<Vec<usize>>>>) {
+    let mut c = with("ef-ontl", |s: &mut crate::EfOntl| {
+        s.interval = 5;
+        s.buffer = 64;
+        s.transfer_batch = 8;
+    });
+    let LearnerSettings::Dqn(dqn) = &mut c.learner else {
+        panic!("ef-ontl learns with the DQN by default: {:?}", c.learner);
+    };
+    dqn.hidden = vec![16];
+    dqn.warmup = 32;
+    let dqn = dqn.clone();
+    let mut noted = Vec::new();
+    let agents = (0..3).map(|i| {
+        let batches = std::sync::Arc::default();
+        noted.push(std::sync::Arc::clone(&batches));
+        let seed = seed + i as u64;
+        let learner = CountingDqn {
+            dqn: crate::Dqn::new(&dqn, c.gamma, 6, seed),
+            batches,
+        };
+        Agent::with_learner(i, 3, c.clone(), seed, Box::new(learner)).unwrap()
+    });
+    let team = Team::new(agents.collect()).unwrap();
+    (team, noted)
+}
+
+#[test]
+fn ef_ontl_transfers_and_each_receiver_learns_transfer_batch_tuples() {
+    let run = |seed| {
+        let (mut t, noted) = transferring(seed);
+        let log = play(&mut t, &mut AgentRng::seed_from_u64(3), 30, Mode::Training);
+        let counters: Vec<AdviceCounters> = t.agents().iter().map(|a| *a.counters()).collect();
+        let learned: Vec<Vec<usize>> = noted.iter().map(|n| n.lock().unwrap().clone()).collect();
+        let states: Vec<_> = (t.agents().iter())
+            .map(|a| a.snapshot().learner_state)
+            .collect();
+        let traffic: Vec<_> = t.traffic().iter().map(|m| (m.messages, m.bytes)).collect();
+        (log, counters, learned, states, traffic)
+    };
+    let (log, counters, learned, states, traffic) = run(5);
+    // Transfers at the ends of episodes 6, 11, 16, 21 and 26 (after the
+    // standings of 5, 10, ...): one teacher each, two receivers.
+    let batches: Vec<usize> = learned.iter().flatten().copied().collect();
+    assert_eq!(batches, vec![8; 10], "{learned:?}");
+    assert!(learned.iter().filter(|l| !l.is_empty()).count() >= 2);
+    let received: u64 = counters.iter().map(|c| c.shared_received).sum();
+    let sent: u64 = counters.iter().map(|c| c.shared_sent).sum();
+    assert!(received > 0 && received == sent, "{counters:?}");
+    // Each receiver got the teacher's whole buffer (at most 64), of which
+    // it learned 8.
+    assert!((80..=640).contains(&received), "{counters:?}");
+    for c in &counters {
+        assert_eq!(c.advice_requests + c.advice_given + c.ask_spent, 0);
+    }
+    // Standings at the ends of episodes 5, 10, ..., 30 (6 messages each),
+    // candidates at 5 transfers (2 each).
+    let messages: u64 = traffic.iter().map(|m| m.0).sum();
+    assert_eq!(messages, 6 * 6 + 5 * 2);
+    // One seed, one run; another seed, another.
+    assert_eq!(run(5), (log, counters, learned, states.clone(), traffic));
+    assert_ne!(run(6).3, states);
 }

@@ -53,7 +53,7 @@ use crate::exchange::Advice;
 use crate::fidelity::{Fidelity, Profile, VoteTies};
 use crate::learner::ActionValues;
 use crate::learner_settings::{DqnSettings, LearnerSettings};
-use crate::method::{LearnerNeed, Method};
+use crate::method::{LearnerNeed, Method, Seat};
 use crate::selection::{AgentRng, chance, majority};
 
 /// The authors' budget (`constants/ale.py` l.107-176), to which their
@@ -215,16 +215,16 @@ impl Method for AdviceImitationMethod {
 
     fn strategy(settings: &AdviceImitation, fidelity: &Fidelity) -> Box<dyn AdvisingStrategy> {
         let learner = LearnerSettings::for_need(LearnerNeed::Network);
-        Self::strategy_for(settings, fidelity, &learner)
+        Self::strategy_for(settings, fidelity, &Seat::of(&learner))
     }
 
     /// Its cloning network's hidden layers are its DQN's.
     fn strategy_for(
         settings: &AdviceImitation,
         _: &Fidelity,
-        learner: &LearnerSettings,
+        seat: &Seat<'_>,
     ) -> Box<dyn AdvisingStrategy> {
-        let hidden = match learner {
+        let hidden = match seat.learner {
             LearnerSettings::Dqn(dqn) => dqn.hidden.clone(),
             _ => DqnSettings::default().hidden,
         };

@@ -6,7 +6,7 @@ use std::fmt;
 use proto::{Action, EpisodeOutcome, Mode, SharedValues, State};
 
 use crate::advice_counters::AdviceCounters;
-use crate::exchange::{Advice, BestValue, Share, Transition, ValuesAdvice};
+use crate::exchange::{Advice, Batch, BestValue, Share, Transition, ValuesAdvice};
 use crate::fidelity::{AdvisorTies, VoteTies};
 use crate::learner::ActionValues;
 use crate::selection::{ACTIONS, AgentRng, greedy_first, greedy_random, majority};
@@ -351,7 +351,10 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
     /// An evaluation episode ended (frozen: nothing is sent).
     fn end_evaluation(&mut self, _end: &EndContext<'_>) {}
 
-    /// A batch of experience arrived from agent `from` (its learner learns
-    /// it as one batch, if it can), in a training episode's end.
-    fn received(&mut self, _from: usize, _batch: &[Transition]) {}
+    /// A batch of experience arrived from agent `from`, in a training
+    /// episode's end: what its learner learns of it as one batch, if it
+    /// can. `None` (by default): the batch's transitions as they came.
+    fn received(&mut self, _from: usize, _batch: &Batch) -> Option<Vec<Transition>> {
+        None
+    }
 }

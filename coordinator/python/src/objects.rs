@@ -12,8 +12,8 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use agent::{
     ActionValues, Adopted, Advice, AdviceCounters, AdvisingStrategy, AdvisorTies, AgentRng,
-    AskContext, EndContext, Experience, GiveContext, Learner, Outcome, Replies, ReuseContext, Seen,
-    Sends, Share, Step, Transition, VoteTies,
+    AskContext, Batch, EndContext, Experience, GiveContext, Learner, Outcome, Replies,
+    ReuseContext, Seen, Sends, Share, Step, Transition, VoteTies,
 };
 use coordinator::plugin::{Plugin, PluginSpec, PluginStart};
 use proto::{Action, SharedValues};
@@ -640,9 +640,9 @@ impl AdvisingStrategy for PythonStrategy {
                 let batch = (to < at.team_size && to != at.me)
                     .then_some(transitions)
                     .ok_or_else(|| format!("a batch to agent {to}, not another agent"))
-                    .and_then(|t| t.into_iter().map(unshared).collect());
+                    .and_then(|t| t.into_iter().map(unshared).collect::<Result<Vec<_>, _>>());
                 match batch {
-                    Ok(batch) => sends.push((to, Share::Batch(batch))),
+                    Ok(batch) => sends.push((to, Share::Batch(batch.into()))),
                     Err(reason) => {
                         self.object.refuse(py, "end_episode", reason);
                         return None;
@@ -662,13 +662,14 @@ impl AdvisingStrategy for PythonStrategy {
         }
     }
 
-    fn received(&mut self, from: usize, batch: &[Transition]) {
+    fn received(&mut self, from: usize, batch: &Batch) -> Option<Vec<Transition>> {
         if self.traits.receives_batches {
-            let batch: Vec<PyTransition> = batch.iter().map(shared).collect();
+            let batch: Vec<PyTransition> = batch.transitions.iter().map(shared).collect();
             Python::attach(|py| {
                 self.object.call(py, "received", (from, batch));
             });
         }
+        None
     }
 
     fn spent_budget(&self, c: &AdviceCounters) -> u64 {
