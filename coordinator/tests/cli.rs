@@ -751,50 +751,48 @@ fn a_dqn_learner_is_chosen_by_name_and_its_bad_settings_are_refused() {
     assert!(!out.exists(), "nothing written for bad input");
 }
 
-#[test]
-fn advice_imitation_refuses_a_tabular_learner() {
+/// `method`, which needs the DQN, is refused with the tabular learners:
+/// on the command line, and in a team file whose agent `sarsa_at` names
+/// `sarsa`; one line naming the key, nothing written.
+fn refuses_a_tabular_learner(method: &str, sarsa_at: usize) {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
-    let expected = "algorithm advice-imitation needs a neural learner (dqn), not";
+    let expected = format!("algorithm {method} needs a neural learner (dqn), not");
     for learner in ["sarsa", "ensemble"] {
-        let output = run_tiny("advice-imitation", &out, &["--learner", learner]);
+        let output = run_tiny(method, &out, &["--learner", learner]);
         refused(&output, &format!("learner`: {expected} {learner}"));
     }
     let team = tmp.path().join("team.toml");
-    let agent = "[[agent]]\nalgorithm = \"advice-imitation\"\n";
-    fs::write(&team, format!("{agent}{agent}{agent}learner = \"sarsa\"\n")).unwrap();
+    let agents: String = (0..3)
+        .map(|i| {
+            let learner = if i == sarsa_at {
+                "learner = \"sarsa\"\n"
+            } else {
+                ""
+            };
+            format!("[[agent]]\nalgorithm = \"{method}\"\n{learner}")
+        })
+        .collect();
+    fs::write(&team, agents).unwrap();
     let o = out.to_str().unwrap();
     let mut args = vec!["run", "--team", team.to_str().unwrap()];
     args.extend(TINY);
     args.extend(["--transport", "in-process", "--quiet", "--out", o]);
     refused(
         &coordinator(&args),
-        &format!("`team[2].learner`: {expected} sarsa"),
+        &format!("`team[{sarsa_at}].learner`: {expected} sarsa"),
     );
     assert!(!out.exists(), "nothing written for bad input");
 }
 
 #[test]
+fn advice_imitation_refuses_a_tabular_learner() {
+    refuses_a_tabular_learner("advice-imitation", 2);
+}
+
+#[test]
 fn ef_ontl_refuses_a_tabular_learner() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("out");
-    let expected = "algorithm ef-ontl needs a neural learner (dqn), not";
-    for learner in ["sarsa", "ensemble"] {
-        let output = run_tiny("ef-ontl", &out, &["--learner", learner]);
-        refused(&output, &format!("learner`: {expected} {learner}"));
-    }
-    let team = tmp.path().join("team.toml");
-    let agent = "[[agent]]\nalgorithm = \"ef-ontl\"\n";
-    fs::write(&team, format!("{agent}{agent}learner = \"sarsa\"\n{agent}")).unwrap();
-    let o = out.to_str().unwrap();
-    let mut args = vec!["run", "--team", team.to_str().unwrap()];
-    args.extend(TINY);
-    args.extend(["--transport", "in-process", "--quiet", "--out", o]);
-    refused(
-        &coordinator(&args),
-        &format!("`team[1].learner`: {expected} sarsa"),
-    );
-    assert!(!out.exists(), "nothing written for bad input");
+    refuses_a_tabular_learner("ef-ontl", 1);
 }
 
 /// NoAdvice learns: over 4 runs, the mean goal percentage after 600
