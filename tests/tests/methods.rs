@@ -89,21 +89,25 @@ fn played(dir: &Path, transport: &str, name: &str, method: &str, extra: &str) ->
     last_counters(&team, transport, &dir.join(format!("{name}-{transport}")))
 }
 
+/// The team reused advice, and a reuse sent nothing: every request has
+/// its outcome, and none is a reuse.
+fn reused_without_a_message(agents: &[Value], transport: &str) {
+    let reused = team_total(agents, "reused_advice");
+    let requests = team_total(agents, "advice_requests");
+    let outcomes: u64 = ["answered", "declined", "futile", "lost"]
+        .iter()
+        .map(|o| team_total(agents, &format!("{o}_requests")))
+        .sum();
+    assert!(reused > 0, "{transport}: nothing reused: {agents:?}");
+    assert_eq!(outcomes, requests, "{transport}: {agents:?}");
+}
+
 #[test]
 fn advice_reuse_plays_kept_advice_without_a_message() {
     let tmp = tempfile::tempdir().unwrap();
     for transport in ["in-process", "zenoh"] {
         let agents = played(tmp.path(), transport, "reuse", "advice-reuse", "");
-        let reused = team_total(&agents, "reused_advice");
-        let requests = team_total(&agents, "advice_requests");
-        let outcomes: u64 = ["answered", "declined", "futile", "lost"]
-            .iter()
-            .map(|o| team_total(&agents, &format!("{o}_requests")))
-            .sum();
-        assert!(reused > 0, "{transport}: nothing reused: {agents:?}");
-        // A reuse sends nothing: every request has its outcome, and none is
-        // a reuse.
-        assert_eq!(outcomes, requests, "{transport}: {agents:?}");
+        reused_without_a_message(&agents, transport);
     }
 }
 
@@ -128,15 +132,8 @@ fn advice_imitation_collects_advice_and_reuses_its_imitation() {
             // Its first imitation round comes after 4 samples.
             assert!((4..=40).contains(&spent), "{transport}: {agent}");
         }
-        let reused = team_total(&agents, "reused_advice");
-        let requests = team_total(&agents, "advice_requests");
-        let outcomes: u64 = ["answered", "declined", "futile", "lost"]
-            .iter()
-            .map(|o| team_total(&agents, &format!("{o}_requests")))
-            .sum();
-        assert!(reused > 0, "{transport}: nothing reused: {agents:?}");
         // Reusing the imitation sends nothing.
-        assert_eq!(outcomes, requests, "{transport}: {agents:?}");
+        reused_without_a_message(&agents, transport);
     }
 }
 
