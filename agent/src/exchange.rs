@@ -49,6 +49,26 @@ pub struct Batch {
     pub standing: Option<Standing>,
 }
 
+impl Batch {
+    /// Why the wire cannot carry it as it is, if it cannot
+    /// ([`proto::check_batch`]).
+    pub fn check(&self) -> Result<(), String> {
+        proto::check_batch(&self.transitions, &self.notes, self.standing.as_ref())
+    }
+
+    /// Its transitions at `indices`, in that order (what a strategy naming
+    /// them by index chose to learn), or which index it does not have.
+    pub fn chosen(&self, indices: &[usize]) -> Result<Vec<Transition>, String> {
+        let n = self.transitions.len();
+        (indices.iter())
+            .map(|&i| {
+                (self.transitions.get(i).copied())
+                    .ok_or_else(|| format!("transition {i} of a batch of {n}"))
+            })
+            .collect()
+    }
+}
+
 impl From<Vec<Transition>> for Batch {
     /// The transitions alone.
     fn from(transitions: Vec<Transition>) -> Self {

@@ -388,34 +388,45 @@ impl ExperienceBatch {
     /// spanning more than [`MAX_BATCH_FRAMES`] frames in all or a note of
     /// no frame, or a number that is not finite.
     pub fn check(&self) -> Result<(), String> {
-        let (n, notes) = (self.transitions.len(), self.notes.len());
-        if n > MAX_BATCH {
-            return Err(format!(
-                "an experience batch of {n} transitions, more than {MAX_BATCH}"
-            ));
-        }
-        if notes != 0 && notes != n {
-            return Err(format!(
-                "an experience batch of {n} transitions with {notes} notes"
-            ));
-        }
-        if self.notes.iter().any(|t| t.frames == 0) {
-            return Err("an experience batch with a note of no frame".into());
-        }
-        let frames: u64 = self.notes.iter().map(|t| u64::from(t.frames)).sum();
-        if frames > MAX_BATCH_FRAMES {
-            return Err(format!(
-                "an experience batch whose notes span {frames} frames, more than \
-                 {MAX_BATCH_FRAMES}"
-            ));
-        }
-        let finite = self.transitions.iter().all(SharedTransition::is_finite)
-            && self.notes.iter().all(|t| t.uncertainty.is_finite())
-            && self.standing.is_none_or(|s| s.is_finite());
-        match finite {
-            true => Ok(()),
-            false => Err("an experience batch with a number that is not finite".into()),
-        }
+        check_batch(&self.transitions, &self.notes, self.standing.as_ref())
+    }
+}
+
+/// Why a batch of `transitions` with `notes` and `standing` cannot travel,
+/// if it cannot ([`ExperienceBatch::check`]'s rules).
+pub fn check_batch(
+    transitions: &[SharedTransition],
+    notes: &[TransitionNote],
+    standing: Option<&Standing>,
+) -> Result<(), String> {
+    let n = transitions.len();
+    if n > MAX_BATCH {
+        return Err(format!(
+            "an experience batch of {n} transitions, more than {MAX_BATCH}"
+        ));
+    }
+    if !notes.is_empty() && notes.len() != n {
+        return Err(format!(
+            "an experience batch of {n} transitions with {} notes",
+            notes.len()
+        ));
+    }
+    if notes.iter().any(|t| t.frames == 0) {
+        return Err("an experience batch with a note of no frame".into());
+    }
+    let frames: u64 = notes.iter().map(|t| u64::from(t.frames)).sum();
+    if frames > MAX_BATCH_FRAMES {
+        return Err(format!(
+            "an experience batch whose notes span {frames} frames, more than \
+             {MAX_BATCH_FRAMES}"
+        ));
+    }
+    let finite = transitions.iter().all(SharedTransition::is_finite)
+        && notes.iter().all(|t| t.uncertainty.is_finite())
+        && standing.is_none_or(Standing::is_finite);
+    match finite {
+        true => Ok(()),
+        false => Err("an experience batch with a number that is not finite".into()),
     }
 }
 

@@ -11,7 +11,7 @@ use agent::{
     AskContext, Batch, EndContext, GiveContext, Outcome, Replies, ReuseContext, Sends, Share,
     Transition, VoteTies,
 };
-use proto::{Action, SharedValues, State};
+use proto::{Action, SharedValues, Standing, State, TransitionNote};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -198,6 +198,17 @@ struct Ended {
 struct SentBatch {
     to: usize,
     transitions: Vec<SentTransition>,
+    #[serde(default)]
+    notes: Vec<TransitionNote>,
+    #[serde(default)]
+    standing: Option<Standing>,
+}
+
+/// What its learner learns of a batch that arrived: the transitions by
+/// index, or all of them.
+#[derive(Deserialize)]
+struct Learn {
+    learn: Option<Vec<usize>>,
 }
 
 #[derive(Deserialize)]
@@ -382,7 +393,13 @@ impl AdvisingStrategy for PipeStrategy {
         }
         let Ended { batches } = self.query("end_episode", end("end_episode", at));
         let mut sends = Sends::new();
-        for SentBatch { to, transitions } in batches {
+        for SentBatch {
+            to,
+            transitions,
+            notes,
+            standing,
+        } in batches
+        {
             if to >= at.team_size || to == at.me {
                 self.fail(&format!(
                     "sent a batch to agent {to}; receivers are the other agents, 0 to {} but {}",
@@ -390,14 +407,22 @@ impl AdvisingStrategy for PipeStrategy {
                     at.me
                 ));
             }
-            let batch = (transitions.into_iter())
+            let transitions = (transitions.into_iter())
                 .map(|t| {
                     let next = (t.next_state, t.next_action);
                     Transition::from_parts(t.state, t.action, t.reward, next)
                 })
                 .collect::<Result<Vec<_>, _>>()
                 .unwrap_or_else(|e| self.fail(&format!("sent a transition with {e}")));
-            sends.push((to, Share::Batch(batch.into())));
+            let batch = Batch {
+                transitions,
+                notes,
+                standing,
+            };
+            if let Err(e) = batch.check() {
+                self.fail(&format!("sent {e}"));
+            }
+            sends.push((to, Share::Batch(batch)));
         }
         sends
     }
@@ -410,12 +435,17 @@ impl AdvisingStrategy for PipeStrategy {
     }
 
     fn received(&mut self, from: usize, batch: &Batch) -> Option<Vec<Transition>> {
-        if self.traits.receives_batches {
-            let transitions: Vec<Value> = batch.transitions.iter().map(transition).collect();
-            let request = json!({ "op": "received", "from": from, "transitions": transitions });
-            self.child.get_mut().send("received", &request);
+        if !self.traits.receives_batches {
+            return None;
         }
-        None
+        let transitions: Vec<Value> = batch.transitions.iter().map(transition).collect();
+        let request = json!({
+            "op": "received", "from": from, "to": self.child.get_mut().agent(), "transitions": transitions,
+            "notes": batch.notes, "standing": batch.standing,
+        });
+        let Learn { learn } = self.query("received", request);
+        let chosen = batch.chosen(&learn?);
+        Some(chosen.unwrap_or_else(|e| self.fail(&format!("answered `received` with {e}"))))
     }
 
     fn spent_budget(&self, c: &AdviceCounters) -> u64 {

@@ -82,6 +82,14 @@ def _end(
     )
 
 
+def _batch_tuple(b: strategies.Batch) -> tuple:
+    """A batch as the native side takes it."""
+    s = strategies._wire_standing(b.standing)
+    standing = None if s is None else (s["episodes"], s["uncertainty"], s["mean_return"])
+    notes = [(int(n.frames), float(n.uncertainty)) for n in b.notes]
+    return (int(b.to), [_tuple(t) for t in b.transitions], notes, standing)
+
+
 def _tuple(t: learners.Transition) -> tuple:
     """A transition as the native side takes it."""
     state = tuple(float(x) for x in t.state)
@@ -95,12 +103,13 @@ class StrategyAdapter:
     side calls it; counters arrive in the order of
     :class:`~adhoc_advising.strategy.Counters`' fields."""
 
-    __slots__ = ("strategy",)
+    __slots__ = ("strategy", "agent")
 
-    def __init__(self, strategy: strategies.AdvisingStrategy) -> None:
+    def __init__(self, strategy: strategies.AdvisingStrategy, agent: int) -> None:
         if not isinstance(strategy, strategies.AdvisingStrategy):
             raise TypeError(f"{type(strategy).__name__} is not an AdvisingStrategy")
         self.strategy = strategy
+        self.agent = agent
 
     def traits(self) -> dict:
         """Who it is and which decisions it makes, as a strategy process
@@ -174,16 +183,29 @@ class StrategyAdapter:
     def learned(self, transition: tuple) -> None:
         self.strategy.learned(learners.Transition(*transition))
 
-    def end_episode(self, *end: Any) -> list[tuple[int, list[tuple]]]:
-        """The batches it sends, each transition as a tuple."""
-        batches = self.strategy.end_episode(_end(*end))
-        return [(int(b.to), [_tuple(t) for t in b.transitions]) for b in batches]
+    def end_episode(self, *end: Any) -> list[tuple]:
+        """The batches it sends: ``(to, transitions, notes, standing)``,
+        each as tuples."""
+        return [_batch_tuple(b) for b in self.strategy.end_episode(_end(*end))]
 
     def end_evaluation(self, *end: Any) -> None:
         self.strategy.end_evaluation(_end(*end))
 
-    def received(self, from_: int, batch: list[tuple]) -> None:
-        self.strategy.received(from_, [learners.Transition(*t) for t in batch])
+    def received(
+        self,
+        from_: int,
+        transitions: list[tuple],
+        notes: list[tuple[int, float]],
+        standing: tuple[int, float | None, float] | None,
+    ) -> list[int] | None:
+        """The indices of the transitions its learner learns, ``None``: all."""
+        batch = strategies.Batch(
+            self.agent,
+            tuple(learners.Transition(*t) for t in transitions),
+            tuple(strategies.TransitionNote(*n) for n in notes),
+            None if standing is None else strategies.Standing(*standing),
+        )
+        return strategies._indices(self.strategy.received(from_, batch))
 
     def spent_budget(self, counters: Sequence[int]) -> int:
         return int(self.strategy.spent_budget(_counters(counters)))
@@ -205,13 +227,13 @@ def made(role: str, thing: Any) -> Made | None:
     if thing is None:
         return None
     base, adapter = {
-        "learner": (learners.Learner, LearnerAdapter),
+        "learner": (learners.Learner, lambda learner, agent: LearnerAdapter(learner)),
         "strategy": (strategies.AdvisingStrategy, StrategyAdapter),
     }[role]
     if isinstance(thing, base):
 
         def make(agent: int, team_size: int, run: int, seed: int) -> Any:
-            return adapter(copy.deepcopy(thing))
+            return adapter(copy.deepcopy(thing), agent)
 
     elif callable(thing):
         actions = tuple(_adhoc_advising.PAPER_ACTIONS)
@@ -220,12 +242,12 @@ def made(role: str, thing: Any) -> Made | None:
 
             def make(agent: int, team_size: int, run: int, seed: int) -> Any:
                 start = learners.Start(agent, team_size, run, seed, features, actions)
-                return adapter(thing(start))
+                return adapter(thing(start), agent)
 
         else:
 
             def make(agent: int, team_size: int, run: int, seed: int) -> Any:
-                return adapter(thing(strategies.Start(agent, team_size, run, seed, actions)))
+                return adapter(thing(strategies.Start(agent, team_size, run, seed, actions)), agent)
 
     else:
         raise TypeError(

@@ -126,12 +126,39 @@ class EndContext:
 
 
 @dataclass(frozen=True)
+class TransitionNote:
+    """What a sender notes of one transition of a batch (EF-OnTL's tuple)."""
+
+    #: The frames from its kick to the next decision, at least 1.
+    frames: int
+    #: The sender's uncertainty of it (finite).
+    uncertainty: float
+
+
+@dataclass(frozen=True)
+class Standing:
+    """What an agent tells its teammates of itself with a batch."""
+
+    #: Its training episodes so far.
+    episodes: int
+    #: The mean uncertainty of the experience it keeps, ``None`` while it
+    #: keeps none.
+    uncertainty: float | None
+    #: Its mean episode return over its recent training episodes.
+    mean_return: float
+
+
+@dataclass(frozen=True)
 class Batch:
     """Experience sent to teammate ``to`` at an episode's end, which its
-    learner learns as one batch (at most 4096 transitions)."""
+    learner learns as one batch (at most 4096 transitions; notes spanning
+    at most 262,144 frames in all)."""
 
     to: int
     transitions: tuple[Transition, ...]
+    #: One note per transition, or none.
+    notes: tuple[TransitionNote, ...] = ()
+    standing: Standing | None = None
 
 
 @dataclass(frozen=True)
@@ -271,9 +298,12 @@ class AdvisingStrategy:
     def end_evaluation(self, end: EndContext) -> None:
         """An evaluation episode ended. Only sent if overridden."""
 
-    def received(self, from_: int, batch: Sequence[Transition]) -> None:
-        """A batch of experience arrived from agent ``from_`` (its learner
-        then learns it as one batch, if it can). Only sent if overridden."""
+    def received(self, from_: int, batch: Batch) -> Sequence[int] | None:
+        """A batch of experience arrived from agent ``from_`` (``batch.to``
+        is this agent): the indices of the transitions its learner learns as
+        one batch, in that order, or ``None`` for all of them as they came
+        (an empty list: none). Only asked if overridden."""
+        return None
 
     def spent_budget(self, counters: AdviceCounters) -> int:
         """The budget the results plot: by default the answers given."""
@@ -300,6 +330,45 @@ def _transition(raw: dict) -> Transition:
         next_state=_state(raw["next_state"]),
         next_action=_action(raw["next_action"]),
     )
+
+
+def _standing(raw: dict | None) -> Standing | None:
+    if raw is None:
+        return None
+    u = None if raw["uncertainty"] is None else float(raw["uncertainty"])
+    return Standing(int(raw["episodes"]), u, float(raw["mean_return"]))
+
+
+def _wire_standing(s: Standing | None) -> dict | None:
+    if s is None:
+        return None
+    u = None if s.uncertainty is None else float(s.uncertainty)
+    return {"episodes": int(s.episodes), "uncertainty": u, "mean_return": float(s.mean_return)}
+
+
+def _batch(message: dict) -> Batch:
+    """A batch as it arrived."""
+    notes = (TransitionNote(int(n["frames"]), float(n["uncertainty"])) for n in message["notes"])
+    return Batch(
+        to=int(message["to"]),
+        transitions=tuple(_transition(t) for t in message["transitions"]),
+        notes=tuple(notes),
+        standing=_standing(message["standing"]),
+    )
+
+
+def _wire_batch(b: Batch) -> dict:
+    """A batch as the agent reads it."""
+    return {
+        "to": int(b.to),
+        "transitions": [_wire(t) for t in b.transitions],
+        "notes": [{"frames": int(n.frames), "uncertainty": float(n.uncertainty)} for n in b.notes],
+        "standing": _wire_standing(b.standing),
+    }
+
+
+def _indices(chosen: Sequence[int] | None) -> list[int] | None:
+    return None if chosen is None else [int(i) for i in chosen]
 
 
 def _wire(t: Transition) -> dict:
@@ -418,18 +487,12 @@ def _answer(strategy: AdvisingStrategy, message: dict) -> dict | None:
         strategy.learned(_transition(message["transition"]))
         return None
     if op == "end_episode":
-        batches = strategy.end_episode(_end(message))
-        return {
-            "batches": [
-                {"to": int(b.to), "transitions": [_wire(t) for t in b.transitions]} for b in batches
-            ]
-        }
+        return {"batches": [_wire_batch(b) for b in strategy.end_episode(_end(message))]}
     if op == "end_evaluation":
         strategy.end_evaluation(_end(message))
         return None
     if op == "received":
-        strategy.received(int(message["from"]), [_transition(t) for t in message["transitions"]])
-        return None
+        return {"learn": _indices(strategy.received(int(message["from"]), _batch(message)))}
     if op == "spent_budget":
         return {"spent": int(strategy.spent_budget(_counters(message["counters"])))}
     raise ValueError(f"unknown request `{op}`")

@@ -258,6 +258,32 @@ fn state(at: Seen<'_>) -> (Features, Option<usize>) {
 /// next_state, next_action)`.
 type PyTransition = (Features, usize, f64, Option<Features>, Option<usize>);
 
+/// What a sender notes of a transition, as the adapter takes and gives it:
+/// `(frames, uncertainty)`.
+type PyNote = (u32, f64);
+
+fn note((frames, uncertainty): PyNote) -> proto::TransitionNote {
+    proto::TransitionNote {
+        frames,
+        uncertainty,
+    }
+}
+
+/// A sender's standing as the adapter takes and gives it: `(episodes,
+/// uncertainty, mean_return)`.
+type PyStanding = (u64, Option<f64>, f64);
+
+fn standing_of((episodes, uncertainty, mean_return): PyStanding) -> proto::Standing {
+    proto::Standing {
+        episodes,
+        uncertainty,
+        mean_return,
+    }
+}
+
+/// A batch as the adapter gives it: `(to, transitions, notes, standing)`.
+type PyBatch = (usize, Vec<PyTransition>, Vec<PyNote>, Option<PyStanding>);
+
 /// A shared transition as the adapter takes it.
 fn shared(t: &Transition) -> PyTransition {
     (
@@ -633,23 +659,24 @@ impl AdvisingStrategy for PythonStrategy {
             return Sends::new();
         }
         Python::attach(|py| {
-            let batches: Vec<(usize, Vec<PyTransition>)> =
-                self.object.answer(py, "end_episode", end(at))?;
-            let mut sends = Sends::new();
-            for (to, transitions) in batches {
-                let batch = (to < at.team_size && to != at.me)
-                    .then_some(transitions)
-                    .ok_or_else(|| format!("a batch to agent {to}, not another agent"))
-                    .and_then(|t| t.into_iter().map(unshared).collect::<Result<Vec<_>, _>>());
-                match batch {
-                    Ok(batch) => sends.push((to, Share::Batch(batch.into()))),
-                    Err(reason) => {
-                        self.object.refuse(py, "end_episode", reason);
-                        return None;
+            let batches: Vec<PyBatch> = self.object.answer(py, "end_episode", end(at))?;
+            let sends = (batches.into_iter())
+                .map(|(to, transitions, notes, standing)| {
+                    if to >= at.team_size || to == at.me {
+                        return Err(format!("a batch to agent {to}, not another agent"));
                     }
-                }
-            }
-            Some(sends)
+                    let batch = Batch {
+                        transitions: (transitions.into_iter().map(unshared))
+                            .collect::<Result<_, _>>()?,
+                        notes: notes.into_iter().map(note).collect(),
+                        standing: standing.map(standing_of),
+                    };
+                    batch.check().map(|()| (to, Share::Batch(batch)))
+                })
+                .collect::<Result<Sends, String>>();
+            sends
+                .map_err(|reason| self.object.refuse(py, "end_episode", reason))
+                .ok()
         })
         .unwrap_or_default()
     }
@@ -663,13 +690,21 @@ impl AdvisingStrategy for PythonStrategy {
     }
 
     fn received(&mut self, from: usize, batch: &Batch) -> Option<Vec<Transition>> {
-        if self.traits.receives_batches {
-            let batch: Vec<PyTransition> = batch.transitions.iter().map(shared).collect();
-            Python::attach(|py| {
-                self.object.call(py, "received", (from, batch));
-            });
+        if !self.traits.receives_batches {
+            return None;
         }
-        None
+        let transitions: Vec<PyTransition> = batch.transitions.iter().map(shared).collect();
+        let notes: Vec<PyNote> = (batch.notes.iter())
+            .map(|n| (n.frames, n.uncertainty))
+            .collect();
+        let standing = (batch.standing).map(|s| (s.episodes, s.uncertainty, s.mean_return));
+        Python::attach(|py| {
+            let args = (from, transitions, notes, standing);
+            let chosen: Option<Vec<usize>> = self.object.answer(py, "received", args)?;
+            (batch.chosen(&chosen?))
+                .map_err(|reason| self.object.refuse(py, "received", reason))
+                .ok()
+        })
     }
 
     fn spent_budget(&self, c: &AdviceCounters) -> u64 {

@@ -7,10 +7,13 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
+import pytest
 from batch_strategies import Student, Teacher
 from conftest import ROOT, assert_ended_cleanly, workspace_binary
 
@@ -23,7 +26,9 @@ from adhoc_advising.strategy import (
     EndContext,
     GiveContext,
     Outcome,
+    Standing,
     Start,
+    TransitionNote,
     serve,
 )
 
@@ -144,8 +149,9 @@ def test_the_new_hooks_see_the_observation_the_end_and_what_arrives() -> None:
         def end_evaluation(self, end: EndContext) -> None:
             seen.append(end)
 
-        def received(self, from_: int, batch: list[Transition]) -> None:
+        def received(self, from_: int, batch: Batch) -> list[int]:
             seen.append((from_, batch))
+            return [0]
 
         def advice_outcome(self, asker: int, followed: bool, advantage: float) -> None:
             seen.append((asker, followed, advantage))
@@ -186,11 +192,18 @@ def test_the_new_hooks_see_the_observation_the_end_and_what_arrives() -> None:
         {"op": "learned", "transition": TRANSITION},
         {"op": "end_episode", **end},
         {"op": "end_evaluation", **end, "outcome": "out_of_time"},
-        {"op": "received", "from": 1, "transitions": [TRANSITION]},
+        {
+            "op": "received",
+            "from": 1,
+            "to": 2,
+            "transitions": [TRANSITION],
+            "notes": [{"frames": 3, "uncertainty": 0.5}],
+            "standing": {"episodes": 40, "uncertainty": None, "mean_return": -0.25},
+        },
         {"op": "advice_outcome", "asker": 0, "followed": True, "advantage": -0.5},
     )
     assert status == 0
-    traits, asks, gives, batches = answers
+    traits, asks, gives, batches, learns = answers
     assert all(
         traits[key]
         for key in (
@@ -204,14 +217,20 @@ def test_the_new_hooks_see_the_observation_the_end_and_what_arrives() -> None:
         )
     )
     assert asks == {"decision": False} and gives == {"decision": False}
-    assert batches == {"batches": [{"to": 0, "transitions": [TRANSITION]}]}
+    assert batches == {
+        "batches": [{"to": 0, "transitions": [TRANSITION], "notes": [], "standing": None}]
+    }
+    assert learns == {"learn": [0]}
     ask, give, learned, ended, evaluated, received, outcome = seen
     assert (ask.state, ask.features, ask.values) == (tuple(state), (0.5, 0.25), tuple(values))
     assert (give.asker, give.state, give.features) == (1, tuple(state), ())
     assert learned == Transition(tuple(state), 1, 1.0, None, None)
     assert (ended.outcome, ended.episode_return, ended.me) == ("goal", 1.5, 2)
     assert evaluated.outcome == "out_of_time"
-    assert received == (1, [learned])
+    assert received == (
+        1,
+        Batch(2, (learned,), (TransitionNote(3, 0.5),), Standing(40, None, -0.25)),
+    )
     assert outcome == (0, True, -0.5)
 
 
@@ -347,14 +366,62 @@ def last_agents(out: Path) -> list[dict]:
     return json.loads((out / "run-0.json").read_text())["points"][-1]["agents"]
 
 
+SCHEDULE = {"runs": 1, "episodes": 40, "eval_every": 20, "eval_episodes": 5}
+
+
 def test_a_batch_is_sent_at_an_episode_s_end_and_learned_in_process(tmp_path: Path) -> None:
     team = [{"algorithm": Student, "learner": "dqn"}, {"algorithm": Teacher}]
-    schedule = {"runs": 1, "episodes": 40, "eval_every": 20, "eval_episodes": 5}
-    adhoc_advising.run(out=tmp_path / "out", team=team, **schedule)
+    adhoc_advising.run(out=tmp_path / "out", team=team, **SCHEDULE)
     student, teacher = last_agents(tmp_path / "out")
-    # Every transition sent arrived, one message per training episode.
+    # Every transition sent arrived, notes and standing as sent (the
+    # student checks them), one message per training episode.
     assert 0 < student["give_spent"] == teacher["give_spent"]
     assert 0 < teacher["advising_messages"] <= 40
+
+
+def frames(out: Path) -> tuple[int, int]:
+    """The training and evaluation frames run 0 in `out` played."""
+    timing = json.loads((out / "run-0.json").read_text())["timing"]
+    return timing["training_frames"], timing["evaluation_frames"]
+
+
+def test_a_receiver_s_learner_learns_the_transitions_it_names(tmp_path: Path) -> None:
+    def play(name: str, learns: str, silent: bool = False) -> tuple[int, int]:
+        team = [
+            {"algorithm": lambda start: Student(start, learns), "learner": "dqn"},
+            {"algorithm": lambda start: Teacher(start, silent)},
+        ]
+        adhoc_advising.run(out=tmp_path / name, team=team, **SCHEDULE)
+        return frames(tmp_path / name)
+
+    alone = play("alone", "none", silent=True)
+    # Naming none of what arrived leaves the student as if nothing had.
+    assert play("none", "none") == alone
+    assert play("even", "even") != alone
+    assert play("all", "all") != alone
+
+
+def test_a_receiver_naming_a_transition_it_was_not_sent_ends_the_run(tmp_path: Path) -> None:
+    class Greedy(Student):
+        def received(self, from_: int, batch: Batch) -> list[int]:
+            return [len(batch.transitions)]
+
+    team = [{"algorithm": Greedy, "learner": "dqn"}, {"algorithm": Teacher}]
+    with pytest.raises(RuntimeError, match="answered `received` with what it cannot") as ended:
+        adhoc_advising.run(out=tmp_path / "out", team=team, **SCHEDULE)
+    assert re.fullmatch(r"transition (\d+) of a batch of \1", str(ended.value.__cause__))
+
+
+def test_a_batch_the_wire_cannot_carry_ends_the_run(tmp_path: Path) -> None:
+    class Careless(Teacher):
+        def end_episode(self, end: EndContext) -> list[Batch]:
+            return [replace(b, notes=b.notes[:1]) for b in super().end_episode(end)]
+
+    team = [{"algorithm": Student, "learner": "dqn"}, {"algorithm": Careless}]
+    with pytest.raises(RuntimeError, match="answered `end_episode` with what it cannot") as ended:
+        adhoc_advising.run(out=tmp_path / "out", team=team, **SCHEDULE)
+    cause = r"an experience batch of (\d+) transitions with 1 notes"
+    assert re.fullmatch(cause, str(ended.value.__cause__))
 
 
 def test_a_batch_travels_over_zenoh(tmp_path: Path) -> None:
@@ -366,7 +433,7 @@ def test_a_batch_travels_over_zenoh(tmp_path: Path) -> None:
         )
 
     team = tmp_path / "team.toml"
-    team.write_text(agent("student", 'learner = "dqn"\n') + agent("teacher"))
+    team.write_text(agent("student-even", 'learner = "dqn"\n') + agent("teacher"))
     result = run(team, tmp_path / "out", 100)
     assert result.returncode == 0, result.stderr
     student, teacher = last_agents(tmp_path / "out")
