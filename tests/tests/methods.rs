@@ -31,8 +31,9 @@ fn team_file(dir: &Path, methods: &[&str]) -> std::path::PathBuf {
     path
 }
 
-/// Every agent's counters at the last evaluation of one run of `team`.
-fn last_counters(team: &Path, transport: &str, out: &Path) -> Vec<Value> {
+/// Every agent's counters at each evaluation (episodes 0, 60 and 120) of
+/// one run of `team`.
+fn counters(team: &Path, transport: &str, out: &Path) -> Vec<Vec<Value>> {
     let schedule = [
         "--episodes",
         "120",
@@ -42,8 +43,14 @@ fn last_counters(team: &Path, transport: &str, out: &Path) -> Vec<Value> {
         "10",
     ];
     let run = team_run(team, transport, &schedule, out);
-    let points = run["points"].as_array().unwrap();
-    points.last().unwrap()["agents"].as_array().unwrap().clone()
+    (run["points"].as_array().unwrap().iter())
+        .map(|p| p["agents"].as_array().unwrap().clone())
+        .collect()
+}
+
+/// Every agent's counters at the last evaluation of one run of `team`.
+fn last_counters(team: &Path, transport: &str, out: &Path) -> Vec<Value> {
+    counters(team, transport, out).pop().unwrap()
 }
 
 #[test]
@@ -134,6 +141,41 @@ fn advice_imitation_collects_advice_and_reuses_its_imitation() {
         }
         // Reusing the imitation sends nothing.
         reused_without_a_message(&agents, transport);
+    }
+}
+
+#[test]
+fn rcmp_asks_while_its_heads_disagree() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Small DQNs of 5 heads, whose uncertainty is infinite until their
+    // first learning step (after 32 stored transitions).
+    let requests = |transport: &str, name: &str, threshold: &str| -> Vec<Vec<u64>> {
+        let extra = format!("hidden = [16]\nwarmup = 32\nuncertainty_threshold = {threshold}\n");
+        let team = homogeneous(tmp.path(), name, "rcmp", &extra);
+        let out = tmp.path().join(format!("{name}-{transport}"));
+        (counters(&team, transport, &out).iter())
+            .map(|agents| {
+                agents
+                    .iter()
+                    .map(|a| a["advice_requests"].as_u64().unwrap())
+                    .collect()
+            })
+            .collect()
+    };
+    for transport in ["in-process", "zenoh"] {
+        // No variance of learning heads reaches 1e12: each agent asks in
+        // its warm-up, then never.
+        let certain = requests(transport, "certain", "1e12");
+        let said = format!("{transport}: {certain:?}");
+        assert!(certain[1].iter().all(|r| (1..=64).contains(r)), "{said}");
+        assert_eq!(certain[1], certain[2], "{said}");
+        // At its threshold, the heads disagree long after: it asks on.
+        let asking = requests(transport, "asking", "0.001");
+        let said = format!("{transport}: {asking:?}");
+        assert!(
+            asking[2].iter().zip(&asking[1]).all(|(end, mid)| end > mid),
+            "{said}"
+        );
     }
 }
 
