@@ -79,8 +79,15 @@ pub(super) fn frontier_section(md: &mut Markdown, f: &Frontier) {
 /// Each group of two or more entries at the frontier's message rates.
 fn equal_cost(md: &mut Markdown, f: &Frontier) {
     md.heading(3, "Gain at equal cost");
-    if f.rates.is_empty() {
+    if f.equal_cost.is_empty() {
         md.paragraph("No group has entries at two message rates above 0.");
+        return;
+    }
+    if f.rates.is_empty() {
+        md.paragraph(
+            "No rate of a tenth's step (1.0 to 9.9 in each decade) lies inside any group's \
+             range of message rates: each group's entries sent about the same.",
+        );
         return;
     }
     md.paragraph(&format!(

@@ -312,21 +312,34 @@ fn at_cost(curve: &[Curve], rate: f64) -> Option<Estimate> {
 /// The most rates the equal-cost table shows, and the fewest it seeks.
 const RATES: (usize, usize) = (6, 4);
 
-/// Mantissas of log-spaced rates, coarsest first: decades, then 1-3,
-/// 1-2-5, 1-2-3-5, 1-1.5-2-3-5-7 and 1 to 9 in each decade.
-const LADDERS: [&[f64]; 6] = [
-    &[1.0],
-    &[1.0, 3.0],
-    &[1.0, 2.0, 5.0],
-    &[1.0, 2.0, 3.0, 5.0],
-    &[1.0, 1.5, 2.0, 3.0, 5.0, 7.0],
-    &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+/// Mantissas of log-spaced rates in tenths, coarsest first: decades, then
+/// 1-3, 1-2-5, 1-2-3-5, 1-1.5-2-3-5-7, 1 to 9, and 1.0 to 9.9 by tenths in
+/// each decade.
+const LADDERS: [&[u32]; 7] = [
+    &[10],
+    &[10, 30],
+    &[10, 20, 50],
+    &[10, 20, 30, 50],
+    &[10, 15, 20, 30, 50, 70],
+    &[10, 20, 30, 40, 50, 60, 70, 80, 90],
+    &TENTHS,
 ];
+
+/// 1.0 to 9.9 in tenths.
+const TENTHS: [u32; 90] = {
+    let mut tenths = [0; 90];
+    let mut i = 0;
+    while i < 90 {
+        tenths[i] = 10 + i as u32;
+        i += 1;
+    }
+    tenths
+};
 
 /// Log-spaced message rates over `ranges` (each a curve's costs), each
 /// inside at least one of them: the coarsest ladder that gives
 /// [`RATES`]`.1` or more of them, thinned evenly to [`RATES`]`.0`; with
-/// none that does, the finest ladder's.
+/// none that does, the (coarsest) ladder that gives the most.
 fn rates(ranges: &[(f64, f64)]) -> Vec<f64> {
     let (Some(lo), Some(hi)) = (
         ranges.iter().map(|r| r.0).min_by(f64::total_cmp),
@@ -335,28 +348,28 @@ fn rates(ranges: &[(f64, f64)]) -> Vec<f64> {
         return Vec::new();
     };
     let inside = |x: f64| ranges.iter().any(|&(a, b)| a <= x && x <= b);
-    let ladder = |mantissas: &[f64]| -> Vec<f64> {
+    let ladder = |tenths: &[u32]| -> Vec<f64> {
         let decades = lo.log10().floor() as i32..=hi.log10().floor() as i32;
         decades
-            .flat_map(|k| mantissas.iter().map(move |&m| nice(m, k)))
+            .flat_map(|k| tenths.iter().map(move |&m| nice(m, k - 1)))
             .filter(|&x| inside(x))
             .collect()
     };
     let all: Vec<Vec<f64>> = LADDERS.iter().map(|m| ladder(m)).collect();
     let chosen = (all.iter())
         .find(|r| r.len() >= RATES.1)
-        .or(all.last())
+        .or_else(|| all.iter().rev().max_by_key(|r| r.len()))
         .cloned()
         .unwrap_or_default();
     thin(chosen, RATES.0)
 }
 
 /// `m` × 10^`k`, as near as a float gets (0.3, not 0.30000000000000004).
-fn nice(m: f64, k: i32) -> f64 {
+fn nice(m: u32, k: i32) -> f64 {
     if k >= 0 {
-        m * 10f64.powi(k)
+        f64::from(m) * 10f64.powi(k)
     } else {
-        m / 10f64.powi(-k)
+        f64::from(m) / 10f64.powi(-k)
     }
 }
 
@@ -511,6 +524,14 @@ mod tests {
         assert_eq!(rates(&[(1.2, 6.0), (5.0, 17.0)]), [2.0, 3.0, 5.0, 10.0]);
         assert_eq!(rates(&[(2.57, 16.4)]), [3.0, 5.0, 7.0, 10.0, 15.0]);
         assert_eq!(rates(&[(2.5, 6.5)]), [3.0, 4.0, 5.0, 6.0]);
+        // Within a factor of two: tenths.
+        assert_eq!(
+            rates(&[(1.28, 1.84), (1.11, 1.81)]),
+            [1.2, 1.3, 1.4, 1.6, 1.7, 1.8]
+        );
+        assert_eq!(rates(&[(0.111, 0.13)]), [0.12, 0.13]);
+        // Narrower than a tenth: none.
+        assert!(rates(&[(1.75, 1.77)]).is_empty());
         // A gap between the curves has no rate.
         assert_eq!(
             rates(&[(0.1, 0.35), (20.0, 35.0)]),
