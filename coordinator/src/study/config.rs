@@ -14,7 +14,7 @@ use crate::membership::MembershipEvent;
 use crate::transport::Transport;
 
 /// The presets shipped with the project (`coordinator/presets/*.toml`).
-pub const PRESETS: [(&str, &str); 17] = [
+pub const PRESETS: [(&str, &str); 18] = [
     ("quick", include_str!("../../presets/quick.toml")),
     (
         "paper-scratch",
@@ -44,6 +44,10 @@ pub const PRESETS: [(&str, &str); 17] = [
     ("untrusted", include_str!("../../presets/untrusted.toml")),
     ("real-hfo", include_str!("../../presets/real-hfo.toml")),
     ("frontier", include_str!("../../presets/frontier.toml")),
+    (
+        "frontier-announced",
+        include_str!("../../presets/frontier-announced.toml"),
+    ),
     (
         "methods-expert",
         include_str!("../../presets/methods-expert.toml"),
