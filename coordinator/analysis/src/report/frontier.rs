@@ -85,8 +85,9 @@ fn equal_cost(md: &mut Markdown, f: &Frontier) {
     }
     if f.rates.is_empty() {
         md.paragraph(
-            "No rate of a tenth's step (1.0 to 9.9 in each decade) lies inside any group's \
-             range of message rates: each group's entries sent about the same.",
+            "No rate of a tenth's step (1.0 to 9.9 in each decade) lies inside the ranges of \
+             message rates of two groups (of the one, with one): the groups sent too \
+             differently, or each group's entries about the same.",
         );
         return;
     }

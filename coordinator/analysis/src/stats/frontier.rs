@@ -337,9 +337,10 @@ const TENTHS: [u32; 90] = {
 };
 
 /// Log-spaced message rates over `ranges` (each a curve's costs), each
-/// inside at least one of them: the coarsest ladder that gives
-/// [`RATES`]`.1` or more of them, thinned evenly to [`RATES`]`.0`; with
-/// none that does, the (coarsest) ladder that gives the most.
+/// inside two of them (the one, if there is one), so that every rate
+/// compares groups: the coarsest ladder that gives [`RATES`]`.1` or more
+/// of them, thinned evenly to [`RATES`]`.0`; with none that does, the
+/// (coarsest) ladder that gives the most.
 fn rates(ranges: &[(f64, f64)]) -> Vec<f64> {
     let (Some(lo), Some(hi)) = (
         ranges.iter().map(|r| r.0).min_by(f64::total_cmp),
@@ -347,7 +348,8 @@ fn rates(ranges: &[(f64, f64)]) -> Vec<f64> {
     ) else {
         return Vec::new();
     };
-    let inside = |x: f64| ranges.iter().any(|&(a, b)| a <= x && x <= b);
+    let needed = ranges.len().min(2);
+    let inside = |x: f64| ranges.iter().filter(|&&(a, b)| a <= x && x <= b).count() >= needed;
     let ladder = |tenths: &[u32]| -> Vec<f64> {
         let decades = lo.log10().floor() as i32..=hi.log10().floor() as i32;
         decades
@@ -512,30 +514,31 @@ mod tests {
     }
 
     #[test]
-    fn the_rates_are_log_spaced_inside_some_curve() {
-        // Two decades and a half: 1-3 steps.
+    fn the_rates_are_log_spaced_inside_two_curves() {
+        // Where two curves overlap, two decades and a half: 1-2-5 steps.
         assert_eq!(
             rates(&[(0.08, 12.0), (0.5, 40.0)]),
-            [0.1, 0.3, 1.0, 3.0, 10.0, 30.0]
+            [0.5, 1.0, 2.0, 5.0, 10.0]
         );
-        // Seven decades: decades, thinned to six.
+        // One curve of seven decades: decades, thinned to six.
         assert_eq!(rates(&[(0.001, 20000.0)]).len(), 6);
         // A decade: 1-2-3-5, or finer; within one: 1 to 9.
-        assert_eq!(rates(&[(1.2, 6.0), (5.0, 17.0)]), [2.0, 3.0, 5.0, 10.0]);
+        assert_eq!(rates(&[(1.2, 16.0), (2.0, 17.0)]), [2.0, 3.0, 5.0, 10.0]);
         assert_eq!(rates(&[(2.57, 16.4)]), [3.0, 5.0, 7.0, 10.0, 15.0]);
         assert_eq!(rates(&[(2.5, 6.5)]), [3.0, 4.0, 5.0, 6.0]);
         // Within a factor of two: tenths.
         assert_eq!(
             rates(&[(1.28, 1.84), (1.11, 1.81)]),
-            [1.2, 1.3, 1.4, 1.6, 1.7, 1.8]
+            [1.3, 1.4, 1.5, 1.6, 1.7, 1.8]
         );
         assert_eq!(rates(&[(0.111, 0.13)]), [0.12, 0.13]);
-        // Narrower than a tenth: none.
+        // Narrower than a tenth, or curves apart: none.
         assert!(rates(&[(1.75, 1.77)]).is_empty());
-        // A gap between the curves has no rate.
+        assert!(rates(&[(0.1, 0.35), (20.0, 35.0)]).is_empty());
+        // Rates where only one of three curves lies are left out.
         assert_eq!(
-            rates(&[(0.1, 0.35), (20.0, 35.0)]),
-            [0.1, 0.2, 0.3, 20.0, 30.0]
+            rates(&[(1.1, 1.8), (1.2, 3.9), (3.0, 3.8)]),
+            [1.2, 1.5, 1.8, 3.2, 3.5, 3.8]
         );
         assert!(rates(&[]).is_empty());
     }
