@@ -148,7 +148,9 @@ pub struct StudyEntry {
     /// The team's algorithm.
     pub algorithm: Algorithm,
     /// The pretraining's expert replaces agent `pretrain.expert`: it starts
-    /// from the expert's snapshot and never asks.
+    /// from the expert's snapshot with an ask budget of 0 (Torrey's student,
+    /// which has none, shows its states to its teacher as the authors'
+    /// expert does).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub expert: bool,
     /// Newcomers taking slots during training (`[[entry.event]]`, as a
@@ -344,7 +346,8 @@ impl StudyConfig {
             if p.settings.contains_key("learner") {
                 agent.config.learner = self.pretrained(p).config.learner;
             }
-            // The expert never asks: an algorithm that asks has an ask budget.
+            // The expert asks nothing in a method with an ask budget; Torrey's
+            // student has none and shows its states, as the authors' expert.
             if agent.config.algorithm.setting("ask_budget").is_some() {
                 (agent.config.algorithm)
                     .set("ask_budget", 0)

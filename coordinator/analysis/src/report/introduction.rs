@@ -54,7 +54,7 @@ pub(super) fn introduction(md: &mut Markdown, study: &Study, entries: &[EntryRes
     if let Some(p) = &study.pretrain {
         md.paragraph(&format!(
             "Pretraining: a {} team trained for {} episodes; agent {} was saved as the expert that \
-             starts every run of the entries marked *expert* (it keeps learning and never asks).",
+             starts every run of the entries marked *expert* (it keeps learning; its ask budget is 0 in every method that has one).",
             p.algorithm.name(),
             p.episodes,
             p.expert + 1
