@@ -28,6 +28,8 @@ use crate::transport::{Auth, Endpoints, ZenohSettings};
 /// before joining is started again in its slot, per start-up (of the team,
 /// of a newcomer or of a restarted agent); one more exit ends the run.
 const START_RETRIES: usize = 3;
+/// How long a query that found no route waits to see its process lost.
+const LOSS_WAIT: Duration = Duration::from_secs(3);
 
 /// An agent process that exited before joining and was started again in
 /// its slot under the restart policy.
@@ -653,20 +655,6 @@ impl ZenohTeam {
         *self.lost.borrow()
     }
 
-    /// Waits up to `within` for a process to be found lost (a query can
-    /// fail for want of a route a moment before the liveliness token goes);
-    /// the lost process, if any.
-    pub fn await_loss(&self, within: Duration) -> Option<Role> {
-        let mut lost = self.lost.subscribe();
-        let found = self.runtime.block_on(async {
-            tokio::time::timeout(within, lost.wait_for(Option::is_some))
-                .await
-                .ok()
-                .and_then(|r| r.ok().map(|role| *role))
-        });
-        found.flatten()
-    }
-
     /// Experiment id carried in every header.
     pub fn experiment(&self) -> u64 {
         self.experiment
@@ -749,6 +737,14 @@ impl ZenohTeam {
             // All routes answered without a reply: say so, not the timeout.
             let waited = sent.elapsed();
             Err(if waited + Duration::from_millis(100) < timeout {
+                // A route goes a moment before the liveliness token does.
+                let gone = tokio::time::timeout(LOSS_WAIT, lost.wait_for(|g| g.is_some_and(fatal)))
+                    .await
+                    .ok()
+                    .and_then(|gone| gone.ok().and_then(|g| *g));
+                if let Some(gone_role) = gone {
+                    return Err(self.describe_loss(gone_role).await);
+                }
                 format!(
                     "{role} did not answer {what}: the query ended after {waited:.1?} with no \
                      reply (no route to {role})"

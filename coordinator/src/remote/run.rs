@@ -20,9 +20,6 @@ use analysis::{AgentStats, Restart, SimulatorRestart};
 /// How long a process may take to answer a command other than playing
 /// (a reset includes starting a learner process: an `import torch`).
 const CONTROL_TIMEOUT: Duration = Duration::from_secs(30);
-/// How long a failed call to an agent waits to see it lost, under the
-/// restart policy.
-const LOSS_WAIT: Duration = Duration::from_secs(3);
 /// How long one episode may take (200 frames, each at most one step timeout).
 const EPISODE_TIMEOUT: Duration = Duration::from_secs(600);
 /// How many times in a row an episode is played again after its simulator
@@ -191,14 +188,9 @@ impl<'a> RemoteBackend<'a> {
         let reply = self
             .network
             .control(role, self.header(episode), control.clone(), timeout);
-        if reply.is_err() && self.network.settings().restart_agents {
-            if matches!(role, Role::Agent(_)) {
-                self.network.await_loss(LOSS_WAIT);
-            }
-            if self.restartable().is_some() {
-                self.recover(false, Instant::now())?;
-                return self.call_once(role, episode, control, timeout);
-            }
+        if reply.is_err() && self.restartable().is_some() {
+            self.recover(false, Instant::now())?;
+            return self.call_once(role, episode, control, timeout);
         }
         reply.map_err(|e| self.check_alive().err().unwrap_or_else(|| self.error(e)))
     }
