@@ -12,7 +12,7 @@ use super::catalogue::note_of;
 use super::data::{Series, SeriesPoint};
 use super::draw::{self, Captions, Curve, Mark, MarkShape, PALETTE, Panel, Style};
 use super::figure::{Figure, FigureError};
-use super::layout::{Layout, PLOT, YRange};
+use super::layout::{self, Layout, PLOT, YRange};
 use crate::stats::Estimate;
 
 /// The figure's file name, without extension.
@@ -120,16 +120,20 @@ pub fn draw_difference(baseline: &str, sets: &[DifferenceSet]) -> Result<Figure,
     let (aside, together): (Vec<usize>, Vec<usize>) = (0..sets.len()).partition(|&k| apart[k]);
     let shown = |ks: &[usize]| -> Vec<Series> { ks.iter().map(|&k| series[k].clone()).collect() };
     let main_curves: Vec<Curve> = together.iter().map(|&k| curve(k)).collect();
-    let main = Panel {
-        curves: &main_curves,
-        layout: Layout::of(&shown(&together), YRange::Around(0.0)),
-        y_axis: AXIS,
-        heading: "",
-    };
+    let mut main_layout = Layout::of(&shown(&together), YRange::Around(0.0));
     let aside_curves: Vec<Curve> = aside.iter().map(|&k| curve(k)).collect();
     let heading = apart_heading(sets, &aside, &together);
     let mut aside_layout = Layout::sized(&shown(&aside), YRange::Around(0.0), APART_PLOT);
-    aside_layout.ranges.x = main.layout.ranges.x;
+    aside_layout.ranges.x = main_layout.ranges.x;
+    if !aside.is_empty() {
+        layout::align(&mut [&mut main_layout, &mut aside_layout]);
+    }
+    let main = Panel {
+        curves: &main_curves,
+        layout: main_layout,
+        y_axis: AXIS,
+        heading: "",
+    };
     let lower = Panel {
         curves: &aside_curves,
         layout: aside_layout,

@@ -11,7 +11,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use super::data::{Series, SeriesPoint};
 use super::layout::{
     HEADER_H, HEADING_H, LEGEND_GAP, LEGEND_LINE, LEGEND_PAD, LEGEND_SWATCH, LEGEND_TEXT, Layout,
-    Legend, MARGIN, SIZE, Scale, TICKS, X_LABELS_H, Y_LABELS_W, decimals,
+    Legend, MARGIN, PLOT, SIZE, Scale, TICKS, X_LABELS_H, Y_LABELS_W, decimals,
 };
 use super::log_axis::{LogAxis, tick_label};
 
@@ -222,32 +222,44 @@ fn draw_chart(
     let mut builder = ChartBuilder::on(area);
     builder
         .margin_top(MARGIN.0)
-        .margin_right(MARGIN.1)
+        .margin_right(MARGIN.1 + PLOT.0 - panel.layout.plot.0)
         .margin_bottom(MARGIN.2)
         .margin_left(MARGIN.3)
         .x_label_area_size(X_LABELS_H)
         .y_label_area_size(Y_LABELS_W);
     let y = ranges.y.0..ranges.y.1;
-    match ranges.x_scale {
+    let origin = match ranges.x_scale {
         Scale::Linear => {
             let chart = builder.build_cartesian_2d(ranges.x.0..ranges.x.1, y)?;
             let x_decimals = decimals(ranges.x.1 - ranges.x.0);
-            plot(chart, panel, x_axis, &|x: &f64| format!("{x:.x_decimals$}"))
+            plot(chart, panel, x_axis, &|x: &f64| format!("{x:.x_decimals$}"))?
         }
         Scale::Log => {
             let chart = builder.build_cartesian_2d(LogAxis(ranges.x.0..ranges.x.1), y)?;
-            plot(chart, panel, x_axis, &|x: &f64| tick_label(*x))
+            plot(chart, panel, x_axis, &|x: &f64| tick_label(*x))?
         }
+    };
+    // On the plotting area widened to the whole width: the legend may be
+    // beside the plot.
+    match &panel.layout.legend {
+        Some(legend) => {
+            let base = area.get_base_pixel();
+            let at = (origin.0 - base.0, origin.1 - base.1);
+            let room = area.clone().shrink(at, (PLOT.0, panel.layout.plot.1));
+            draw_legend(&room, panel.curves, legend)
+        }
+        None => Ok(()),
     }
 }
 
-/// Draws `panel` on `chart`, whose x axis is labelled by `x_format`.
+/// Draws `panel` but its legend on `chart`, whose x axis is labelled by
+/// `x_format`; the plotting area's top-left pixel.
 fn plot<X>(
     mut chart: ChartContext<'_, SVGBackend<'_>, Cartesian2d<X, RangedCoordf64>>,
     panel: &Panel,
     x_axis: Option<&str>,
     x_format: &dyn Fn(&f64) -> String,
-) -> Result<(), DrawingAreaErrorKind<std::io::Error>>
+) -> Result<(i32, i32), DrawingAreaErrorKind<std::io::Error>>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
@@ -390,11 +402,7 @@ where
             }
         }
     }
-    if let Some(legend) = &layout.legend {
-        let area = chart.plotting_area().strip_coord_spec();
-        draw_legend(&area, curves, legend)?;
-    }
-    Ok(())
+    Ok(chart.plotting_area().get_base_pixel())
 }
 
 /// How far down (pixels) to draw each label of `labelled` (a dot's centre

@@ -169,12 +169,21 @@ impl Layout {
     }
 
     /// The layout of `shown` in `ranges` with the legend where it covers
-    /// the least data (see [`Layout::sized`]).
-    fn placed(shown: &[Series], y: YRange, mut ranges: Ranges, plot: (u32, u32)) -> Self {
+    /// the least data (see [`Layout::sized`]); a legend too tall to make
+    /// room above the data without squashing it to less than half the
+    /// height goes beside the plotting area, which narrows, if it fits
+    /// there in half the width.
+    fn placed(shown: &[Series], y: YRange, mut ranges: Ranges, mut plot: (u32, u32)) -> Self {
         let legend = legend_size(shown).map(|size| {
             let (place, covered) = best_place(shown, ranges, size, plot);
             if covered == 0 || matches!(y, YRange::Fixed(..)) {
                 return Legend { size, place };
+            }
+            let tall = size.1 + 2 * LEGEND_INSET;
+            let fits_beside = tall <= plot.1 as i32 && 2 * beside_width(size) >= plot.0;
+            if 2 * tall > plot.1 as i32 && fits_beside {
+                plot.0 = beside_width(size);
+                return Legend::beside(size, plot.0);
             }
             let free = f64::from(plot.1) - f64::from(size.1 + 2 * LEGEND_INSET);
             let (lo, hi) = ranges.y;
@@ -194,6 +203,40 @@ impl Layout {
             rule,
             plot,
         }
+    }
+}
+
+impl Legend {
+    /// A legend of `size` beside a plotting area `width` pixels wide, at
+    /// its top.
+    fn beside(size: (i32, i32), width: u32) -> Self {
+        Self {
+            size,
+            place: (width as i32 + LEGEND_INSET, LEGEND_INSET),
+        }
+    }
+}
+
+/// The width of a figure's plotting area with a legend `size` beside it.
+fn beside_width(size: (i32, i32)) -> u32 {
+    PLOT.0.saturating_sub((size.0 + LEGEND_INSET) as u32)
+}
+
+/// Lays out charts stacked over one x axis alike: when one has its legend
+/// beside its plotting area, every one has, and their plotting areas are
+/// as wide as the widest legend leaves.
+pub(super) fn align(layouts: &mut [&mut Layout]) {
+    let beside = |l: &Layout| l.legend.is_some_and(|g| g.place.0 >= l.plot.0 as i32);
+    if !layouts.iter().any(|l| beside(l)) {
+        return;
+    }
+    let widest = (layouts.iter().filter_map(|l| l.legend))
+        .map(|g| g.size)
+        .max_by_key(|size| size.0)
+        .unwrap_or_default();
+    for layout in layouts {
+        layout.plot.0 = beside_width(widest);
+        layout.legend = (layout.legend).map(|g| Legend::beside(g.size, layout.plot.0));
     }
 }
 
@@ -309,7 +352,8 @@ fn legend_size(shown: &[Series]) -> Option<(i32, i32)> {
 
 /// Where a legend of `size` may go in a plotting area of `plot` pixels
 /// (its top-left pixel), best first: the upper left, upper right, lower
-/// right and lower left corners, then down the left and right edges.
+/// right and lower left corners, then down the left and right edges, then
+/// along the top and bottom edges (a gap between clusters of points).
 fn legend_places(size: (i32, i32), plot: (u32, u32)) -> Vec<(i32, i32)> {
     let left = LEGEND_INSET;
     let right = plot.0 as i32 - LEGEND_INSET - size.0;
@@ -318,6 +362,9 @@ fn legend_places(size: (i32, i32), plot: (u32, u32)) -> Vec<(i32, i32)> {
     let mut places = vec![(left, top), (right, top), (right, bottom), (left, bottom)];
     for y in (top..bottom).step_by(10).skip(1) {
         places.extend([(left, y), (right, y)]);
+    }
+    for x in (left..right).step_by(10).skip(1) {
+        places.extend([(x, top), (x, bottom)]);
     }
     places
 }
@@ -356,14 +403,14 @@ fn best_place(
 
 /// The vertical extent of a series' line and band at episode `x`,
 /// interpolated between the evaluations around it along an axis of
-/// `scale`.
+/// `scale`; `None` outside the series' span.
 fn extent_at(points: &[SeriesPoint], x: f64, scale: Scale) -> Option<(f64, f64)> {
     let i = points.iter().position(|p| p.episode >= x)?;
     let b = &points[i];
-    let a = if b.episode == x || i == 0 {
+    let a = if b.episode == x {
         b
     } else {
-        &points[i - 1]
+        &points[i.checked_sub(1)?]
     };
     let t = if b.episode > a.episode {
         (scale.of(x) - scale.of(a.episode)) / (scale.of(b.episode) - scale.of(a.episode))
@@ -428,6 +475,11 @@ mod tests {
         let ((left, top), covered) = best_place(&both, ranges, size, PLOT);
         assert_eq!((left, covered), (LEGEND_INSET, 0));
         assert!(top > LEGEND_INSET && top + size.1 < PLOT.1 as i32 - LEGEND_INSET);
+        // Covering the height at both ends: the gap between them.
+        let apart = [band(0.0, 60.0), band(240.0, 300.0)];
+        let ((left, _), covered) = best_place(&apart, ranges, size, PLOT);
+        assert_eq!(covered, 0);
+        assert!(left > LEGEND_INSET && left + size.0 < PLOT.0 as i32 - LEGEND_INSET);
         // Covering everything, the first corner.
         let wide = [wide_band()];
         let (place, covered) = best_place(&wide, ranges, size, PLOT);
@@ -444,6 +496,25 @@ mod tests {
         let fixed = Layout::of(&wide, YRange::Fixed(0.0, 100.0));
         assert_eq!(fixed.ranges.y, (0.0, 100.0));
         assert_eq!(Layout::of(&[], YRange::FromZero).legend, None);
+    }
+
+    #[test]
+    fn a_tall_covering_legend_goes_beside_and_stacked_charts_follow() {
+        let many: Vec<Series> = (0..12).map(|_| wide_band()).collect();
+        let mut main = Layout::of(&many, YRange::FromZero);
+        let legend = main.legend.unwrap();
+        assert_eq!(main.ranges.y, y_range(YRange::FromZero, &many));
+        assert_eq!(
+            main.plot,
+            (PLOT.0 - (legend.size.0 + LEGEND_INSET) as u32, PLOT.1)
+        );
+        assert_eq!(legend.place.0 as u32, main.plot.0 + LEGEND_INSET as u32);
+        // A chart below keeps the same width, its legend beside as well.
+        let mut below = Layout::sized(&[wide_band()], YRange::FromZero, (PLOT.0, 200));
+        assert_eq!(below.plot.0, PLOT.0);
+        align(&mut [&mut main, &mut below]);
+        assert_eq!(below.plot.0, main.plot.0);
+        assert_eq!(below.legend.unwrap().place, legend.place);
     }
 
     #[test]
@@ -485,6 +556,11 @@ mod tests {
 
     /// A band from 0 to 100 over episodes 0 to 300.
     fn wide_band() -> Series {
+        band(0.0, 300.0)
+    }
+
+    /// A band from 0 to 100 over episodes `from` to `to`.
+    fn band(from: f64, to: f64) -> Series {
         let point = |episode| SeriesPoint {
             episode,
             mean: Some(50.0),
@@ -494,7 +570,7 @@ mod tests {
         };
         Series {
             label: "Wide".to_owned(),
-            points: vec![point(0.0), point(300.0)],
+            points: vec![point(from), point(to)],
         }
     }
 }
