@@ -961,13 +961,18 @@ impl Agent {
         self.strategy.asks(&at, &mut self.rng)
     }
 
-    /// Whom to ask among the `reachable` agents, as its strategy decides
-    /// (e.g. G(s)).
+    /// Whom to ask among the `reachable` agents not announced spent, as its
+    /// strategy decides (e.g. G(s)); the strategy hears when none of those
+    /// it named is left.
     fn fill_reach(&mut self, positions: &[[f64; 2]], reachable: &dyn Fn(usize) -> bool) {
         (self.strategy).advisors(self.id, self.team_size, positions, &mut self.reach);
+        let named = !self.reach.is_empty();
         let exhausted = &self.exhausted_peers;
         self.reach
             .retain(|&j| reachable(j) && !exhausted.get(j).copied().unwrap_or(false));
+        if named && self.reach.is_empty() {
+            self.strategy.advisors_unreachable();
+        }
     }
 
     /// The intended action a Mistake Correcting advisee sends along: its

@@ -7,8 +7,8 @@ use crate::link::NetworkConditions;
 use crate::persist::Entry;
 use crate::selection::ACTIONS;
 use crate::strategy::{
-    AdHoc, AdviceImitation, AdviceReuse, EarlyAdvising, EpisodeSharing, Psaf, PsafShares,
-    RandomAdvising, Rcmp, ReuseRule, Torrey,
+    AdHoc, AdviceImitation, AdviceReuse, EarlyAdvising, EpisodeSharing, PeerLearning, Psaf,
+    PsafShares, RandomAdvising, Rcmp, ReuseRule, Torrey,
 };
 use crate::team::{Team, TeamError};
 use Action::{Dribble, Move, PassFar, PassNear, Shoot};
@@ -1607,6 +1607,27 @@ fn an_exhausted_advisor_announces_once_and_is_asked_no_more() {
         told.agents()[1].counters().advice_given > 0,
         "the newcomer is asked"
     );
+}
+
+#[test]
+fn a_peer_learner_following_an_announced_advisor_asks_the_others() {
+    // Agent 1's budget runs out at once; agent 2's lasts.
+    let budget = |give| {
+        let mut c = with("peer-learning", |p: &mut PeerLearning| {
+            p.give_budget = Some(give);
+        });
+        c.announce_exhausted = true;
+        c
+    };
+    let gives = [1_000_000, 3, 1_000_000];
+    let agents = (0..3).map(|i| Agent::new(i, 3, budget(gives[i]), 40 + i as u64).unwrap());
+    let mut t = Team::new(agents.collect()).unwrap();
+    let mut rng = AgentRng::seed_from_u64(8);
+    let answered = |t: &Team| t.agents()[0].request_outcomes().answered;
+    play(&mut t, &mut rng, 100, Mode::Training);
+    let before = answered(&t);
+    play(&mut t, &mut rng, 100, Mode::Training);
+    assert!(answered(&t) > before + 50, "{before} then {}", answered(&t));
 }
 
 #[test]

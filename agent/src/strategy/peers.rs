@@ -228,6 +228,14 @@ impl AdvisingStrategy for Peers {
 
     /// Every request, while the give budget (if any) lasts: a peer always
     /// suggests.
+    /// A followed peer that cannot be asked is followed no more: the next
+    /// request goes to the others.
+    fn advisors_unreachable(&mut self) {
+        if matches!(self.following, Following::Peer { .. }) {
+            self.following = Following::Nobody;
+        }
+    }
+
     fn gives(&mut self, at: &GiveContext<'_>, _rng: &mut AgentRng) -> bool {
         self.settings
             .give_budget
@@ -360,6 +368,19 @@ mod tests {
             followed[1] > 600 && followed[1] > 5 * followed[2],
             "{followed:?}"
         );
+    }
+
+    #[test]
+    fn a_followed_peer_that_cannot_be_asked_is_followed_no_more() {
+        let mut peers = Peers::new(PeerLearning::default());
+        peers.following = Following::Peer {
+            advisor: 1,
+            left: 5,
+        };
+        peers.advisors_unreachable();
+        let mut out = Vec::new();
+        peers.advisors(0, 3, &[], &mut out);
+        assert_eq!(out, vec![1, 2], "the whole team again");
     }
 
     #[test]

@@ -217,6 +217,10 @@ pub trait AdvisingStrategy: fmt::Debug + Send {
         out.clear();
     }
 
+    /// Advisee: none of the advisors it named can be asked now (out of
+    /// reach, or their give budgets announced spent). Nothing, by default.
+    fn advisors_unreachable(&mut self) {}
+
     /// Whether it runs in Mistake Correcting mode: the advisee sends its
     /// intended action along and advisors answer only when they disagree.
     fn mistake_correcting(&self) -> bool {
