@@ -180,9 +180,9 @@ impl Layout {
                 return Legend { size, place };
             }
             let tall = size.1 + 2 * LEGEND_INSET;
-            let fits_beside = tall <= plot.1 as i32 && 2 * beside_width(size) >= plot.0;
+            let fits_beside = tall <= plot.1 as i32 && 2 * beside_width(size.0) >= plot.0;
             if 2 * tall > plot.1 as i32 && fits_beside {
-                plot.0 = beside_width(size);
+                plot.0 = beside_width(size.0);
                 return Legend::beside(size, plot.0);
             }
             let free = f64::from(plot.1) - f64::from(size.1 + 2 * LEGEND_INSET);
@@ -217,9 +217,10 @@ impl Legend {
     }
 }
 
-/// The width of a figure's plotting area with a legend `size` beside it.
-fn beside_width(size: (i32, i32)) -> u32 {
-    PLOT.0.saturating_sub((size.0 + LEGEND_INSET) as u32)
+/// The width of a figure's plotting area with a legend `width` pixels
+/// wide beside it.
+fn beside_width(width: i32) -> u32 {
+    PLOT.0.saturating_sub((width + LEGEND_INSET) as u32)
 }
 
 /// Lays out charts stacked over one x axis alike: when one has its legend
@@ -231,8 +232,8 @@ pub(super) fn align(layouts: &mut [&mut Layout]) {
         return;
     }
     let widest = (layouts.iter().filter_map(|l| l.legend))
-        .map(|g| g.size)
-        .max_by_key(|size| size.0)
+        .map(|g| g.size.0)
+        .max()
         .unwrap_or_default();
     for layout in layouts {
         layout.plot.0 = beside_width(widest);
